@@ -1,0 +1,95 @@
+//! Runs the geometric stages in order: smooth curves → topology (nodes) →
+//! strip geometry. Plain data in ([`Network`]), plain data out ([`Analysis`]).
+
+use crate::curve::SmoothCurve;
+use crate::error::{Error, Result};
+use crate::network::{Family, Network};
+use crate::strip::{FrameOptions, StripGeometry};
+use crate::topology::{find_nodes, NodeOptions, Topology};
+
+/// Options of the geometric stages.
+#[derive(Debug, Clone, Copy)]
+pub struct AnalysisOptions {
+    pub nodes: NodeOptions,
+    pub frames: FrameOptions,
+}
+
+impl AnalysisOptions {
+    pub fn for_network(net: &Network) -> AnalysisOptions {
+        AnalysisOptions {
+            nodes: NodeOptions::new(net.tolerance_mm),
+            frames: FrameOptions::default(),
+        }
+    }
+}
+
+/// The network's geometry: smooth curves, nodes and strips, index-aligned
+/// with `Network::curves`.
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    pub curves: Vec<SmoothCurve>,
+    pub topology: Topology,
+    pub strips: Vec<StripGeometry>,
+}
+
+impl Analysis {
+    pub fn warnings(&self) -> &[String] {
+        &self.topology.warnings
+    }
+}
+
+/// Interpolate, find nodes and compute strip geometry. Fails when the
+/// network has no A×B crossing.
+pub fn analyze(net: &Network, opts: AnalysisOptions) -> Result<Analysis> {
+    let curves: Vec<SmoothCurve> = par_map(&net.curves, |c| SmoothCurve::new(&c.points_mm));
+    let topology = find_nodes(net, &curves, opts.nodes);
+    let ab = topology
+        .nodes
+        .iter()
+        .any(|n| net.curves[n.a].family == Family::A && net.curves[n.b].family == Family::B);
+    if !ab {
+        return Err(Error::network(
+            &net.source,
+            format!(
+                "no A×B crossing within the tolerance of {} mm: is this an asymptotic network?",
+                net.tolerance_mm
+            ),
+        ));
+    }
+    let indices: Vec<usize> = (0..net.curves.len()).collect();
+    let strips = par_map(&indices, |&i| {
+        StripGeometry::new(
+            i,
+            &net.curves[i],
+            &curves[i],
+            &topology.per_curve[i],
+            &topology.nodes,
+            opts.frames,
+        )
+    });
+    Ok(Analysis {
+        curves,
+        topology,
+        strips,
+    })
+}
+
+/// Map over a slice on all cores, keeping order (deterministic).
+pub fn par_map<T: Sync, U: Send>(items: &[T], f: impl Fn(&T) -> U + Sync) -> Vec<U> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(8);
+    if threads <= 1 || items.len() < 64 {
+        return items.iter().map(&f).collect();
+    }
+    let chunk = items.len().div_ceil(threads);
+    let f = &f;
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = items
+            .chunks(chunk)
+            .map(|part| scope.spawn(move || part.iter().map(f).collect::<Vec<U>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
+}

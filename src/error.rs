@@ -1,0 +1,90 @@
+//! Typed errors of the library. Every variant renders as one line that names
+//! the file and, where known, the line/column or the curve, and what is wrong.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// Where in an input a problem sits.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Location {
+    /// The file as a whole.
+    File,
+    /// A line and column (1-based) in a text file.
+    LineColumn { line: usize, column: usize },
+    /// A line (1-based) in a text file.
+    Line(usize),
+    /// A curve, by id.
+    Curve(String),
+    /// A field of a structured file (profile, spec), dotted path.
+    Field(String),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::File => Ok(()),
+            Location::LineColumn { line, column } => write!(f, "line {line}, column {column}"),
+            Location::Line(line) => write!(f, "line {line}"),
+            Location::Curve(id) => write!(f, "curve {id}"),
+            Location::Field(name) => write!(f, "field `{name}`"),
+        }
+    }
+}
+
+/// Everything that can go wrong in lamella's stages.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// An input file is malformed or invalid.
+    #[error("{}: {}{what}", path.display(), located(at))]
+    Input {
+        path: PathBuf,
+        at: Location,
+        what: String,
+    },
+    /// The network is well formed but cannot be processed.
+    #[error("{}: {what}", path.display())]
+    Network { path: PathBuf, what: String },
+}
+
+fn located(at: &Location) -> String {
+    match at {
+        Location::File => String::new(),
+        other => format!("{other}: "),
+    }
+}
+
+impl Error {
+    pub fn io(path: &Path, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+    pub fn input(path: &Path, at: Location, what: impl Into<String>) -> Self {
+        Error::Input {
+            path: path.to_path_buf(),
+            at,
+            what: one_line(&what.into()),
+        }
+    }
+    pub fn network(path: &Path, what: impl Into<String>) -> Self {
+        Error::Network {
+            path: path.to_path_buf(),
+            what: one_line(&what.into()),
+        }
+    }
+}
+
+/// Collapse a (possibly multi-line) parser message to one line.
+pub fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;

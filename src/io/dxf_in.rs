@@ -1,0 +1,281 @@
+//! DXF input: 3D POLYLINE, LWPOLYLINE, LINE and SPLINE entities, as exported
+//! from Rhino. The layer name gives the family (A…, B…, edge…); SPLINEs are
+//! evaluated as NURBS, not taken as their control points.
+
+use crate::error::{Error, Location, Result};
+use crate::network::{Family, RawCurve, RawNetwork, Unit};
+use dxf::entities::EntityType;
+use dxf::enums::Units;
+use glam::DVec3;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Samples per non-empty knot span when evaluating a SPLINE.
+pub const SPLINE_SAMPLES_PER_SPAN: usize = 24;
+
+/// Read a DXF file. `unit_override` is used when given, otherwise `$INSUNITS`
+/// (unitless files are read as mm).
+pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if meta.len() == 0 {
+        return Err(Error::input(path, Location::File, "the file is empty"));
+    }
+    let drawing = dxf::Drawing::load_file(path)
+        .map_err(|e| Error::input(path, Location::File, format!("invalid DXF: {e}")))?;
+    let unit = match unit_override {
+        Some(u) => u,
+        None => match drawing.header.default_drawing_units {
+            Units::Unitless | Units::Millimeters => Unit::Mm,
+            Units::Centimeters => Unit::Cm,
+            Units::Meters => Unit::M,
+            Units::Inches => Unit::In,
+            Units::Feet => Unit::Ft,
+            other => {
+                return Err(Error::input(
+                    path,
+                    Location::Field("$INSUNITS".into()),
+                    format!("unsupported drawing unit {other:?} (use mm, cm, m, in or ft, or pass --units)"),
+                ))
+            }
+        },
+    };
+    let mut counters: BTreeMap<String, usize> = BTreeMap::new();
+    let mut curves = Vec::new();
+    for entity in drawing.entities() {
+        let layer = entity.common.layer.clone();
+        let points: Vec<DVec3> = match &entity.specific {
+            EntityType::Polyline(p) => {
+                let mut pts: Vec<DVec3> = p.vertices().map(|v| to_vec(&v.location)).collect();
+                if p.is_closed() {
+                    if let Some(&first) = pts.first() {
+                        pts.push(first);
+                    }
+                }
+                pts
+            }
+            EntityType::LwPolyline(p) => {
+                let ocs = Ocs::new(to_vec3(&p.extrusion_direction));
+                let mut pts: Vec<DVec3> = p
+                    .vertices
+                    .iter()
+                    .map(|v| ocs.to_world(DVec3::new(v.x, v.y, 0.0)))
+                    .collect();
+                if p.is_closed() {
+                    if let Some(&first) = pts.first() {
+                        pts.push(first);
+                    }
+                }
+                pts
+            }
+            EntityType::Line(l) => vec![to_vec(&l.p1), to_vec(&l.p2)],
+            EntityType::Spline(s) => {
+                let id_hint = format!("{} spline #{}", layer, counters.get(&layer).copied().unwrap_or(0) + 1);
+                spline_points(s).map_err(|what| Error::input(path, Location::Curve(id_hint), what))?
+            }
+            _ => continue,
+        };
+        let family = Family::from_prefix(&layer).ok_or_else(|| {
+            Error::input(
+                path,
+                Location::Field(format!("layer {layer}")),
+                "layer name must start with A, B or edge to give the family",
+            )
+        })?;
+        let n = counters.entry(layer.clone()).or_insert(0);
+        *n += 1;
+        let handle = entity.common.handle.0;
+        let id = if handle != 0 {
+            format!("{layer}-{handle:X}")
+        } else {
+            format!("{layer}-{n:03}")
+        };
+        curves.push(RawCurve {
+            id,
+            family,
+            points,
+            normals: None,
+        });
+    }
+    if curves.is_empty() {
+        return Err(Error::input(
+            path,
+            Location::File,
+            "no POLYLINE, LWPOLYLINE, LINE or SPLINE entities found",
+        ));
+    }
+    Ok(RawNetwork {
+        name: path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "network".into()),
+        unit,
+        tolerance: None,
+        curves,
+    })
+}
+
+fn to_vec(p: &dxf::Point) -> DVec3 {
+    DVec3::new(p.x, p.y, p.z)
+}
+fn to_vec3(v: &dxf::Vector) -> DVec3 {
+    DVec3::new(v.x, v.y, v.z)
+}
+
+/// The DXF arbitrary-axis algorithm: object coordinates → world.
+struct Ocs {
+    ax: DVec3,
+    ay: DVec3,
+    az: DVec3,
+}
+
+impl Ocs {
+    fn new(normal: DVec3) -> Ocs {
+        let az = if normal.length() > 0.0 { normal.normalize() } else { DVec3::Z };
+        let ax = if az.x.abs() < 1.0 / 64.0 && az.y.abs() < 1.0 / 64.0 {
+            DVec3::Y.cross(az).normalize()
+        } else {
+            DVec3::Z.cross(az).normalize()
+        };
+        let ay = az.cross(ax).normalize();
+        Ocs { ax, ay, az }
+    }
+    fn to_world(&self, p: DVec3) -> DVec3 {
+        self.ax * p.x + self.ay * p.y + self.az * p.z
+    }
+}
+
+/// Evaluate a DXF SPLINE (NURBS) densely along its knot spans.
+fn spline_points(s: &dxf::entities::Spline) -> std::result::Result<Vec<DVec3>, String> {
+    let ctrl: Vec<DVec3> = s.control_points.iter().map(to_vec).collect();
+    if ctrl.is_empty() {
+        // A fit-point-only spline: the fit points are the samples.
+        let fit: Vec<DVec3> = s.fit_points.iter().map(to_vec).collect();
+        if fit.len() < 2 {
+            return Err("spline has neither control points nor fit points".into());
+        }
+        return Ok(fit);
+    }
+    let degree = usize::try_from(s.degree_of_curve).map_err(|_| "negative spline degree".to_string())?;
+    let knots = &s.knot_values;
+    let weights: Vec<f64> = if s.weight_values.len() == ctrl.len() {
+        s.weight_values.clone()
+    } else {
+        vec![1.0; ctrl.len()]
+    };
+    let nurbs = Nurbs::new(degree, knots.clone(), ctrl, weights)?;
+    Ok(nurbs.sample(SPLINE_SAMPLES_PER_SPAN))
+}
+
+/// A NURBS curve, evaluated with de Boor's algorithm in homogeneous coordinates.
+pub struct Nurbs {
+    degree: usize,
+    knots: Vec<f64>,
+    /// (w·P, w)
+    ctrl: Vec<(DVec3, f64)>,
+}
+
+impl Nurbs {
+    pub fn new(
+        degree: usize,
+        knots: Vec<f64>,
+        ctrl: Vec<DVec3>,
+        weights: Vec<f64>,
+    ) -> std::result::Result<Nurbs, String> {
+        if degree == 0 {
+            return Err("spline degree must be at least 1".into());
+        }
+        if ctrl.len() <= degree {
+            return Err(format!("spline of degree {degree} needs more than {degree} control points, has {}", ctrl.len()));
+        }
+        if knots.len() != ctrl.len() + degree + 1 {
+            return Err(format!(
+                "spline has {} knots; {} control points of degree {degree} need {}",
+                knots.len(),
+                ctrl.len(),
+                ctrl.len() + degree + 1
+            ));
+        }
+        if knots.windows(2).any(|w| w[1] < w[0]) || knots.iter().any(|k| !k.is_finite()) {
+            return Err("spline knots are not a non-decreasing sequence of numbers".into());
+        }
+        if weights.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
+            return Err("spline weights must be positive".into());
+        }
+        if ctrl.iter().any(|p| !p.is_finite()) {
+            return Err("spline control point has a NaN or infinite coordinate".into());
+        }
+        let ctrl = ctrl.into_iter().zip(weights).map(|(p, w)| (p * w, w)).collect();
+        Ok(Nurbs { degree, knots, ctrl })
+    }
+
+    /// Evaluate at parameter `u` in the valid domain.
+    pub fn eval(&self, u: f64) -> DVec3 {
+        let p = self.degree;
+        let n = self.ctrl.len();
+        // Span k with knots[k] <= u < knots[k+1], p <= k < n.
+        let mut k = p;
+        while k + 1 < n && self.knots[k + 1] <= u {
+            k += 1;
+        }
+        let mut d: Vec<(DVec3, f64)> = (0..=p).map(|j| self.ctrl[j + k - p]).collect();
+        for r in 1..=p {
+            for j in (r..=p).rev() {
+                let i = j + k - p;
+                let denom = self.knots[i + 1 + p - r] - self.knots[i];
+                let alpha = if denom > 0.0 { (u - self.knots[i]) / denom } else { 0.0 };
+                d[j] = (
+                    d[j - 1].0 * (1.0 - alpha) + d[j].0 * alpha,
+                    d[j - 1].1 * (1.0 - alpha) + d[j].1 * alpha,
+                );
+            }
+        }
+        d[p].0 / d[p].1
+    }
+
+    /// Points at `per_span` equal parameter steps in every non-empty knot span.
+    pub fn sample(&self, per_span: usize) -> Vec<DVec3> {
+        let p = self.degree;
+        let n = self.ctrl.len();
+        let mut out = Vec::new();
+        for k in p..n {
+            let (a, b) = (self.knots[k], self.knots[k + 1]);
+            if b <= a {
+                continue;
+            }
+            for j in 0..per_span {
+                let u = a + (b - a) * j as f64 / per_span as f64;
+                out.push(self.eval(u));
+            }
+        }
+        out.push(self.eval(self.knots[n]));
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nurbs_quarter_circle_is_exact() {
+        // Rational quadratic quarter circle of radius 100.
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let c = Nurbs::new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            vec![DVec3::new(100.0, 0.0, 0.0), DVec3::new(100.0, 100.0, 0.0), DVec3::new(0.0, 100.0, 0.0)],
+            vec![1.0, w, 1.0],
+        )
+        .expect("valid");
+        for p in c.sample(10) {
+            assert!((p.length() - 100.0).abs() < 1e-9, "{p}");
+        }
+        assert!(c.eval(1.0).distance(DVec3::new(0.0, 100.0, 0.0)) < 1e-12);
+    }
+
+    #[test]
+    fn nurbs_rejects_bad_knots() {
+        let e = Nurbs::new(3, vec![0.0; 3], vec![DVec3::ZERO; 4], vec![1.0; 4]);
+        assert!(e.is_err());
+    }
+}

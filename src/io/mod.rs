@@ -1,0 +1,79 @@
+//! File formats, kept apart from the working types: network files (YAML,
+//! JSON, OBJ, DXF) in, plan.json out. Each reader returns a [`RawNetwork`]
+//! in file units; [`read_network`] validates it into a [`Network`] in mm.
+
+pub mod dxf_in;
+pub mod network_file;
+pub mod obj;
+pub mod plan;
+
+use crate::error::{Error, Location, Result};
+use crate::network::{Network, RawNetwork, Unit};
+use std::path::Path;
+
+/// Options of the read stage.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ReadOptions {
+    /// Unit for formats that carry none (OBJ, unitless DXF), or to override
+    /// a DXF's `$INSUNITS`. Network files always say their unit.
+    pub unit: Option<Unit>,
+    /// Replace the file's node tolerance (mm).
+    pub tolerance_mm: Option<f64>,
+}
+
+/// Read and validate a network file; the format follows the extension
+/// (`.yaml`/`.yml`, `.json`, `.obj`, `.dxf`).
+pub fn read_network(path: &Path, opts: ReadOptions) -> Result<Network> {
+    let raw = read_raw(path, opts)?;
+    let mut net = Network::new(raw, path)?;
+    if let Some(t) = opts.tolerance_mm {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(Error::input(path, Location::Field("tolerance".into()), "tolerance must be positive"));
+        }
+        net.tolerance_mm = t;
+    }
+    Ok(net)
+}
+
+/// Read a network file into its raw form, in file units.
+pub fn read_raw(path: &Path, opts: ReadOptions) -> Result<RawNetwork> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if !path.exists() {
+        return Err(Error::input(path, Location::File, "no such file"));
+    }
+    match ext.as_str() {
+        "yaml" | "yml" => {
+            let text = read_text(path)?;
+            network_file::parse(&text, network_file::Syntax::Yaml, path)
+        }
+        "json" => {
+            let text = read_text(path)?;
+            network_file::parse(&text, network_file::Syntax::Json, path)
+        }
+        "obj" => {
+            let text = read_text(path)?;
+            obj::parse(&text, opts.unit.unwrap_or(crate::network::Unit::Mm), path)
+        }
+        "dxf" => dxf_in::read(path, opts.unit),
+        _ => Err(Error::input(
+            path,
+            Location::File,
+            format!("unknown network format '.{ext}' (use .yaml, .yml, .json, .obj or .dxf)"),
+        )),
+    }
+}
+
+/// Read a whole text file, with a one-line error on failure or bad UTF-8.
+pub fn read_text(path: &Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    String::from_utf8(bytes).map_err(|e| {
+        Error::input(
+            path,
+            Location::File,
+            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+        )
+    })
+}

@@ -1,0 +1,211 @@
+//! plan.json, schema `lamella-plan/1`: the single source of truth every later
+//! output is drawn from. Later stages add fields; they never rename these.
+//! Numbers are rounded to fixed precision so the file is byte-stable.
+
+use crate::analyze::Analysis;
+use crate::error::{Error, Result};
+use crate::network::Network;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+pub const SCHEMA: &str = "lamella-plan/1";
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Plan {
+    pub schema: String,
+    pub generator: String,
+    pub units: String,
+    pub network: NetworkSummary,
+    pub summary: Summary,
+    pub strips: Vec<PlanStrip>,
+    pub nodes: Vec<PlanNode>,
+    pub warnings: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct NetworkSummary {
+    pub name: String,
+    /// The file name (not the full path, so plans are portable).
+    pub source: String,
+    pub file_units: String,
+    pub tolerance_mm: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Summary {
+    pub curves: usize,
+    pub nodes: usize,
+    pub total_length_mm: f64,
+    pub shortest_node_to_node_mm: Option<f64>,
+    pub longest_node_to_node_mm: Option<f64>,
+    pub max_normal_curvature_per_m: f64,
+    pub min_angle_deg: Option<f64>,
+    pub max_angle_deg: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanStrip {
+    pub id: String,
+    pub family: String,
+    pub length_mm: f64,
+    pub nodes: Vec<PlanStripNode>,
+    /// Lengths between consecutive nodes.
+    pub node_to_node_mm: Vec<f64>,
+    /// From the strip's start to its first node, and from its last node to its end.
+    pub start_to_first_node_mm: Option<f64>,
+    pub last_node_to_end_mm: Option<f64>,
+    /// None for a straight strip.
+    pub min_bending_radius_mm: Option<f64>,
+    pub max_twist_deg_per_m: f64,
+    pub max_normal_curvature_per_m: f64,
+    /// Where the surface normals came from: file, binormal, binormal+nodes, nodes.
+    pub normals: String,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanStripNode {
+    pub node: usize,
+    /// Id of the crossing curve.
+    pub crossing: String,
+    pub station_mm: f64,
+    pub angle_deg: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanNode {
+    pub id: usize,
+    /// The A curve (or the B curve of a B×edge node).
+    pub a: String,
+    /// The B curve (or the edge curve).
+    pub b: String,
+    pub station_a_mm: f64,
+    pub station_b_mm: f64,
+    pub position_mm: [f64; 3],
+    pub normal: [f64; 3],
+    pub angle_deg: f64,
+    pub gap_mm: f64,
+}
+
+/// Round to `decimals` places (and drop negative zero) for stable output.
+pub fn round(x: f64, decimals: i32) -> f64 {
+    let f = 10f64.powi(decimals);
+    let r = (x * f).round() / f;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+const MM: i32 = 4;
+const DEG: i32 = 6;
+const CURV: i32 = 6;
+
+fn v3(v: glam::DVec3, d: i32) -> [f64; 3] {
+    [round(v.x, d), round(v.y, d), round(v.z, d)]
+}
+
+/// Build the plan of a network from its analysis.
+pub fn build(net: &Network, an: &Analysis) -> Plan {
+    let per_m = 1000.0;
+    let strips: Vec<PlanStrip> = an
+        .strips
+        .iter()
+        .map(|s| {
+            let nodes = s
+                .nodes
+                .iter()
+                .map(|cn| PlanStripNode {
+                    node: cn.node,
+                    crossing: net.curves[cn.crossing].id.clone(),
+                    station_mm: round(cn.station_mm, MM),
+                    angle_deg: round(an.topology.nodes[cn.node].angle_deg, DEG),
+                })
+                .collect();
+            PlanStrip {
+                id: s.id.clone(),
+                family: s.family.as_str().to_string(),
+                length_mm: round(s.length_mm, MM),
+                nodes,
+                node_to_node_mm: s.node_to_node_mm().into_iter().map(|l| round(l, MM)).collect(),
+                start_to_first_node_mm: s.nodes.first().map(|n| round(n.station_mm, MM)),
+                last_node_to_end_mm: s.nodes.last().map(|n| round(s.length_mm - n.station_mm, MM)),
+                min_bending_radius_mm: s.min_bending_radius_mm().map(|r| round(r, MM)),
+                max_twist_deg_per_m: round(s.max_abs_tg_per_mm.to_degrees() * per_m, DEG),
+                max_normal_curvature_per_m: round(s.max_abs_kn_per_mm * per_m, CURV),
+                normals: s.normal_source.as_str().to_string(),
+            }
+        })
+        .collect();
+    let nodes: Vec<PlanNode> = an
+        .topology
+        .nodes
+        .iter()
+        .map(|n| PlanNode {
+            id: n.id,
+            a: net.curves[n.a].id.clone(),
+            b: net.curves[n.b].id.clone(),
+            station_a_mm: round(n.station_a_mm, MM),
+            station_b_mm: round(n.station_b_mm, MM),
+            position_mm: v3(n.position_mm, MM),
+            normal: v3(n.normal, 7),
+            angle_deg: round(n.angle_deg, DEG),
+            gap_mm: round(n.gap_mm, MM),
+        })
+        .collect();
+    let all_n2n: Vec<f64> = an.strips.iter().flat_map(|s| s.node_to_node_mm()).collect();
+    let angles = an.topology.nodes.iter().map(|n| n.angle_deg);
+    let summary = Summary {
+        curves: net.curves.len(),
+        nodes: nodes.len(),
+        total_length_mm: round(an.strips.iter().map(|s| s.length_mm).sum(), MM),
+        shortest_node_to_node_mm: all_n2n.iter().copied().reduce(f64::min).map(|x| round(x, MM)),
+        longest_node_to_node_mm: all_n2n.iter().copied().reduce(f64::max).map(|x| round(x, MM)),
+        max_normal_curvature_per_m: round(
+            an.strips.iter().map(|s| s.max_abs_kn_per_mm).fold(0.0, f64::max) * per_m,
+            CURV,
+        ),
+        min_angle_deg: angles.clone().reduce(f64::min).map(|x| round(x, DEG)),
+        max_angle_deg: angles.reduce(f64::max).map(|x| round(x, DEG)),
+    };
+    Plan {
+        schema: SCHEMA.into(),
+        generator: format!("lamella {}", env!("CARGO_PKG_VERSION")),
+        units: "mm".into(),
+        network: NetworkSummary {
+            name: net.name.clone(),
+            source: net
+                .source
+                .file_name()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            file_units: net.file_unit.as_str().into(),
+            tolerance_mm: round(net.tolerance_mm, MM),
+        },
+        summary,
+        strips,
+        nodes,
+        warnings: an.warnings().to_vec(),
+    }
+}
+
+/// Serialise a plan (pretty JSON, trailing newline).
+pub fn to_json(plan: &Plan) -> String {
+    let mut s = serde_json::to_string_pretty(plan).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"));
+    s.push('\n');
+    s
+}
+
+/// Write `contents` to `path` atomically: a temporary file beside it, then a
+/// rename, so a failure never leaves half a file.
+pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.lamella-tmp"));
+    std::fs::write(&tmp, contents).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(path, e)
+    })
+}

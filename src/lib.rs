@@ -1,0 +1,22 @@
+//! lamella: fabrication CAM for gridshells built from flat, straight strips
+//! laid along the asymptotic curves of a minimal surface.
+//!
+//! Stages (see ARCHITECTURE.md): [`io`] reads a network into a validated
+//! [`network::Network`] in mm; [`curve`] interpolates every curve smoothly;
+//! [`topology`] finds the nodes; [`strip`] computes Darboux frames,
+//! curvatures and node-to-node lengths; [`analyze`] runs them in order;
+//! [`io::plan`] writes plan.json. [`synth`] makes networks from closed forms
+//! for tests, benchmarks and samples.
+
+pub mod analyze;
+pub mod curve;
+pub mod error;
+pub mod io;
+pub mod network;
+pub mod strip;
+pub mod synth;
+pub mod topology;
+
+pub use analyze::{analyze, Analysis, AnalysisOptions};
+pub use error::{Error, Result};
+pub use network::{Family, Network};

@@ -1,0 +1,280 @@
+//! The validated in-memory network: the output of the read stage.
+//!
+//! Guarantees after [`Network::new`] succeeds:
+//! * every coordinate is finite and in millimetres (`_mm`);
+//! * curve ids are unique and non-empty;
+//! * every curve has at least two distinct points, consecutive duplicates removed,
+//!   and a positive length;
+//! * normals, where present, have one per point, are finite and non-zero;
+//! * curves keep the order and orientation of the file.
+
+use crate::error::{Error, Location, Result};
+use glam::DVec3;
+use std::collections::HashSet;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// Default node tolerance when a file gives none: largest gap (mm) between
+/// two curves that still makes a node.
+pub const DEFAULT_TOLERANCE_MM: f64 = 0.5;
+
+/// Points closer than this (mm) are the same sample.
+pub const DUPLICATE_POINT_MM: f64 = 1e-9;
+
+/// The two asymptotic families and the boundary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Family {
+    A,
+    B,
+    Edge,
+}
+
+impl Family {
+    /// Parse a family name as written in a network file (`A`, `B`, `edge`).
+    pub fn parse(name: &str) -> Option<Family> {
+        match name.trim() {
+            "A" | "a" => Some(Family::A),
+            "B" | "b" => Some(Family::B),
+            s if s.eq_ignore_ascii_case("edge") => Some(Family::Edge),
+            _ => None,
+        }
+    }
+    /// Family from the leading characters of a layer or object name
+    /// (`A03` → A, `edge-north` → edge). Names starting with `edge`
+    /// (any case) are edges; otherwise the first letter decides.
+    pub fn from_prefix(name: &str) -> Option<Family> {
+        let n = name.trim();
+        if n.len() >= 4 && n[..4].eq_ignore_ascii_case("edge") {
+            return Some(Family::Edge);
+        }
+        match n.chars().next() {
+            Some('A') | Some('a') => Some(Family::A),
+            Some('B') | Some('b') => Some(Family::B),
+            _ => None,
+        }
+    }
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Family::A => "A",
+            Family::B => "B",
+            Family::Edge => "edge",
+        }
+    }
+    /// Whether curves of these families meet in nodes (A×B, A×edge, B×edge).
+    pub fn crosses(self, other: Family) -> bool {
+        self != other
+    }
+}
+
+impl fmt::Display for Family {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Length units a file may be written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unit {
+    Mm,
+    Cm,
+    M,
+    In,
+    Ft,
+}
+
+impl Unit {
+    pub fn parse(name: &str) -> Option<Unit> {
+        match name.trim() {
+            "mm" => Some(Unit::Mm),
+            "cm" => Some(Unit::Cm),
+            "m" => Some(Unit::M),
+            "in" => Some(Unit::In),
+            "ft" => Some(Unit::Ft),
+            _ => None,
+        }
+    }
+    /// Millimetres per unit.
+    pub fn mm_per_unit(self) -> f64 {
+        match self {
+            Unit::Mm => 1.0,
+            Unit::Cm => 10.0,
+            Unit::M => 1000.0,
+            Unit::In => 25.4,
+            Unit::Ft => 304.8,
+        }
+    }
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Unit::Mm => "mm",
+            Unit::Cm => "cm",
+            Unit::M => "m",
+            Unit::In => "in",
+            Unit::Ft => "ft",
+        }
+    }
+}
+
+/// A curve as read, before validation, in file units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawCurve {
+    pub id: String,
+    pub family: Family,
+    pub points: Vec<DVec3>,
+    pub normals: Option<Vec<DVec3>>,
+}
+
+/// A network as read from any format, before validation, in file units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawNetwork {
+    pub name: String,
+    pub unit: Unit,
+    /// Node tolerance in file units, if the file gives one.
+    pub tolerance: Option<f64>,
+    pub curves: Vec<RawCurve>,
+}
+
+/// One validated curve, in millimetres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    pub id: String,
+    pub family: Family,
+    pub points_mm: Vec<DVec3>,
+    /// Unit surface normals, one per point, if the file gave them.
+    pub normals: Option<Vec<DVec3>>,
+}
+
+/// A validated network, in millimetres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Network {
+    pub name: String,
+    /// The file it was read from (for messages).
+    pub source: PathBuf,
+    /// The unit the file was written in (lengths here are already mm).
+    pub file_unit: Unit,
+    pub tolerance_mm: f64,
+    pub curves: Vec<Curve>,
+}
+
+impl Network {
+    /// Validate a raw network and convert it to millimetres.
+    pub fn new(raw: RawNetwork, source: &Path) -> Result<Network> {
+        let scale = raw.unit.mm_per_unit();
+        let tolerance_mm = match raw.tolerance {
+            None => DEFAULT_TOLERANCE_MM,
+            Some(t) if t.is_finite() && t > 0.0 => t * scale,
+            Some(t) => {
+                return Err(Error::input(
+                    source,
+                    Location::Field("tolerance".into()),
+                    format!("tolerance must be a positive number, got {t}"),
+                ))
+            }
+        };
+        if raw.curves.is_empty() {
+            return Err(Error::input(source, Location::File, "the network has no curves"));
+        }
+        let mut seen = HashSet::with_capacity(raw.curves.len());
+        let mut curves = Vec::with_capacity(raw.curves.len());
+        for (index, c) in raw.curves.into_iter().enumerate() {
+            let at = || {
+                if c.id.trim().is_empty() {
+                    Location::Field(format!("curves[{index}].id"))
+                } else {
+                    Location::Curve(c.id.clone())
+                }
+            };
+            if c.id.trim().is_empty() {
+                return Err(Error::input(source, at(), "empty curve id"));
+            }
+            if !seen.insert(c.id.clone()) {
+                return Err(Error::input(source, at(), "duplicate curve id"));
+            }
+            if c.points.len() < 2 {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    format!("has {} point(s); a curve needs at least 2", c.points.len()),
+                ));
+            }
+            if let Some(k) = c.points.iter().position(|p| !p.is_finite()) {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    format!("point {k} has a NaN or infinite coordinate"),
+                ));
+            }
+            if let Some(n) = &c.normals {
+                if n.len() != c.points.len() {
+                    return Err(Error::input(
+                        source,
+                        at(),
+                        format!("{} normals for {} points", n.len(), c.points.len()),
+                    ));
+                }
+                if let Some(k) = n.iter().position(|v| !v.is_finite()) {
+                    return Err(Error::input(
+                        source,
+                        at(),
+                        format!("normal {k} has a NaN or infinite coordinate"),
+                    ));
+                }
+                if let Some(k) = n.iter().position(|v| v.length() < 1e-12) {
+                    return Err(Error::input(source, at(), format!("normal {k} has zero length")));
+                }
+            }
+            // Scale to mm and drop consecutive duplicate points.
+            let mut points_mm = Vec::with_capacity(c.points.len());
+            let mut normals = c.normals.as_ref().map(|_| Vec::with_capacity(c.points.len()));
+            for (k, p) in c.points.iter().enumerate() {
+                let p_mm = *p * scale;
+                if let Some(last) = points_mm.last() {
+                    if p_mm.distance(*last) <= DUPLICATE_POINT_MM {
+                        continue;
+                    }
+                }
+                points_mm.push(p_mm);
+                if let (Some(out), Some(src)) = (normals.as_mut(), c.normals.as_ref()) {
+                    out.push(src[k].normalize());
+                }
+            }
+            if points_mm.len() < 2 {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    "zero-length curve (all points coincide)",
+                ));
+            }
+            curves.push(Curve {
+                id: c.id,
+                family: c.family,
+                points_mm,
+                normals,
+            });
+        }
+        let has_a = curves.iter().any(|c| c.family == Family::A);
+        let has_b = curves.iter().any(|c| c.family == Family::B);
+        if !has_a || !has_b {
+            let missing = if !has_a { "A" } else { "B" };
+            return Err(Error::network(
+                source,
+                format!("no curve of family {missing}: a network needs A×B crossings"),
+            ));
+        }
+        Ok(Network {
+            name: raw.name,
+            source: source.to_path_buf(),
+            file_unit: raw.unit,
+            tolerance_mm,
+            curves,
+        })
+    }
+
+    pub fn curve_index(&self, id: &str) -> Option<usize> {
+        self.curves.iter().position(|c| c.id == id)
+    }
+
+    /// Total number of sample points.
+    pub fn point_count(&self) -> usize {
+        self.curves.iter().map(|c| c.points_mm.len()).sum()
+    }
+}

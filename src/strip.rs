@@ -1,0 +1,389 @@
+//! Strip-geometry stage: along every curve, the Darboux frame (x tangent,
+//! z surface normal, y = z × x) with geodesic curvature kg, geodesic torsion
+//! tg and the normal-curvature residual kn; node-to-node lengths; stations on
+//! lamella lines offset from the curve.
+//!
+//! Where the surface normal comes from (geometry.md):
+//! * the file's normals, interpolated like the points; kn and tg from their
+//!   rotation (z' = −kn·x − tg·y);
+//! * otherwise the binormal (the osculating plane of an asymptotic curve is
+//!   the tangent plane), with tg = the curve's torsion;
+//! * where the curve is straight (curvature below
+//!   [`FrameOptions::straight_curvature_per_mm`]) the node normals
+//!   (tangent_a × tangent_b), interpolated along the curve, and tg from their
+//!   rotation.
+//!
+//! Without file normals the kn residual is measured at the nodes, as the
+//! curve's curvature vector against the node normal.
+//!
+//! Sign conventions: z agrees with the oriented node normals; kg and kn change
+//! sign with z, tg does not change with z or with the curve's direction.
+
+use crate::curve::{Hermite5, SmoothCurve};
+use crate::network::{Curve, Family};
+use crate::topology::{CurveNode, Node};
+use glam::DVec3;
+
+/// Options of the strip-geometry stage.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameOptions {
+    /// Below this curvature (1/mm) a curve counts as straight: its binormal is
+    /// undefined, and the normal comes from the nodes.
+    pub straight_curvature_per_mm: f64,
+}
+
+impl Default for FrameOptions {
+    fn default() -> Self {
+        FrameOptions {
+            straight_curvature_per_mm: 1e-5,
+        }
+    }
+}
+
+/// Where a strip's normals came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NormalSource {
+    File,
+    Binormal,
+    /// Binormal where curved, node normals where straight.
+    BinormalAndNodes,
+    Nodes,
+}
+
+impl NormalSource {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            NormalSource::File => "file",
+            NormalSource::Binormal => "binormal",
+            NormalSource::BinormalAndNodes => "binormal+nodes",
+            NormalSource::Nodes => "nodes",
+        }
+    }
+}
+
+/// The Darboux frame and curvatures at one station.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DarbouxFrame {
+    pub station_mm: f64,
+    pub point_mm: DVec3,
+    pub x: DVec3,
+    pub y: DVec3,
+    pub z: DVec3,
+    /// Geodesic curvature, 1/mm (bending about z, the strip's weak axis).
+    pub kg_per_mm: f64,
+    /// Normal curvature, 1/mm (bending about y; zero on an asymptotic curve).
+    pub kn_per_mm: f64,
+    /// Geodesic torsion, rad/mm (twist about x).
+    pub tg_per_mm: f64,
+    /// Whether z is the binormal here (else file or node normals).
+    pub from_binormal: bool,
+}
+
+/// Curvatures at one sample of a strip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Curvatures {
+    pub station_mm: f64,
+    pub kg_per_mm: f64,
+    pub kn_per_mm: f64,
+    pub tg_per_mm: f64,
+}
+
+/// Unit normals along a curve, interpolated over station from its nodes.
+#[derive(Debug, Clone)]
+struct NodeNormals {
+    stations: Vec<f64>,
+    normals: Vec<DVec3>,
+    field: Option<Hermite5>,
+}
+
+impl NodeNormals {
+    fn new(nodes: &[CurveNode], all: &[Node]) -> Option<NodeNormals> {
+        let mut stations = Vec::with_capacity(nodes.len());
+        let mut normals = Vec::with_capacity(nodes.len());
+        for cn in nodes {
+            if stations.last().is_some_and(|&s: &f64| cn.station_mm - s < 1e-6) {
+                continue;
+            }
+            stations.push(cn.station_mm);
+            normals.push(all[cn.node].normal);
+        }
+        if stations.is_empty() {
+            return None;
+        }
+        let field = (stations.len() >= 2).then(|| Hermite5::new(stations.clone(), normals.clone()));
+        Some(NodeNormals {
+            stations,
+            normals,
+            field,
+        })
+    }
+
+    /// Unit normal and its derivative with respect to station.
+    fn at(&self, station_mm: f64) -> (DVec3, DVec3) {
+        let Some(h) = &self.field else {
+            return (self.normals[0], DVec3::ZERO);
+        };
+        let (first, last) = (self.stations[0], *self.stations.last().unwrap_or(&0.0));
+        let (v, d) = if station_mm < first {
+            let j = h.jet(first);
+            (j.value + j.d1 * (station_mm - first), j.d1)
+        } else if station_mm > last {
+            let j = h.jet(last);
+            (j.value + j.d1 * (station_mm - last), j.d1)
+        } else {
+            let j = h.jet(station_mm);
+            (j.value, j.d1)
+        };
+        unit_and_derivative(v, d)
+    }
+}
+
+/// Normalise v and carry its derivative: (v/|v|)' = (v' − v̂(v̂·v'))/|v|.
+fn unit_and_derivative(v: DVec3, dv: DVec3) -> (DVec3, DVec3) {
+    let len = v.length();
+    if len < 1e-300 {
+        return (DVec3::Z, DVec3::ZERO);
+    }
+    let u = v / len;
+    (u, (dv - u * u.dot(dv)) / len)
+}
+
+/// The geometry of one strip (curve).
+#[derive(Debug, Clone)]
+pub struct StripGeometry {
+    pub curve: usize,
+    pub id: String,
+    pub family: Family,
+    pub length_mm: f64,
+    pub normal_source: NormalSource,
+    /// The curve's nodes, by station.
+    pub nodes: Vec<CurveNode>,
+    /// Curvatures at every sample of the curve.
+    pub samples: Vec<Curvatures>,
+    pub max_abs_kg_per_mm: f64,
+    pub max_abs_tg_per_mm: f64,
+    /// Largest |kn| (the residual: zero on an exact asymptotic curve).
+    pub max_abs_kn_per_mm: f64,
+    file_normals: Option<Hermite5>,
+    node_normals: Option<NodeNormals>,
+    straight_curvature_per_mm: f64,
+}
+
+impl StripGeometry {
+    /// Build the strip geometry of one curve.
+    pub fn new(
+        index: usize,
+        curve: &Curve,
+        smooth: &SmoothCurve,
+        nodes: &[CurveNode],
+        all_nodes: &[Node],
+        opts: FrameOptions,
+    ) -> StripGeometry {
+        let file_normals = curve.normals.as_ref().map(|n| {
+            let t: Vec<f64> = (0..n.len()).map(|i| smooth.sample_param(i)).collect();
+            Hermite5::new(t, n.clone())
+        });
+        let node_normals = NodeNormals::new(nodes, all_nodes);
+        let mut strip = StripGeometry {
+            curve: index,
+            id: curve.id.clone(),
+            family: curve.family,
+            length_mm: smooth.length_mm(),
+            normal_source: NormalSource::File,
+            nodes: nodes.to_vec(),
+            samples: Vec::new(),
+            max_abs_kg_per_mm: 0.0,
+            max_abs_tg_per_mm: 0.0,
+            max_abs_kn_per_mm: 0.0,
+            file_normals,
+            node_normals,
+            straight_curvature_per_mm: opts.straight_curvature_per_mm,
+        };
+        let n = smooth.samples().len();
+        let mut samples = Vec::with_capacity(n);
+        let (mut used_binormal, mut used_nodes) = (false, false);
+        for i in 0..n {
+            let (k, u) = if i + 1 < n { (i, 0.0) } else { (n - 2, 1.0) };
+            let f = strip.frame_at_param(smooth, k, u, smooth.sample_stations_mm()[i]);
+            used_binormal |= f.from_binormal;
+            used_nodes |= !f.from_binormal;
+            samples.push(Curvatures {
+                station_mm: f.station_mm,
+                kg_per_mm: f.kg_per_mm,
+                kn_per_mm: f.kn_per_mm,
+                tg_per_mm: f.tg_per_mm,
+            });
+        }
+        strip.max_abs_kg_per_mm = samples.iter().map(|c| c.kg_per_mm.abs()).fold(0.0, f64::max);
+        strip.max_abs_tg_per_mm = samples.iter().map(|c| c.tg_per_mm.abs()).fold(0.0, f64::max);
+        strip.normal_source = if strip.file_normals.is_some() {
+            NormalSource::File
+        } else {
+            match (used_binormal, used_nodes) {
+                (true, true) => NormalSource::BinormalAndNodes,
+                (true, false) => NormalSource::Binormal,
+                _ => NormalSource::Nodes,
+            }
+        };
+        strip.max_abs_kn_per_mm = if strip.file_normals.is_some() {
+            samples.iter().map(|c| c.kn_per_mm.abs()).fold(0.0, f64::max)
+        } else {
+            // Residual at the nodes: the curvature vector against the node normal.
+            nodes
+                .iter()
+                .map(|cn| {
+                    let (k, u) = smooth.locate_station(cn.station_mm);
+                    curvature_vector(smooth, k, u).dot(all_nodes[cn.node].normal).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        strip.samples = samples;
+        strip
+    }
+
+    /// Lengths between consecutive nodes, mm.
+    pub fn node_to_node_mm(&self) -> Vec<f64> {
+        self.nodes.windows(2).map(|w| w[1].station_mm - w[0].station_mm).collect()
+    }
+
+    /// Minimum bending radius (mm), or None for a straight strip.
+    pub fn min_bending_radius_mm(&self) -> Option<f64> {
+        (self.max_abs_kg_per_mm > self.straight_curvature_per_mm).then(|| 1.0 / self.max_abs_kg_per_mm)
+    }
+
+    /// The Darboux frame at a station.
+    pub fn frame_at(&self, smooth: &SmoothCurve, station_mm: f64) -> DarbouxFrame {
+        let (k, u) = smooth.locate_station(station_mm);
+        self.frame_at_param(smooth, k, u, station_mm.clamp(0.0, smooth.length_mm()))
+    }
+
+    /// The Darboux frame at segment k, local u (station given by the caller).
+    pub fn frame_at_param(&self, smooth: &SmoothCurve, k: usize, u: f64, station_mm: f64) -> DarbouxFrame {
+        let j = smooth.jet_at(k, u);
+        let speed = j.d1.length();
+        let x = j.d1 / speed;
+        let kvec = curvature_vector(smooth, k, u);
+        let cross = j.d1.cross(j.d2);
+        let cn = cross.length();
+        let curvature = cn / (speed * speed * speed);
+        let reference = self.node_normals.as_ref().map(|nn| nn.at(station_mm));
+        let frame = |z_raw: DVec3, dz_ds: DVec3| {
+            let z = (z_raw - x * z_raw.dot(x)).try_normalize().unwrap_or(z_raw);
+            let y = z.cross(x);
+            (z, y, dz_ds)
+        };
+        if let Some(h) = &self.file_normals {
+            let nj = h.jet_at(k, u);
+            let (zt, dz_dt) = unit_and_derivative(nj.value, nj.d1);
+            let (z, y, dz) = frame(zt, dz_dt / speed);
+            return DarbouxFrame {
+                station_mm,
+                point_mm: j.value,
+                x,
+                y,
+                z,
+                kg_per_mm: kvec.dot(y),
+                kn_per_mm: -dz.dot(x),
+                tg_per_mm: -dz.dot(y),
+                from_binormal: false,
+            };
+        }
+        if curvature > self.straight_curvature_per_mm || reference.is_none() {
+            // z = ±binormal, oriented along the node normals.
+            let b = if cn > 0.0 { cross / cn } else { x.any_orthonormal_vector() };
+            let sign = match reference {
+                Some((r, _)) if b.dot(r) < 0.0 => -1.0,
+                None if b.z < 0.0 => -1.0,
+                _ => 1.0,
+            };
+            let z = b * sign;
+            let y = z.cross(x);
+            let torsion = if cn > 0.0 { cross.dot(j.d3) / (cn * cn) } else { 0.0 };
+            return DarbouxFrame {
+                station_mm,
+                point_mm: j.value,
+                x,
+                y,
+                z,
+                kg_per_mm: kvec.dot(y),
+                kn_per_mm: 0.0,
+                tg_per_mm: torsion,
+                from_binormal: true,
+            };
+        }
+        let (r, dr) = reference.unwrap_or((DVec3::Z, DVec3::ZERO));
+        let (z, y, dz) = frame(r, dr);
+        DarbouxFrame {
+            station_mm,
+            point_mm: j.value,
+            x,
+            y,
+            z,
+            kg_per_mm: kvec.dot(y),
+            kn_per_mm: kvec.dot(z),
+            tg_per_mm: -dz.dot(y),
+            from_binormal: false,
+        }
+    }
+
+    /// Stations on the lamella line c(s) + dy·y(s) + dz·z(s) that correspond
+    /// to the given centre-line stations (sorted ascending), by integrating
+    /// ds' = sqrt((1 − dy·kg − dz·kn)² + (dz·tg)² + (dy·tg)²) ds with
+    /// Simpson's rule on every sample interval (halved until each piece is
+    /// at most `max_step_mm` long).
+    pub fn offset_stations(
+        &self,
+        smooth: &SmoothCurve,
+        dy_mm: f64,
+        dz_mm: f64,
+        stations_mm: &[f64],
+        max_step_mm: f64,
+    ) -> Vec<f64> {
+        let stretch = |f: &DarbouxFrame| {
+            let a = 1.0 - dy_mm * f.kg_per_mm - dz_mm * f.kn_per_mm;
+            (a * a + (dz_mm * f.tg_per_mm).powi(2) + (dy_mm * f.tg_per_mm).powi(2)).sqrt()
+        };
+        // Breakpoints: samples plus requested stations, so each is hit exactly.
+        let knots = smooth.sample_stations_mm();
+        let mut breaks: Vec<f64> = knots.iter().copied().chain(stations_mm.iter().map(|s| s.clamp(0.0, smooth.length_mm()))).collect();
+        breaks.sort_by(f64::total_cmp);
+        breaks.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        let mut out = Vec::with_capacity(stations_mm.len());
+        let mut acc = 0.0;
+        let mut next = 0;
+        let mut prev_f = self.frame_at(smooth, 0.0);
+        let mut prev_s = 0.0;
+        let emit = |s: f64, acc: f64, next: &mut usize, out: &mut Vec<f64>| {
+            while *next < stations_mm.len() && stations_mm[*next].clamp(0.0, smooth.length_mm()) <= s + 1e-9 {
+                out.push(acc);
+                *next += 1;
+            }
+        };
+        emit(0.0, 0.0, &mut next, &mut out);
+        for &s in breaks.iter().skip_while(|&&s| s <= 0.0) {
+            let pieces = ((s - prev_s) / max_step_mm).ceil().max(1.0) as usize;
+            let h = (s - prev_s) / pieces as f64;
+            for p in 0..pieces {
+                let s0 = prev_s + h * p as f64;
+                let fm = self.frame_at(smooth, s0 + 0.5 * h);
+                let f1 = self.frame_at(smooth, s0 + h);
+                acc += h / 6.0 * (stretch(&prev_f) + 4.0 * stretch(&fm) + stretch(&f1));
+                prev_f = f1;
+            }
+            prev_s = s;
+            emit(s, acc, &mut next, &mut out);
+        }
+        while out.len() < stations_mm.len() {
+            out.push(acc);
+        }
+        out
+    }
+}
+
+/// Curvature vector κN (1/mm) at segment k, local u.
+fn curvature_vector(smooth: &SmoothCurve, k: usize, u: f64) -> DVec3 {
+    let j = smooth.jet_at(k, u);
+    let v2 = j.d1.length_squared();
+    let x = j.d1 / v2.sqrt();
+    (j.d2 - x * j.d2.dot(x)) / v2
+}

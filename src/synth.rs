@@ -1,0 +1,245 @@
+//! Networks made from closed forms, for tests, benchmarks and the shipped
+//! samples: analytic surfaces and families of parameter lines on them that
+//! are known to be asymptotic (Enneper and catenoid: u ± v = const; helicoid
+//! and hyperbolic paraboloid: the coordinate lines).
+
+use crate::network::{Family, RawCurve, RawNetwork, Unit};
+use glam::{DVec2, DVec3};
+
+/// A parametric surface X(u, v) with its first partial derivatives.
+pub trait ParamSurface {
+    fn point(&self, uv: DVec2) -> DVec3;
+    /// (X_u, X_v).
+    fn partials(&self, uv: DVec2) -> (DVec3, DVec3);
+    /// Unit normal X_u × X_v / |X_u × X_v|.
+    fn normal(&self, uv: DVec2) -> DVec3 {
+        let (xu, xv) = self.partials(uv);
+        xu.cross(xv).normalize()
+    }
+}
+
+/// Enneper's surface X = (u − u³/3 + uv², v − v³/3 + vu², u² − v²).
+#[derive(Debug, Clone, Copy)]
+pub struct Enneper;
+
+impl ParamSurface for Enneper {
+    fn point(&self, p: DVec2) -> DVec3 {
+        let (u, v) = (p.x, p.y);
+        DVec3::new(u - u * u * u / 3.0 + u * v * v, v - v * v * v / 3.0 + v * u * u, u * u - v * v)
+    }
+    fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
+        let (u, v) = (p.x, p.y);
+        (
+            DVec3::new(1.0 - u * u + v * v, 2.0 * u * v, 2.0 * u),
+            DVec3::new(2.0 * u * v, 1.0 - v * v + u * u, -2.0 * v),
+        )
+    }
+}
+
+/// Catenoid X = c(cosh v cos u, cosh v sin u, v).
+#[derive(Debug, Clone, Copy)]
+pub struct Catenoid {
+    pub c: f64,
+}
+
+impl ParamSurface for Catenoid {
+    fn point(&self, p: DVec2) -> DVec3 {
+        let (u, v) = (p.x, p.y);
+        self.c * DVec3::new(v.cosh() * u.cos(), v.cosh() * u.sin(), v)
+    }
+    fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
+        let (u, v) = (p.x, p.y);
+        (
+            self.c * DVec3::new(-v.cosh() * u.sin(), v.cosh() * u.cos(), 0.0),
+            self.c * DVec3::new(v.sinh() * u.cos(), v.sinh() * u.sin(), 1.0),
+        )
+    }
+}
+
+/// Helicoid X = (v cos u, v sin u, c·u).
+#[derive(Debug, Clone, Copy)]
+pub struct Helicoid {
+    pub c: f64,
+}
+
+impl ParamSurface for Helicoid {
+    fn point(&self, p: DVec2) -> DVec3 {
+        let (u, v) = (p.x, p.y);
+        DVec3::new(v * u.cos(), v * u.sin(), self.c * u)
+    }
+    fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
+        let (u, v) = (p.x, p.y);
+        (DVec3::new(-v * u.sin(), v * u.cos(), self.c), DVec3::new(u.cos(), u.sin(), 0.0))
+    }
+}
+
+/// Hyperbolic paraboloid z = xy/c, parameterised by (x, y).
+#[derive(Debug, Clone, Copy)]
+pub struct Hypar {
+    pub c: f64,
+}
+
+impl ParamSurface for Hypar {
+    fn point(&self, p: DVec2) -> DVec3 {
+        DVec3::new(p.x, p.y, p.x * p.y / self.c)
+    }
+    fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
+        (DVec3::new(1.0, 0.0, p.y / self.c), DVec3::new(0.0, 1.0, p.x / self.c))
+    }
+}
+
+/// A straight line in the parameter plane: uv(t) = start + dir·t, t ∈ [t0, t1].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamLine {
+    pub id: String,
+    pub family: Family,
+    pub start: DVec2,
+    pub dir: DVec2,
+    pub t0: f64,
+    pub t1: f64,
+}
+
+impl ParamLine {
+    pub fn uv(&self, t: f64) -> DVec2 {
+        self.start + self.dir * t
+    }
+}
+
+/// How to sample the lines.
+#[derive(Debug, Clone, Copy)]
+pub struct Sampling {
+    /// Target spacing of samples along the curve, mm.
+    pub step_mm: f64,
+    /// Write surface normals with the points.
+    pub normals: bool,
+}
+
+/// Sample one parameter line of a surface scaled by `scale_mm` (mm per
+/// surface unit), at equal parameter steps close to `step_mm` apart.
+pub fn sample_line(surface: &dyn ParamSurface, line: &ParamLine, scale_mm: f64, sampling: Sampling) -> RawCurve {
+    // Estimate the length from a fine polygon to choose the sample count.
+    let fine = 256;
+    let mut len = 0.0;
+    let mut prev = surface.point(line.uv(line.t0));
+    for i in 1..=fine {
+        let t = line.t0 + (line.t1 - line.t0) * i as f64 / fine as f64;
+        let p = surface.point(line.uv(t));
+        len += p.distance(prev);
+        prev = p;
+    }
+    let n = ((len * scale_mm / sampling.step_mm).ceil() as usize).max(1) + 1;
+    let ts: Vec<f64> = (0..n).map(|i| line.t0 + (line.t1 - line.t0) * i as f64 / (n - 1) as f64).collect();
+    RawCurve {
+        id: line.id.clone(),
+        family: line.family,
+        points: ts.iter().map(|&t| surface.point(line.uv(t)) * scale_mm).collect(),
+        normals: sampling
+            .normals
+            .then(|| ts.iter().map(|&t| surface.normal(line.uv(t))).collect()),
+    }
+}
+
+/// A network of parameter lines on a surface, in mm.
+pub fn network(name: &str, surface: &dyn ParamSurface, lines: &[ParamLine], scale_mm: f64, sampling: Sampling) -> RawNetwork {
+    RawNetwork {
+        name: name.to_string(),
+        unit: Unit::Mm,
+        tolerance: None,
+        curves: lines.iter().map(|l| sample_line(surface, l, scale_mm, sampling)).collect(),
+    }
+}
+
+/// Evenly spaced values from −half to +half (n ≥ 2).
+pub fn spread(half: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|i| -half + 2.0 * half * i as f64 / (n - 1) as f64).collect()
+}
+
+/// Asymptotic lines u + v = p (family A, along q = u − v) and u − v = q
+/// (family B) on Enneper or the catenoid, for p, q ∈ [−half, half]: curve A_i
+/// is p = p_i with q running over [−half, half], and vice versa.
+pub fn diagonal_lines(half: f64, n: usize, center: DVec2) -> Vec<ParamLine> {
+    let values = spread(half, n);
+    let mut lines = Vec::with_capacity(2 * n);
+    for (i, &p) in values.iter().enumerate() {
+        // u = (p + q)/2, v = (p − q)/2 with q = t.
+        lines.push(ParamLine {
+            id: format!("A{i:02}"),
+            family: Family::A,
+            start: center + DVec2::new(p / 2.0, p / 2.0),
+            dir: DVec2::new(0.5, -0.5),
+            t0: -half,
+            t1: half,
+        });
+    }
+    for (j, &q) in values.iter().enumerate() {
+        lines.push(ParamLine {
+            id: format!("B{j:02}"),
+            family: Family::B,
+            start: center + DVec2::new(q / 2.0, -q / 2.0),
+            dir: DVec2::new(0.5, 0.5),
+            t0: -half,
+            t1: half,
+        });
+    }
+    lines
+}
+
+/// Coordinate lines: A_i is u = u_i (running over v), B_j is v = v_j.
+pub fn coordinate_lines(us: &[f64], vs: &[f64]) -> Vec<ParamLine> {
+    let (v0, v1) = (vs[0], vs[vs.len() - 1]);
+    let (u0, u1) = (us[0], us[us.len() - 1]);
+    let mut lines = Vec::with_capacity(us.len() + vs.len());
+    for (i, &u) in us.iter().enumerate() {
+        lines.push(ParamLine {
+            id: format!("A{i:02}"),
+            family: Family::A,
+            start: DVec2::new(u, 0.0),
+            dir: DVec2::new(0.0, 1.0),
+            t0: v0,
+            t1: v1,
+        });
+    }
+    for (j, &v) in vs.iter().enumerate() {
+        lines.push(ParamLine {
+            id: format!("B{j:02}"),
+            family: Family::B,
+            start: DVec2::new(0.0, v),
+            dir: DVec2::new(1.0, 0.0),
+            t0: u0,
+            t1: u1,
+        });
+    }
+    lines
+}
+
+/// Arc length along the Enneper asymptotic line p = const from q0 to q1, in
+/// surface units: ds = λ |dq| / √2, λ = 1 + (p² + q²)/2.
+pub fn enneper_arc_length(p: f64, q0: f64, q1: f64) -> f64 {
+    let f = |q: f64| (1.0 + p * p / 2.0) * q + q * q * q / 6.0;
+    (f(q1) - f(q0)).abs() / std::f64::consts::SQRT_2
+}
+
+/// The 4 m steel-prototype Enneper network: 13 × 13 asymptotic lines over
+/// |u ± v| ≤ 0.5, 4400 mm per unit: a 4.0 m diagonal span, 2.2 m rise,
+/// cells of about 260 mm.
+pub fn enneper_4m(sampling: Sampling) -> RawNetwork {
+    let lines = diagonal_lines(ENNEPER_4M_HALF, 13, DVec2::ZERO);
+    network("enneper-4m", &Enneper, &lines, ENNEPER_4M_SCALE_MM, sampling)
+}
+
+/// Parameter half-range of [`enneper_4m`].
+pub const ENNEPER_4M_HALF: f64 = 0.5;
+/// mm per surface unit of [`enneper_4m`].
+pub const ENNEPER_4M_SCALE_MM: f64 = 4400.0;
+
+/// A square n × n Enneper network for benchmarks, `step_mm` sampling.
+pub fn enneper_grid(n: usize, scale_mm: f64, step_mm: f64) -> RawNetwork {
+    let lines = diagonal_lines(1.2, n, DVec2::ZERO);
+    network(
+        &format!("enneper-{n}x{n}"),
+        &Enneper,
+        &lines,
+        scale_mm,
+        Sampling { step_mm, normals: false },
+    )
+}

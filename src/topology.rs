@@ -1,0 +1,449 @@
+//! Topology stage: find the nodes of a network.
+//!
+//! Input: the validated [`Network`] and one [`SmoothCurve`] per curve.
+//! Output: [`Topology`], every crossing of an A curve with a B curve, and of
+//! either with an edge curve. Candidates come from an R-tree join over
+//! bounding boxes of chord chunks (inflated by the tolerance and by how far
+//! the smooth curve strays from its chords); each candidate is refined on the
+//! smooth curves to the point of closest approach, and a pair closer than the
+//! tolerance is a node.
+//!
+//! Guarantees: nodes are sorted by (first curve, station on it); a curve pair
+//! that crosses twice has two nodes; no two nodes of one curve pair are
+//! closer than the merge distance; every node normal is a unit vector,
+//! oriented consistently along each curve and with file normals where given.
+
+use crate::curve::SmoothCurve;
+use crate::network::{Family, Network};
+use glam::DVec3;
+use rstar::{RTree, RTreeObject, AABB};
+use std::collections::VecDeque;
+
+/// Segments per bounding box in the spatial index.
+const CHUNK_SEGMENTS: usize = 8;
+
+/// Options of the topology stage.
+#[derive(Debug, Clone, Copy)]
+pub struct NodeOptions {
+    /// Largest gap (mm) between two curves that is still a node.
+    pub tolerance_mm: f64,
+    /// Crossings at a smaller angle (degrees) than this get a warning.
+    pub near_tangent_deg: f64,
+}
+
+impl NodeOptions {
+    pub fn new(tolerance_mm: f64) -> NodeOptions {
+        NodeOptions {
+            tolerance_mm,
+            near_tangent_deg: 15.0,
+        }
+    }
+}
+
+/// One crossing of two curves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Node {
+    pub id: usize,
+    /// Curve index of the first curve (family A, or B in a B×edge node).
+    pub a: usize,
+    /// Curve index of the second curve (family B or edge).
+    pub b: usize,
+    pub station_a_mm: f64,
+    pub station_b_mm: f64,
+    /// Midpoint of the closest approach.
+    pub position_mm: DVec3,
+    /// Distance between the curves at the node.
+    pub gap_mm: f64,
+    pub tangent_a: DVec3,
+    pub tangent_b: DVec3,
+    /// Unit surface normal (from file normals, else tangent_a × tangent_b).
+    pub normal: DVec3,
+    /// Acute angle between the tangents, degrees.
+    pub angle_deg: f64,
+}
+
+/// A node seen from one of its curves.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveNode {
+    pub node: usize,
+    pub crossing: usize,
+    pub station_mm: f64,
+}
+
+/// The output of the topology stage.
+#[derive(Debug, Clone, Default)]
+pub struct Topology {
+    pub nodes: Vec<Node>,
+    /// Per curve, its nodes sorted by station.
+    pub per_curve: Vec<Vec<CurveNode>>,
+    pub warnings: Vec<String>,
+}
+
+#[derive(Debug, Clone)]
+struct Chunk {
+    env: AABB<[f64; 3]>,
+    curve: u32,
+    first: u32,
+    end: u32,
+}
+
+impl RTreeObject for Chunk {
+    type Envelope = AABB<[f64; 3]>;
+    fn envelope(&self) -> Self::Envelope {
+        self.env
+    }
+}
+
+/// Find every node of the network. `curves[i]` interpolates `net.curves[i]`.
+pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> Topology {
+    let tol = opts.tolerance_mm;
+    // How far each smooth segment strays from its chord (bounded above).
+    let deviation: Vec<Vec<f64>> = curves.iter().map(segment_deviation).collect();
+    let chunks_of = |family: Family| -> Vec<Chunk> {
+        let mut out = Vec::new();
+        for (ci, c) in net.curves.iter().enumerate() {
+            if c.family != family {
+                continue;
+            }
+            let pts = curves[ci].samples();
+            let nseg = pts.len() - 1;
+            let mut first = 0;
+            while first < nseg {
+                let end = (first + CHUNK_SEGMENTS).min(nseg);
+                let mut lo = pts[first];
+                let mut hi = pts[first];
+                let mut dev: f64 = 0.0;
+                for k in first..end {
+                    lo = lo.min(pts[k + 1]);
+                    hi = hi.max(pts[k + 1]);
+                    dev = dev.max(deviation[ci][k]);
+                }
+                let pad = DVec3::splat(0.5 * tol + dev + 1e-9);
+                out.push(Chunk {
+                    env: AABB::from_corners((lo - pad).to_array(), (hi + pad).to_array()),
+                    curve: ci as u32,
+                    first: first as u32,
+                    end: end as u32,
+                });
+                first = end;
+            }
+        }
+        out
+    };
+    let tree_a = RTree::bulk_load(chunks_of(Family::A));
+    let tree_b = RTree::bulk_load(chunks_of(Family::B));
+    let tree_e = RTree::bulk_load(chunks_of(Family::Edge));
+
+    let mut raw: Vec<RawNode> = Vec::new();
+    for (t1, t2) in [(&tree_a, &tree_b), (&tree_a, &tree_e), (&tree_b, &tree_e)] {
+        if t1.size() == 0 || t2.size() == 0 {
+            continue;
+        }
+        for (c1, c2) in t1.intersection_candidates_with_other_tree(t2) {
+            collect_candidates(c1, c2, curves, &deviation, tol, &mut raw);
+        }
+    }
+    // Deduplicate: sort by curve pair and station, merge near-identical hits.
+    raw.sort_by(|p, q| {
+        (p.a, p.b)
+            .cmp(&(q.a, q.b))
+            .then(p.sa.total_cmp(&q.sa))
+            .then(p.sb.total_cmp(&q.sb))
+    });
+    let merge_mm = 1.0 + 10.0 * tol;
+    let mut kept: Vec<RawNode> = Vec::with_capacity(raw.len() / 2);
+    for r in raw {
+        let dup = kept.iter().rev().take_while(|k| k.a == r.a && k.b == r.b).position(|k| {
+            (k.sa - r.sa).abs() < merge_mm && (k.sb - r.sb).abs() < merge_mm
+        });
+        match dup {
+            Some(back) => {
+                let idx = kept.len() - 1 - back;
+                if r.gap < kept[idx].gap {
+                    kept[idx] = r;
+                }
+            }
+            None => kept.push(r),
+        }
+    }
+    build_topology(net, curves, kept, opts)
+}
+
+#[derive(Debug, Clone, Copy)]
+struct RawNode {
+    a: usize,
+    b: usize,
+    sa: f64,
+    sb: f64,
+    gap: f64,
+}
+
+/// Upper bound on the distance between each smooth segment and its chord.
+fn segment_deviation(c: &SmoothCurve) -> Vec<f64> {
+    let pts = c.samples();
+    (0..pts.len() - 1)
+        .map(|k| {
+            let mut worst: f64 = 0.0;
+            for u in [0.25, 0.5, 0.75] {
+                let p = c.jet_at(k, u).value;
+                let chord = pts[k].lerp(pts[k + 1], u);
+                worst = worst.max(p.distance(chord));
+            }
+            1.5 * worst
+        })
+        .collect()
+}
+
+fn collect_candidates(
+    c1: &Chunk,
+    c2: &Chunk,
+    curves: &[SmoothCurve],
+    deviation: &[Vec<f64>],
+    tol: f64,
+    out: &mut Vec<RawNode>,
+) {
+    let (ia, ib) = (c1.curve as usize, c2.curve as usize);
+    let (pa, pb) = (curves[ia].samples(), curves[ib].samples());
+    for i in c1.first as usize..c1.end as usize {
+        let (a0, a1) = (pa[i], pa[i + 1]);
+        let reach_a = deviation[ia][i] + tol;
+        let (alo, ahi) = (a0.min(a1) - DVec3::splat(reach_a), a0.max(a1) + DVec3::splat(reach_a));
+        for j in c2.first as usize..c2.end as usize {
+            let (b0, b1) = (pb[j], pb[j + 1]);
+            let reach = reach_a + deviation[ib][j];
+            let (blo, bhi) = (b0.min(b1), b0.max(b1));
+            if blo.cmpgt(ahi + DVec3::splat(deviation[ib][j])).any()
+                || bhi.cmplt(alo - DVec3::splat(deviation[ib][j])).any()
+            {
+                continue;
+            }
+            let (u, v, d2) = closest_segment_params(a0, a1, b0, b1);
+            if d2 > reach * reach {
+                continue;
+            }
+            let (ta, tb) = (
+                curves[ia].sample_param(i) + u * (curves[ia].sample_param(i + 1) - curves[ia].sample_param(i)),
+                curves[ib].sample_param(j) + v * (curves[ib].sample_param(j + 1) - curves[ib].sample_param(j)),
+            );
+            if let Some((ka, ua, kb, ub, gap)) = refine(&curves[ia], &curves[ib], ta, tb) {
+                if gap <= tol {
+                    out.push(RawNode {
+                        a: ia,
+                        b: ib,
+                        sa: curves[ia].station_at(ka, ua),
+                        sb: curves[ib].station_at(kb, ub),
+                        gap,
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// Parameters (u, v) ∈ [0,1]² of the closest points of segments p0p1 and q0q1
+/// and their squared distance (Ericson, Real-Time Collision Detection 5.1.9).
+pub fn closest_segment_params(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> (f64, f64, f64) {
+    let d1 = p1 - p0;
+    let d2 = q1 - q0;
+    let r = p0 - q0;
+    let a = d1.dot(d1);
+    let e = d2.dot(d2);
+    let f = d2.dot(r);
+    let (s, t);
+    if a <= 1e-300 && e <= 1e-300 {
+        return (0.0, 0.0, r.length_squared());
+    }
+    if a <= 1e-300 {
+        s = 0.0;
+        t = (f / e).clamp(0.0, 1.0);
+    } else {
+        let c = d1.dot(r);
+        if e <= 1e-300 {
+            t = 0.0;
+            s = (-c / a).clamp(0.0, 1.0);
+        } else {
+            let b = d1.dot(d2);
+            let denom = a * e - b * b;
+            let mut s0 = if denom > 1e-12 * a * e {
+                ((b * f - c * e) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let mut t0 = (b * s0 + f) / e;
+            if t0 < 0.0 {
+                t0 = 0.0;
+                s0 = (-c / a).clamp(0.0, 1.0);
+            } else if t0 > 1.0 {
+                t0 = 1.0;
+                s0 = ((b - c) / a).clamp(0.0, 1.0);
+            }
+            s = s0;
+            t = t0;
+        }
+    }
+    let cp = p0 + d1 * s;
+    let cq = q0 + d2 * t;
+    (s, t, cp.distance_squared(cq))
+}
+
+/// Gauss–Newton on the chord parameters of both smooth curves towards their
+/// closest approach, clamped to the curves. Returns (segment, u) on each
+/// curve and the distance.
+fn refine(ca: &SmoothCurve, cb: &SmoothCurve, ta0: f64, tb0: f64) -> Option<(usize, f64, usize, f64, f64)> {
+    let ha = ca.hermite();
+    let hb = cb.hermite();
+    let (la, lb) = (*ha.knots().last()?, *hb.knots().last()?);
+    let (mut ta, mut tb) = (ta0, tb0);
+    for _ in 0..60 {
+        let ja = ha.jet(ta);
+        let jb = hb.jet(tb);
+        let d = ja.value - jb.value;
+        // Minimise |d + A Δa − B Δb|².
+        let (aa, bb, ab) = (ja.d1.dot(ja.d1), jb.d1.dot(jb.d1), ja.d1.dot(jb.d1));
+        let (ra, rb) = (-d.dot(ja.d1), d.dot(jb.d1));
+        // Levenberg damping keeps near-tangent crossings stable.
+        let damp = 1e-9 * (aa + bb);
+        let m11 = aa + damp;
+        let m22 = bb + damp;
+        let m12 = -ab;
+        let det = m11 * m22 - m12 * m12;
+        if !(det.is_finite()) || det <= 0.0 {
+            break;
+        }
+        let da = (ra * m22 - m12 * rb) / det;
+        let db = (m11 * rb - m12 * ra) / det;
+        let (na, nb) = ((ta + da).clamp(0.0, la), (tb + db).clamp(0.0, lb));
+        let moved = (na - ta).abs() + (nb - tb).abs();
+        ta = na;
+        tb = nb;
+        if moved < 1e-11 * (1.0 + la + lb) {
+            break;
+        }
+    }
+    let (ka, ua) = ha.locate(ta);
+    let (kb, ub) = hb.locate(tb);
+    let gap = ha.jet_at(ka, ua).value.distance(hb.jet_at(kb, ub).value);
+    gap.is_finite().then_some((ka, ua, kb, ub, gap))
+}
+
+fn build_topology(net: &Network, curves: &[SmoothCurve], raw: Vec<RawNode>, opts: NodeOptions) -> Topology {
+    let mut warnings = Vec::new();
+    let mut nodes: Vec<Node> = raw
+        .iter()
+        .enumerate()
+        .map(|(id, r)| {
+            let pa = curves[r.a].at(r.sa);
+            let pb = curves[r.b].at(r.sb);
+            let cos = pa.tangent.dot(pb.tangent).abs().min(1.0);
+            let angle_deg = cos.acos().to_degrees();
+            let cross = pa.tangent.cross(pb.tangent);
+            let normal = file_normal(net, curves, r.a, r.sa)
+                .or_else(|| file_normal(net, curves, r.b, r.sb))
+                .map(|n| if cross.length() > 1e-9 && cross.dot(n) < 0.0 { -cross.normalize() } else if cross.length() > 1e-9 { cross.normalize() } else { n })
+                .unwrap_or_else(|| cross.try_normalize().unwrap_or(DVec3::Z));
+            Node {
+                id,
+                a: r.a,
+                b: r.b,
+                station_a_mm: r.sa,
+                station_b_mm: r.sb,
+                position_mm: 0.5 * (pa.point_mm + pb.point_mm),
+                gap_mm: r.gap,
+                tangent_a: pa.tangent,
+                tangent_b: pb.tangent,
+                normal,
+                angle_deg,
+            }
+        })
+        .collect();
+    let mut per_curve: Vec<Vec<CurveNode>> = vec![Vec::new(); net.curves.len()];
+    for n in &nodes {
+        per_curve[n.a].push(CurveNode {
+            node: n.id,
+            crossing: n.b,
+            station_mm: n.station_a_mm,
+        });
+        per_curve[n.b].push(CurveNode {
+            node: n.id,
+            crossing: n.a,
+            station_mm: n.station_b_mm,
+        });
+    }
+    for list in &mut per_curve {
+        list.sort_by(|p, q| p.station_mm.total_cmp(&q.station_mm).then(p.node.cmp(&q.node)));
+    }
+    orient_normals(net, &mut nodes, &per_curve);
+    for n in &nodes {
+        if n.angle_deg < opts.near_tangent_deg {
+            warnings.push(format!(
+                "node {} ({} × {}): near-tangent crossing at {:.2}°; its station is ill-defined",
+                n.id, net.curves[n.a].id, net.curves[n.b].id, n.angle_deg
+            ));
+        }
+    }
+    for (ci, list) in per_curve.iter().enumerate() {
+        if list.is_empty() {
+            warnings.push(format!("curve {}: crosses no other curve", net.curves[ci].id));
+        }
+    }
+    Topology {
+        nodes,
+        per_curve,
+        warnings,
+    }
+}
+
+/// The file normal of curve `ci` at a station, if the file gave normals.
+fn file_normal(net: &Network, curves: &[SmoothCurve], ci: usize, station_mm: f64) -> Option<DVec3> {
+    let normals = net.curves[ci].normals.as_ref()?;
+    let (k, u) = curves[ci].locate_station(station_mm);
+    let n = normals[k].lerp(normals[k + 1], u);
+    n.try_normalize()
+}
+
+/// Orient node normals consistently: nodes whose normal came from a file keep
+/// it; the others follow their neighbours along each curve (breadth first),
+/// each component seeded to point up (+z) where nothing else decides.
+fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>]) {
+    let n = nodes.len();
+    let fixed: Vec<bool> = nodes
+        .iter()
+        .map(|nd| net.curves[nd.a].normals.is_some() || net.curves[nd.b].normals.is_some())
+        .collect();
+    let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for list in per_curve {
+        for w in list.windows(2) {
+            neighbours[w[0].node].push(w[1].node);
+            neighbours[w[1].node].push(w[0].node);
+        }
+    }
+    let mut done = vec![false; n];
+    let mut queue = VecDeque::new();
+    let seeds: Vec<usize> = (0..n).filter(|&i| fixed[i]).chain((0..n).filter(|&i| !fixed[i])).collect();
+    for seed in seeds {
+        if done[seed] {
+            continue;
+        }
+        if !fixed[seed] {
+            let nm = nodes[seed].normal;
+            let up = if nm.z.abs() > 1e-9 { nm.z } else if nm.y.abs() > 1e-9 { nm.y } else { nm.x };
+            if up < 0.0 {
+                nodes[seed].normal = -nm;
+            }
+        }
+        done[seed] = true;
+        queue.push_back(seed);
+        while let Some(i) = queue.pop_front() {
+            for &j in &neighbours[i] {
+                if done[j] {
+                    continue;
+                }
+                if !fixed[j] && nodes[j].normal.dot(nodes[i].normal) < 0.0 {
+                    nodes[j].normal = -nodes[j].normal;
+                }
+                done[j] = true;
+                queue.push_back(j);
+            }
+        }
+    }
+}
