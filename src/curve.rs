@@ -13,8 +13,12 @@ use glam::DVec3;
 
 /// Samples in each local fit window.
 const FIT_WINDOW: usize = 7;
-/// Degree of the local fit.
-const FIT_DEGREE: usize = 4;
+/// Degree of the local least-squares fit for sampled curves (smooths rounding).
+pub const FIT_DEGREE_SAMPLES: usize = 4;
+/// Largest fit degree: with 7 samples, interpolation (for exact data such as
+/// node normals, few and far apart).
+pub const FIT_DEGREE_EXACT: usize = 6;
+const MAX_DEGREE: usize = FIT_DEGREE_EXACT;
 
 /// 8-point Gauss–Legendre nodes and weights on [0, 1].
 const GL_NODES: [f64; 8] = [
@@ -60,9 +64,15 @@ pub struct Hermite5 {
 impl Hermite5 {
     /// Interpolate `values` at parameters `t` (strictly increasing, at least 2).
     pub fn new(t: Vec<f64>, values: Vec<DVec3>) -> Hermite5 {
+        Hermite5::with_fit_degree(t, values, FIT_DEGREE_SAMPLES)
+    }
+
+    /// As [`Hermite5::new`], with the degree of the local derivative fit
+    /// (4: least squares over 7 samples; 6: interpolation of 7 samples).
+    pub fn with_fit_degree(t: Vec<f64>, values: Vec<DVec3>, degree: usize) -> Hermite5 {
         debug_assert!(t.len() >= 2 && t.len() == values.len());
         debug_assert!(t.windows(2).all(|w| w[1] > w[0]), "parameters must increase");
-        let (d1, d2) = fit_derivatives(&t, &values);
+        let (d1, d2) = fit_derivatives(&t, &values, degree.min(MAX_DEGREE));
         Hermite5 { t, p: values, d1, d2 }
     }
 
@@ -134,7 +144,7 @@ impl Hermite5 {
 }
 
 /// Local least-squares estimates of the first and second derivatives at each sample.
-pub fn fit_derivatives(t: &[f64], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+pub fn fit_derivatives(t: &[f64], v: &[DVec3], degree: usize) -> (Vec<DVec3>, Vec<DVec3>) {
     let n = t.len();
     let mut d1 = Vec::with_capacity(n);
     let mut d2 = Vec::with_capacity(n);
@@ -143,7 +153,7 @@ pub fn fit_derivatives(t: &[f64], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
         return (vec![slope; 2], vec![DVec3::ZERO; 2]);
     }
     let m = FIT_WINDOW.min(n);
-    let deg = FIT_DEGREE.min(m - 1);
+    let deg = degree.min(m - 1);
     for i in 0..n {
         let lo = i.saturating_sub(m / 2).min(n - m);
         let window = lo..lo + m;
@@ -157,11 +167,11 @@ pub fn fit_derivatives(t: &[f64], v: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
 
 /// Least-squares polynomial of degree `deg` through (t, v) in τ = (t − t0)/scale;
 /// returns the coefficients of τ^0..τ^deg (unused ones zero).
-fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; FIT_DEGREE + 1] {
+fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; MAX_DEGREE + 1] {
     let k = deg + 1;
     // Power sums for the (Hankel) normal matrix and the right-hand sides.
-    let mut sums = [0.0f64; 2 * FIT_DEGREE + 1];
-    let mut rhs = [DVec3::ZERO; FIT_DEGREE + 1];
+    let mut sums = [0.0f64; 2 * MAX_DEGREE + 1];
+    let mut rhs = [DVec3::ZERO; MAX_DEGREE + 1];
     for (tj, vj) in t.iter().zip(v) {
         let tau = (tj - t0) / scale;
         let mut pw = 1.0;
@@ -173,7 +183,7 @@ fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; 
             pw *= tau;
         }
     }
-    let mut m = [[0.0f64; FIT_DEGREE + 1]; FIT_DEGREE + 1];
+    let mut m = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
     for (r, row) in m.iter_mut().enumerate().take(k) {
         for (c, cell) in row.iter_mut().enumerate().take(k) {
             *cell = sums[r + c];
@@ -201,7 +211,7 @@ fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; 
             }
         }
     }
-    let mut x = [DVec3::ZERO; FIT_DEGREE + 1];
+    let mut x = [DVec3::ZERO; MAX_DEGREE + 1];
     for r in (0..k).rev() {
         let mut acc = rhs[r];
         for c in r + 1..k {

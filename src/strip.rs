@@ -27,14 +27,18 @@ use glam::DVec3;
 /// Options of the strip-geometry stage.
 #[derive(Debug, Clone, Copy)]
 pub struct FrameOptions {
-    /// Below this curvature (1/mm) a curve counts as straight: its binormal is
-    /// undefined, and the normal comes from the nodes.
+    /// Below this curvature (1/mm) the binormal is too uncertain to be the
+    /// surface normal, which then comes from the nodes.
+    pub binormal_min_curvature_per_mm: f64,
+    /// A strip whose curvature stays below this (1/mm) is straight: it has no
+    /// minimum bending radius.
     pub straight_curvature_per_mm: f64,
 }
 
 impl Default for FrameOptions {
     fn default() -> Self {
         FrameOptions {
+            binormal_min_curvature_per_mm: 2e-6,
             straight_curvature_per_mm: 1e-5,
         }
     }
@@ -75,8 +79,6 @@ pub struct DarbouxFrame {
     pub kn_per_mm: f64,
     /// Geodesic torsion, rad/mm (twist about x).
     pub tg_per_mm: f64,
-    /// Whether z is the binormal here (else file or node normals).
-    pub from_binormal: bool,
 }
 
 /// Curvatures at one sample of a strip.
@@ -110,7 +112,8 @@ impl NodeNormals {
         if stations.is_empty() {
             return None;
         }
-        let field = (stations.len() >= 2).then(|| Hermite5::new(stations.clone(), normals.clone()));
+        let field = (stations.len() >= 2)
+            .then(|| Hermite5::with_fit_degree(stations.clone(), normals.clone(), crate::curve::FIT_DEGREE_EXACT));
         Some(NodeNormals {
             stations,
             normals,
@@ -164,8 +167,9 @@ pub struct StripGeometry {
     pub max_abs_tg_per_mm: f64,
     /// Largest |kn| (the residual: zero on an exact asymptotic curve).
     pub max_abs_kn_per_mm: f64,
-    file_normals: Option<Hermite5>,
-    node_normals: Option<NodeNormals>,
+    /// Surface normals over the curve's chord parameter, one per sample:
+    /// the file's, or the oriented binormal / node normal at each sample.
+    normals: Hermite5,
     straight_curvature_per_mm: f64,
 }
 
@@ -179,53 +183,77 @@ impl StripGeometry {
         all_nodes: &[Node],
         opts: FrameOptions,
     ) -> StripGeometry {
-        let file_normals = curve.normals.as_ref().map(|n| {
-            let t: Vec<f64> = (0..n.len()).map(|i| smooth.sample_param(i)).collect();
-            Hermite5::new(t, n.clone())
-        });
-        let node_normals = NodeNormals::new(nodes, all_nodes);
+        let n = smooth.samples().len();
+        let t: Vec<f64> = (0..n).map(|i| smooth.sample_param(i)).collect();
+        let knot = |i: usize| if i + 1 < n { (i, 0.0) } else { (n - 2, 1.0) };
+        let (normal_values, normal_source) = match &curve.normals {
+            Some(file) => (file.clone(), NormalSource::File),
+            None => {
+                let reference = NodeNormals::new(nodes, all_nodes);
+                let (mut binormal, mut from_nodes) = (false, false);
+                let mut values = Vec::with_capacity(n);
+                for (i, &station) in smooth.sample_stations_mm().iter().enumerate() {
+                    let (k, u) = knot(i);
+                    let j = smooth.jet_at(k, u);
+                    let cross = j.d1.cross(j.d2);
+                    let curvature = cross.length() / j.d1.length().powi(3);
+                    let r = reference.as_ref().map(|nn| nn.at(station).0);
+                    let z = match r {
+                        Some(r) if curvature <= opts.binormal_min_curvature_per_mm => {
+                            from_nodes = true;
+                            r
+                        }
+                        _ => {
+                            binormal = true;
+                            let b = cross.try_normalize().unwrap_or_else(|| j.d1.any_orthonormal_vector());
+                            // Orient along the node normals, else keep continuity, else up.
+                            let up = r.or(values.last().copied()).unwrap_or(DVec3::Z);
+                            if b.dot(up) < 0.0 { -b } else { b }
+                        }
+                    };
+                    values.push(z);
+                }
+                let source = match (binormal, from_nodes) {
+                    (true, true) => NormalSource::BinormalAndNodes,
+                    (true, false) => NormalSource::Binormal,
+                    _ => NormalSource::Nodes,
+                };
+                (values, source)
+            }
+        };
         let mut strip = StripGeometry {
             curve: index,
             id: curve.id.clone(),
             family: curve.family,
             length_mm: smooth.length_mm(),
-            normal_source: NormalSource::File,
+            normal_source,
             nodes: nodes.to_vec(),
             samples: Vec::new(),
             max_abs_kg_per_mm: 0.0,
             max_abs_tg_per_mm: 0.0,
             max_abs_kn_per_mm: 0.0,
-            file_normals,
-            node_normals,
+            normals: if normal_source == NormalSource::File {
+                Hermite5::new(t, normal_values)
+            } else {
+                Hermite5::with_fit_degree(t, normal_values, crate::curve::FIT_DEGREE_EXACT)
+            },
             straight_curvature_per_mm: opts.straight_curvature_per_mm,
         };
-        let n = smooth.samples().len();
-        let mut samples = Vec::with_capacity(n);
-        let (mut used_binormal, mut used_nodes) = (false, false);
-        for i in 0..n {
-            let (k, u) = if i + 1 < n { (i, 0.0) } else { (n - 2, 1.0) };
-            let f = strip.frame_at_param(smooth, k, u, smooth.sample_stations_mm()[i]);
-            used_binormal |= f.from_binormal;
-            used_nodes |= !f.from_binormal;
-            samples.push(Curvatures {
-                station_mm: f.station_mm,
-                kg_per_mm: f.kg_per_mm,
-                kn_per_mm: f.kn_per_mm,
-                tg_per_mm: f.tg_per_mm,
-            });
-        }
+        let samples: Vec<Curvatures> = (0..n)
+            .map(|i| {
+                let (k, u) = knot(i);
+                let f = strip.frame_at_param(smooth, k, u, smooth.sample_stations_mm()[i]);
+                Curvatures {
+                    station_mm: f.station_mm,
+                    kg_per_mm: f.kg_per_mm,
+                    kn_per_mm: f.kn_per_mm,
+                    tg_per_mm: f.tg_per_mm,
+                }
+            })
+            .collect();
         strip.max_abs_kg_per_mm = samples.iter().map(|c| c.kg_per_mm.abs()).fold(0.0, f64::max);
         strip.max_abs_tg_per_mm = samples.iter().map(|c| c.tg_per_mm.abs()).fold(0.0, f64::max);
-        strip.normal_source = if strip.file_normals.is_some() {
-            NormalSource::File
-        } else {
-            match (used_binormal, used_nodes) {
-                (true, true) => NormalSource::BinormalAndNodes,
-                (true, false) => NormalSource::Binormal,
-                _ => NormalSource::Nodes,
-            }
-        };
-        strip.max_abs_kn_per_mm = if strip.file_normals.is_some() {
+        strip.max_abs_kn_per_mm = if normal_source == NormalSource::File {
             samples.iter().map(|c| c.kn_per_mm.abs()).fold(0.0, f64::max)
         } else {
             // Residual at the nodes: the curvature vector against the node normal.
@@ -263,56 +291,11 @@ impl StripGeometry {
         let speed = j.d1.length();
         let x = j.d1 / speed;
         let kvec = curvature_vector(smooth, k, u);
-        let cross = j.d1.cross(j.d2);
-        let cn = cross.length();
-        let curvature = cn / (speed * speed * speed);
-        let reference = self.node_normals.as_ref().map(|nn| nn.at(station_mm));
-        let frame = |z_raw: DVec3, dz_ds: DVec3| {
-            let z = (z_raw - x * z_raw.dot(x)).try_normalize().unwrap_or(z_raw);
-            let y = z.cross(x);
-            (z, y, dz_ds)
-        };
-        if let Some(h) = &self.file_normals {
-            let nj = h.jet_at(k, u);
-            let (zt, dz_dt) = unit_and_derivative(nj.value, nj.d1);
-            let (z, y, dz) = frame(zt, dz_dt / speed);
-            return DarbouxFrame {
-                station_mm,
-                point_mm: j.value,
-                x,
-                y,
-                z,
-                kg_per_mm: kvec.dot(y),
-                kn_per_mm: -dz.dot(x),
-                tg_per_mm: -dz.dot(y),
-                from_binormal: false,
-            };
-        }
-        if curvature > self.straight_curvature_per_mm || reference.is_none() {
-            // z = ±binormal, oriented along the node normals.
-            let b = if cn > 0.0 { cross / cn } else { x.any_orthonormal_vector() };
-            let sign = match reference {
-                Some((r, _)) if b.dot(r) < 0.0 => -1.0,
-                None if b.z < 0.0 => -1.0,
-                _ => 1.0,
-            };
-            let z = b * sign;
-            let y = z.cross(x);
-            let torsion = if cn > 0.0 { cross.dot(j.d3) / (cn * cn) } else { 0.0 };
-            return DarbouxFrame {
-                station_mm,
-                point_mm: j.value,
-                x,
-                y,
-                z,
-                kg_per_mm: kvec.dot(y),
-                kn_per_mm: 0.0,
-                tg_per_mm: torsion,
-                from_binormal: true,
-            };
-        }
-        let (r, dr) = reference.unwrap_or((DVec3::Z, DVec3::ZERO));
-        let (z, y, dz) = frame(r, dr);
+        let nj = self.normals.jet_at(k, u);
+        let (zt, dz_dt) = unit_and_derivative(nj.value, nj.d1);
+        let z = (zt - x * zt.dot(x)).try_normalize().unwrap_or(zt);
+        let y = z.cross(x);
+        let dz_ds = dz_dt / speed;
         DarbouxFrame {
             station_mm,
             point_mm: j.value,
@@ -320,9 +303,8 @@ impl StripGeometry {
             y,
             z,
             kg_per_mm: kvec.dot(y),
-            kn_per_mm: kvec.dot(z),
-            tg_per_mm: -dz.dot(y),
-            from_binormal: false,
+            kn_per_mm: -dz_ds.dot(x),
+            tg_per_mm: -dz_ds.dot(y),
         }
     }
 

@@ -1,0 +1,61 @@
+//! Shared helpers of the integration tests: closed-form networks analysed
+//! through the library, and numerical oracles on the analytic curves.
+#![allow(dead_code)]
+
+use glam::{DVec2, DVec3};
+use lamella::analyze::{analyze, Analysis, AnalysisOptions};
+use lamella::network::{Network, RawNetwork};
+use lamella::synth::{ParamLine, ParamSurface};
+use std::path::Path;
+
+pub fn validate(raw: RawNetwork) -> Network {
+    Network::new(raw, Path::new("test.yaml")).expect("valid network")
+}
+
+pub fn run(raw: RawNetwork) -> (Network, Analysis) {
+    let net = validate(raw);
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
+    (net, an)
+}
+
+/// Curvature and torsion of the space curve t ↦ scale·X(uv(t)), by central
+/// differences of the closed form (step h in t).
+pub fn curvature_torsion(surface: &dyn ParamSurface, line: &ParamLine, scale: f64, t: f64) -> (f64, f64) {
+    let h = 1e-3;
+    let g = |t: f64| surface.point(line.uv(t)) * scale;
+    let d1 = (g(t + h) - g(t - h)) / (2.0 * h);
+    let d2 = (g(t + h) - 2.0 * g(t) + g(t - h)) / (h * h);
+    let d3 = (g(t + 2.0 * h) - 2.0 * g(t + h) + 2.0 * g(t - h) - g(t - 2.0 * h)) / (2.0 * h * h * h);
+    let c = d1.cross(d2);
+    (c.length() / d1.length().powi(3), c.dot(d3) / c.length_squared())
+}
+
+/// Arc length of t ↦ scale·X(uv(t)) over [t0, t1] by composite Gauss–Legendre
+/// on the analytic derivative.
+pub fn arc_length(surface: &dyn ParamSurface, line: &ParamLine, scale: f64, t0: f64, t1: f64) -> f64 {
+    let n = 2000;
+    let g = [-0.7745966692414834, 0.0, 0.7745966692414834];
+    let w = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
+    let h = (t1 - t0) / n as f64;
+    let mut sum = 0.0;
+    for i in 0..n {
+        let mid = t0 + h * (i as f64 + 0.5);
+        for k in 0..3 {
+            let t = mid + 0.5 * h * g[k];
+            let (xu, xv) = surface.partials(line.uv(t));
+            let d = (xu * line.dir.x + xv * line.dir.y) * scale;
+            sum += w[k] * d.length() * 0.5 * h;
+        }
+    }
+    sum
+}
+
+/// A rigid motion for invariance tests.
+pub fn rigid(p: DVec3) -> DVec3 {
+    let q = glam::DQuat::from_euler(glam::EulerRot::ZYX, 0.7, -0.4, 1.9);
+    q * p + DVec3::new(12_345.6, -7_890.1, 4_321.0)
+}
+
+pub fn uv(x: f64, y: f64) -> DVec2 {
+    DVec2::new(x, y)
+}
