@@ -30,6 +30,9 @@ pub struct FrameOptions {
     /// Below this curvature (1/mm) the binormal is too uncertain to be the
     /// surface normal, which then comes from the nodes.
     pub binormal_min_curvature_per_mm: f64,
+    /// Where the curvature is about this (1/mm), binormal and node normals
+    /// weigh equally; the binormal's weight is κ²/(κ² + this²).
+    pub binormal_trust_curvature_per_mm: f64,
     /// A strip whose curvature stays below this (1/mm) is straight: it has no
     /// minimum bending radius.
     pub straight_curvature_per_mm: f64,
@@ -39,6 +42,7 @@ impl Default for FrameOptions {
     fn default() -> Self {
         FrameOptions {
             binormal_min_curvature_per_mm: 2e-6,
+            binormal_trust_curvature_per_mm: 2e-5,
             straight_curvature_per_mm: 1e-5,
         }
     }
@@ -208,7 +212,21 @@ impl StripGeometry {
                             let b = cross.try_normalize().unwrap_or_else(|| j.d1.any_orthonormal_vector());
                             // Orient along the node normals, else keep continuity, else up.
                             let up = r.or(values.last().copied()).unwrap_or(DVec3::Z);
-                            if b.dot(up) < 0.0 { -b } else { b }
+                            let b = if b.dot(up) < 0.0 { -b } else { b };
+                            // Near an inflection the binormal's direction is
+                            // uncertain (its error grows as 1/κ): lean on the
+                            // node normals there, smoothly.
+                            match r {
+                                Some(r) => {
+                                    let k0 = opts.binormal_trust_curvature_per_mm;
+                                    let w = curvature * curvature / (curvature * curvature + k0 * k0);
+                                    if w < 0.999 {
+                                        from_nodes = true;
+                                    }
+                                    (b * w + r * (1.0 - w)).normalize_or(b)
+                                }
+                                None => b,
+                            }
                         }
                     };
                     values.push(z);
