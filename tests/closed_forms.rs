@@ -206,8 +206,10 @@ fn catenoid_dense_and_50mm() {
     // points these curves have at nodes; tg² = −K carries twice tg's error.
     check_catenoid(10.0, false, 3e-2, 0.01);
     check_catenoid(50.0, true, 3e-4, 0.05);
-    // At 50 mm, one-sided fits at the curve ends cost up to ~4 % in tg² there.
-    check_catenoid(50.0, false, 8e-2, 0.05);
+    // Torsion from positions alone needs third derivatives: at 50 mm on this
+    // 1 m catenoid (c = 1000 mm), within ~5 % in tg near the ends, ~1 % inside.
+    // Give normals where torsion matters (the 50 mm case with normals: 3e-4).
+    check_catenoid(50.0, false, 1.2e-1, 0.05);
 }
 
 /// Hyperbolic paraboloid z = xy/c: rulings of length sqrt(1 + x²/c²)·Δy,
