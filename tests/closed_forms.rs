@@ -157,7 +157,7 @@ fn helicoid_50mm_with_and_without_normals() {
 
 /// Catenoid: asymptotic lines u ± v = const, arc length √2·c·|sinh v₁ − sinh v₀|,
 /// tg² = −K = 1/(c² cosh⁴ v).
-fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64) {
+fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64, skip_ends_mm: f64) {
     let c = 1000.0;
     let half = 1.0;
     let center = DVec2::new(0.3, 0.1);
@@ -184,6 +184,9 @@ fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64) {
             let t = -half + 2.0 * half * k as f64 / 20.0;
             let uv = line.uv(t);
             let s = arc_length(&Catenoid { c }, line, 1.0, -half, t);
+            if s < skip_ends_mm || s > strip.length_mm - skip_ends_mm {
+                continue;
+            }
             let f = strip.frame_at(smooth, s);
             let minus_k = 1.0 / (c * c * uv.y.cosh().powi(4));
             assert!(
@@ -201,15 +204,16 @@ fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64) {
 
 #[test]
 fn catenoid_dense_and_50mm() {
-    check_catenoid(10.0, true, 1e-5, 0.01);
+    check_catenoid(10.0, true, 1e-5, 0.01, 0.0);
     // Without normals the binormal is ill-conditioned near the inflection
     // points these curves have at nodes; tg² = −K carries twice tg's error.
-    check_catenoid(10.0, false, 3e-2, 0.01);
-    check_catenoid(50.0, true, 3e-4, 0.05);
+    check_catenoid(10.0, false, 3e-2, 0.01, 0.0);
+    check_catenoid(50.0, true, 3e-4, 0.05, 0.0);
     // Torsion from positions alone needs third derivatives: at 50 mm on this
-    // 1 m catenoid (c = 1000 mm), within ~5 % in tg near the ends, ~1 % inside.
-    // Give normals where torsion matters (the 50 mm case with normals: 3e-4).
-    check_catenoid(50.0, false, 1.2e-1, 0.05);
+    // c = 1 m catenoid it holds to ~2.5 % in tg inside, but degrades within
+    // three samples of an end that is also an inflection point. Give normals
+    // where torsion matters (the 50 mm case with normals holds 3e-4 everywhere).
+    check_catenoid(50.0, false, 5e-2, 0.05, 150.0);
 }
 
 /// Hyperbolic paraboloid z = xy/c: rulings of length sqrt(1 + x²/c²)·Δy,
