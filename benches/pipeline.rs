@@ -1,1 +1,102 @@
-fn main(){}
+//! Benchmark of the read → nodes → lengths pipeline on generated Enneper
+//! networks of n × n curves (n = 100, 200, 400; the largest has 160,000 nodes
+//! and about a million points). Each size runs in a fresh child process so
+//! its peak memory (VmHWM) is its own.
+//!
+//!     cargo bench --bench pipeline            # all sizes
+//!     cargo bench --bench pipeline -- 400     # one size
+
+use lamella::io::{self, plan, ReadOptions};
+use lamella::{analyze, AnalysisOptions};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
+
+fn main() {
+    if let Ok(path) = std::env::var(CHILD_ENV) {
+        measure(Path::new(&path));
+        return;
+    }
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect::<Vec<_>>();
+    let sizes = if sizes.is_empty() { vec![100, 200, 400] } else { sizes };
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-networks");
+    std::fs::create_dir_all(&dir).expect("bench dir");
+    println!("{:>5} {:>8} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10}", "n", "nodes", "points", "MB", "read s", "nodes s", "plan s", "total s", "peak MiB");
+    for n in sizes {
+        let path = dir.join(format!("enneper-{n}.json"));
+        if !path.exists() {
+            // 400 lines per family over a 40 m Enneper: samples ~26 mm apart,
+            // 1250 per curve at n = 400 (scaled so every size samples alike).
+            let scale_mm = 44_000.0 * n as f64 / 400.0;
+            let raw = lamella::synth::enneper_grid(n, scale_mm, 26.0);
+            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
+        }
+        let out = Command::new(std::env::current_exe().expect("exe"))
+            .env(CHILD_ENV, &path)
+            .output()
+            .expect("child");
+        print!("{}", String::from_utf8_lossy(&out.stdout));
+        if !out.status.success() {
+            eprint!("{}", String::from_utf8_lossy(&out.stderr));
+            std::process::exit(1);
+        }
+    }
+}
+
+fn measure(path: &Path) {
+    let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    let t0 = Instant::now();
+    let net = io::read_network(path, ReadOptions::default()).expect("read");
+    let t1 = Instant::now();
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analyze");
+    let t2 = Instant::now();
+    if std::env::var("LAMELLA_BENCH_STAGES").is_ok() {
+        let opts = AnalysisOptions::for_network(&net);
+        let a = Instant::now();
+        let curves = lamella::analyze::par_map(&net.curves, |c| lamella::curve::SmoothCurve::new(&c.points_mm));
+        let b = Instant::now();
+        let topo = lamella::topology::find_nodes(&net, &curves, opts.nodes);
+        let c = Instant::now();
+        let idx: Vec<usize> = (0..net.curves.len()).collect();
+        let strips = lamella::analyze::par_map(&idx, |&i| {
+            lamella::strip::StripGeometry::new(i, &net.curves[i], &curves[i], &topo.per_curve[i], &topo.nodes, opts.frames)
+        });
+        let d = Instant::now();
+        eprintln!("stages: smooth {:.3} s, nodes {:.3} s, strips {:.3} s ({} strips)", (b - a).as_secs_f64(), (c - b).as_secs_f64(), (d - c).as_secs_f64(), strips.len());
+    }
+    let p = plan::build(&net, &an);
+    let json = plan::to_json(&p);
+    let t3 = Instant::now();
+    let n = net.curves.len() / 2;
+    assert_eq!(an.topology.nodes.len(), n * n, "every node found once");
+    std::hint::black_box(json.len());
+    println!(
+        "{:>5} {:>8} {:>9} {:>8.1} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>10.0}",
+        n,
+        an.topology.nodes.len(),
+        net.point_count(),
+        bytes as f64 / 1e6,
+        (t1 - t0).as_secs_f64(),
+        (t2 - t1).as_secs_f64(),
+        (t3 - t2).as_secs_f64(),
+        (t3 - t0).as_secs_f64(),
+        peak_mib()
+    );
+}
+
+/// Peak resident memory of this process (VmHWM), MiB.
+fn peak_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1).and_then(|k| k.parse::<f64>().ok()))
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}

@@ -234,7 +234,7 @@ pub const ENNEPER_4M_SCALE_MM: f64 = 4400.0;
 
 /// A square n × n Enneper network for benchmarks, `step_mm` sampling.
 pub fn enneper_grid(n: usize, scale_mm: f64, step_mm: f64) -> RawNetwork {
-    let lines = diagonal_lines(1.2, n, DVec2::ZERO);
+    let lines = diagonal_lines(0.5, n, DVec2::ZERO);
     network(
         &format!("enneper-{n}x{n}"),
         &Enneper,

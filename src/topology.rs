@@ -98,7 +98,7 @@ impl RTreeObject for Chunk {
 pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> Topology {
     let tol = opts.tolerance_mm;
     // How far each smooth segment strays from its chord (bounded above).
-    let deviation: Vec<Vec<f64>> = curves.iter().map(segment_deviation).collect();
+    let deviation: Vec<Vec<f64>> = crate::analyze::par_map(curves, segment_deviation);
     let chunks_of = |family: Family| -> Vec<Chunk> {
         let mut out = Vec::new();
         for (ci, c) in net.curves.iter().enumerate() {
@@ -134,15 +134,25 @@ pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> T
     let tree_b = RTree::bulk_load(chunks_of(Family::B));
     let tree_e = RTree::bulk_load(chunks_of(Family::Edge));
 
-    let mut raw: Vec<RawNode> = Vec::new();
+    let mut pairs: Vec<(&Chunk, &Chunk)> = Vec::new();
     for (t1, t2) in [(&tree_a, &tree_b), (&tree_a, &tree_e), (&tree_b, &tree_e)] {
         if t1.size() == 0 || t2.size() == 0 {
             continue;
         }
-        for (c1, c2) in t1.intersection_candidates_with_other_tree(t2) {
-            collect_candidates(c1, c2, curves, &deviation, tol, &mut raw);
-        }
+        pairs.extend(t1.intersection_candidates_with_other_tree(t2));
     }
+    // Refine on all cores; the sort below makes the result order-independent.
+    let batches: Vec<&[(&Chunk, &Chunk)]> = pairs.chunks(4096).collect();
+    let mut raw: Vec<RawNode> = crate::analyze::par_map(&batches, |batch| {
+        let mut out = Vec::new();
+        for (c1, c2) in batch.iter() {
+            collect_candidates(c1, c2, curves, &deviation, tol, &mut out);
+        }
+        out
+    })
+    .into_iter()
+    .flatten()
+    .collect();
     // Deduplicate: sort by curve pair and station, merge near-identical hits.
     raw.sort_by(|p, q| {
         (p.a, p.b)

@@ -104,13 +104,34 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
     })
 }
 
-/// serde messages end in " at line L column C"; we report the location ourselves.
+/// serde messages carry " at line L column C" (YAML ones can carry it twice,
+/// for the problem and its context); we report the location ourselves, so
+/// every such mark is dropped.
 fn strip_location(msg: &str) -> String {
+    const AT: &str = " at line ";
+    const COL: &str = " column ";
+    let digits = |s: &str| s.len() - s.trim_start_matches(|c: char| c.is_ascii_digit()).len();
     let msg = one_line(msg);
-    match msg.rfind(" at line ") {
-        Some(i) => msg[..i].to_string(),
-        None => msg,
+    let mut out = String::with_capacity(msg.len());
+    let mut rest = msg.as_str();
+    while let Some(i) = rest.find(AT) {
+        let after = &rest[i + AT.len()..];
+        let n = digits(after);
+        if n > 0 {
+            if let Some(col) = after[n..].strip_prefix(COL) {
+                let m = digits(col);
+                if m > 0 {
+                    out.push_str(&rest[..i]);
+                    rest = &col[m..];
+                    continue;
+                }
+            }
+        }
+        out.push_str(&rest[..i + AT.len()]);
+        rest = after;
     }
+    out.push_str(rest);
+    out
 }
 
 /// Write a network as YAML in the file format, coordinates with `decimals`
