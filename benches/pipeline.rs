@@ -23,10 +23,17 @@ fn main() {
         .skip(1)
         .filter_map(|a| a.parse().ok())
         .collect::<Vec<_>>();
-    let sizes = if sizes.is_empty() { vec![100, 200, 400] } else { sizes };
+    let sizes = if sizes.is_empty() {
+        vec![100, 200, 400]
+    } else {
+        sizes
+    };
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-networks");
     std::fs::create_dir_all(&dir).expect("bench dir");
-    println!("{:>5} {:>8} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10}", "n", "nodes", "points", "MB", "read s", "nodes s", "plan s", "total s", "peak MiB");
+    println!(
+        "{:>5} {:>8} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10}",
+        "n", "nodes", "points", "MB", "read s", "nodes s", "plan s", "total s", "peak MiB"
+    );
     for n in sizes {
         let path = dir.join(format!("enneper-{n}.json"));
         if !path.exists() {
@@ -58,16 +65,31 @@ fn measure(path: &Path) {
     if std::env::var("LAMELLA_BENCH_STAGES").is_ok() {
         let opts = AnalysisOptions::for_network(&net);
         let a = Instant::now();
-        let curves = lamella::analyze::par_map(&net.curves, |c| lamella::curve::SmoothCurve::new(&c.points_mm));
+        let curves = lamella::analyze::par_map(&net.curves, |c| {
+            lamella::curve::SmoothCurve::new(&c.points_mm)
+        });
         let b = Instant::now();
         let topo = lamella::topology::find_nodes(&net, &curves, opts.nodes);
         let c = Instant::now();
         let idx: Vec<usize> = (0..net.curves.len()).collect();
         let strips = lamella::analyze::par_map(&idx, |&i| {
-            lamella::strip::StripGeometry::new(i, &net.curves[i], &curves[i], &topo.per_curve[i], &topo.nodes, opts.frames)
+            lamella::strip::StripGeometry::new(
+                i,
+                &net.curves[i],
+                &curves[i],
+                &topo.per_curve[i],
+                &topo.nodes,
+                opts.frames,
+            )
         });
         let d = Instant::now();
-        eprintln!("stages: smooth {:.3} s, nodes {:.3} s, strips {:.3} s ({} strips)", (b - a).as_secs_f64(), (c - b).as_secs_f64(), (d - c).as_secs_f64(), strips.len());
+        eprintln!(
+            "stages: smooth {:.3} s, nodes {:.3} s, strips {:.3} s ({} strips)",
+            (b - a).as_secs_f64(),
+            (c - b).as_secs_f64(),
+            (d - c).as_secs_f64(),
+            strips.len()
+        );
     }
     let p = plan::build(&net, &an);
     let json = plan::to_json(&p);
@@ -94,9 +116,11 @@ fn peak_mib() -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
         .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1).and_then(|k| k.parse::<f64>().ok()))
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|k| k.parse::<f64>().ok())
+            })
         })
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }

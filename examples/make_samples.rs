@@ -9,7 +9,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples");
     std::fs::create_dir_all(&dir)?;
 
-    let sampling = Sampling { step_mm: 25.0, normals: true };
+    let sampling = Sampling {
+        step_mm: 25.0,
+        normals: true,
+    };
     let mut enneper = synth::enneper_4m(sampling);
     enneper.tolerance = Some(0.5);
     let text = to_yaml(
@@ -26,7 +29,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let c = 1500.0;
     let xs = spread(600.0, 7);
     let lines = coordinate_lines(&xs, &xs);
-    let mut hypar = synth::network("hypar-small", &Hypar { c }, &lines, 1.0, Sampling { step_mm: 50.0, normals: false });
+    let mut hypar = synth::network(
+        "hypar-small",
+        &Hypar { c },
+        &lines,
+        1.0,
+        Sampling {
+            step_mm: 50.0,
+            normals: false,
+        },
+    );
     hypar.tolerance = Some(0.5);
     let text = to_yaml(
         &hypar,

@@ -76,7 +76,9 @@ pub fn analyze(net: &Network, opts: AnalysisOptions) -> Result<Analysis> {
 
 /// Map over a slice on all cores, keeping order (deterministic).
 pub fn par_map<T: Sync, U: Send>(items: &[T], f: impl Fn(&T) -> U + Sync) -> Vec<U> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(8);
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(8);
     if threads <= 1 || items.len() < 2 {
         return items.iter().map(&f).collect();
     }

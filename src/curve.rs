@@ -71,9 +71,17 @@ impl Hermite5 {
     /// (4: least squares over 7 samples; 6: interpolation of 7 samples).
     pub fn with_fit_degree(t: Vec<f64>, values: Vec<DVec3>, degree: usize) -> Hermite5 {
         debug_assert!(t.len() >= 2 && t.len() == values.len());
-        debug_assert!(t.windows(2).all(|w| w[1] > w[0]), "parameters must increase");
+        debug_assert!(
+            t.windows(2).all(|w| w[1] > w[0]),
+            "parameters must increase"
+        );
         let (d1, d2) = fit_derivatives(&t, &values, degree.min(MAX_DEGREE));
-        Hermite5 { t, p: values, d1, d2 }
+        Hermite5 {
+            t,
+            p: values,
+            d1,
+            d2,
+        }
     }
 
     pub fn knots(&self) -> &[f64] {
@@ -95,7 +103,11 @@ impl Hermite5 {
         if t >= self.t[n - 1] {
             return (n - 2, 1.0);
         }
-        let k = self.t.partition_point(|&x| x <= t).saturating_sub(1).min(n - 2);
+        let k = self
+            .t
+            .partition_point(|&x| x <= t)
+            .saturating_sub(1)
+            .min(n - 2);
         let h = self.t[k + 1] - self.t[k];
         (k, ((t - self.t[k]) / h).clamp(0.0, 1.0))
     }
@@ -217,7 +229,11 @@ fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; 
         for c in r + 1..k {
             acc -= x[c] * m[r][c];
         }
-        x[r] = if m[r][r].abs() < 1e-300 { DVec3::ZERO } else { acc / m[r][r] };
+        x[r] = if m[r][r].abs() < 1e-300 {
+            DVec3::ZERO
+        } else {
+            acc / m[r][r]
+        };
     }
     x
 }
@@ -289,7 +305,11 @@ impl SmoothCurve {
         if station_mm >= self.s[n - 1] {
             return (n - 2, 1.0);
         }
-        let k = self.s.partition_point(|&x| x <= station_mm).saturating_sub(1).min(n - 2);
+        let k = self
+            .s
+            .partition_point(|&x| x <= station_mm)
+            .saturating_sub(1)
+            .min(n - 2);
         let target = station_mm - self.s[k];
         let seg_len = self.s[k + 1] - self.s[k];
         let a = self.h.coefficients(k);
@@ -382,12 +402,20 @@ mod tests {
         // Radius 1 m helix sampled every ~50 mm: length good to 0.01 mm.
         let (pts, len) = helix(1000.0, 100.0, 127, 1.0);
         let c = SmoothCurve::new(&pts);
-        assert!((c.length_mm() - len).abs() < 0.01, "{} vs {len}", c.length_mm());
+        assert!(
+            (c.length_mm() - len).abs() < 0.01,
+            "{} vs {len}",
+            c.length_mm()
+        );
         // A station in the middle of a segment maps to the exact point.
         let s = 1234.5;
         let a = s / (1000.0f64.powi(2) + 100.0f64.powi(2)).sqrt();
         let exact = DVec3::new(1000.0 * a.cos(), 1000.0 * a.sin(), 100.0 * a);
-        assert!(c.point(s).distance(exact) < 0.01, "{}", c.point(s).distance(exact));
+        assert!(
+            c.point(s).distance(exact) < 0.01,
+            "{}",
+            c.point(s).distance(exact)
+        );
     }
 
     #[test]

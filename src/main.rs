@@ -102,7 +102,10 @@ fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> 
     if let (Some(lo), Some(hi)) = (s.min_angle_deg, s.max_angle_deg) {
         println!("crossing angle: {lo:.3}° to {hi:.3}°");
     }
-    println!("largest normal-curvature residual kn: {:.6} 1/m", s.max_normal_curvature_per_m);
+    println!(
+        "largest normal-curvature residual kn: {:.6} 1/m",
+        s.max_normal_curvature_per_m
+    );
     println!("wrote {}", target.display());
     Ok(ExitCode::SUCCESS)
 }

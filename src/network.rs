@@ -171,7 +171,11 @@ impl Network {
             }
         };
         if raw.curves.is_empty() {
-            return Err(Error::input(source, Location::File, "the network has no curves"));
+            return Err(Error::input(
+                source,
+                Location::File,
+                "the network has no curves",
+            ));
         }
         let mut seen = HashSet::with_capacity(raw.curves.len());
         let mut curves = Vec::with_capacity(raw.curves.len());
@@ -219,12 +223,19 @@ impl Network {
                     ));
                 }
                 if let Some(k) = n.iter().position(|v| v.length() < 1e-12) {
-                    return Err(Error::input(source, at(), format!("normal {k} has zero length")));
+                    return Err(Error::input(
+                        source,
+                        at(),
+                        format!("normal {k} has zero length"),
+                    ));
                 }
             }
             // Scale to mm and drop consecutive duplicate points.
             let mut points_mm = Vec::with_capacity(c.points.len());
-            let mut normals = c.normals.as_ref().map(|_| Vec::with_capacity(c.points.len()));
+            let mut normals = c
+                .normals
+                .as_ref()
+                .map(|_| Vec::with_capacity(c.points.len()));
             for (k, p) in c.points.iter().enumerate() {
                 let p_mm = *p * scale;
                 if let Some(last) = points_mm.last() {

@@ -107,7 +107,10 @@ impl NodeNormals {
         let mut stations = Vec::with_capacity(nodes.len());
         let mut normals = Vec::with_capacity(nodes.len());
         for cn in nodes {
-            if stations.last().is_some_and(|&s: &f64| cn.station_mm - s < 1e-6) {
+            if stations
+                .last()
+                .is_some_and(|&s: &f64| cn.station_mm - s < 1e-6)
+            {
                 continue;
             }
             stations.push(cn.station_mm);
@@ -116,8 +119,13 @@ impl NodeNormals {
         if stations.is_empty() {
             return None;
         }
-        let field = (stations.len() >= 2)
-            .then(|| Hermite5::with_fit_degree(stations.clone(), normals.clone(), crate::curve::FIT_DEGREE_EXACT));
+        let field = (stations.len() >= 2).then(|| {
+            Hermite5::with_fit_degree(
+                stations.clone(),
+                normals.clone(),
+                crate::curve::FIT_DEGREE_EXACT,
+            )
+        });
         Some(NodeNormals {
             stations,
             normals,
@@ -209,7 +217,9 @@ impl StripGeometry {
                         }
                         _ => {
                             binormal = true;
-                            let b = cross.try_normalize().unwrap_or_else(|| j.d1.any_orthonormal_vector());
+                            let b = cross
+                                .try_normalize()
+                                .unwrap_or_else(|| j.d1.any_orthonormal_vector());
                             // Orient along the node normals, else keep continuity, else up.
                             let up = r.or(values.last().copied()).unwrap_or(DVec3::Z);
                             let b = if b.dot(up) < 0.0 { -b } else { b };
@@ -219,7 +229,8 @@ impl StripGeometry {
                             match r {
                                 Some(r) => {
                                     let k0 = opts.binormal_trust_curvature_per_mm;
-                                    let w = curvature * curvature / (curvature * curvature + k0 * k0);
+                                    let w =
+                                        curvature * curvature / (curvature * curvature + k0 * k0);
                                     if w < 0.999 {
                                         from_nodes = true;
                                     }
@@ -269,17 +280,28 @@ impl StripGeometry {
                 }
             })
             .collect();
-        strip.max_abs_kg_per_mm = samples.iter().map(|c| c.kg_per_mm.abs()).fold(0.0, f64::max);
-        strip.max_abs_tg_per_mm = samples.iter().map(|c| c.tg_per_mm.abs()).fold(0.0, f64::max);
+        strip.max_abs_kg_per_mm = samples
+            .iter()
+            .map(|c| c.kg_per_mm.abs())
+            .fold(0.0, f64::max);
+        strip.max_abs_tg_per_mm = samples
+            .iter()
+            .map(|c| c.tg_per_mm.abs())
+            .fold(0.0, f64::max);
         strip.max_abs_kn_per_mm = if normal_source == NormalSource::File {
-            samples.iter().map(|c| c.kn_per_mm.abs()).fold(0.0, f64::max)
+            samples
+                .iter()
+                .map(|c| c.kn_per_mm.abs())
+                .fold(0.0, f64::max)
         } else {
             // Residual at the nodes: the curvature vector against the node normal.
             nodes
                 .iter()
                 .map(|cn| {
                     let (k, u) = smooth.locate_station(cn.station_mm);
-                    curvature_vector(smooth, k, u).dot(all_nodes[cn.node].normal).abs()
+                    curvature_vector(smooth, k, u)
+                        .dot(all_nodes[cn.node].normal)
+                        .abs()
                 })
                 .fold(0.0, f64::max)
         };
@@ -289,12 +311,16 @@ impl StripGeometry {
 
     /// Lengths between consecutive nodes, mm.
     pub fn node_to_node_mm(&self) -> Vec<f64> {
-        self.nodes.windows(2).map(|w| w[1].station_mm - w[0].station_mm).collect()
+        self.nodes
+            .windows(2)
+            .map(|w| w[1].station_mm - w[0].station_mm)
+            .collect()
     }
 
     /// Minimum bending radius (mm), or None for a straight strip.
     pub fn min_bending_radius_mm(&self) -> Option<f64> {
-        (self.max_abs_kg_per_mm > self.straight_curvature_per_mm).then(|| 1.0 / self.max_abs_kg_per_mm)
+        (self.max_abs_kg_per_mm > self.straight_curvature_per_mm)
+            .then(|| 1.0 / self.max_abs_kg_per_mm)
     }
 
     /// The Darboux frame at a station.
@@ -304,7 +330,13 @@ impl StripGeometry {
     }
 
     /// The Darboux frame at segment k, local u (station given by the caller).
-    pub fn frame_at_param(&self, smooth: &SmoothCurve, k: usize, u: f64, station_mm: f64) -> DarbouxFrame {
+    pub fn frame_at_param(
+        &self,
+        smooth: &SmoothCurve,
+        k: usize,
+        u: f64,
+        station_mm: f64,
+    ) -> DarbouxFrame {
         let j = smooth.jet_at(k, u);
         let speed = j.d1.length();
         let x = j.d1 / speed;
@@ -345,7 +377,11 @@ impl StripGeometry {
         };
         // Breakpoints: samples plus requested stations, so each is hit exactly.
         let knots = smooth.sample_stations_mm();
-        let mut breaks: Vec<f64> = knots.iter().copied().chain(stations_mm.iter().map(|s| s.clamp(0.0, smooth.length_mm()))).collect();
+        let mut breaks: Vec<f64> = knots
+            .iter()
+            .copied()
+            .chain(stations_mm.iter().map(|s| s.clamp(0.0, smooth.length_mm())))
+            .collect();
         breaks.sort_by(f64::total_cmp);
         breaks.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
         let mut out = Vec::with_capacity(stations_mm.len());
@@ -354,7 +390,9 @@ impl StripGeometry {
         let mut prev_f = self.frame_at(smooth, 0.0);
         let mut prev_s = 0.0;
         let emit = |s: f64, acc: f64, next: &mut usize, out: &mut Vec<f64>| {
-            while *next < stations_mm.len() && stations_mm[*next].clamp(0.0, smooth.length_mm()) <= s + 1e-9 {
+            while *next < stations_mm.len()
+                && stations_mm[*next].clamp(0.0, smooth.length_mm()) <= s + 1e-9
+            {
                 out.push(acc);
                 *next += 1;
             }

@@ -25,7 +25,11 @@ pub struct Enneper;
 impl ParamSurface for Enneper {
     fn point(&self, p: DVec2) -> DVec3 {
         let (u, v) = (p.x, p.y);
-        DVec3::new(u - u * u * u / 3.0 + u * v * v, v - v * v * v / 3.0 + v * u * u, u * u - v * v)
+        DVec3::new(
+            u - u * u * u / 3.0 + u * v * v,
+            v - v * v * v / 3.0 + v * u * u,
+            u * u - v * v,
+        )
     }
     fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
         let (u, v) = (p.x, p.y);
@@ -69,7 +73,10 @@ impl ParamSurface for Helicoid {
     }
     fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
         let (u, v) = (p.x, p.y);
-        (DVec3::new(-v * u.sin(), v * u.cos(), self.c), DVec3::new(u.cos(), u.sin(), 0.0))
+        (
+            DVec3::new(-v * u.sin(), v * u.cos(), self.c),
+            DVec3::new(u.cos(), u.sin(), 0.0),
+        )
     }
 }
 
@@ -84,7 +91,10 @@ impl ParamSurface for Hypar {
         DVec3::new(p.x, p.y, p.x * p.y / self.c)
     }
     fn partials(&self, p: DVec2) -> (DVec3, DVec3) {
-        (DVec3::new(1.0, 0.0, p.y / self.c), DVec3::new(0.0, 1.0, p.x / self.c))
+        (
+            DVec3::new(1.0, 0.0, p.y / self.c),
+            DVec3::new(0.0, 1.0, p.x / self.c),
+        )
     }
 }
 
@@ -116,7 +126,12 @@ pub struct Sampling {
 
 /// Sample one parameter line of a surface scaled by `scale_mm` (mm per
 /// surface unit), at equal parameter steps close to `step_mm` apart.
-pub fn sample_line(surface: &dyn ParamSurface, line: &ParamLine, scale_mm: f64, sampling: Sampling) -> RawCurve {
+pub fn sample_line(
+    surface: &dyn ParamSurface,
+    line: &ParamLine,
+    scale_mm: f64,
+    sampling: Sampling,
+) -> RawCurve {
     // Estimate the length from a fine polygon to choose the sample count.
     let fine = 256;
     let mut len = 0.0;
@@ -128,11 +143,16 @@ pub fn sample_line(surface: &dyn ParamSurface, line: &ParamLine, scale_mm: f64, 
         prev = p;
     }
     let n = ((len * scale_mm / sampling.step_mm).ceil() as usize).max(1) + 1;
-    let ts: Vec<f64> = (0..n).map(|i| line.t0 + (line.t1 - line.t0) * i as f64 / (n - 1) as f64).collect();
+    let ts: Vec<f64> = (0..n)
+        .map(|i| line.t0 + (line.t1 - line.t0) * i as f64 / (n - 1) as f64)
+        .collect();
     RawCurve {
         id: line.id.clone(),
         family: line.family,
-        points: ts.iter().map(|&t| surface.point(line.uv(t)) * scale_mm).collect(),
+        points: ts
+            .iter()
+            .map(|&t| surface.point(line.uv(t)) * scale_mm)
+            .collect(),
         normals: sampling
             .normals
             .then(|| ts.iter().map(|&t| surface.normal(line.uv(t))).collect()),
@@ -140,18 +160,29 @@ pub fn sample_line(surface: &dyn ParamSurface, line: &ParamLine, scale_mm: f64, 
 }
 
 /// A network of parameter lines on a surface, in mm.
-pub fn network(name: &str, surface: &dyn ParamSurface, lines: &[ParamLine], scale_mm: f64, sampling: Sampling) -> RawNetwork {
+pub fn network(
+    name: &str,
+    surface: &dyn ParamSurface,
+    lines: &[ParamLine],
+    scale_mm: f64,
+    sampling: Sampling,
+) -> RawNetwork {
     RawNetwork {
         name: name.to_string(),
         unit: Unit::Mm,
         tolerance: None,
-        curves: lines.iter().map(|l| sample_line(surface, l, scale_mm, sampling)).collect(),
+        curves: lines
+            .iter()
+            .map(|l| sample_line(surface, l, scale_mm, sampling))
+            .collect(),
     }
 }
 
 /// Evenly spaced values from −half to +half (n ≥ 2).
 pub fn spread(half: f64, n: usize) -> Vec<f64> {
-    (0..n).map(|i| -half + 2.0 * half * i as f64 / (n - 1) as f64).collect()
+    (0..n)
+        .map(|i| -half + 2.0 * half * i as f64 / (n - 1) as f64)
+        .collect()
 }
 
 /// Asymptotic lines u + v = p (family A, along q = u − v) and u − v = q
@@ -224,7 +255,13 @@ pub fn enneper_arc_length(p: f64, q0: f64, q1: f64) -> f64 {
 /// cells of about 260 mm.
 pub fn enneper_4m(sampling: Sampling) -> RawNetwork {
     let lines = diagonal_lines(ENNEPER_4M_HALF, 13, DVec2::ZERO);
-    network("enneper-4m", &Enneper, &lines, ENNEPER_4M_SCALE_MM, sampling)
+    network(
+        "enneper-4m",
+        &Enneper,
+        &lines,
+        ENNEPER_4M_SCALE_MM,
+        sampling,
+    )
 }
 
 /// Parameter half-range of [`enneper_4m`].
@@ -240,6 +277,9 @@ pub fn enneper_grid(n: usize, scale_mm: f64, step_mm: f64) -> RawNetwork {
         &Enneper,
         &lines,
         scale_mm,
-        Sampling { step_mm, normals: false },
+        Sampling {
+            step_mm,
+            normals: false,
+        },
     )
 }

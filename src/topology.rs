@@ -163,9 +163,11 @@ pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> T
     let merge_mm = 1.0 + 10.0 * tol;
     let mut kept: Vec<RawNode> = Vec::with_capacity(raw.len() / 2);
     for r in raw {
-        let dup = kept.iter().rev().take_while(|k| k.a == r.a && k.b == r.b).position(|k| {
-            (k.sa - r.sa).abs() < merge_mm && (k.sb - r.sb).abs() < merge_mm
-        });
+        let dup = kept
+            .iter()
+            .rev()
+            .take_while(|k| k.a == r.a && k.b == r.b)
+            .position(|k| (k.sa - r.sa).abs() < merge_mm && (k.sb - r.sb).abs() < merge_mm);
         match dup {
             Some(back) => {
                 let idx = kept.len() - 1 - back;
@@ -217,7 +219,10 @@ fn collect_candidates(
     for i in c1.first as usize..c1.end as usize {
         let (a0, a1) = (pa[i], pa[i + 1]);
         let reach_a = deviation[ia][i] + tol;
-        let (alo, ahi) = (a0.min(a1) - DVec3::splat(reach_a), a0.max(a1) + DVec3::splat(reach_a));
+        let (alo, ahi) = (
+            a0.min(a1) - DVec3::splat(reach_a),
+            a0.max(a1) + DVec3::splat(reach_a),
+        );
         for j in c2.first as usize..c2.end as usize {
             let (b0, b1) = (pb[j], pb[j + 1]);
             let reach = reach_a + deviation[ib][j];
@@ -232,8 +237,10 @@ fn collect_candidates(
                 continue;
             }
             let (ta, tb) = (
-                curves[ia].sample_param(i) + u * (curves[ia].sample_param(i + 1) - curves[ia].sample_param(i)),
-                curves[ib].sample_param(j) + v * (curves[ib].sample_param(j + 1) - curves[ib].sample_param(j)),
+                curves[ia].sample_param(i)
+                    + u * (curves[ia].sample_param(i + 1) - curves[ia].sample_param(i)),
+                curves[ib].sample_param(j)
+                    + v * (curves[ib].sample_param(j + 1) - curves[ib].sample_param(j)),
             );
             if let Some((ka, ua, kb, ub, gap)) = refine(&curves[ia], &curves[ib], ta, tb) {
                 if gap <= tol {
@@ -299,7 +306,12 @@ pub fn closest_segment_params(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> (f6
 /// Gauss–Newton on the chord parameters of both smooth curves towards their
 /// closest approach, clamped to the curves. Returns (segment, u) on each
 /// curve and the distance.
-fn refine(ca: &SmoothCurve, cb: &SmoothCurve, ta0: f64, tb0: f64) -> Option<(usize, f64, usize, f64, f64)> {
+fn refine(
+    ca: &SmoothCurve,
+    cb: &SmoothCurve,
+    ta0: f64,
+    tb0: f64,
+) -> Option<(usize, f64, usize, f64, f64)> {
     let ha = ca.hermite();
     let hb = cb.hermite();
     let (la, lb) = (*ha.knots().last()?, *hb.knots().last()?);
@@ -336,7 +348,12 @@ fn refine(ca: &SmoothCurve, cb: &SmoothCurve, ta0: f64, tb0: f64) -> Option<(usi
     gap.is_finite().then_some((ka, ua, kb, ub, gap))
 }
 
-fn build_topology(net: &Network, curves: &[SmoothCurve], raw: Vec<RawNode>, opts: NodeOptions) -> Topology {
+fn build_topology(
+    net: &Network,
+    curves: &[SmoothCurve],
+    raw: Vec<RawNode>,
+    opts: NodeOptions,
+) -> Topology {
     let mut warnings = Vec::new();
     let mut nodes: Vec<Node> = raw
         .iter()
@@ -349,7 +366,15 @@ fn build_topology(net: &Network, curves: &[SmoothCurve], raw: Vec<RawNode>, opts
             let cross = pa.tangent.cross(pb.tangent);
             let normal = file_normal(net, curves, r.a, r.sa)
                 .or_else(|| file_normal(net, curves, r.b, r.sb))
-                .map(|n| if cross.length() > 1e-9 && cross.dot(n) < 0.0 { -cross.normalize() } else if cross.length() > 1e-9 { cross.normalize() } else { n })
+                .map(|n| {
+                    if cross.length() > 1e-9 && cross.dot(n) < 0.0 {
+                        -cross.normalize()
+                    } else if cross.length() > 1e-9 {
+                        cross.normalize()
+                    } else {
+                        n
+                    }
+                })
                 .unwrap_or_else(|| cross.try_normalize().unwrap_or(DVec3::Z));
             Node {
                 id,
@@ -380,7 +405,11 @@ fn build_topology(net: &Network, curves: &[SmoothCurve], raw: Vec<RawNode>, opts
         });
     }
     for list in &mut per_curve {
-        list.sort_by(|p, q| p.station_mm.total_cmp(&q.station_mm).then(p.node.cmp(&q.node)));
+        list.sort_by(|p, q| {
+            p.station_mm
+                .total_cmp(&q.station_mm)
+                .then(p.node.cmp(&q.node))
+        });
     }
     orient_normals(net, &mut nodes, &per_curve);
     for n in &nodes {
@@ -393,7 +422,10 @@ fn build_topology(net: &Network, curves: &[SmoothCurve], raw: Vec<RawNode>, opts
     }
     for (ci, list) in per_curve.iter().enumerate() {
         if list.is_empty() {
-            warnings.push(format!("curve {}: crosses no other curve", net.curves[ci].id));
+            warnings.push(format!(
+                "curve {}: crosses no other curve",
+                net.curves[ci].id
+            ));
         }
     }
     Topology {
@@ -429,14 +461,23 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
     }
     let mut done = vec![false; n];
     let mut queue = VecDeque::new();
-    let seeds: Vec<usize> = (0..n).filter(|&i| fixed[i]).chain((0..n).filter(|&i| !fixed[i])).collect();
+    let seeds: Vec<usize> = (0..n)
+        .filter(|&i| fixed[i])
+        .chain((0..n).filter(|&i| !fixed[i]))
+        .collect();
     for seed in seeds {
         if done[seed] {
             continue;
         }
         if !fixed[seed] {
             let nm = nodes[seed].normal;
-            let up = if nm.z.abs() > 1e-9 { nm.z } else if nm.y.abs() > 1e-9 { nm.y } else { nm.x };
+            let up = if nm.z.abs() > 1e-9 {
+                nm.z
+            } else if nm.y.abs() > 1e-9 {
+                nm.y
+            } else {
+                nm.x
+            };
             if up < 0.0 {
                 nodes[seed].normal = -nm;
             }

@@ -33,11 +33,24 @@ fn assert_failed(output: &Output, network: &Path, out: &Path, fragments: &[&str]
         "exit status {:?}, stderr: {stderr:?}",
         output.status
     );
-    assert!(stderr.ends_with('\n'), "stderr must end with a newline: {stderr:?}");
-    assert_eq!(stderr.matches('\n').count(), 1, "stderr must be exactly one line: {stderr:?}");
-    assert!(stderr.starts_with("error: "), "stderr must start with 'error: ': {stderr:?}");
+    assert!(
+        stderr.ends_with('\n'),
+        "stderr must end with a newline: {stderr:?}"
+    );
+    assert_eq!(
+        stderr.matches('\n').count(),
+        1,
+        "stderr must be exactly one line: {stderr:?}"
+    );
+    assert!(
+        stderr.starts_with("error: "),
+        "stderr must start with 'error: ': {stderr:?}"
+    );
     let name = network.file_name().expect("file name").to_string_lossy();
-    assert!(stderr.contains(&*name), "message must name the file {name}: {stderr:?}");
+    assert!(
+        stderr.contains(&*name),
+        "message must name the file {name}: {stderr:?}"
+    );
     for f in fragments {
         assert!(stderr.contains(f), "message must contain {f:?}: {stderr:?}");
     }
@@ -77,7 +90,11 @@ fn good_yaml_template_succeeds() {
     std::fs::write(&network, yaml_with("")).expect("write input");
     let out = dir.join("out");
     let output = run_nodes(&network, &out);
-    assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     assert!(out.join("plan.json").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -91,7 +108,12 @@ fn empty_file() {
 #[test]
 fn broken_yaml() {
     let text = "units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, 0, 0], [1, 0, 0]\n  - id: B00\n";
-    let msg = expect_error("broken_yaml", "broken.yaml", text, &["invalid YAML", "line 6, column 3"]);
+    let msg = expect_error(
+        "broken_yaml",
+        "broken.yaml",
+        text,
+        &["invalid YAML", "line 6, column 3"],
+    );
     // The location is reported once, by us, not repeated from the parser.
     assert_eq!(msg.matches("line").count(), 1, "{msg:?}");
 }
@@ -99,60 +121,118 @@ fn broken_yaml() {
 #[test]
 fn broken_json() {
     let text = "{\"units\": \"mm\",\n \"curves\": [\n  {\"id\": \"A00\", \"family\": \"A\", \"points\": [[0,0,0] [1,0,0]]}\n]}\n";
-    let msg = expect_error("broken_json", "broken.json", text, &["invalid JSON", "line 3, column"]);
+    let msg = expect_error(
+        "broken_json",
+        "broken.json",
+        text,
+        &["invalid JSON", "line 3, column"],
+    );
     assert_eq!(msg.matches("line").count(), 1, "{msg:?}");
 }
 
 #[test]
 fn missing_units() {
     let text = yaml_with("").replacen("units: mm\n", "", 1);
-    expect_error("missing_units", "nounits.yaml", &text, &["units", "missing"]);
+    expect_error(
+        "missing_units",
+        "nounits.yaml",
+        &text,
+        &["units", "missing"],
+    );
 }
 
 #[test]
 fn missing_units_json() {
-    let text = "{\"curves\": [{\"id\": \"A00\", \"family\": \"A\", \"points\": [[0,0,0],[1,0,0]]}]}\n";
-    expect_error("missing_units_json", "nounits.json", text, &["units", "missing"]);
+    let text =
+        "{\"curves\": [{\"id\": \"A00\", \"family\": \"A\", \"points\": [[0,0,0],[1,0,0]]}]}\n";
+    expect_error(
+        "missing_units_json",
+        "nounits.json",
+        text,
+        &["units", "missing"],
+    );
 }
 
 #[test]
 fn unknown_unit() {
     let text = yaml_with("").replacen("units: mm", "units: furlong", 1);
-    expect_error("unknown_unit", "furlong.yaml", &text, &["units", "unknown unit", "furlong"]);
+    expect_error(
+        "unknown_unit",
+        "furlong.yaml",
+        &text,
+        &["units", "unknown unit", "furlong"],
+    );
 }
 
 #[test]
 fn unknown_family() {
     let text = yaml_with("  - id: C07\n    family: C\n    points: [[0, 0, 0], [1, 1, 0]]\n");
-    expect_error("unknown_family", "family.yaml", &text, &["curve C07", "unknown family", "'C'"]);
+    expect_error(
+        "unknown_family",
+        "family.yaml",
+        &text,
+        &["curve C07", "unknown family", "'C'"],
+    );
 }
 
 #[test]
 fn duplicate_id() {
     let text = yaml_with("  - id: A00\n    family: A\n    points: [[50, -100, 0], [50, 100, 0]]\n");
-    expect_error("duplicate_id", "dup.yaml", &text, &["curve A00", "duplicate"]);
+    expect_error(
+        "duplicate_id",
+        "dup.yaml",
+        &text,
+        &["curve A00", "duplicate"],
+    );
 }
 
 #[test]
 fn too_few_points() {
     let text = yaml_with("  - id: A01\n    family: A\n    points: [[50, -100, 0]]\n");
-    expect_error("too_few_points", "few.yaml", &text, &["curve A01", "1 point", "at least 2"]);
+    expect_error(
+        "too_few_points",
+        "few.yaml",
+        &text,
+        &["curve A01", "1 point", "at least 2"],
+    );
     let text = yaml_with("  - id: A02\n    family: A\n    points: []\n");
-    expect_error("no_points", "none.yaml", &text, &["curve A02", "0 point", "at least 2"]);
+    expect_error(
+        "no_points",
+        "none.yaml",
+        &text,
+        &["curve A02", "0 point", "at least 2"],
+    );
 }
 
 #[test]
 fn nan_coordinate() {
-    let text = yaml_with("  - id: A01\n    family: A\n    points: [[50, -100, 0], [50, .nan, 0]]\n");
-    expect_error("nan_coordinate", "nan.yaml", &text, &["curve A01", "point 1", "NaN or infinite"]);
+    let text =
+        yaml_with("  - id: A01\n    family: A\n    points: [[50, -100, 0], [50, .nan, 0]]\n");
+    expect_error(
+        "nan_coordinate",
+        "nan.yaml",
+        &text,
+        &["curve A01", "point 1", "NaN or infinite"],
+    );
 }
 
 #[test]
 fn infinite_coordinate() {
     let text = yaml_with("  - id: B01\n    family: B\n    points: [[.inf, 50, 0], [100, 50, 0]]\n");
-    expect_error("infinite_coordinate", "inf.yaml", &text, &["curve B01", "point 0", "NaN or infinite"]);
-    let text = yaml_with("  - id: B02\n    family: B\n    points: [[-100, 60, 0], [100, 60, -.inf]]\n");
-    expect_error("neg_infinite_coordinate", "neginf.yaml", &text, &["curve B02", "point 1", "NaN or infinite"]);
+    expect_error(
+        "infinite_coordinate",
+        "inf.yaml",
+        &text,
+        &["curve B01", "point 0", "NaN or infinite"],
+    );
+    let text =
+        yaml_with("  - id: B02\n    family: B\n    points: [[-100, 60, 0], [100, 60, -.inf]]\n");
+    expect_error(
+        "neg_infinite_coordinate",
+        "neginf.yaml",
+        &text,
+        &["curve B02", "point 1", "NaN or infinite"],
+    );
 }
 
 #[test]
@@ -161,26 +241,49 @@ fn normals_count_mismatch() {
         "  - id: A01\n    family: A\n    points: [[50, -100, 0], [50, 0, 0], [50, 100, 0]]\n    \
          normals: [[0, 0, 1], [0, 0, 1]]\n",
     );
-    expect_error("normals_count_mismatch", "normals.yaml", &text, &["curve A01", "2 normals for 3 points"]);
+    expect_error(
+        "normals_count_mismatch",
+        "normals.yaml",
+        &text,
+        &["curve A01", "2 normals for 3 points"],
+    );
 }
 
 #[test]
 fn zero_length_curve() {
-    let text = yaml_with("  - id: B05\n    family: B\n    points: [[7, 7, 7], [7, 7, 7], [7, 7, 7]]\n");
-    expect_error("zero_length_curve", "zero.yaml", &text, &["curve B05", "zero-length"]);
+    let text =
+        yaml_with("  - id: B05\n    family: B\n    points: [[7, 7, 7], [7, 7, 7], [7, 7, 7]]\n");
+    expect_error(
+        "zero_length_curve",
+        "zero.yaml",
+        &text,
+        &["curve B05", "zero-length"],
+    );
 }
 
 #[test]
 fn no_crossing() {
-    let text = "units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, 0, 0], [1000, 0, 0]]\n  \
+    let text =
+        "units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, 0, 0], [1000, 0, 0]]\n  \
                 - id: B00\n    family: B\n    points: [[0, 500, 0], [1000, 500, 0]]\n";
-    expect_error("no_crossing", "parallel.yaml", text, &["no A×B crossing", "tolerance"]);
+    expect_error(
+        "no_crossing",
+        "parallel.yaml",
+        text,
+        &["no A×B crossing", "tolerance"],
+    );
 }
 
 #[test]
 fn missing_family_b() {
-    let text = "units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, 0, 0], [1000, 0, 0]]\n";
-    expect_error("missing_family_b", "onlya.yaml", text, &["no curve of family B"]);
+    let text =
+        "units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, 0, 0], [1000, 0, 0]]\n";
+    expect_error(
+        "missing_family_b",
+        "onlya.yaml",
+        text,
+        &["no curve of family B"],
+    );
 }
 
 #[test]
@@ -195,24 +298,49 @@ fn file_does_not_exist() {
 
 #[test]
 fn unknown_extension() {
-    expect_error("unknown_extension", "network.txt", &yaml_with(""), &["unknown network format", "'.txt'"]);
+    expect_error(
+        "unknown_extension",
+        "network.txt",
+        &yaml_with(""),
+        &["unknown network format", "'.txt'"],
+    );
 }
 
 #[test]
 fn no_extension() {
-    expect_error("no_extension", "network", &yaml_with(""), &["unknown network format"]);
+    expect_error(
+        "no_extension",
+        "network",
+        &yaml_with(""),
+        &["unknown network format"],
+    );
 }
 
 #[test]
 fn obj_and_dxf_errors_are_one_line() {
     // OBJ: a polyline before any object name, reported with its line.
     let obj = "v 0 0 0\nv 1 0 0\nl 1 2\n";
-    expect_error("obj_no_name", "noname.obj", obj, &["line 3", "object or group name"]);
+    expect_error(
+        "obj_no_name",
+        "noname.obj",
+        obj,
+        &["line 3", "object or group name"],
+    );
     // OBJ: a bad vertex index.
     let obj = "o A00\nv 0 0 0\nv 1 0 0\nl 1 7\n";
-    expect_error("obj_bad_index", "index.obj", obj, &["line 4", "out of range"]);
+    expect_error(
+        "obj_bad_index",
+        "index.obj",
+        obj,
+        &["line 4", "out of range"],
+    );
     // DXF: not a DXF at all.
-    expect_error("dxf_garbage", "garbage.dxf", "this is\nnot\na drawing\n", &["invalid DXF"]);
+    expect_error(
+        "dxf_garbage",
+        "garbage.dxf",
+        "this is\nnot\na drawing\n",
+        &["invalid DXF"],
+    );
 }
 
 #[test]
@@ -227,13 +355,20 @@ fn failed_run_leaves_out_dir_untouched() {
     std::fs::write(&keep, "unrelated contents\n").expect("write keep.txt");
     let output = run_nodes(&network, &out);
     assert_failed(&output, &network, &out, &["curve B00", "duplicate"]);
-    assert_eq!(std::fs::read_to_string(&keep).expect("keep.txt"), "unrelated contents\n");
+    assert_eq!(
+        std::fs::read_to_string(&keep).expect("keep.txt"),
+        "unrelated contents\n"
+    );
     let mut names: Vec<String> = std::fs::read_dir(&out)
         .expect("read out dir")
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, vec!["keep.txt".to_string()], "nothing else may appear in the out dir");
+    assert_eq!(
+        names,
+        vec!["keep.txt".to_string()],
+        "nothing else may appear in the out dir"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -254,7 +389,10 @@ fn sample_network_succeeds() {
     assert_eq!(plan["units"], "mm");
     assert_eq!(plan["network"]["source"], "hypar-small.yaml");
     assert!(plan["summary"]["nodes"].as_u64().expect("node count") > 0);
-    assert_eq!(std::fs::read_to_string(out.join("keep.txt")).expect("keep.txt"), "x");
+    assert_eq!(
+        std::fs::read_to_string(out.join("keep.txt")).expect("keep.txt"),
+        "x"
+    );
     // No temporary file is left behind by the atomic write.
     let leftovers: Vec<_> = std::fs::read_dir(&out)
         .expect("read out dir")

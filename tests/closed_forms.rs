@@ -10,7 +10,10 @@ use lamella::synth::{self, Catenoid, Enneper, Helicoid, Hypar, ParamSurface, Sam
 const SCALE: f64 = synth::ENNEPER_4M_SCALE_MM;
 const HALF: f64 = synth::ENNEPER_4M_HALF;
 
-fn enneper(step_mm: f64, normals: bool) -> (lamella::Network, lamella::Analysis, Vec<synth::ParamLine>) {
+fn enneper(
+    step_mm: f64,
+    normals: bool,
+) -> (lamella::Network, lamella::Analysis, Vec<synth::ParamLine>) {
     let lines = synth::diagonal_lines(HALF, 13, DVec2::ZERO);
     let raw = synth::network("e", &Enneper, &lines, SCALE, Sampling { step_mm, normals });
     let (net, an) = run(raw);
@@ -29,15 +32,24 @@ fn check_enneper_stations(step_mm: f64, normals: bool, tol_mm: f64) {
         let (p, q) = (values[ia], values[jb]);
         let sa = SCALE * synth::enneper_arc_length(p, -HALF, q);
         let sb = SCALE * synth::enneper_arc_length(q, -HALF, p);
-        worst = worst.max((node.station_a_mm - sa).abs()).max((node.station_b_mm - sb).abs());
-        assert!((node.angle_deg - 90.0).abs() < 0.01, "angle {}", node.angle_deg);
+        worst = worst
+            .max((node.station_a_mm - sa).abs())
+            .max((node.station_b_mm - sb).abs());
+        assert!(
+            (node.angle_deg - 90.0).abs() < 0.01,
+            "angle {}",
+            node.angle_deg
+        );
     }
     for (strip, c) in an.strips.iter().zip(&net.curves) {
         let i: usize = c.id[1..].parse().unwrap();
         let len = SCALE * synth::enneper_arc_length(values[i], -HALF, HALF);
         worst = worst.max((strip.length_mm - len).abs());
     }
-    assert!(worst < tol_mm, "worst station/length error {worst} mm at {step_mm} mm sampling");
+    assert!(
+        worst < tol_mm,
+        "worst station/length error {worst} mm at {step_mm} mm sampling"
+    );
 }
 
 #[test]
@@ -67,8 +79,18 @@ fn check_enneper_frames(step_mm: f64, normals: bool, rel_tol: f64, nodes_tol: f6
         let mut worst_tg: f64 = 0.0;
         let mut worst_kg: f64 = 0.0;
         let smooth = &an.curves[strip.curve];
-        let p = (line.start.x + line.start.y) * if line.family == lamella::Family::A { 1.0 } else { 0.0 }
-            + (line.start.x - line.start.y) * if line.family == lamella::Family::B { 1.0 } else { 0.0 };
+        let p = (line.start.x + line.start.y)
+            * if line.family == lamella::Family::A {
+                1.0
+            } else {
+                0.0
+            }
+            + (line.start.x - line.start.y)
+                * if line.family == lamella::Family::B {
+                    1.0
+                } else {
+                    0.0
+                };
         for k in 0..=40 {
             let t = -HALF + 2.0 * HALF * k as f64 / 40.0;
             let s = SCALE * synth::enneper_arc_length(p, -HALF, t);
@@ -80,9 +102,21 @@ fn check_enneper_frames(step_mm: f64, normals: bool, rel_tol: f64, nodes_tol: f6
             worst_tg = worst_tg.max((f.tg_per_mm.abs() - tg).abs() / tg);
             worst_kg = worst_kg.max((f.kg_per_mm.abs() - kappa).abs() / tg);
         }
-        let tol = if strip.normal_source == NormalSource::Nodes { nodes_tol } else { rel_tol };
-        assert!(worst_tg < tol, "{}: tg relative error {worst_tg} (step {step_mm}, normals {normals})", strip.id);
-        assert!(worst_kg < tol, "{}: kg error relative to tg {worst_kg} (step {step_mm})", strip.id);
+        let tol = if strip.normal_source == NormalSource::Nodes {
+            nodes_tol
+        } else {
+            rel_tol
+        };
+        assert!(
+            worst_tg < tol,
+            "{}: tg relative error {worst_tg} (step {step_mm}, normals {normals})",
+            strip.id
+        );
+        assert!(
+            worst_kg < tol,
+            "{}: kg error relative to tg {worst_kg} (step {step_mm})",
+            strip.id
+        );
     }
 }
 
@@ -102,19 +136,38 @@ fn enneper_torsion_and_curvature_50mm() {
 /// kg = v/(v² + c²), the same tg, and length sqrt(v² + c²)·Δu.
 fn check_helicoid(step_mm: f64, normals: bool, tg_tol: f64) {
     let c = 1000.0;
-    let us = synth::spread(0.75, 9).iter().map(|u| u + 0.75).collect::<Vec<_>>();
-    let vs = synth::spread(600.0, 9).iter().map(|v| v + 900.0).collect::<Vec<_>>();
+    let us = synth::spread(0.75, 9)
+        .iter()
+        .map(|u| u + 0.75)
+        .collect::<Vec<_>>();
+    let vs = synth::spread(600.0, 9)
+        .iter()
+        .map(|v| v + 900.0)
+        .collect::<Vec<_>>();
     let lines = synth::coordinate_lines(&us, &vs);
-    let raw = synth::network("helicoid", &Helicoid { c }, &lines, 1.0, Sampling { step_mm, normals });
+    let raw = synth::network(
+        "helicoid",
+        &Helicoid { c },
+        &lines,
+        1.0,
+        Sampling { step_mm, normals },
+    );
     let (net, an) = run(raw);
     assert_eq!(an.topology.nodes.len(), 81);
     for node in &an.topology.nodes {
         let i: usize = net.curves[node.a].id[1..].parse().unwrap();
         let j: usize = net.curves[node.b].id[1..].parse().unwrap();
         let (u, v) = (us[i], vs[j]);
-        assert!((node.station_a_mm - (v - vs[0])).abs() < 0.01, "ruling station");
+        assert!(
+            (node.station_a_mm - (v - vs[0])).abs() < 0.01,
+            "ruling station"
+        );
         let helix = (v * v + c * c).sqrt() * (u - us[0]);
-        assert!((node.station_b_mm - helix).abs() < 0.01, "helix station {} vs {helix}", node.station_b_mm);
+        assert!(
+            (node.station_b_mm - helix).abs() < 0.01,
+            "helix station {} vs {helix}",
+            node.station_b_mm
+        );
         assert!((node.angle_deg - 90.0).abs() < 0.01);
     }
     for (strip, line) in an.strips.iter().zip(&lines) {
@@ -129,9 +182,23 @@ fn check_helicoid(step_mm: f64, normals: bool, tg_tol: f64) {
             };
             let f = strip.frame_at(smooth, s);
             let tg = c / (v * v + c * c);
-            let kg = if line.family == lamella::Family::A { 0.0 } else { v / (v * v + c * c) };
-            assert!((f.tg_per_mm.abs() - tg).abs() < tg_tol * tg, "{} tg {} vs {tg} at {s} normals {normals} step {step_mm}", strip.id, f.tg_per_mm);
-            assert!((f.kg_per_mm.abs() - kg).abs() < tg_tol * tg, "{} kg {} vs {kg}", strip.id, f.kg_per_mm);
+            let kg = if line.family == lamella::Family::A {
+                0.0
+            } else {
+                v / (v * v + c * c)
+            };
+            assert!(
+                (f.tg_per_mm.abs() - tg).abs() < tg_tol * tg,
+                "{} tg {} vs {tg} at {s} normals {normals} step {step_mm}",
+                strip.id,
+                f.tg_per_mm
+            );
+            assert!(
+                (f.kg_per_mm.abs() - kg).abs() < tg_tol * tg,
+                "{} kg {} vs {kg}",
+                strip.id,
+                f.kg_per_mm
+            );
         }
         if line.family == lamella::Family::B {
             let v = line.start.y;
@@ -162,7 +229,13 @@ fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64, sk
     let half = 1.0;
     let center = DVec2::new(0.3, 0.1);
     let lines = synth::diagonal_lines(half, 11, center);
-    let raw = synth::network("catenoid", &Catenoid { c }, &lines, 1.0, Sampling { step_mm, normals });
+    let raw = synth::network(
+        "catenoid",
+        &Catenoid { c },
+        &lines,
+        1.0,
+        Sampling { step_mm, normals },
+    );
     let (net, an) = run(raw);
     assert_eq!(an.topology.nodes.len(), 121);
     let vals = synth::spread(half, 11);
@@ -174,8 +247,16 @@ fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64, sk
         let (p, q) = (vals[i], vals[j]);
         let sa = std::f64::consts::SQRT_2 * c * (v_of(p, q).sinh() - v_of(p, -half).sinh()).abs();
         let sb = std::f64::consts::SQRT_2 * c * (v_of(p, q).sinh() - v_of(-half, q).sinh()).abs();
-        assert!((node.station_a_mm - sa).abs() < station_tol, "{} vs {sa}", node.station_a_mm);
-        assert!((node.station_b_mm - sb).abs() < station_tol, "{} vs {sb}", node.station_b_mm);
+        assert!(
+            (node.station_a_mm - sa).abs() < station_tol,
+            "{} vs {sa}",
+            node.station_a_mm
+        );
+        assert!(
+            (node.station_b_mm - sb).abs() < station_tol,
+            "{} vs {sb}",
+            node.station_b_mm
+        );
         assert!((node.angle_deg - 90.0).abs() < 0.01);
     }
     for (strip, line) in an.strips.iter().zip(&lines) {
@@ -197,7 +278,12 @@ fn check_catenoid(step_mm: f64, normals: bool, tg_tol: f64, station_tol: f64, sk
             );
             let (kappa, _) = curvature_torsion(&Catenoid { c }, line, 1.0, t);
             // kg from the curve itself: one-sided fits at the ends cost ~1e-3·tg at 50 mm.
-            assert!((f.kg_per_mm.abs() - kappa).abs() < tg_tol.max(1e-3) * minus_k.sqrt(), "{} kg {} vs {kappa} step {step_mm} normals {normals}", strip.id, f.kg_per_mm);
+            assert!(
+                (f.kg_per_mm.abs() - kappa).abs() < tg_tol.max(1e-3) * minus_k.sqrt(),
+                "{} kg {} vs {kappa} step {step_mm} normals {normals}",
+                strip.id,
+                f.kg_per_mm
+            );
         }
     }
 }
@@ -225,23 +311,40 @@ fn hypar_lengths_angles_twist() {
     let xs = synth::spread(600.0, 7);
     let lines = synth::coordinate_lines(&xs, &xs);
     for (step_mm, normals) in [(10.0, true), (10.0, false), (50.0, false)] {
-        let raw = synth::network("hypar", &Hypar { c }, &lines, 1.0, Sampling { step_mm, normals });
+        let raw = synth::network(
+            "hypar",
+            &Hypar { c },
+            &lines,
+            1.0,
+            Sampling { step_mm, normals },
+        );
         let (net, an) = run(raw);
         assert_eq!(an.topology.nodes.len(), 49);
         for node in &an.topology.nodes {
             let i: usize = net.curves[node.a].id[1..].parse().unwrap();
             let j: usize = net.curves[node.b].id[1..].parse().unwrap();
             let (x, y) = (xs[i], xs[j]);
-            let (fx, fy) = ((1.0 + x * x / (c * c)).sqrt(), (1.0 + y * y / (c * c)).sqrt());
+            let (fx, fy) = (
+                (1.0 + x * x / (c * c)).sqrt(),
+                (1.0 + y * y / (c * c)).sqrt(),
+            );
             assert!((node.station_a_mm - fx * (y - xs[0])).abs() < 0.01);
             assert!((node.station_b_mm - fy * (x - xs[0])).abs() < 0.01);
             let phi = (x * y / (c * c) / (fx * fy)).abs().acos().to_degrees();
-            assert!((node.angle_deg - phi).abs() < 0.01, "{} vs {phi}", node.angle_deg);
+            assert!(
+                (node.angle_deg - phi).abs() < 0.01,
+                "{} vs {phi}",
+                node.angle_deg
+            );
         }
         for (strip, line) in an.strips.iter().zip(&lines) {
             let smooth = &an.curves[strip.curve];
             assert_eq!(strip.min_bending_radius_mm(), None);
-            let fixed = if line.family == lamella::Family::A { line.start.x } else { line.start.y };
+            let fixed = if line.family == lamella::Family::A {
+                line.start.x
+            } else {
+                line.start.y
+            };
             let stretch = (1.0 + fixed * fixed / (c * c)).sqrt();
             for k in 0..=12 {
                 let run_coord = xs[0] + 100.0 * k as f64;
@@ -249,7 +352,12 @@ fn hypar_lengths_angles_twist() {
                 let f = strip.frame_at(smooth, s);
                 let tg = (1.0 / c) / (1.0 + (fixed * fixed + run_coord * run_coord) / (c * c));
                 let tol = if normals { 1e-6 } else { 5e-3 };
-                assert!((f.tg_per_mm.abs() - tg).abs() < tol * tg, "{} tg {} vs {tg} at {s} step {step_mm}", strip.id, f.tg_per_mm);
+                assert!(
+                    (f.tg_per_mm.abs() - tg).abs() < tol * tg,
+                    "{} tg {} vs {tg} at {s} step {step_mm}",
+                    strip.id,
+                    f.tg_per_mm
+                );
             }
         }
     }
@@ -266,7 +374,11 @@ fn enneper_beltrami_enneper_at_every_sample() {
             let t = line.t0 + (line.t1 - line.t0) * i as f64 / (n - 1) as f64;
             let lambda = 1.0 + line.uv(t).length_squared();
             let minus_k = 4.0 / (lambda.powi(4) * SCALE * SCALE);
-            assert!((cv.tg_per_mm.powi(2) - minus_k).abs() < 1e-5 * minus_k, "{} sample {i}", strip.id);
+            assert!(
+                (cv.tg_per_mm.powi(2) - minus_k).abs() < 1e-5 * minus_k,
+                "{} sample {i}",
+                strip.id
+            );
             assert!(cv.kn_per_mm.abs() < 1e-8, "kn residual {}", cv.kn_per_mm);
         }
     }

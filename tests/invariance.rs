@@ -8,7 +8,16 @@ use lamella::synth::{self, Enneper, Sampling};
 
 fn base(normals: bool) -> RawNetwork {
     let lines = synth::diagonal_lines(0.5, 9, DVec2::new(0.05, -0.03));
-    synth::network("inv", &Enneper, &lines, 4400.0, Sampling { step_mm: 50.0, normals })
+    synth::network(
+        "inv",
+        &Enneper,
+        &lines,
+        4400.0,
+        Sampling {
+            step_mm: 50.0,
+            normals,
+        },
+    )
 }
 
 /// Per strip: (length, sorted node stations, max |kg|, max |tg|), per node: angle.
@@ -32,17 +41,38 @@ fn summary(raw: RawNetwork) -> (Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>
     (strips, angles)
 }
 
-fn assert_same(a: &(Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>), b: &(Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>)) {
+fn assert_same(
+    a: &(Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>),
+    b: &(Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>),
+) {
     assert_eq!(a.0.len(), b.0.len());
     for (x, y) in a.0.iter().zip(&b.0) {
         assert_eq!(x.0, y.0);
-        assert!((x.1 - y.1).abs() < 1e-6, "{}: length {} vs {}", x.0, x.1, y.1);
+        assert!(
+            (x.1 - y.1).abs() < 1e-6,
+            "{}: length {} vs {}",
+            x.0,
+            x.1,
+            y.1
+        );
         assert_eq!(x.2.len(), y.2.len(), "{}: node count", x.0);
         for (s, t) in x.2.iter().zip(&y.2) {
             assert!((s - t).abs() < 1e-6, "{}: station {s} vs {t}", x.0);
         }
-        assert!((x.3 - y.3).abs() < 1e-9 + 1e-6 * x.3, "{}: kg {} vs {}", x.0, x.3, y.3);
-        assert!((x.4 - y.4).abs() < 1e-9 + 1e-6 * x.4, "{}: tg {} vs {}", x.0, x.4, y.4);
+        assert!(
+            (x.3 - y.3).abs() < 1e-9 + 1e-6 * x.3,
+            "{}: kg {} vs {}",
+            x.0,
+            x.3,
+            y.3
+        );
+        assert!(
+            (x.4 - y.4).abs() < 1e-9 + 1e-6 * x.4,
+            "{}: tg {} vs {}",
+            x.0,
+            x.4,
+            y.4
+        );
     }
     assert_eq!(a.1.len(), b.1.len());
     for (p, q) in a.1.iter().zip(&b.1) {
@@ -114,8 +144,20 @@ fn reversing_a_curve_mirrors_its_stations() {
             for (s, t) in expected.iter().zip(&y.2) {
                 assert!((s - t).abs() < 1e-6, "{}: mirrored station {s} vs {t}", x.0);
             }
-            assert!((x.3 - y.3).abs() < 1e-6 * x.3.max(1e-6), "{}: kg {} vs {}", x.0, x.3, y.3);
-            assert!((x.4 - y.4).abs() < 1e-6 * x.4.max(1e-6), "{}: tg {} vs {}", x.0, x.4, y.4);
+            assert!(
+                (x.3 - y.3).abs() < 1e-6 * x.3.max(1e-6),
+                "{}: kg {} vs {}",
+                x.0,
+                x.3,
+                y.3
+            );
+            assert!(
+                (x.4 - y.4).abs() < 1e-6 * x.4.max(1e-6),
+                "{}: tg {} vs {}",
+                x.0,
+                x.4,
+                y.4
+            );
         }
         assert_same(&(vec![], a.1), &(vec![], b.1));
     }

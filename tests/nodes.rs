@@ -27,20 +27,35 @@ fn net(curves: Vec<RawCurve>) -> RawNetwork {
 #[test]
 fn a_pair_crossing_twice_has_two_nodes() {
     // An arc of radius 1000 mm and a chord line through it at y = 500.
-    let arc = curve("A0", Family::A, |t| {
-        let a = std::f64::consts::PI * t;
-        DVec3::new(1000.0 * a.cos(), 1000.0 * a.sin(), 0.0)
-    }, 80);
-    let line = curve("B0", Family::B, |t| DVec3::new(-1200.0 + 2400.0 * t, 500.0, 0.0), 40);
+    let arc = curve(
+        "A0",
+        Family::A,
+        |t| {
+            let a = std::f64::consts::PI * t;
+            DVec3::new(1000.0 * a.cos(), 1000.0 * a.sin(), 0.0)
+        },
+        80,
+    );
+    let line = curve(
+        "B0",
+        Family::B,
+        |t| DVec3::new(-1200.0 + 2400.0 * t, 500.0, 0.0),
+        40,
+    );
     let (_n, an) = run(net(vec![arc, line]));
     assert_eq!(an.topology.nodes.len(), 2);
     let xs: Vec<f64> = an.topology.nodes.iter().map(|n| n.position_mm.x).collect();
     let x = (1000.0f64 * 1000.0 - 500.0 * 500.0).sqrt();
-    assert!((xs[0] - x).abs() < 0.01 && (xs[1] + x).abs() < 0.01, "{xs:?}");
+    assert!(
+        (xs[0] - x).abs() < 0.01 && (xs[1] + x).abs() < 0.01,
+        "{xs:?}"
+    );
     // Stations on the arc: R·angle.
     let s0 = 1000.0 * (500.0f64 / 1000.0).asin();
     assert!((an.topology.nodes[0].station_a_mm - s0).abs() < 0.01);
-    assert!((an.topology.nodes[1].station_a_mm - (std::f64::consts::PI * 1000.0 - s0)).abs() < 0.01);
+    assert!(
+        (an.topology.nodes[1].station_a_mm - (std::f64::consts::PI * 1000.0 - s0)).abs() < 0.01
+    );
     // Both at 60° (tangent of the arc at 30° from the x axis against the line).
     for n in &an.topology.nodes {
         assert!((n.angle_deg - 60.0).abs() < 0.01, "{}", n.angle_deg);
@@ -51,8 +66,18 @@ fn a_pair_crossing_twice_has_two_nodes() {
 fn a_crossing_at_a_curve_end_is_a_node() {
     let a = curve("A0", Family::A, |t| DVec3::new(1000.0 * t, 0.0, 0.0), 21);
     // B ends exactly on A (a T-junction), and C starts on A's end.
-    let b = curve("B0", Family::B, |t| DVec3::new(400.0, 800.0 - 800.0 * t, 0.0), 17);
-    let e = curve("edge0", Family::Edge, |t| DVec3::new(1000.0, 600.0 * t, 0.0), 13);
+    let b = curve(
+        "B0",
+        Family::B,
+        |t| DVec3::new(400.0, 800.0 - 800.0 * t, 0.0),
+        17,
+    );
+    let e = curve(
+        "edge0",
+        Family::Edge,
+        |t| DVec3::new(1000.0, 600.0 * t, 0.0),
+        13,
+    );
     let (_n, an) = run(net(vec![a, b, e]));
     assert_eq!(an.topology.nodes.len(), 2);
     let n0 = &an.topology.nodes[0];
@@ -64,16 +89,34 @@ fn a_crossing_at_a_curve_end_is_a_node() {
 #[test]
 fn curves_passing_near_do_not_make_a_node() {
     let a = curve("A0", Family::A, |t| DVec3::new(1000.0 * t, 0.0, 0.0), 21);
-    let b = curve("B0", Family::B, |t| DVec3::new(500.0, -500.0 + 1000.0 * t, 0.0), 21);
+    let b = curve(
+        "B0",
+        Family::B,
+        |t| DVec3::new(500.0, -500.0 + 1000.0 * t, 0.0),
+        21,
+    );
     // B1 passes 2 mm above A0 (tolerance 0.5 mm): no node.
-    let b1 = curve("B1", Family::B, |t| DVec3::new(700.0, -500.0 + 1000.0 * t, 2.0), 21);
+    let b1 = curve(
+        "B1",
+        Family::B,
+        |t| DVec3::new(700.0, -500.0 + 1000.0 * t, 2.0),
+        21,
+    );
     // B2 passes 0.3 mm above: a node, with its gap reported.
-    let b2 = curve("B2", Family::B, |t| DVec3::new(300.0, -500.0 + 1000.0 * t, 0.3), 21);
+    let b2 = curve(
+        "B2",
+        Family::B,
+        |t| DVec3::new(300.0, -500.0 + 1000.0 * t, 0.3),
+        21,
+    );
     let (_n, an) = run(net(vec![a, b, b1, b2]));
     assert_eq!(an.topology.nodes.len(), 2);
     let gaps: Vec<f64> = an.topology.nodes.iter().map(|n| n.gap_mm).collect();
     assert!(gaps[0] < 1e-9 && (gaps[1] - 0.3).abs() < 1e-9, "{gaps:?}");
-    assert!(an.warnings().iter().any(|w| w.contains("B1") && w.contains("crosses no other curve")));
+    assert!(an
+        .warnings()
+        .iter()
+        .any(|w| w.contains("B1") && w.contains("crosses no other curve")));
 }
 
 #[test]
@@ -81,15 +124,36 @@ fn a_near_tangent_crossing_warns() {
     let a = curve("A0", Family::A, |t| DVec3::new(1000.0 * t, 0.0, 0.0), 21);
     // 5° crossing.
     let d = DVec3::new(5f64.to_radians().cos(), 5f64.to_radians().sin(), 0.0);
-    let b = curve("B0", Family::B, |t| DVec3::new(500.0, 0.0, 0.0) + d * (-300.0 + 600.0 * t), 31);
-    let c = curve("B1", Family::B, |t| DVec3::new(200.0, -300.0 + 600.0 * t, 0.0), 31);
+    let b = curve(
+        "B0",
+        Family::B,
+        |t| DVec3::new(500.0, 0.0, 0.0) + d * (-300.0 + 600.0 * t),
+        31,
+    );
+    let c = curve(
+        "B1",
+        Family::B,
+        |t| DVec3::new(200.0, -300.0 + 600.0 * t, 0.0),
+        31,
+    );
     let (_n, an) = run(net(vec![a, b, c]));
     assert_eq!(an.topology.nodes.len(), 2);
-    let near = an.topology.nodes.iter().find(|n| n.angle_deg < 10.0).expect("the 5° node");
+    let near = an
+        .topology
+        .nodes
+        .iter()
+        .find(|n| n.angle_deg < 10.0)
+        .expect("the 5° node");
     assert!((near.angle_deg - 5.0).abs() < 1e-6);
     assert!((near.station_a_mm - 500.0).abs() < 1e-6 && (near.station_b_mm - 300.0).abs() < 1e-6);
-    assert!(an.warnings().iter().any(|w| w.contains("near-tangent") && w.contains("B0")));
-    assert!(!an.warnings().iter().any(|w| w.contains("B1") && w.contains("near-tangent")));
+    assert!(an
+        .warnings()
+        .iter()
+        .any(|w| w.contains("near-tangent") && w.contains("B0")));
+    assert!(!an
+        .warnings()
+        .iter()
+        .any(|w| w.contains("B1") && w.contains("near-tangent")));
 }
 
 #[test]
@@ -102,7 +166,10 @@ fn dense_grid_finds_every_node_once() {
         &lamella::synth::Hypar { c: 3000.0 },
         &lines,
         1.0,
-        lamella::synth::Sampling { step_mm: 30.0, normals: false },
+        lamella::synth::Sampling {
+            step_mm: 30.0,
+            normals: false,
+        },
     );
     let (_n, an) = run(raw);
     assert_eq!(an.topology.nodes.len(), 1600);

@@ -54,7 +54,9 @@ fn write_obj(raw: &RawNetwork, path: &Path, div: f64) {
             let q = *p / div;
             let _ = writeln!(out, "v {} {} {}", q.x, q.y, q.z);
         }
-        let indices: Vec<String> = (next..next + c.points.len()).map(|i| i.to_string()).collect();
+        let indices: Vec<String> = (next..next + c.points.len())
+            .map(|i| i.to_string())
+            .collect();
         let _ = writeln!(out, "l {}", indices.join(" "));
         next += c.points.len();
     }
@@ -199,11 +201,19 @@ fn read_and_analyze(path: &Path, opts: ReadOptions) -> Analysed {
         .collect();
     nodes.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)).then(x.2.total_cmp(&y.2)));
     let lengths = an.strips.iter().map(|s| s.length_mm).collect();
-    Analysed { net, nodes, lengths }
+    Analysed {
+        net,
+        nodes,
+        lengths,
+    }
 }
 
 fn assert_same_nodes(what: &str, got: &Analysed, want: &Analysed, tol: f64) {
-    assert_eq!(got.net.curves.len(), want.net.curves.len(), "{what}: curve count");
+    assert_eq!(
+        got.net.curves.len(),
+        want.net.curves.len(),
+        "{what}: curve count"
+    );
     for (g, w) in got.net.curves.iter().zip(&want.net.curves) {
         assert_eq!(g.family, w.family, "{what}: family of {} / {}", g.id, w.id);
     }
@@ -220,10 +230,18 @@ fn assert_same_nodes(what: &str, got: &Analysed, want: &Analysed, tol: f64) {
             w.2,
             w.3
         );
-        assert!(g.4.distance(w.4) < tol, "{what}: node position {} vs {}", g.4, w.4);
+        assert!(
+            g.4.distance(w.4) < tol,
+            "{what}: node position {} vs {}",
+            g.4,
+            w.4
+        );
     }
     for (k, (g, w)) in got.lengths.iter().zip(&want.lengths).enumerate() {
-        assert!((g - w).abs() < tol, "{what}: length of curve {k}: {g} vs {w}");
+        assert!(
+            (g - w).abs() < tol,
+            "{what}: length of curve {k}: {g} vs {w}"
+        );
     }
 }
 
@@ -281,11 +299,19 @@ fn all_formats_give_the_same_network() {
     // come back point for point; the LINE and the SPLINE are the same
     // straight rulings sampled differently.
     assert_eq!(from_dxf.net.file_unit, Unit::Mm, "$INSUNITS = mm");
-    assert_eq!(from_dxf.net.curves.len(), raw.curves.len(), "every DXF entity is read");
+    assert_eq!(
+        from_dxf.net.curves.len(),
+        raw.curves.len(),
+        "every DXF entity is read"
+    );
     for (c, r) in from_dxf.net.curves.iter().zip(&raw.curves) {
         assert_eq!(c.family, r.family, "DXF layer gives the family of {}", r.id);
         let layer = if r.family == Family::A { "A-" } else { "B-" };
-        assert!(c.id.starts_with(layer), "DXF curve id {} names its layer", c.id);
+        assert!(
+            c.id.starts_with(layer),
+            "DXF curve id {} names its layer",
+            c.id
+        );
         match r.id.as_str() {
             "B01" => {
                 // The cubic SPLINE is sampled along its 3 knot spans, not
@@ -324,7 +350,10 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
         DVec3::new(400.0, 0.0, 0.0),
     ];
     let knots = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
-    drawing.add_entity(on_layer("A", EntityType::Spline(spline(3, &knots, &bezier, None))));
+    drawing.add_entity(on_layer(
+        "A",
+        EntityType::Spline(spline(3, &knots, &bezier, None)),
+    ));
     // A rational quadratic quarter circle of radius 100 about (0, 0, 10).
     let w = std::f64::consts::FRAC_1_SQRT_2;
     let arc = [
@@ -334,7 +363,10 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
     ];
     let knots2 = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
     let weights = [1.0, w, 1.0];
-    drawing.add_entity(on_layer("B", EntityType::Spline(spline(2, &knots2, &arc, Some(&weights)))));
+    drawing.add_entity(on_layer(
+        "B",
+        EntityType::Spline(spline(2, &knots2, &arc, Some(&weights))),
+    ));
     // A two-span cubic B-spline with a non-uniform knot vector.
     let bspline = [
         DVec3::new(0.0, 0.0, 0.0),
@@ -344,7 +376,10 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
         DVec3::new(300.0, 0.0, 0.0),
     ];
     let knots3 = [0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0];
-    drawing.add_entity(on_layer("A", EntityType::Spline(spline(3, &knots3, &bspline, None))));
+    drawing.add_entity(on_layer(
+        "A",
+        EntityType::Spline(spline(3, &knots3, &bspline, None)),
+    ));
     drawing.save_file(&path).expect("write DXF");
 
     let raw = read_raw(&path, ReadOptions::default()).expect("read DXF");
@@ -354,7 +389,11 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
     // Bézier: points at u = j/per_span against the Bernstein form.
     let c = &raw.curves[0];
     assert_eq!(c.family, Family::A);
-    assert_eq!(c.points.len(), per_span + 1, "sampled, not the 4 control points");
+    assert_eq!(
+        c.points.len(),
+        per_span + 1,
+        "sampled, not the 4 control points"
+    );
     for (j, p) in c.points.iter().enumerate() {
         let u = j as f64 / per_span as f64;
         let v = 1.0 - u;
@@ -367,9 +406,15 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
     // The midpoint (P0 + 3 P1 + 3 P2 + P3)/8 is on the curve, far from
     // every control point.
     let mid = c.points[per_span / 2];
-    assert!(mid.distance(DVec3::new(200.0, 150.0, 18.75)) < 1e-9, "{mid}");
+    assert!(
+        mid.distance(DVec3::new(200.0, 150.0, 18.75)) < 1e-9,
+        "{mid}"
+    );
     for q in &bezier[1..3] {
-        assert!(c.points.iter().all(|p| p.distance(*q) > 1.0), "inner control point {q} is not on the curve");
+        assert!(
+            c.points.iter().all(|p| p.distance(*q) > 1.0),
+            "inner control point {q} is not on the curve"
+        );
     }
 
     // Rational quarter circle: every sample at radius 100, ends exact.
@@ -378,7 +423,10 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
     assert_eq!(c.points.len(), per_span + 1);
     let center = DVec3::new(0.0, 0.0, 10.0);
     for p in &c.points {
-        assert!(((*p - center).length() - 100.0).abs() < 1e-9, "weights ignored? {p}");
+        assert!(
+            ((*p - center).length() - 100.0).abs() < 1e-9,
+            "weights ignored? {p}"
+        );
     }
     assert!(c.points[0].distance(arc[0]) < 1e-9);
     assert!(c.points[per_span].distance(arc[2]) < 1e-9);
@@ -396,7 +444,10 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
     params.push(1.0);
     for (p, &u) in c.points.iter().zip(&params) {
         let want = cox_de_boor(3, &knots3, &bspline, u);
-        assert!(p.distance(want) < 1e-9, "B-spline at u = {u}: {p} vs {want}");
+        assert!(
+            p.distance(want) < 1e-9,
+            "B-spline at u = {u}: {p} vs {want}"
+        );
     }
     assert!(c.points[per_span].distance(cox_de_boor(3, &knots3, &bspline, 0.4)) < 1e-9);
     let _ = std::fs::remove_dir_all(&dir);
@@ -446,7 +497,12 @@ fn obj_unit_override_scales_to_mm() {
     );
     assert_eq!(m.net.file_unit, Unit::M);
     for (c, r) in m.net.curves.iter().zip(&raw.curves) {
-        assert_points_close(&format!("OBJ in m, {}", c.id), &c.points_mm, &r.points, 1e-9);
+        assert_points_close(
+            &format!("OBJ in m, {}", c.id),
+            &c.points_mm,
+            &r.points,
+            1e-9,
+        );
     }
     assert_same_nodes("OBJ in m", &m, &mm, STATION_TOL_MM);
     // The default tolerance is in mm whatever the file unit.
@@ -475,7 +531,12 @@ fn dxf_insunits_meters_scales_to_mm() {
     assert_eq!(m.net.file_unit, Unit::M, "$INSUNITS = meters");
     for (g, w) in m.net.curves.iter().zip(&mm.net.curves) {
         // Coordinates written with 12 decimals in m: 1e-9 mm resolution.
-        assert_points_close(&format!("DXF in m, {}", g.id), &g.points_mm, &w.points_mm, 1e-6);
+        assert_points_close(
+            &format!("DXF in m, {}", g.id),
+            &g.points_mm,
+            &w.points_mm,
+            1e-6,
+        );
     }
     assert_same_nodes("DXF in m", &m, &mm, STATION_TOL_MM);
 
@@ -497,7 +558,12 @@ fn dxf_insunits_meters_scales_to_mm() {
     assert_eq!(forced.file_unit, Unit::Mm);
     for (g, w) in forced.curves.iter().zip(&mm.net.curves) {
         let scaled: Vec<DVec3> = g.points_mm.iter().map(|&p| p * 1000.0).collect();
-        assert_points_close(&format!("DXF in m read as mm, {}", g.id), &scaled, &w.points_mm, 1e-6);
+        assert_points_close(
+            &format!("DXF in m read as mm, {}", g.id),
+            &scaled,
+            &w.points_mm,
+            1e-6,
+        );
     }
     let cm = read_network(
         &in_mm,
@@ -510,7 +576,12 @@ fn dxf_insunits_meters_scales_to_mm() {
     assert_eq!(cm.file_unit, Unit::Cm);
     for (g, w) in cm.curves.iter().zip(&mm.net.curves) {
         let scaled: Vec<DVec3> = w.points_mm.iter().map(|&p| p * 10.0).collect();
-        assert_points_close(&format!("DXF in mm read as cm, {}", g.id), &g.points_mm, &scaled, 1e-6);
+        assert_points_close(
+            &format!("DXF in mm read as cm, {}", g.id),
+            &g.points_mm,
+            &scaled,
+            1e-6,
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -533,10 +604,22 @@ fn yaml_and_json_units_scale_to_mm() {
     for path in [&yaml, &json] {
         // Network files always say their unit: `--units` does not apply.
         for unit in [None, Some(Unit::Mm)] {
-            let net = read_network(path, ReadOptions { unit, ..Default::default() }).expect("read");
+            let net = read_network(
+                path,
+                ReadOptions {
+                    unit,
+                    ..Default::default()
+                },
+            )
+            .expect("read");
             assert_eq!(net.file_unit, Unit::M);
             for (c, r) in net.curves.iter().zip(&want.curves) {
-                assert_points_close(&format!("{} {}", path.display(), c.id), &c.points_mm, &r.points, 1e-6);
+                assert_points_close(
+                    &format!("{} {}", path.display(), c.id),
+                    &c.points_mm,
+                    &r.points,
+                    1e-6,
+                );
             }
         }
     }

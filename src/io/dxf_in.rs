@@ -30,13 +30,13 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
             Units::Meters => Unit::M,
             Units::Inches => Unit::In,
             Units::Feet => Unit::Ft,
-            other => {
-                return Err(Error::input(
-                    path,
-                    Location::Field("$INSUNITS".into()),
-                    format!("unsupported drawing unit {other:?} (use mm, cm, m, in or ft, or pass --units)"),
-                ))
-            }
+            other => return Err(Error::input(
+                path,
+                Location::Field("$INSUNITS".into()),
+                format!(
+                    "unsupported drawing unit {other:?} (use mm, cm, m, in or ft, or pass --units)"
+                ),
+            )),
         },
     };
     let mut counters: BTreeMap<String, usize> = BTreeMap::new();
@@ -69,8 +69,13 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
             }
             EntityType::Line(l) => vec![to_vec(&l.p1), to_vec(&l.p2)],
             EntityType::Spline(s) => {
-                let id_hint = format!("{} spline #{}", layer, counters.get(&layer).copied().unwrap_or(0) + 1);
-                spline_points(s).map_err(|what| Error::input(path, Location::Curve(id_hint), what))?
+                let id_hint = format!(
+                    "{} spline #{}",
+                    layer,
+                    counters.get(&layer).copied().unwrap_or(0) + 1
+                );
+                spline_points(s)
+                    .map_err(|what| Error::input(path, Location::Curve(id_hint), what))?
             }
             _ => continue,
         };
@@ -130,7 +135,11 @@ struct Ocs {
 
 impl Ocs {
     fn new(normal: DVec3) -> Ocs {
-        let az = if normal.length() > 0.0 { normal.normalize() } else { DVec3::Z };
+        let az = if normal.length() > 0.0 {
+            normal.normalize()
+        } else {
+            DVec3::Z
+        };
         let ax = if az.x.abs() < 1.0 / 64.0 && az.y.abs() < 1.0 / 64.0 {
             DVec3::Y.cross(az).normalize()
         } else {
@@ -155,7 +164,8 @@ fn spline_points(s: &dxf::entities::Spline) -> std::result::Result<Vec<DVec3>, S
         }
         return Ok(fit);
     }
-    let degree = usize::try_from(s.degree_of_curve).map_err(|_| "negative spline degree".to_string())?;
+    let degree =
+        usize::try_from(s.degree_of_curve).map_err(|_| "negative spline degree".to_string())?;
     let knots = &s.knot_values;
     let weights: Vec<f64> = if s.weight_values.len() == ctrl.len() {
         s.weight_values.clone()
@@ -185,7 +195,10 @@ impl Nurbs {
             return Err("spline degree must be at least 1".into());
         }
         if ctrl.len() <= degree {
-            return Err(format!("spline of degree {degree} needs more than {degree} control points, has {}", ctrl.len()));
+            return Err(format!(
+                "spline of degree {degree} needs more than {degree} control points, has {}",
+                ctrl.len()
+            ));
         }
         if knots.len() != ctrl.len() + degree + 1 {
             return Err(format!(
@@ -204,8 +217,16 @@ impl Nurbs {
         if ctrl.iter().any(|p| !p.is_finite()) {
             return Err("spline control point has a NaN or infinite coordinate".into());
         }
-        let ctrl = ctrl.into_iter().zip(weights).map(|(p, w)| (p * w, w)).collect();
-        Ok(Nurbs { degree, knots, ctrl })
+        let ctrl = ctrl
+            .into_iter()
+            .zip(weights)
+            .map(|(p, w)| (p * w, w))
+            .collect();
+        Ok(Nurbs {
+            degree,
+            knots,
+            ctrl,
+        })
     }
 
     /// Evaluate at parameter `u` in the valid domain.
@@ -222,7 +243,11 @@ impl Nurbs {
             for j in (r..=p).rev() {
                 let i = j + k - p;
                 let denom = self.knots[i + 1 + p - r] - self.knots[i];
-                let alpha = if denom > 0.0 { (u - self.knots[i]) / denom } else { 0.0 };
+                let alpha = if denom > 0.0 {
+                    (u - self.knots[i]) / denom
+                } else {
+                    0.0
+                };
                 d[j] = (
                     d[j - 1].0 * (1.0 - alpha) + d[j].0 * alpha,
                     d[j - 1].1 * (1.0 - alpha) + d[j].1 * alpha,
@@ -263,7 +288,11 @@ mod tests {
         let c = Nurbs::new(
             2,
             vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-            vec![DVec3::new(100.0, 0.0, 0.0), DVec3::new(100.0, 100.0, 0.0), DVec3::new(0.0, 100.0, 0.0)],
+            vec![
+                DVec3::new(100.0, 0.0, 0.0),
+                DVec3::new(100.0, 100.0, 0.0),
+                DVec3::new(0.0, 100.0, 0.0),
+            ],
             vec![1.0, w, 1.0],
         )
         .expect("valid");

@@ -28,7 +28,11 @@ pub fn read_network(path: &Path, opts: ReadOptions) -> Result<Network> {
     let mut net = Network::new(raw, path)?;
     if let Some(t) = opts.tolerance_mm {
         if !(t.is_finite() && t > 0.0) {
-            return Err(Error::input(path, Location::Field("tolerance".into()), "tolerance must be positive"));
+            return Err(Error::input(
+                path,
+                Location::Field("tolerance".into()),
+                "tolerance must be positive",
+            ));
         }
         net.tolerance_mm = t;
     }

@@ -52,7 +52,11 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
                     column: l.column(),
                 })
                 .unwrap_or(Location::File);
-            Error::input(path, at, format!("invalid YAML: {}", strip_location(&e.to_string())))
+            Error::input(
+                path,
+                at,
+                format!("invalid YAML: {}", strip_location(&e.to_string())),
+            )
         })?,
         Syntax::Json => serde_json::from_str(text).map_err(|e| {
             Error::input(
@@ -80,7 +84,11 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
             } else {
                 Location::Curve(c.id.clone())
             };
-            Error::input(path, at, format!("unknown family '{}' (use A, B or edge)", c.family))
+            Error::input(
+                path,
+                at,
+                format!("unknown family '{}' (use A, B or edge)", c.family),
+            )
         })?;
         curves.push(RawCurve {
             id: c.id,
@@ -230,7 +238,10 @@ fn write_triples(out: &mut String, v: &[DVec3], decimals: usize) {
 /// Fixed-precision number without a negative zero.
 pub fn fmt_num(x: f64, decimals: usize) -> String {
     let s = format!("{x:.decimals$}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
         s.trim_start_matches('-').to_string()
     } else {
         s
@@ -239,10 +250,12 @@ pub fn fmt_num(x: f64, decimals: usize) -> String {
 
 fn yaml_str(s: &str) -> String {
     if !s.is_empty()
-        && s
-            .chars()
+        && s.chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_' || c == '.')
-        && !s.chars().next().is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '.')
+        && !s
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '.')
     {
         s.to_string()
     } else {

@@ -40,7 +40,11 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
             "o" | "g" => {
                 let n = words.collect::<Vec<_>>().join(" ");
                 if n.is_empty() {
-                    return Err(Error::input(path, Location::Line(line_no), "object/group without a name"));
+                    return Err(Error::input(
+                        path,
+                        Location::Line(line_no),
+                        "object/group without a name",
+                    ));
                 }
                 name = Some((n, line_no));
             }
@@ -56,10 +60,20 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
                 for w in words {
                     let v = w.split('/').next().unwrap_or(w);
                     let k: i64 = v.parse().map_err(|_| {
-                        Error::input(path, Location::Line(line_no), format!("vertex index '{w}' is not an integer"))
+                        Error::input(
+                            path,
+                            Location::Line(line_no),
+                            format!("vertex index '{w}' is not an integer"),
+                        )
                     })?;
                     let n = vertices.len() as i64;
-                    let resolved = if k > 0 { k - 1 } else if k < 0 { n + k } else { -1 };
+                    let resolved = if k > 0 {
+                        k - 1
+                    } else if k < 0 {
+                        n + k
+                    } else {
+                        -1
+                    };
                     if resolved < 0 || resolved >= n {
                         return Err(Error::input(
                             path,
@@ -81,7 +95,11 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
         }
     }
     if pieces.is_empty() {
-        return Err(Error::input(path, Location::File, "no polylines (`l` elements) found"));
+        return Err(Error::input(
+            path,
+            Location::File,
+            "no polylines (`l` elements) found",
+        ));
     }
     // An object with several disjoint pieces gets ids `name.1`, `name.2`, ...
     let mut curves = Vec::with_capacity(pieces.len());

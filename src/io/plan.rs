@@ -127,9 +127,16 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
                 family: s.family.as_str().to_string(),
                 length_mm: round(s.length_mm, MM),
                 nodes,
-                node_to_node_mm: s.node_to_node_mm().into_iter().map(|l| round(l, MM)).collect(),
+                node_to_node_mm: s
+                    .node_to_node_mm()
+                    .into_iter()
+                    .map(|l| round(l, MM))
+                    .collect(),
                 start_to_first_node_mm: s.nodes.first().map(|n| round(n.station_mm, MM)),
-                last_node_to_end_mm: s.nodes.last().map(|n| round(s.length_mm - n.station_mm, MM)),
+                last_node_to_end_mm: s
+                    .nodes
+                    .last()
+                    .map(|n| round(s.length_mm - n.station_mm, MM)),
                 min_bending_radius_mm: s.min_bending_radius_mm().map(|r| round(r, MM)),
                 max_twist_deg_per_m: round(s.max_abs_tg_per_mm.to_degrees() * per_m, DEG),
                 max_normal_curvature_per_m: round(s.max_abs_kn_per_mm * per_m, CURV),
@@ -159,10 +166,22 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
         curves: net.curves.len(),
         nodes: nodes.len(),
         total_length_mm: round(an.strips.iter().map(|s| s.length_mm).sum(), MM),
-        shortest_node_to_node_mm: all_n2n.iter().copied().reduce(f64::min).map(|x| round(x, MM)),
-        longest_node_to_node_mm: all_n2n.iter().copied().reduce(f64::max).map(|x| round(x, MM)),
+        shortest_node_to_node_mm: all_n2n
+            .iter()
+            .copied()
+            .reduce(f64::min)
+            .map(|x| round(x, MM)),
+        longest_node_to_node_mm: all_n2n
+            .iter()
+            .copied()
+            .reduce(f64::max)
+            .map(|x| round(x, MM)),
         max_normal_curvature_per_m: round(
-            an.strips.iter().map(|s| s.max_abs_kn_per_mm).fold(0.0, f64::max) * per_m,
+            an.strips
+                .iter()
+                .map(|s| s.max_abs_kn_per_mm)
+                .fold(0.0, f64::max)
+                * per_m,
             CURV,
         ),
         min_angle_deg: angles.clone().reduce(f64::min).map(|x| round(x, DEG)),
@@ -191,7 +210,8 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
 
 /// Serialise a plan (pretty JSON, trailing newline).
 pub fn to_json(plan: &Plan) -> String {
-    let mut s = serde_json::to_string_pretty(plan).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"));
+    let mut s =
+        serde_json::to_string_pretty(plan).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"));
     s.push('\n');
     s
 }
@@ -199,9 +219,15 @@ pub fn to_json(plan: &Plan) -> String {
 /// Write `contents` to `path` atomically: a temporary file beside it, then a
 /// rename, so a failure never leaves half a file.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.lamella-tmp"));
     std::fs::write(&tmp, contents).map_err(|e| Error::io(&tmp, e))?;
     std::fs::rename(&tmp, path).map_err(|e| {

@@ -20,19 +20,34 @@ pub fn run(raw: RawNetwork) -> (Network, Analysis) {
 
 /// Curvature and torsion of the space curve t ↦ scale·X(uv(t)), by central
 /// differences of the closed form (step h in t).
-pub fn curvature_torsion(surface: &dyn ParamSurface, line: &ParamLine, scale: f64, t: f64) -> (f64, f64) {
+pub fn curvature_torsion(
+    surface: &dyn ParamSurface,
+    line: &ParamLine,
+    scale: f64,
+    t: f64,
+) -> (f64, f64) {
     let h = 1e-3;
     let g = |t: f64| surface.point(line.uv(t)) * scale;
     let d1 = (g(t + h) - g(t - h)) / (2.0 * h);
     let d2 = (g(t + h) - 2.0 * g(t) + g(t - h)) / (h * h);
-    let d3 = (g(t + 2.0 * h) - 2.0 * g(t + h) + 2.0 * g(t - h) - g(t - 2.0 * h)) / (2.0 * h * h * h);
+    let d3 =
+        (g(t + 2.0 * h) - 2.0 * g(t + h) + 2.0 * g(t - h) - g(t - 2.0 * h)) / (2.0 * h * h * h);
     let c = d1.cross(d2);
-    (c.length() / d1.length().powi(3), c.dot(d3) / c.length_squared())
+    (
+        c.length() / d1.length().powi(3),
+        c.dot(d3) / c.length_squared(),
+    )
 }
 
 /// Arc length of t ↦ scale·X(uv(t)) over [t0, t1] by composite Gauss–Legendre
 /// on the analytic derivative.
-pub fn arc_length(surface: &dyn ParamSurface, line: &ParamLine, scale: f64, t0: f64, t1: f64) -> f64 {
+pub fn arc_length(
+    surface: &dyn ParamSurface,
+    line: &ParamLine,
+    scale: f64,
+    t0: f64,
+    t1: f64,
+) -> f64 {
     let n = 2000;
     let g = [-0.7745966692414834, 0.0, 0.7745966692414834];
     let w = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
