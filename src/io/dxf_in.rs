@@ -30,13 +30,15 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
             Units::Meters => Unit::M,
             Units::Inches => Unit::In,
             Units::Feet => Unit::Ft,
-            other => return Err(Error::input(
-                path,
-                Location::Field("$INSUNITS".into()),
-                format!(
+            other => {
+                return Err(Error::input(
+                    path,
+                    Location::Field("$INSUNITS".into()),
+                    format!(
                     "unsupported drawing unit {other:?} (use mm, cm, m, in or ft, or pass --units)"
                 ),
-            )),
+                ))
+            }
         },
     };
     let mut counters: BTreeMap<String, usize> = BTreeMap::new();
