@@ -3,6 +3,8 @@
 //! the file and what is wrong (and the curve or line where it applies), and
 //! write nothing into DIR.
 
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

@@ -1,5 +1,7 @@
 //! Rigid motion, curve reversal and unit change leave the results unchanged.
 
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
 mod common;
 use common::*;
 use glam::DVec2;
@@ -20,8 +22,13 @@ fn base(normals: bool) -> RawNetwork {
     )
 }
 
+/// Per strip: (id, length, node stations, max |kg|, max |tg|).
+type StripSummary = (String, f64, Vec<f64>, f64, f64);
+/// Strips, and the sorted node angles.
+type Summary = (Vec<StripSummary>, Vec<f64>);
+
 /// Per strip: (length, sorted node stations, max |kg|, max |tg|), per node: angle.
-fn summary(raw: RawNetwork) -> (Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>) {
+fn summary(raw: RawNetwork) -> Summary {
     let (net, an) = run(raw);
     let strips = an
         .strips
@@ -41,10 +48,7 @@ fn summary(raw: RawNetwork) -> (Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>
     (strips, angles)
 }
 
-fn assert_same(
-    a: &(Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>),
-    b: &(Vec<(String, f64, Vec<f64>, f64, f64)>, Vec<f64>),
-) {
+fn assert_same(a: &Summary, b: &Summary) {
     assert_eq!(a.0.len(), b.0.len());
     for (x, y) in a.0.iter().zip(&b.0) {
         assert_eq!(x.0, y.0);

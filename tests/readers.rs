@@ -3,6 +3,8 @@
 //! give the same nodes at the same stations. Also: DXF SPLINEs are evaluated
 //! as NURBS, and units (OBJ override, DXF `$INSUNITS`) scale to mm.
 
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Spline, Vertex};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, LwPolylineVertex, Point, Vector};
