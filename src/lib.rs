@@ -9,10 +9,12 @@
 //! for tests, benchmarks and samples.
 
 pub mod analyze;
+pub mod check;
 pub mod curve;
 pub mod error;
 pub mod io;
 pub mod network;
+pub mod profile;
 pub mod strip;
 pub mod synth;
 pub mod topology;

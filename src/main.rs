@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 use lamella::io::{self, plan, ReadOptions};
 use lamella::network::Unit;
+use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -32,6 +33,29 @@ enum Command {
         /// Output directory (created if missing); plan.json is written there.
         #[arg(long, default_value = "out")]
         out: PathBuf,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
+    /// Elastic check: the residual stresses of bending and twisting every
+    /// flat lamella into place, from geodesic curvature and torsion, against
+    /// the profile's design strength. Exit status 0 when every strip passes,
+    /// 3 when any strip is overstressed.
+    Check {
+        /// The network file (.yaml, .yml, .json, .obj, .dxf).
+        network: PathBuf,
+        /// The material profile (profiles/*.yaml).
+        #[arg(long)]
+        profile: PathBuf,
+        /// Also write DIR/plan.json with the profile and per-strip, per-lamella results.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// For a failing network: the largest lamella thickness (and height,
+        /// where the trapeze term makes height matter) at which every strip passes.
+        #[arg(long)]
+        suggest: bool,
+        /// Show only the N most utilised strips in the table.
+        #[arg(long)]
+        top: Option<usize>,
         #[command(flatten)]
         read: ReadArgs,
     },
@@ -75,7 +99,126 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> lamella::Result<ExitCode> {
     match cli.command {
         Command::Nodes { network, out, read } => nodes(&network, &out, &read),
+        Command::Check {
+            network,
+            profile,
+            out,
+            suggest,
+            top,
+            read,
+        } => check(&network, &profile, out.as_deref(), suggest, top, &read),
     }
+}
+
+fn check(
+    path: &Path,
+    profile_path: &Path,
+    out: Option<&Path>,
+    want_suggestion: bool,
+    top: Option<usize>,
+    read: &ReadArgs,
+) -> lamella::Result<ExitCode> {
+    let profile = Profile::load(profile_path)?;
+    let net = io::read_network(path, read.options())?;
+    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
+    let report = lamella::check::check(&an, &profile);
+    let suggestion = want_suggestion.then(|| lamella::check::suggest(&an, &profile));
+    if let Some(dir) = out {
+        let mut plan = plan::build(&net, &an);
+        plan::add_check(&mut plan, &profile, &report, suggestion.as_ref());
+        plan::write_atomic(&dir.join("plan.json"), plan::to_json(&plan).as_bytes())?;
+    }
+    for w in an.warnings() {
+        eprintln!("warning: {w}");
+    }
+    let f = &profile.file;
+    println!(
+        "{} on {}: {} × {} mm, {} per strip; f_d = {:.1} MPa; limits: R ≥ {:.0} mm in pure bending, twist ≤ {:.1} °/m in pure twist",
+        f.name,
+        net.name,
+        f.lamella.thickness_mm,
+        f.lamella.height_mm,
+        f.lamella.per_strip,
+        report.design_strength_mpa,
+        report.limit_bending_radius_mm,
+        report.limit_twist_deg_per_m
+    );
+    println!(
+        "{:<12} {:>7} {:>11} {:>11} {:>13} {:>10}  governs",
+        "strip", "lamella", "utilisation", "station mm", "min radius mm", "twist °/m"
+    );
+    let ranking = report.ranking();
+    for &i in ranking.iter().take(top.unwrap_or(usize::MAX)) {
+        let s = &report.strips[i];
+        let l = s.worst();
+        println!(
+            "{:<12} {:>7} {:>11.3} {:>11.1} {:>13} {:>10.2}  {}{}",
+            s.id,
+            l.offset.number,
+            l.utilization,
+            l.governing_station_mm,
+            l.min_bending_radius_mm
+                .map_or("straight".to_string(), |r| format!("{r:.0}")),
+            l.max_twist_deg_per_m,
+            l.governs.as_str(),
+            if l.utilization > 1.0 {
+                "  OVERSTRESSED"
+            } else {
+                ""
+            }
+        );
+    }
+    if let Some(n) = top.filter(|n| *n < ranking.len()) {
+        println!("… {} more strips", ranking.len() - n);
+    }
+    let worst = ranking.first().map(|&i| &report.strips[i]);
+    let passes = report.passes();
+    match worst {
+        Some(w) if passes => println!(
+            "PASS: all {} strips bend and twist into place elastically; highest utilisation {:.2} ({} lamella {}, {} governs)",
+            report.strips.len(),
+            w.worst().utilization,
+            w.id,
+            w.worst().offset.number,
+            w.worst().governs.as_str()
+        ),
+        Some(w) => println!(
+            "FAIL: {} of {} strips overstressed; worst {} lamella {} at {:.2} × the design strength ({} governs)",
+            report.overstressed(),
+            report.strips.len(),
+            w.id,
+            w.worst().offset.number,
+            w.worst().utilization,
+            w.worst().governs.as_str()
+        ),
+        None => println!("no strips"),
+    }
+    if let Some(s) = &suggestion {
+        match s.max_thickness_mm {
+            Some(t) => println!(
+                "suggest: every strip passes with lamellas up to {t:.4} mm thick (now {} mm)",
+                f.lamella.thickness_mm
+            ),
+            None => println!("suggest: no thickness passes at {} mm height: the trapeze term of the twist alone exceeds f_d", f.lamella.height_mm),
+        }
+        if let Some(h) = s.max_height_mm {
+            println!(
+                "suggest: or keep {} mm and make the lamellas at most {h:.4} mm high (now {} mm)",
+                f.lamella.thickness_mm, f.lamella.height_mm
+            );
+        }
+        if let Some((h, t)) = s.height_and_thickness_mm {
+            println!("suggest: lower the lamellas to {h:.4} mm and thin them to {t:.4} mm");
+        }
+    }
+    if let Some(dir) = out {
+        println!("wrote {}", dir.join("plan.json").display());
+    }
+    Ok(if passes {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(3)
+    })
 }
 
 fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> {

@@ -6,6 +6,7 @@ pub mod dxf_in;
 pub mod network_file;
 pub mod obj;
 pub mod plan;
+pub mod profile_file;
 
 use crate::error::{Error, Location, Result};
 use crate::network::{Network, RawNetwork, Unit};

@@ -20,6 +20,84 @@ pub struct Plan {
     pub strips: Vec<PlanStrip>,
     pub nodes: Vec<PlanNode>,
     pub warnings: Vec<String>,
+    /// The resolved material profile (added by `check`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<PlanProfile>,
+    /// The elastic check's verdict (added by `check`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<PlanCheckSummary>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanProfile {
+    pub name: String,
+    pub source: String,
+    pub material: String,
+    pub thickness_mm: f64,
+    pub height_mm: f64,
+    pub lamellas_per_strip: u32,
+    pub gap_mm: f64,
+    pub youngs_modulus_mpa: f64,
+    pub shear_modulus_mpa: f64,
+    pub characteristic_strength_mpa: f64,
+    pub partial_factor: f64,
+    pub modification_factor: f64,
+    pub design_strength_mpa: f64,
+    pub joint_system: String,
+    pub level_offset_mm: f64,
+    /// The whole profile as read (every field, for later stages).
+    pub resolved: serde_json::Value,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanCheckSummary {
+    pub passes: bool,
+    pub strips_overstressed: usize,
+    pub max_utilization: f64,
+    /// The profile's limits: bending radius in pure bending, twist in pure twist.
+    pub limit_bending_radius_mm: f64,
+    pub limit_twist_deg_per_m: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub suggestion: Option<PlanSuggestion>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanSuggestion {
+    pub max_thickness_mm: Option<f64>,
+    pub max_height_mm: Option<f64>,
+    pub height_mm_with_thickness_mm: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanStress {
+    pub utilization: f64,
+    /// On the lamella's own line.
+    pub governing_station_mm: f64,
+    pub bending_stress_mpa: f64,
+    pub torsion_shear_mpa: f64,
+    pub trapeze_stress_mpa: f64,
+    pub combined_stress_mpa: f64,
+    /// bending, torsion or trapeze.
+    pub governs: String,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanStripCheck {
+    /// The worst lamella's number.
+    pub lamella: u32,
+    #[serde(flatten)]
+    pub stress: PlanStress,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanLamella {
+    pub lamella: u32,
+    pub dy_mm: f64,
+    pub dz_mm: f64,
+    pub length_mm: f64,
+    pub min_bending_radius_mm: Option<f64>,
+    pub max_twist_deg_per_m: f64,
+    pub check: PlanStress,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -60,6 +138,12 @@ pub struct PlanStrip {
     pub max_normal_curvature_per_m: f64,
     /// Where the surface normals came from: file, binormal, binormal+nodes, nodes.
     pub normals: String,
+    /// The worst lamella's elastic check (added by `check`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<PlanStripCheck>,
+    /// Every lamella on its own offset line (added by `check`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lamellas: Option<Vec<PlanLamella>>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -141,6 +225,8 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
                 max_twist_deg_per_m: round(s.max_abs_tg_per_mm.to_degrees() * per_m, DEG),
                 max_normal_curvature_per_m: round(s.max_abs_kn_per_mm * per_m, CURV),
                 normals: s.normal_source.as_str().to_string(),
+                check: None,
+                lamellas: None,
             }
         })
         .collect();
@@ -205,7 +291,95 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
         strips,
         nodes,
         warnings: an.warnings().to_vec(),
+        profile: None,
+        check: None,
     }
+}
+
+const MPA: i32 = 4;
+const UTIL: i32 = 6;
+
+fn plan_stress(l: &crate::check::LamellaCheck) -> PlanStress {
+    PlanStress {
+        utilization: round(l.utilization, UTIL),
+        governing_station_mm: round(l.governing_station_mm, MM),
+        bending_stress_mpa: round(l.stresses.bending_stress_mpa, MPA),
+        torsion_shear_mpa: round(l.stresses.torsion_shear_mpa, MPA),
+        trapeze_stress_mpa: round(l.stresses.trapeze_stress_mpa, MPA),
+        combined_stress_mpa: round(l.stresses.combined_stress_mpa, MPA),
+        governs: l.governs.as_str().into(),
+    }
+}
+
+/// Add the profile and the elastic check to a plan.
+pub fn add_check(
+    plan: &mut Plan,
+    profile: &crate::profile::Profile,
+    report: &crate::check::CheckReport,
+    suggestion: Option<&crate::check::Suggestion>,
+) {
+    let f = &profile.file;
+    plan.profile = Some(PlanProfile {
+        name: f.name.clone(),
+        source: profile
+            .source
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        material: f.material.name.clone(),
+        thickness_mm: f.lamella.thickness_mm,
+        height_mm: f.lamella.height_mm,
+        lamellas_per_strip: f.lamella.per_strip,
+        gap_mm: f.lamella.gap_mm,
+        youngs_modulus_mpa: f.material.youngs_modulus_mpa,
+        shear_modulus_mpa: f.material.shear_modulus_mpa,
+        characteristic_strength_mpa: f.material.characteristic_strength_mpa,
+        partial_factor: f.material.partial_factor,
+        modification_factor: f.material.modification_factor,
+        design_strength_mpa: round(profile.design_strength_mpa(), MPA),
+        joint_system: match f.joint.system {
+            crate::io::profile_file::JointSystem::Interlocking => "interlocking".into(),
+            crate::io::profile_file::JointSystem::TwoLevel => "two_level".into(),
+        },
+        level_offset_mm: f.joint.level_offset_mm,
+        resolved: serde_json::to_value(f).unwrap_or(serde_json::Value::Null),
+    });
+    for sc in &report.strips {
+        let strip = &mut plan.strips[sc.strip];
+        let worst = sc.worst();
+        strip.check = Some(PlanStripCheck {
+            lamella: worst.offset.number,
+            stress: plan_stress(worst),
+        });
+        strip.lamellas = Some(
+            sc.lamellas
+                .iter()
+                .map(|l| PlanLamella {
+                    lamella: l.offset.number,
+                    dy_mm: round(l.offset.dy_mm, MM),
+                    dz_mm: round(l.offset.dz_mm, MM),
+                    length_mm: round(l.length_mm, MM),
+                    min_bending_radius_mm: l.min_bending_radius_mm.map(|r| round(r, MM)),
+                    max_twist_deg_per_m: round(l.max_twist_deg_per_m, DEG),
+                    check: plan_stress(l),
+                })
+                .collect(),
+        );
+    }
+    plan.check = Some(PlanCheckSummary {
+        passes: report.passes(),
+        strips_overstressed: report.overstressed(),
+        max_utilization: round(report.max_utilization(), UTIL),
+        limit_bending_radius_mm: round(report.limit_bending_radius_mm, MM),
+        limit_twist_deg_per_m: round(report.limit_twist_deg_per_m, DEG),
+        suggestion: suggestion.map(|s| PlanSuggestion {
+            max_thickness_mm: s.max_thickness_mm.map(|x| round(x, MM)),
+            max_height_mm: s.max_height_mm.map(|x| round(x, MM)),
+            height_mm_with_thickness_mm: s
+                .height_and_thickness_mm
+                .map(|(h, t)| [round(h, MM), round(t, MM)]),
+        }),
+    });
 }
 
 /// Serialise a plan (pretty JSON, trailing newline).

@@ -1,0 +1,443 @@
+//! Material profiles: read, validate, and the quantities derived from them
+//! (design strength, lamella offset lines, equivalent elastic limits).
+//!
+//! Guarantees after [`Profile::load`]: every length, modulus and strength is
+//! finite and positive where it must be (gaps and allowances ≥ 0); the joint
+//! system has the parts it needs (studs for two levels, a gap for doubling);
+//! rotations are quarter turns; timber cut along the grain allows only 0/180°.
+
+use crate::error::{one_line, Error, Location, Result};
+use crate::io::profile_file::{Grain, JointSystem, ProfileFile, CURRENT_VERSION};
+use crate::network::Family;
+use std::path::{Path, PathBuf};
+
+/// A validated material profile.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Profile {
+    pub file: ProfileFile,
+    pub source: PathBuf,
+}
+
+/// One lamella's reference line relative to its strip's curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LamellaOffset {
+    /// 1-based lamella number within the strip.
+    pub number: u32,
+    /// Tangential offset along y, mm.
+    pub dy_mm: f64,
+    /// Normal offset along z, mm.
+    pub dz_mm: f64,
+}
+
+impl Profile {
+    /// Read and validate a profile file.
+    pub fn load(path: &Path) -> Result<Profile> {
+        if !path.exists() {
+            return Err(Error::input(path, Location::File, "no such file"));
+        }
+        let text = crate::io::read_text(path)?;
+        Profile::parse(&text, path)
+    }
+
+    /// Parse and validate profile text (`path` names it in messages).
+    pub fn parse(text: &str, path: &Path) -> Result<Profile> {
+        if text.trim().is_empty() {
+            return Err(Error::input(path, Location::File, "the file is empty"));
+        }
+        let value: serde_yaml::Value =
+            serde_yaml::from_str(text).map_err(|e| yaml_error(path, &e))?;
+        let version = match value.get("version") {
+            None => {
+                return Err(Error::input(
+                    path,
+                    Location::Field("version".into()),
+                    format!("missing; this lamella reads profile version {CURRENT_VERSION}"),
+                ))
+            }
+            Some(v) => v.as_u64().ok_or_else(|| {
+                Error::input(
+                    path,
+                    Location::Field("version".into()),
+                    "must be a whole number",
+                )
+            })?,
+        };
+        let value = upgrade(value, version, path)?;
+        let file: ProfileFile = serde_yaml::from_value(value).map_err(|e| {
+            // from_value has no location: re-parse the text for it.
+            match serde_yaml::from_str::<ProfileFile>(text) {
+                Err(located) => yaml_error(path, &located),
+                Ok(_) => Error::input(path, Location::File, one_line(&e.to_string())),
+            }
+        })?;
+        let profile = Profile {
+            file,
+            source: path.to_path_buf(),
+        };
+        profile.validate()?;
+        Ok(profile)
+    }
+
+    fn validate(&self) -> Result<()> {
+        let f = &self.file;
+        let path = &self.source;
+        let err = |field: &str, what: String| {
+            Err(Error::input(path, Location::Field(field.into()), what))
+        };
+        let positive = |field: &str, x: f64| -> Result<()> {
+            if x.is_finite() && x > 0.0 {
+                Ok(())
+            } else {
+                err(field, format!("must be positive, got {x}"))
+            }
+        };
+        let non_negative = |field: &str, x: f64| -> Result<()> {
+            if x.is_finite() && x >= 0.0 {
+                Ok(())
+            } else {
+                err(field, format!("must be zero or more, got {x}"))
+            }
+        };
+        if f.name.trim().is_empty() {
+            return err("name", "must not be empty".into());
+        }
+        let m = &f.material;
+        positive("material.youngs_modulus_mpa", m.youngs_modulus_mpa)?;
+        positive("material.shear_modulus_mpa", m.shear_modulus_mpa)?;
+        positive(
+            "material.characteristic_strength_mpa",
+            m.characteristic_strength_mpa,
+        )?;
+        positive("material.partial_factor", m.partial_factor)?;
+        positive("material.modification_factor", m.modification_factor)?;
+        positive("material.density_kg_per_m3", m.density_kg_per_m3)?;
+        if m.partial_factor < 1.0 {
+            return err(
+                "material.partial_factor",
+                format!("must be at least 1, got {}", m.partial_factor),
+            );
+        }
+        if m.modification_factor > 1.1 {
+            return err(
+                "material.modification_factor",
+                format!("must be at most 1.1, got {}", m.modification_factor),
+            );
+        }
+        if m.shear_modulus_mpa >= m.youngs_modulus_mpa {
+            return err(
+                "material.shear_modulus_mpa",
+                format!(
+                    "{} is not below Young's modulus {}",
+                    m.shear_modulus_mpa, m.youngs_modulus_mpa
+                ),
+            );
+        }
+        let l = &f.lamella;
+        positive("lamella.thickness_mm", l.thickness_mm)?;
+        positive("lamella.height_mm", l.height_mm)?;
+        non_negative("lamella.gap_mm", l.gap_mm)?;
+        non_negative("lamella.end_allowance_mm", l.end_allowance_mm)?;
+        if l.thickness_mm >= l.height_mm {
+            return err(
+                "lamella.thickness_mm",
+                format!("{} is not below the height {}", l.thickness_mm, l.height_mm),
+            );
+        }
+        match l.per_strip {
+            1 => {}
+            2 => positive("lamella.gap_mm", l.gap_mm).map_err(|_| {
+                Error::input(
+                    path,
+                    Location::Field("lamella.gap_mm".into()),
+                    "a doubled strip (per_strip: 2) needs a gap above 0",
+                )
+            })?,
+            n => return err("lamella.per_strip", format!("must be 1 or 2, got {n}")),
+        }
+        let j = &f.joint;
+        non_negative("joint.slot_clearance_mm", j.slot_clearance_mm)?;
+        non_negative("joint.level_offset_mm", j.level_offset_mm)?;
+        if !(0.0..90.0).contains(&j.rotation_tolerance_deg) {
+            return err(
+                "joint.rotation_tolerance_deg",
+                format!("must be in [0, 90), got {}", j.rotation_tolerance_deg),
+            );
+        }
+        match j.system {
+            JointSystem::TwoLevel => {
+                if f.stud.is_none() {
+                    return err("stud", "a two-level joint needs studs".into());
+                }
+                if l.per_strip != 2 {
+                    return err(
+                        "lamella.per_strip",
+                        "a two-level joint puts its stud in the gap of a doubled strip: use 2"
+                            .into(),
+                    );
+                }
+                positive("joint.level_offset_mm", j.level_offset_mm)?;
+            }
+            JointSystem::Interlocking => {
+                if j.level_offset_mm != 0.0 {
+                    return err(
+                        "joint.level_offset_mm",
+                        "an interlocking joint has one level: use 0".into(),
+                    );
+                }
+            }
+        }
+        if let Some(b) = &f.node_bolt {
+            positive("node_bolt.diameter_mm", b.diameter_mm)?;
+            non_negative("node_bolt.hole_clearance_mm", b.hole_clearance_mm)?;
+            if l.per_strip == 2 && b.diameter_mm > l.gap_mm {
+                return err(
+                    "node_bolt.diameter_mm",
+                    format!(
+                        "{} does not pass through the {} mm gap between the lamellas",
+                        b.diameter_mm, l.gap_mm
+                    ),
+                );
+            }
+        }
+        if let Some(w) = &f.washer {
+            positive("washer.thickness_mm", w.thickness_mm)?;
+            positive("washer.arm_length_mm", w.arm_length_mm)?;
+            positive("washer.arm_width_mm", w.arm_width_mm)?;
+            if w.per_node == 0 {
+                return err("washer.per_node", "must be at least 1".into());
+            }
+            if f.node_bolt.is_none() {
+                return err(
+                    "washer",
+                    "washers are tightened by a node bolt: add node_bolt".into(),
+                );
+            }
+        }
+        if let Some(s) = &f.shear_block {
+            positive("shear_block.length_mm", s.length_mm)?;
+            positive("shear_block.max_spacing_mm", s.max_spacing_mm)?;
+            positive("shear_block.slenderness_limit", s.slenderness_limit)?;
+            non_negative("shear_block.clearance_mm", s.clearance_mm)?;
+            positive("shear_block.bolt_diameter_mm", s.bolt_diameter_mm)?;
+            if l.per_strip != 2 {
+                return err(
+                    "shear_block",
+                    "shear blocks couple two lamellas: needs lamella.per_strip 2".into(),
+                );
+            }
+        }
+        if let Some(s) = &f.stud {
+            positive("stud.length_mm", s.length_mm)?;
+            positive("stud.fastener_diameter_mm", s.fastener_diameter_mm)?;
+            positive("stud.bar_length_mm", s.bar_length_mm)?;
+        }
+        if let Some(s) = &f.splice {
+            positive("splice.plate_length_mm", s.plate_length_mm)?;
+            positive("splice.bolt_diameter_mm", s.bolt_diameter_mm)?;
+            if s.bolts_per_side == 0 {
+                return err("splice.bolts_per_side", "must be at least 1".into());
+            }
+        }
+        let st = &f.stock;
+        positive("stock.length_mm", st.length_mm)?;
+        positive("stock.width_mm", st.width_mm)?;
+        if let Some(p) = st.price_per_unit {
+            non_negative("stock.price_per_unit", p)?;
+        }
+        if st.width_mm < l.height_mm {
+            return err(
+                "stock.width_mm",
+                format!(
+                    "{} is narrower than a lamella ({} mm)",
+                    st.width_mm, l.height_mm
+                ),
+            );
+        }
+        let c = &f.cutting;
+        non_negative("cutting.kerf_mm", c.kerf_mm)?;
+        non_negative("cutting.part_spacing_mm", c.part_spacing_mm)?;
+        non_negative("cutting.edge_margin_mm", c.edge_margin_mm)?;
+        if c.allowed_rotations_deg.is_empty() {
+            return err(
+                "cutting.allowed_rotations_deg",
+                "must allow at least one rotation".into(),
+            );
+        }
+        if let Some(r) = c
+            .allowed_rotations_deg
+            .iter()
+            .find(|r| ![0, 90, 180, 270].contains(*r))
+        {
+            return err(
+                "cutting.allowed_rotations_deg",
+                format!("{r} is not one of 0, 90, 180, 270"),
+            );
+        }
+        if m.grain == Grain::AlongStrip {
+            if let Some(r) = c
+                .allowed_rotations_deg
+                .iter()
+                .find(|r| **r == 90 || **r == 270)
+            {
+                return err(
+                    "cutting.allowed_rotations_deg",
+                    format!("{r}° turns a strip across the grain (material.grain: along_strip allows 0 and 180)"),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    pub fn thickness_mm(&self) -> f64 {
+        self.file.lamella.thickness_mm
+    }
+    pub fn height_mm(&self) -> f64 {
+        self.file.lamella.height_mm
+    }
+    pub fn youngs_modulus_mpa(&self) -> f64 {
+        self.file.material.youngs_modulus_mpa
+    }
+    pub fn shear_modulus_mpa(&self) -> f64 {
+        self.file.material.shear_modulus_mpa
+    }
+
+    /// f_d = k_mod · f_k / γ_M.
+    pub fn design_strength_mpa(&self) -> f64 {
+        let m = &self.file.material;
+        m.modification_factor * m.characteristic_strength_mpa / m.partial_factor
+    }
+
+    /// The lamellas of a strip of `family` and their offset lines: a doubled
+    /// strip's lamella mid-planes sit at dy = ∓(g + t)/2 (lamella 1 on −y);
+    /// two-level systems lift family A by +level offset, B by −level offset.
+    pub fn lamella_offsets(&self, family: Family) -> Vec<LamellaOffset> {
+        let l = &self.file.lamella;
+        let dz_mm = match (self.file.joint.system, family) {
+            (JointSystem::TwoLevel, Family::A) => self.file.joint.level_offset_mm,
+            (JointSystem::TwoLevel, Family::B) => -self.file.joint.level_offset_mm,
+            _ => 0.0,
+        };
+        if l.per_strip == 2 {
+            let d = 0.5 * (l.gap_mm + l.thickness_mm);
+            vec![
+                LamellaOffset {
+                    number: 1,
+                    dy_mm: -d,
+                    dz_mm,
+                },
+                LamellaOffset {
+                    number: 2,
+                    dy_mm: d,
+                    dz_mm,
+                },
+            ]
+        } else {
+            vec![LamellaOffset {
+                number: 1,
+                dy_mm: 0.0,
+                dz_mm,
+            }]
+        }
+    }
+
+    /// Smallest bending radius in pure weak-axis bending: E·t / (2·f_d).
+    pub fn min_bending_radius_mm(&self) -> f64 {
+        self.youngs_modulus_mpa() * self.thickness_mm() / (2.0 * self.design_strength_mpa())
+    }
+
+    /// Largest twist rate (rad/mm) in pure twist, St. Venant shear and the
+    /// trapeze stress together: (E h²/12)² tg⁴ + 3 (G t)² tg² = f_d².
+    pub fn max_twist_per_mm(&self) -> f64 {
+        let a = (self.youngs_modulus_mpa() * self.height_mm().powi(2) / 12.0).powi(2);
+        let b = 3.0 * (self.shear_modulus_mpa() * self.thickness_mm()).powi(2);
+        let f2 = self.design_strength_mpa().powi(2);
+        // a·x² + b·x − f² = 0 with x = tg².
+        let x = 2.0 * f2 / (b + (b * b + 4.0 * a * f2).sqrt());
+        x.sqrt()
+    }
+
+    /// The same profile with another lamella thickness or height (for `--suggest`).
+    pub fn with_section(&self, thickness_mm: f64, height_mm: f64) -> Profile {
+        let mut p = self.clone();
+        p.file.lamella.thickness_mm = thickness_mm;
+        p.file.lamella.height_mm = height_mm;
+        p
+    }
+}
+
+/// Bring an older profile to the current version. Version 1 is the first;
+/// a later version adds its step here, and a test per version keeps it.
+fn upgrade(value: serde_yaml::Value, version: u64, path: &Path) -> Result<serde_yaml::Value> {
+    match version {
+        1 => Ok(value),
+        v if v > u64::from(CURRENT_VERSION) => Err(Error::input(
+            path,
+            Location::Field("version".into()),
+            format!("profile version {v} is newer than this lamella reads ({CURRENT_VERSION}): update lamella"),
+        )),
+        v => Err(Error::input(
+            path,
+            Location::Field("version".into()),
+            format!("unknown profile version {v} (this lamella reads {CURRENT_VERSION})"),
+        )),
+    }
+}
+
+/// A YAML error as one line with its location, and a hint when a field was
+/// written without its unit (`thickness:` for `thickness_mm:`).
+fn yaml_error(path: &Path, e: &serde_yaml::Error) -> Error {
+    let at = e
+        .location()
+        .map(|l| Location::LineColumn {
+            line: l.line(),
+            column: l.column(),
+        })
+        .unwrap_or(Location::File);
+    let msg = one_line(&e.to_string());
+    let msg = match msg.find(" at line ") {
+        Some(i) => msg[..i].to_string(),
+        None => msg,
+    };
+    // serde_yaml writes "section: unknown field `x`, expected one of ...".
+    if let Some(i) = msg.find("unknown field `") {
+        let prefix = msg[..i].trim_end_matches([' ', ':']);
+        let name = msg[i + "unknown field `".len()..]
+            .split('`')
+            .next()
+            .unwrap_or("");
+        for unit in ["_mm", "_mpa", "_deg", "_kg_per_m3"] {
+            let with_unit = format!("`{name}{unit}`");
+            if msg.contains(&with_unit) {
+                let dotted = if prefix.is_empty() {
+                    name.to_string()
+                } else {
+                    format!("{prefix}.{name}")
+                };
+                return Error::input(
+                    path,
+                    at,
+                    format!("field `{dotted}` has no unit in its name: write {with_unit}"),
+                );
+            }
+        }
+    }
+    Error::input(path, at, msg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn twist_limit_solves_the_combined_equation() {
+        let p = Profile::load(Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/profiles/steel-1.5.yaml"
+        )))
+        .expect("profile");
+        let tg = p.max_twist_per_mm();
+        let sw = p.youngs_modulus_mpa() * tg * tg * p.height_mm().powi(2) / 12.0;
+        let tau = p.shear_modulus_mpa() * tg * p.thickness_mm();
+        assert!(((sw * sw + 3.0 * tau * tau).sqrt() - p.design_strength_mpa()).abs() < 1e-9);
+    }
+}

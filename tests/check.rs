@@ -1,0 +1,283 @@
+//! The elastic check against hand-computed stresses (helicoid rulings: pure
+//! twist; helicoid helices: kg and tg in closed form; Enneper: tg = 2/λ²),
+//! `--suggest`, and the profiles.
+
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
+mod common;
+use common::*;
+use glam::DVec2;
+use lamella::check::{check, max_utilization, suggest, Governs};
+use lamella::profile::Profile;
+use lamella::synth::{self, Enneper, Helicoid, Sampling};
+use std::path::Path;
+
+fn profile(name: &str) -> Profile {
+    Profile::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("profiles")
+            .join(name),
+    )
+    .unwrap()
+}
+
+/// Hand formulas of geometry.md for a lamella with curvature kg and twist tg.
+fn hand(p: &Profile, kg: f64, tg: f64) -> (f64, f64, f64, f64) {
+    let (e, g, t, h) = (
+        p.youngs_modulus_mpa(),
+        p.shear_modulus_mpa(),
+        p.thickness_mm(),
+        p.height_mm(),
+    );
+    let sb = e * kg.abs() * t / 2.0;
+    let tau = g * tg.abs() * t;
+    let sw = e * tg * tg * h * h / 12.0;
+    (sb, tau, sw, ((sb + sw).powi(2) + 3.0 * tau * tau).sqrt())
+}
+
+fn close(a: f64, b: f64, rel: f64, what: &str) {
+    assert!(
+        (a - b).abs() <= rel * b.abs().max(1e-9),
+        "{what}: {a} vs {b}"
+    );
+}
+
+const C: f64 = 1000.0;
+
+fn helicoid() -> (lamella::Network, lamella::Analysis, Vec<f64>) {
+    let us: Vec<f64> = synth::spread(0.6, 7).iter().map(|u| u + 0.6).collect();
+    let vs: Vec<f64> = synth::spread(500.0, 6).iter().map(|v| v + 800.0).collect();
+    let lines = synth::coordinate_lines(&us, &vs);
+    let raw = synth::network(
+        "helicoid",
+        &Helicoid { c: C },
+        &lines,
+        1.0,
+        Sampling {
+            step_mm: 10.0,
+            normals: true,
+        },
+    );
+    let (net, an) = run(raw);
+    (net, an, vs)
+}
+
+#[test]
+fn helicoid_rulings_are_pure_twist() {
+    let (net, an, vs) = helicoid();
+    for p in [profile("steel-1.5.yaml"), profile("beech-veneer.yaml")] {
+        let report = check(&an, &p);
+        for sc in report
+            .strips
+            .iter()
+            .filter(|s| net.curves[s.strip].family == lamella::Family::A)
+        {
+            for l in &sc.lamellas {
+                // Twist is largest at the ruling's inner end, v = vs[0], station 0.
+                let v = vs[0];
+                let tg = C / (v * v + C * C);
+                let stretch = (1.0 + (l.offset.dy_mm * tg).powi(2)).sqrt();
+                let (sb, tau, sw, sv) = hand(&p, 0.0, tg / stretch);
+                assert_eq!(sb, 0.0);
+                assert!(
+                    l.stresses.bending_stress_mpa < 1e-6,
+                    "no bending on a ruling"
+                );
+                close(l.stresses.torsion_shear_mpa, tau, 1e-5, "St. Venant shear");
+                close(l.stresses.trapeze_stress_mpa, sw, 1e-5, "trapeze stress");
+                close(l.stresses.combined_stress_mpa, sv, 1e-5, "combined");
+                close(
+                    l.utilization,
+                    sv / p.design_strength_mpa(),
+                    1e-5,
+                    "utilisation",
+                );
+                assert!(
+                    l.governing_curve_station_mm < 1e-9,
+                    "governs at the inner end"
+                );
+                assert_eq!(l.min_bending_radius_mm, None, "a ruling is straight");
+            }
+        }
+    }
+}
+
+#[test]
+fn helicoid_helices_bend_and_twist_in_closed_form() {
+    let (net, an, _vs) = helicoid();
+    let p = profile("steel-1.5.yaml");
+    let report = check(&an, &p);
+    for sc in report
+        .strips
+        .iter()
+        .filter(|s| net.curves[s.strip].family == lamella::Family::B)
+    {
+        let strip = &an.strips[sc.strip];
+        let v = net.curves[sc.strip].points_mm[0].truncate().length();
+        let (kg0, tg0) = (v / (v * v + C * C), C / (v * v + C * C));
+        for l in &sc.lamellas {
+            // The sign of kg on this lamella's side: from the computed frame.
+            let kg_signed = strip.samples[10].kg_per_mm.signum() * kg0;
+            let dy = l.offset.dy_mm;
+            let stretch = ((1.0 - dy * kg_signed).powi(2) + (dy * tg0).powi(2)).sqrt();
+            let (sb, tau, sw, sv) = hand(&p, kg0 / stretch, tg0 / stretch);
+            close(l.stresses.bending_stress_mpa, sb, 1e-4, "bending");
+            close(l.stresses.torsion_shear_mpa, tau, 1e-4, "shear");
+            close(l.stresses.trapeze_stress_mpa, sw, 1e-4, "trapeze");
+            close(
+                l.utilization,
+                sv / p.design_strength_mpa(),
+                1e-4,
+                "utilisation",
+            );
+            close(
+                l.min_bending_radius_mm.unwrap(),
+                stretch / kg0,
+                1e-4,
+                "lamella bending radius",
+            );
+            // The lamella's length: the helix length times the constant stretch.
+            close(
+                l.length_mm,
+                strip.length_mm * stretch,
+                1e-6,
+                "lamella length",
+            );
+        }
+        // The inner lamella (shorter, more curved) governs.
+        let w = sc.worst();
+        assert!(sc
+            .lamellas
+            .iter()
+            .all(|l| l.length_mm >= w.length_mm - 1e-9));
+    }
+}
+
+#[test]
+fn enneper_twist_is_two_over_lambda_squared() {
+    let lines = synth::diagonal_lines(0.5, 7, DVec2::ZERO);
+    let scale = 4400.0;
+    let raw = synth::network(
+        "e",
+        &Enneper,
+        &lines,
+        scale,
+        Sampling {
+            step_mm: 10.0,
+            normals: true,
+        },
+    );
+    let (net, an) = run(raw);
+    let p = profile("steel-1.5.yaml");
+    let report = check(&an, &p);
+    // A03 and B03 are the straight lines through the centre (u = ±v), where
+    // λ = 1: tg = 2/scale, kg = 0; that is the worst point of the network.
+    for id in ["A03", "B03"] {
+        let sc = report.strips.iter().find(|s| s.id == id).unwrap();
+        for l in &sc.lamellas {
+            let tg = 2.0 / scale;
+            let stretch = (1.0 + (l.offset.dy_mm * tg).powi(2)).sqrt();
+            let (_, tau, sw, sv) = hand(&p, 0.0, tg / stretch);
+            // The worst sample lies within half a sample spacing of the centre.
+            close(
+                l.stresses.torsion_shear_mpa,
+                tau,
+                1e-5,
+                "shear at the centre",
+            );
+            close(
+                l.stresses.trapeze_stress_mpa,
+                sw,
+                2e-5,
+                "trapeze at the centre",
+            );
+            close(
+                l.utilization,
+                sv / p.design_strength_mpa(),
+                1e-5,
+                "utilisation",
+            );
+            assert_eq!(l.governs, Governs::Torsion);
+            // The centre is half way along.
+            let half = an.strips[sc.strip].length_mm / 2.0;
+            assert!(
+                (l.governing_curve_station_mm - half).abs() < 10.0,
+                "station {}",
+                l.governing_curve_station_mm
+            );
+        }
+        let _ = &net;
+    }
+    close(
+        report.max_utilization(),
+        report
+            .strips
+            .iter()
+            .find(|s| s.id == "A03")
+            .unwrap()
+            .worst()
+            .utilization,
+        1e-12,
+        "centre governs",
+    );
+}
+
+#[test]
+fn suggested_thickness_passes_and_five_percent_more_fails() {
+    let raw = synth::enneper_4m(Sampling {
+        step_mm: 25.0,
+        normals: true,
+    });
+    let (_net, an) = run(raw);
+    // Too thick a steel: overstressed.
+    let thick = profile("steel-1.5.yaml").with_section(9.0, 50.0);
+    assert!(!check(&an, &thick).passes());
+    let s = suggest(&an, &thick);
+    let t = s.max_thickness_mm.unwrap();
+    assert!(t < 9.0);
+    assert!(
+        max_utilization(&an, &thick.with_section(t, 50.0)) <= 1.0,
+        "the suggestion passes"
+    );
+    assert!(
+        max_utilization(&an, &thick.with_section(1.05 * t, 50.0)) > 1.0,
+        "5 % more fails"
+    );
+    // Too tall a lamella: the trapeze term alone fails at 400 mm, so no
+    // thickness works; a height is suggested instead.
+    let tall = profile("steel-1.5.yaml").with_section(1.5, 400.0);
+    let s = suggest(&an, &tall);
+    assert_eq!(s.max_thickness_mm, None);
+    let h = s.max_height_mm.unwrap();
+    assert!(max_utilization(&an, &tall.with_section(1.5, h)) <= 1.0);
+    assert!(max_utilization(&an, &tall.with_section(1.5, 1.05 * h)) > 1.0);
+    let (h2, t2) = s.height_and_thickness_mm.unwrap();
+    assert!(max_utilization(&an, &tall.with_section(t2, h2)) <= 1.0);
+}
+
+#[test]
+fn shipped_profiles_load_and_derive_limits() {
+    let steel = profile("steel-1.5.yaml");
+    close(steel.design_strength_mpa(), 355.0, 1e-12, "f_d steel");
+    close(
+        steel.min_bending_radius_mm(),
+        210000.0 * 1.5 / (2.0 * 355.0),
+        1e-12,
+        "R_min",
+    );
+    let offs = steel.lamella_offsets(lamella::Family::A);
+    assert_eq!(offs.len(), 2);
+    close(offs[1].dy_mm, (10.0 + 1.5) / 2.0, 1e-12, "dy");
+    let ply = profile("poplar-ply-4.yaml");
+    close(
+        ply.design_strength_mpa(),
+        0.6 * 20.0 / 1.2,
+        1e-12,
+        "f_d plywood",
+    );
+    assert_eq!(ply.lamella_offsets(lamella::Family::A)[0].dz_mm, 30.0);
+    assert_eq!(ply.lamella_offsets(lamella::Family::B)[0].dz_mm, -30.0);
+    let beech = profile("beech-veneer.yaml");
+    assert_eq!(beech.lamella_offsets(lamella::Family::B).len(), 1);
+    assert_eq!(beech.lamella_offsets(lamella::Family::B)[0].dy_mm, 0.0);
+}
