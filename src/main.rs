@@ -194,22 +194,7 @@ fn check(
         None => println!("no strips"),
     }
     if let Some(s) = &suggestion {
-        match s.max_thickness_mm {
-            Some(t) => println!(
-                "suggest: every strip passes with lamellas up to {t:.4} mm thick (now {} mm)",
-                f.lamella.thickness_mm
-            ),
-            None => println!("suggest: no thickness passes at {} mm height: the trapeze term of the twist alone exceeds f_d", f.lamella.height_mm),
-        }
-        if let Some(h) = s.max_height_mm {
-            println!(
-                "suggest: or keep {} mm and make the lamellas at most {h:.4} mm high (now {} mm)",
-                f.lamella.thickness_mm, f.lamella.height_mm
-            );
-        }
-        if let Some((h, t)) = s.height_and_thickness_mm {
-            println!("suggest: lower the lamellas to {h:.4} mm and thin them to {t:.4} mm");
-        }
+        print_suggestion(s, &profile, passes);
     }
     if let Some(dir) = out {
         println!("wrote {}", dir.join("plan.json").display());
@@ -251,4 +236,48 @@ fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> 
     );
     println!("wrote {}", target.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// The `--suggest` lines: what to change when failing, the headroom when passing.
+fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: bool) {
+    let (t0, h0) = (profile.thickness_mm(), profile.height_mm());
+    // The searches stop at 4 × the profile's value.
+    let bound = |x: f64, cap: f64| {
+        if x >= cap - 1e-9 {
+            format!("{x:.4} mm or more")
+        } else {
+            format!("{x:.4} mm")
+        }
+    };
+    if passes {
+        if let Some(t) = s.max_thickness_mm {
+            println!(
+                "headroom: every strip still passes with lamellas {} thick (now {t0} mm)",
+                bound(t, 4.0 * t0)
+            );
+        }
+        if let Some(h) = s.max_height_mm {
+            println!(
+                "headroom: or {} high at {t0} mm thick (now {h0} mm)",
+                bound(h, 4.0 * h0)
+            );
+        }
+        return;
+    }
+    match s.max_thickness_mm {
+        Some(t) => println!("suggest: every strip passes with lamellas at most {t:.4} mm thick (now {t0} mm)"),
+        None => println!(
+            "suggest: no thickness passes at {h0} mm height: the trapeze stress of the twist alone exceeds f_d"
+        ),
+    }
+    if let Some(h) = s.max_height_mm {
+        println!(
+            "suggest: or keep {t0} mm and make the lamellas at most {h:.4} mm high (now {h0} mm)"
+        );
+    }
+    if let Some((h, t)) = s.height_and_thickness_mm {
+        println!(
+            "suggest: or lower the lamellas to {h:.4} mm and make them at most {t:.4} mm thick"
+        );
+    }
 }

@@ -113,7 +113,7 @@ fn overstressed_network_exits_3_and_suggests() {
     assert!(
         stdout
             .lines()
-            .any(|l| l.starts_with("suggest: every strip passes with lamellas up to 5.56")),
+            .any(|l| l.starts_with("suggest: every strip passes with lamellas at most 5.56")),
         "{stdout}"
     );
     std::fs::remove_dir_all(dir).unwrap();
