@@ -16,6 +16,7 @@ pub mod io;
 pub mod network;
 pub mod profile;
 pub mod strip;
+pub mod surface;
 pub mod synth;
 pub mod topology;
 
