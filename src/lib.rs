@@ -19,6 +19,7 @@ pub mod strip;
 pub mod surface;
 pub mod synth;
 pub mod topology;
+pub mod trace;
 
 pub use analyze::{analyze, Analysis, AnalysisOptions};
 pub use error::{Error, Result};

@@ -77,12 +77,17 @@ pub trait Surface: Sync + Send {
     fn in_domain(&self, _uv: DVec2) -> bool {
         true
     }
+    /// The partial derivatives only (`p` may be left zero): cheaper where the
+    /// point itself is costly (Schwarz D integrates it).
+    fn derivatives(&self, uv: DVec2) -> SurfaceJet {
+        self.eval(uv)
+    }
     fn point(&self, uv: DVec2) -> DVec3 {
         self.eval(uv).p
     }
     /// (X_u, X_v).
     fn partials(&self, uv: DVec2) -> (DVec3, DVec3) {
-        let j = self.eval(uv);
+        let j = self.derivatives(uv);
         (j.pu, j.pv)
     }
     /// Unit normal X_u × X_v / |X_u × X_v|.
@@ -92,7 +97,7 @@ pub trait Surface: Sync + Send {
     }
     /// Fundamental forms, principal curvatures and directions.
     fn curvature(&self, uv: DVec2) -> Curvature {
-        curvature_of(&self.eval(uv))
+        curvature_of(&self.derivatives(uv))
     }
 }
 
@@ -362,6 +367,19 @@ fn gl24() -> &'static (Vec<f64>, Vec<f64>) {
 }
 
 impl Surface for SchwarzD {
+    fn derivatives(&self, q: DVec2) -> SurfaceJet {
+        let (phi, dphi) = SchwarzD::phi(C64::new(q.x, q.y));
+        let re = |c: [C64; 3]| DVec3::new(c[0].re, c[1].re, c[2].re);
+        let im = |c: [C64; 3]| DVec3::new(c[0].im, c[1].im, c[2].im);
+        SurfaceJet {
+            p: DVec3::ZERO,
+            pu: re(phi),
+            pv: -im(phi),
+            puu: re(dphi),
+            puv: -im(dphi),
+            pvv: -re(dphi),
+        }
+    }
     fn eval(&self, q: DVec2) -> SurfaceJet {
         let z = C64::new(q.x, q.y);
         // ∫₀^z φ(ζ) dζ along ζ = t z, t ∈ [0, 1]: z · ∫₀¹ φ(t z) dt.
@@ -410,6 +428,18 @@ impl Surface for Placed {
         let r = |v: DVec3| self.rotation * (v * self.scale_mm);
         SurfaceJet {
             p: r(j.p) + self.translation_mm,
+            pu: r(j.pu),
+            pv: r(j.pv),
+            puu: r(j.puu),
+            puv: r(j.puv),
+            pvv: r(j.pvv),
+        }
+    }
+    fn derivatives(&self, q: DVec2) -> SurfaceJet {
+        let j = self.surface.derivatives(q);
+        let r = |v: DVec3| self.rotation * (v * self.scale_mm);
+        SurfaceJet {
+            p: DVec3::ZERO,
             pu: r(j.pu),
             pv: r(j.pv),
             puu: r(j.puu),
