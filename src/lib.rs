@@ -11,6 +11,7 @@
 pub mod analyze;
 pub mod check;
 pub mod curve;
+pub mod design;
 pub mod error;
 pub mod io;
 pub mod network;

@@ -36,6 +36,16 @@ enum Command {
         #[command(flatten)]
         read: ReadArgs,
     },
+    /// Trace a network on an analytic surface from a spec (surface, scale,
+    /// placement, seed, spacing, clip, sampling) and write it as a network
+    /// file (YAML, with normals).
+    Trace {
+        /// The trace spec (YAML).
+        spec: PathBuf,
+        /// The network file to write (.yaml or .json).
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Elastic check: the residual stresses of bending and twisting every
     /// flat lamella into place, from geodesic curvature and torsion, against
     /// the profile's design strength. Exit status 0 when every strip passes,
@@ -99,6 +109,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> lamella::Result<ExitCode> {
     match cli.command {
         Command::Nodes { network, out, read } => nodes(&network, &out, &read),
+        Command::Trace { spec, out } => trace(&spec, &out),
         Command::Check {
             network,
             profile,
@@ -280,4 +291,47 @@ fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: b
             "suggest: or lower the lamellas to {h:.4} mm and make them at most {t:.4} mm thick"
         );
     }
+}
+
+fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
+    let spec = io::trace_spec::load(spec_path)?;
+    let (net, report) = lamella::design::design(&spec, spec_path)?;
+    let comment = format!(
+        "Traced by lamella {} from {}.\nRegenerate: lamella trace {} --out {}",
+        env!("CARGO_PKG_VERSION"),
+        spec_path.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+        spec_path.display(),
+        out.display()
+    );
+    let text = match out.extension().and_then(|e| e.to_str()) {
+        Some("json") => io::network_file::to_json(&net, 4),
+        _ => io::network_file::to_yaml(&net, 4, &comment),
+    };
+    plan::write_atomic(out, text.as_bytes())?;
+    let length_m: f64 = net
+        .curves
+        .iter()
+        .map(|c| c.points.windows(2).map(|w| w[1].distance(w[0])).sum::<f64>())
+        .sum::<f64>()
+        / 1000.0;
+    println!(
+        "{}: {} A, {} B and {} edge curves, {} points, {:.1} m of curve",
+        net.name,
+        report.a_curves,
+        report.b_curves,
+        report.edges,
+        net.curves.iter().map(|c| c.points.len()).sum::<usize>(),
+        length_m
+    );
+    let unusual: Vec<String> = report
+        .stops
+        .iter()
+        .filter(|(_, a, b)| *a != lamella::trace::Stop::Clip || *b != lamella::trace::Stop::Clip)
+        .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
+        .collect();
+    if !unusual.is_empty() {
+        println!("curves ending elsewhere than the clip: {}", unusual.join(", "));
+    }
+    println!("wrote {}", out.display());
+    Ok(ExitCode::SUCCESS)
 }

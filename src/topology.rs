@@ -19,6 +19,9 @@ use glam::DVec3;
 use rstar::{RTree, RTreeObject, AABB};
 use std::collections::VecDeque;
 
+/// Nodes closer than this along a curve get a warning (a slot cannot sit there).
+pub const CLOSE_NODES_MM: f64 = 5.0;
+
 /// Segments per bounding box in the spatial index.
 const CHUNK_SEGMENTS: usize = 8;
 
@@ -426,6 +429,19 @@ fn build_topology(
                 "curve {}: crosses no other curve",
                 net.curves[ci].id
             ));
+        }
+        for w in list.windows(2) {
+            let gap = w[1].station_mm - w[0].station_mm;
+            if gap < CLOSE_NODES_MM {
+                warnings.push(format!(
+                    "curve {}: nodes {} and {} are only {gap:.2} mm apart (crossing {} and {} at one point?)",
+                    net.curves[ci].id,
+                    w[0].node,
+                    w[1].node,
+                    net.curves[w[0].crossing].id,
+                    net.curves[w[1].crossing].id
+                ));
+            }
         }
     }
     Topology {

@@ -7,6 +7,7 @@ pub mod network_file;
 pub mod obj;
 pub mod plan;
 pub mod profile_file;
+pub mod trace_spec;
 
 use crate::error::{Error, Location, Result};
 use crate::network::{Network, RawNetwork, Unit};

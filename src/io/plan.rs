@@ -247,7 +247,12 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
         })
         .collect();
     let all_n2n: Vec<f64> = an.strips.iter().flat_map(|s| s.node_to_node_mm()).collect();
-    let angles = an.topology.nodes.iter().map(|n| n.angle_deg);
+    // Angles and the kn residual describe the asymptotic net: A×B nodes and
+    // A/B strips (edges are neither asymptotic nor crossed at 90°).
+    let is_ab = |n: &crate::topology::Node| {
+        net.curves[n.a].family == crate::network::Family::A && net.curves[n.b].family == crate::network::Family::B
+    };
+    let angles = an.topology.nodes.iter().filter(|n| is_ab(n)).map(|n| n.angle_deg);
     let summary = Summary {
         curves: net.curves.len(),
         nodes: nodes.len(),
@@ -265,6 +270,7 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
         max_normal_curvature_per_m: round(
             an.strips
                 .iter()
+                .filter(|s| s.family != crate::network::Family::Edge)
                 .map(|s| s.max_abs_kn_per_mm)
                 .fold(0.0, f64::max)
                 * per_m,

@@ -1,0 +1,521 @@
+//! Network design: from a trace spec to a network of traced curves.
+//!
+//! Input: a [`TraceSpec`] (surface, scale and placement, seed, spacing, clip,
+//! sampling). Output: a [`RawNetwork`] in mm with normals: families A and B
+//! (asymptotic, or principal for the façade web) and the cut boundary as
+//! `edge` curves. Curves are traced with [`crate::trace`]; the design seeds
+//! them at the spacing along the curves through the seed (`central`) or
+//! alternately along the last curve of the other family (`alternating`).
+
+use crate::error::{Error, Location, Result};
+use crate::io::trace_spec::{ClipSpec, Design, Net, SurfaceName, TraceSpec};
+use crate::network::{Family, RawCurve, RawNetwork, Unit};
+use crate::surface::{self, Placed, Surface};
+use crate::trace::{trace_through, Field, Region, Stop, TraceOptions, Traced};
+use glam::{DMat3, DVec2, DVec3};
+use std::path::Path;
+use std::sync::Arc;
+
+/// The placed surface of a spec.
+pub fn placed_surface(spec: &TraceSpec) -> Placed {
+    let base: Arc<dyn Surface> = match spec.surface {
+        SurfaceName::Enneper => Arc::new(surface::Enneper),
+        SurfaceName::Catenoid => Arc::new(surface::Catenoid { c: spec.c }),
+        SurfaceName::Helicoid => Arc::new(surface::Helicoid { c: spec.c }),
+        SurfaceName::Scherk => Arc::new(surface::Scherk),
+        SurfaceName::SchwarzD => Arc::new(surface::SchwarzD),
+        SurfaceName::Hypar => Arc::new(surface::Hypar { c: spec.c }),
+    };
+    let [rx, ry, rz] = spec.placement.rotate_deg.map(f64::to_radians);
+    Placed {
+        surface: base,
+        scale_mm: spec.scale_mm,
+        rotation: DMat3::from_rotation_z(rz) * DMat3::from_rotation_y(ry) * DMat3::from_rotation_x(rx),
+        translation_mm: DVec3::from_array(spec.placement.translate_mm),
+    }
+}
+
+/// One face of a clip region: a plane in space or a segment in the parameter plane.
+#[derive(Debug, Clone, Copy)]
+enum Face {
+    /// Points with (p − point)·normal ≤ 0 are inside.
+    Plane { point: DVec3, normal: DVec3 },
+    /// Parameter-plane segment a→b of a counter-clockwise polygon.
+    Param { a: DVec2, b: DVec2 },
+}
+
+/// A clip region: where traces stay.
+pub struct Clip {
+    faces: Vec<Face>,
+    /// Plan polygon (x, y) for prism clips; faces hold its sides too.
+    prism: Option<Vec<DVec2>>,
+    /// Parameter polygon for parameter clips.
+    param: Option<Vec<DVec2>>,
+    slack_mm: f64,
+}
+
+impl Clip {
+    fn from_spec(spec: Option<&ClipSpec>) -> Clip {
+        let mut faces = Vec::new();
+        let (mut prism, mut param) = (None, None);
+        match spec {
+            None => {}
+            Some(ClipSpec::Box { min_mm, max_mm }) => {
+                for axis in 0..3 {
+                    let mut n = DVec3::ZERO;
+                    n[axis] = 1.0;
+                    faces.push(Face::Plane { point: DVec3::from_array(*max_mm), normal: n });
+                    faces.push(Face::Plane { point: DVec3::from_array(*min_mm), normal: -n });
+                }
+            }
+            Some(ClipSpec::Plane { point_mm, normal }) => faces.push(Face::Plane {
+                point: DVec3::from_array(*point_mm),
+                normal: DVec3::from_array(*normal).normalize_or_zero(),
+            }),
+            Some(ClipSpec::Polygon { points_mm, z_min_mm, z_max_mm }) => {
+                let pts = ccw(points_mm.iter().map(|p| DVec2::from_array(*p)).collect());
+                for k in 0..pts.len() {
+                    let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+                    let out = DVec2::new(b.y - a.y, a.x - b.x).normalize_or_zero();
+                    faces.push(Face::Plane { point: a.extend(0.0), normal: out.extend(0.0) });
+                }
+                if let Some(z) = z_min_mm {
+                    faces.push(Face::Plane { point: DVec3::new(0.0, 0.0, *z), normal: -DVec3::Z });
+                }
+                if let Some(z) = z_max_mm {
+                    faces.push(Face::Plane { point: DVec3::new(0.0, 0.0, *z), normal: DVec3::Z });
+                }
+                prism = Some(pts);
+            }
+            Some(ClipSpec::Parameters { polygon }) => {
+                let pts = ccw(polygon.iter().map(|p| DVec2::from_array(*p)).collect());
+                for k in 0..pts.len() {
+                    faces.push(Face::Param { a: pts[k], b: pts[(k + 1) % pts.len()] });
+                }
+                param = Some(pts);
+            }
+        }
+        Clip { faces, prism, param, slack_mm: 1e-6 }
+    }
+
+    /// Whether a point is inside, ignoring face `skip` (for tracing along it).
+    fn contains_except(&self, uv: DVec2, p: DVec3, skip: Option<usize>) -> bool {
+        if let Some(poly) = &self.prism {
+            if skip.is_none() && !inside_polygon(poly, p.truncate()) {
+                return false;
+            }
+        }
+        if let Some(poly) = &self.param {
+            if skip.is_none() && !inside_polygon(poly, uv) {
+                return false;
+            }
+        }
+        self.faces.iter().enumerate().all(|(i, f)| {
+            if Some(i) == skip {
+                return true;
+            }
+            match f {
+                Face::Plane { point, normal } => {
+                    // Polygon sides are only half-spaces for convex polygons;
+                    // the polygon test above decides; here, when skipping a
+                    // side, the other sides bound the segment's extent.
+                    if self.prism.is_some() && skip.is_none() && normal.z == 0.0 {
+                        return true;
+                    }
+                    (p - *point).dot(*normal) <= self.slack_mm
+                }
+                Face::Param { a, b } => {
+                    if skip.is_none() {
+                        return true;
+                    }
+                    let n = DVec2::new(b.y - a.y, a.x - b.x);
+                    (uv - *a).dot(n) <= 1e-12
+                }
+            }
+        })
+    }
+
+    /// The face (if any) on which a point lies.
+    fn face_of(&self, uv: DVec2, p: DVec3) -> Option<usize> {
+        let mut best: Option<(usize, f64)> = None;
+        for (i, f) in self.faces.iter().enumerate() {
+            let d = match f {
+                Face::Plane { point, normal } => ((p - *point).dot(*normal)).abs(),
+                Face::Param { a, b } => {
+                    let t = ((uv - *a).dot(*b - *a) / (*b - *a).length_squared()).clamp(0.0, 1.0);
+                    // In mm-ish terms: parameter distance scaled later by the caller's tolerance.
+                    uv.distance(*a + (*b - *a) * t) * 1e3
+                }
+            };
+            if d < 1e-3 && best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((i, d));
+            }
+        }
+        best.map(|b| b.0)
+    }
+}
+
+impl Region for Clip {
+    fn contains(&self, uv: DVec2, p: DVec3) -> bool {
+        self.contains_except(uv, p, None)
+    }
+}
+
+/// A region that is the clip without one face (for tracing an edge along it).
+struct AlongFace<'a> {
+    clip: &'a Clip,
+    face: usize,
+}
+
+impl Region for AlongFace<'_> {
+    fn contains(&self, uv: DVec2, p: DVec3) -> bool {
+        self.clip.contains_except(uv, p, Some(self.face))
+    }
+}
+
+fn ccw(mut pts: Vec<DVec2>) -> Vec<DVec2> {
+    let area: f64 = (0..pts.len())
+        .map(|k| {
+            let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+            a.x * b.y - b.x * a.y
+        })
+        .sum();
+    if area < 0.0 {
+        pts.reverse();
+    }
+    pts
+}
+
+fn inside_polygon(poly: &[DVec2], q: DVec2) -> bool {
+    let mut inside = false;
+    let n = poly.len();
+    for k in 0..n {
+        let (a, b) = (poly[k], poly[(k + n - 1) % n]);
+        if (a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// Validate a spec before tracing (one-line errors naming the field).
+fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
+    let err = |field: &str, what: String| Err(Error::input(path, Location::Field(field.into()), what));
+    if !(spec.scale_mm.is_finite() && spec.scale_mm > 0.0) {
+        return err("scale_mm", format!("must be positive, got {}", spec.scale_mm));
+    }
+    if !(spec.spacing_mm.is_finite() && spec.spacing_mm > 0.0) {
+        return err("spacing_mm", format!("must be positive, got {}", spec.spacing_mm));
+    }
+    if !(spec.c.is_finite() && spec.c != 0.0) {
+        return err("c", format!("must be a non-zero number, got {}", spec.c));
+    }
+    let s = &spec.sampling;
+    if !(s.step_mm.is_finite() && s.step_mm > 0.0) {
+        return err("sampling.step_mm", format!("must be positive, got {}", s.step_mm));
+    }
+    if !(s.tolerance_mm.is_finite() && s.tolerance_mm > 0.0 && s.tolerance_mm < s.step_mm) {
+        return err("sampling.tolerance_mm", format!("must be positive and below step_mm, got {}", s.tolerance_mm));
+    }
+    if spec.seed.iter().any(|x| !x.is_finite()) {
+        return err("seed", "must be two finite numbers".into());
+    }
+    if spec.max_curves_per_side == 0 {
+        return err("max_curves_per_side", "must be at least 1".into());
+    }
+    let clip = match &spec.clip {
+        None => None,
+        Some(c) => Some(c.resolve().map_err(|n| {
+            Error::input(path, Location::Field("clip".into()), format!("name exactly one of box, plane, polygon, parameters (found {n})"))
+        })?),
+    };
+    match &clip {
+        Some(ClipSpec::Plane { normal, .. }) if DVec3::from_array(*normal).length() < 1e-12 => {
+            return err("clip.plane.normal", "must not be zero".into())
+        }
+        Some(ClipSpec::Polygon { points_mm, .. }) if points_mm.len() < 3 => {
+            return err("clip.polygon.points_mm", "needs at least 3 points".into())
+        }
+        Some(ClipSpec::Parameters { polygon }) if polygon.len() < 3 => {
+            return err("clip.parameters.polygon", "needs at least 3 points".into())
+        }
+        Some(ClipSpec::Box { min_mm, max_mm }) if (0..3).any(|i| min_mm[i] >= max_mm[i]) => {
+            return err("clip.box", "min_mm must be below max_mm on every axis".into())
+        }
+        _ => {}
+    }
+    Ok(clip)
+}
+
+/// What a design produced, besides the network.
+#[derive(Debug, Clone, Default)]
+pub struct DesignReport {
+    pub a_curves: usize,
+    pub b_curves: usize,
+    pub edges: usize,
+    /// (curve id, where its start stopped, where its end stopped).
+    pub stops: Vec<(String, Stop, Stop)>,
+}
+
+/// Trace the network a spec describes.
+pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
+    let clip_spec = validate(spec, path)?;
+    let surface = placed_surface(spec);
+    let clip = Clip::from_spec(clip_spec.as_ref());
+    let seed = DVec2::from_array(spec.seed);
+    let opts = TraceOptions {
+        tolerance_mm: spec.sampling.tolerance_mm,
+        max_step_mm: spec.sampling.step_mm,
+        boundary_tolerance_mm: (spec.sampling.tolerance_mm).max(1e-9),
+        ..TraceOptions::default()
+    };
+    let seed_err = |what: String| Error::input(path, Location::Field("seed".into()), what);
+    if !surface.in_domain(seed) {
+        return Err(seed_err(format!("({}, {}) is outside the {:?} surface's domain", seed.x, seed.y, spec.surface)));
+    }
+    if !clip.contains(seed, surface.point(seed)) {
+        return Err(Error::input(
+            path,
+            Location::Field("clip".into()),
+            "the clip removes everything around the seed (the seed lies outside it)",
+        ));
+    }
+    let (fa, fb) = match spec.net {
+        Net::Asymptotic => (Field::AsymptoticA, Field::AsymptoticB),
+        Net::Principal => (Field::PrincipalMax, Field::PrincipalMin),
+    };
+    let trace = |field: Field, at: DVec2| trace_through(&surface, field, at, &clip, opts);
+    let a0 = trace(fa, seed).map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
+    let b0 = trace(fb, seed).map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
+    if a0.length_mm() < spec.sampling.tolerance_mm || b0.length_mm() < spec.sampling.tolerance_mm {
+        return Err(Error::input(path, Location::Field("clip".into()), "the clip leaves no curve through the seed"));
+    }
+    let d = spec.spacing_mm;
+    let max_k = spec.max_curves_per_side;
+    // (offset index, curve) per family.
+    let mut a_curves: Vec<(i64, Traced)> = Vec::new();
+    let mut b_curves: Vec<(i64, Traced)> = Vec::new();
+    match spec.design {
+        Design::Central => {
+            let sa = station_of(&a0, seed);
+            let sb = station_of(&b0, seed);
+            for (k, s) in marks(sa, a0.length_mm(), d, max_k) {
+                if let Ok(t) = trace(fb, a0.uv_at(s)) {
+                    b_curves.push((k, t));
+                }
+            }
+            for (k, s) in marks(sb, b0.length_mm(), d, max_k) {
+                if let Ok(t) = trace(fa, b0.uv_at(s)) {
+                    a_curves.push((k, t));
+                }
+            }
+        }
+        Design::Alternating => {
+            for sign in [1.0, -1.0] {
+                let (mut a, mut b, mut x) = (a0.clone(), b0.clone(), seed);
+                for k in 1..=max_k as i64 {
+                    let (sa, sb) = (station_of(&a, x) + sign * d, station_of(&b, x) + sign * d);
+                    if !(0.0..=a.length_mm()).contains(&sa) || !(0.0..=b.length_mm()).contains(&sb) {
+                        break;
+                    }
+                    let (Ok(nb), Ok(na)) = (trace(fb, a.uv_at(sa)), trace(fa, b.uv_at(sb))) else {
+                        break;
+                    };
+                    let kk = if sign > 0.0 { k } else { -k };
+                    a_curves.push((kk, na.clone()));
+                    b_curves.push((kk, nb.clone()));
+                    match crossing_uv(&na, &nb) {
+                        Some(nx) => {
+                            x = nx;
+                            a = na;
+                            b = nb;
+                        }
+                        None => break,
+                    }
+                }
+            }
+        }
+    }
+    a_curves.push((0, a0));
+    b_curves.push((0, b0));
+    a_curves.sort_by_key(|c| c.0);
+    b_curves.sort_by_key(|c| c.0);
+    let min_len = (spec.spacing_mm * 0.05).max(1.0);
+    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
+    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
+
+    // Edges: trace the cut boundary along each face from the curve ends on it.
+    let edges = trace_edges(&surface, &clip, a_curves.iter().chain(&b_curves).map(|c| &c.1), opts, spec.sampling.step_mm);
+
+    let mut report = DesignReport::default();
+    let mut curves = Vec::new();
+    let mut push = |prefix: &str, family: Family, list: Vec<Traced>, report: &mut DesignReport| {
+        let width = if list.len() > 100 { 3 } else { 2 };
+        for (i, t) in list.into_iter().enumerate() {
+            let id = format!("{prefix}{i:0width$}");
+            report.stops.push((id.clone(), t.stop_start, t.stop_end));
+            curves.push(RawCurve {
+                id,
+                family,
+                normals: Some(t.uv.iter().map(|&q| surface.normal(q)).collect()),
+                points: t.points_mm,
+            });
+        }
+    };
+    report.a_curves = a_curves.len();
+    report.b_curves = b_curves.len();
+    report.edges = edges.len();
+    push("A", Family::A, a_curves.into_iter().map(|c| c.1).collect(), &mut report);
+    push("B", Family::B, b_curves.into_iter().map(|c| c.1).collect(), &mut report);
+    push("edge", Family::Edge, edges, &mut report);
+    let name = spec.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().trim_end_matches(".trace").to_string())
+            .unwrap_or_else(|| "traced".into())
+    });
+    Ok((
+        RawNetwork {
+            name,
+            unit: Unit::Mm,
+            tolerance: Some(0.5),
+            curves,
+        },
+        report,
+    ))
+}
+
+/// Stations at k·d from `s0` (k = ±1, ±2, …) inside (0, len), with k.
+fn marks(s0: f64, len: f64, d: f64, max_k: usize) -> Vec<(i64, f64)> {
+    let mut out = Vec::new();
+    for k in 1..=max_k as i64 {
+        let s = s0 - k as f64 * d;
+        if s <= 0.0 {
+            break;
+        }
+        out.push((-k, s));
+    }
+    for k in 1..=max_k as i64 {
+        let s = s0 + k as f64 * d;
+        if s >= len {
+            break;
+        }
+        out.push((k, s));
+    }
+    out
+}
+
+/// Station of the polyline point nearest to a parameter point.
+fn station_of(t: &Traced, q: DVec2) -> f64 {
+    let mut best = (f64::INFINITY, 0.0);
+    for k in 1..t.uv.len() {
+        let (a, b) = (t.uv[k - 1], t.uv[k]);
+        let ab = b - a;
+        let f = if ab.length_squared() > 0.0 { ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        let d = q.distance(a + ab * f);
+        if d < best.0 {
+            best = (d, t.stations_mm[k - 1] + f * (t.stations_mm[k] - t.stations_mm[k - 1]));
+        }
+    }
+    best.1
+}
+
+/// The first crossing of two traced curves in the parameter plane.
+fn crossing_uv(p: &Traced, q: &Traced) -> Option<DVec2> {
+    for i in 1..p.uv.len() {
+        let (a0, a1) = (p.uv[i - 1], p.uv[i]);
+        for j in 1..q.uv.len() {
+            let (b0, b1) = (q.uv[j - 1], q.uv[j]);
+            let r = a1 - a0;
+            let s = b1 - b0;
+            let den = r.perp_dot(s);
+            if den.abs() < 1e-300 {
+                continue;
+            }
+            let t = (b0 - a0).perp_dot(s) / den;
+            let u = (b0 - a0).perp_dot(r) / den;
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+                return Some(a0 + r * t);
+            }
+        }
+    }
+    None
+}
+
+/// Trace the clip boundary on the surface: along every face, from the curve
+/// ends lying on it, both ways until another face or the domain edge. A start
+/// point already on a traced edge is skipped.
+fn trace_edges<'a>(
+    surface: &dyn Surface,
+    clip: &Clip,
+    curves: impl Iterator<Item = &'a Traced>,
+    opts: TraceOptions,
+    step_mm: f64,
+) -> Vec<Traced> {
+    let mut starts: Vec<(usize, DVec2)> = Vec::new();
+    for t in curves {
+        for (stop, q) in [(t.stop_start, t.uv[0]), (t.stop_end, t.uv[t.uv.len() - 1])] {
+            if stop != Stop::Clip {
+                continue;
+            }
+            if let Some(f) = clip.face_of(q, surface.point(q)) {
+                starts.push((f, q));
+            }
+        }
+    }
+    starts.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.x.total_cmp(&b.1.x)).then(a.1.y.total_cmp(&b.1.y)));
+    let mut edges: Vec<(usize, Traced)> = Vec::new();
+    for (face, q) in starts {
+        let p = surface.point(q);
+        // Within the chord sagitta of an edge already traced on this face.
+        let covered = edges.iter().any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5));
+        if covered {
+            continue;
+        }
+        let traced = match clip.faces[face] {
+            Face::Plane { point, normal } => {
+                let region = AlongFace { clip, face };
+                trace_through(surface, Field::Level { point_mm: point, normal }, q, &region, opts).ok()
+            }
+            Face::Param { a, b } => Some(param_segment(surface, a, b, step_mm)),
+        };
+        if let Some(t) = traced.filter(|t| t.uv.len() >= 2 && t.length_mm() > 1.0) {
+            edges.push((face, t));
+        }
+    }
+    edges.into_iter().map(|e| e.1).collect()
+}
+
+fn near_polyline(pts: &[DVec3], p: DVec3, tol: f64) -> bool {
+    pts.windows(2).any(|w| {
+        let ab = w[1] - w[0];
+        let f = if ab.length_squared() > 0.0 { ((p - w[0]).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        p.distance(w[0] + ab * f) < tol
+    })
+}
+
+/// The image of a parameter-plane segment, sampled about `step_mm` apart.
+fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Traced {
+    let fine = 512;
+    let mut len = 0.0;
+    let mut prev = surface.point(a);
+    for i in 1..=fine {
+        let p = surface.point(a.lerp(b, i as f64 / fine as f64));
+        len += p.distance(prev);
+        prev = p;
+    }
+    let n = ((len / step_mm).ceil() as usize).max(1) + 1;
+    let uv: Vec<DVec2> = (0..n).map(|i| a.lerp(b, i as f64 / (n - 1) as f64)).collect();
+    let points_mm: Vec<DVec3> = uv.iter().map(|&q| surface.point(q)).collect();
+    let mut stations_mm = vec![0.0];
+    for w in points_mm.windows(2) {
+        let last = *stations_mm.last().unwrap_or(&0.0);
+        stations_mm.push(last + w[1].distance(w[0]));
+    }
+    Traced {
+        uv,
+        points_mm,
+        stations_mm,
+        stop_start: Stop::Clip,
+        stop_end: Stop::Clip,
+    }
+}
