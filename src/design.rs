@@ -30,7 +30,9 @@ pub fn placed_surface(spec: &TraceSpec) -> Placed {
     Placed {
         surface: base,
         scale_mm: spec.scale_mm,
-        rotation: DMat3::from_rotation_z(rz) * DMat3::from_rotation_y(ry) * DMat3::from_rotation_x(rx),
+        rotation: DMat3::from_rotation_z(rz)
+            * DMat3::from_rotation_y(ry)
+            * DMat3::from_rotation_x(rx),
         translation_mm: DVec3::from_array(spec.placement.translate_mm),
     }
 }
@@ -64,38 +66,65 @@ impl Clip {
                 for axis in 0..3 {
                     let mut n = DVec3::ZERO;
                     n[axis] = 1.0;
-                    faces.push(Face::Plane { point: DVec3::from_array(*max_mm), normal: n });
-                    faces.push(Face::Plane { point: DVec3::from_array(*min_mm), normal: -n });
+                    faces.push(Face::Plane {
+                        point: DVec3::from_array(*max_mm),
+                        normal: n,
+                    });
+                    faces.push(Face::Plane {
+                        point: DVec3::from_array(*min_mm),
+                        normal: -n,
+                    });
                 }
             }
             Some(ClipSpec::Plane { point_mm, normal }) => faces.push(Face::Plane {
                 point: DVec3::from_array(*point_mm),
                 normal: DVec3::from_array(*normal).normalize_or_zero(),
             }),
-            Some(ClipSpec::Polygon { points_mm, z_min_mm, z_max_mm }) => {
+            Some(ClipSpec::Polygon {
+                points_mm,
+                z_min_mm,
+                z_max_mm,
+            }) => {
                 let pts = ccw(points_mm.iter().map(|p| DVec2::from_array(*p)).collect());
                 for k in 0..pts.len() {
                     let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
                     let out = DVec2::new(b.y - a.y, a.x - b.x).normalize_or_zero();
-                    faces.push(Face::Plane { point: a.extend(0.0), normal: out.extend(0.0) });
+                    faces.push(Face::Plane {
+                        point: a.extend(0.0),
+                        normal: out.extend(0.0),
+                    });
                 }
                 if let Some(z) = z_min_mm {
-                    faces.push(Face::Plane { point: DVec3::new(0.0, 0.0, *z), normal: -DVec3::Z });
+                    faces.push(Face::Plane {
+                        point: DVec3::new(0.0, 0.0, *z),
+                        normal: -DVec3::Z,
+                    });
                 }
                 if let Some(z) = z_max_mm {
-                    faces.push(Face::Plane { point: DVec3::new(0.0, 0.0, *z), normal: DVec3::Z });
+                    faces.push(Face::Plane {
+                        point: DVec3::new(0.0, 0.0, *z),
+                        normal: DVec3::Z,
+                    });
                 }
                 prism = Some(pts);
             }
             Some(ClipSpec::Parameters { polygon }) => {
                 let pts = ccw(polygon.iter().map(|p| DVec2::from_array(*p)).collect());
                 for k in 0..pts.len() {
-                    faces.push(Face::Param { a: pts[k], b: pts[(k + 1) % pts.len()] });
+                    faces.push(Face::Param {
+                        a: pts[k],
+                        b: pts[(k + 1) % pts.len()],
+                    });
                 }
                 param = Some(pts);
             }
         }
-        Clip { faces, prism, param, slack_mm: 1e-6 }
+        Clip {
+            faces,
+            prism,
+            param,
+            slack_mm: 1e-6,
+        }
     }
 
     /// Whether a point is inside, ignoring face `skip` (for tracing along it).
@@ -200,22 +229,35 @@ fn inside_polygon(poly: &[DVec2], q: DVec2) -> bool {
 
 /// Validate a spec before tracing (one-line errors naming the field).
 fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
-    let err = |field: &str, what: String| Err(Error::input(path, Location::Field(field.into()), what));
+    let err =
+        |field: &str, what: String| Err(Error::input(path, Location::Field(field.into()), what));
     if !(spec.scale_mm.is_finite() && spec.scale_mm > 0.0) {
-        return err("scale_mm", format!("must be positive, got {}", spec.scale_mm));
+        return err(
+            "scale_mm",
+            format!("must be positive, got {}", spec.scale_mm),
+        );
     }
     if !(spec.spacing_mm.is_finite() && spec.spacing_mm > 0.0) {
-        return err("spacing_mm", format!("must be positive, got {}", spec.spacing_mm));
+        return err(
+            "spacing_mm",
+            format!("must be positive, got {}", spec.spacing_mm),
+        );
     }
     if !(spec.c.is_finite() && spec.c != 0.0) {
         return err("c", format!("must be a non-zero number, got {}", spec.c));
     }
     let s = &spec.sampling;
     if !(s.step_mm.is_finite() && s.step_mm > 0.0) {
-        return err("sampling.step_mm", format!("must be positive, got {}", s.step_mm));
+        return err(
+            "sampling.step_mm",
+            format!("must be positive, got {}", s.step_mm),
+        );
     }
     if !(s.tolerance_mm.is_finite() && s.tolerance_mm > 0.0 && s.tolerance_mm < s.step_mm) {
-        return err("sampling.tolerance_mm", format!("must be positive and below step_mm, got {}", s.tolerance_mm));
+        return err(
+            "sampling.tolerance_mm",
+            format!("must be positive and below step_mm, got {}", s.tolerance_mm),
+        );
     }
     if spec.seed.iter().any(|x| !x.is_finite()) {
         return err("seed", "must be two finite numbers".into());
@@ -226,7 +268,11 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
     let clip = match &spec.clip {
         None => None,
         Some(c) => Some(c.resolve().map_err(|n| {
-            Error::input(path, Location::Field("clip".into()), format!("name exactly one of box, plane, polygon, parameters (found {n})"))
+            Error::input(
+                path,
+                Location::Field("clip".into()),
+                format!("name exactly one of box, plane, polygon, parameters (found {n})"),
+            )
         })?),
     };
     match &clip {
@@ -240,7 +286,10 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             return err("clip.parameters.polygon", "needs at least 3 points".into())
         }
         Some(ClipSpec::Box { min_mm, max_mm }) if (0..3).any(|i| min_mm[i] >= max_mm[i]) => {
-            return err("clip.box", "min_mm must be below max_mm on every axis".into())
+            return err(
+                "clip.box",
+                "min_mm must be below max_mm on every axis".into(),
+            )
         }
         _ => {}
     }
@@ -271,7 +320,10 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
     };
     let seed_err = |what: String| Error::input(path, Location::Field("seed".into()), what);
     if !surface.in_domain(seed) {
-        return Err(seed_err(format!("({}, {}) is outside the {:?} surface's domain", seed.x, seed.y, spec.surface)));
+        return Err(seed_err(format!(
+            "({}, {}) is outside the {:?} surface's domain",
+            seed.x, seed.y, spec.surface
+        )));
     }
     if !clip.contains(seed, surface.point(seed)) {
         return Err(Error::input(
@@ -285,10 +337,16 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
         Net::Principal => (Field::PrincipalMax, Field::PrincipalMin),
     };
     let trace = |field: Field, at: DVec2| trace_through(&surface, field, at, &clip, opts);
-    let a0 = trace(fa, seed).map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
-    let b0 = trace(fb, seed).map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
+    let a0 = trace(fa, seed)
+        .map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
+    let b0 = trace(fb, seed)
+        .map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
     if a0.length_mm() < spec.sampling.tolerance_mm || b0.length_mm() < spec.sampling.tolerance_mm {
-        return Err(Error::input(path, Location::Field("clip".into()), "the clip leaves no curve through the seed"));
+        return Err(Error::input(
+            path,
+            Location::Field("clip".into()),
+            "the clip leaves no curve through the seed",
+        ));
     }
     let d = spec.spacing_mm;
     let max_k = spec.max_curves_per_side;
@@ -315,7 +373,8 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
                 let (mut a, mut b, mut x) = (a0.clone(), b0.clone(), seed);
                 for k in 1..=max_k as i64 {
                     let (sa, sb) = (station_of(&a, x) + sign * d, station_of(&b, x) + sign * d);
-                    if !(0.0..=a.length_mm()).contains(&sa) || !(0.0..=b.length_mm()).contains(&sb) {
+                    if !(0.0..=a.length_mm()).contains(&sa) || !(0.0..=b.length_mm()).contains(&sb)
+                    {
                         break;
                     }
                     let (Ok(nb), Ok(na)) = (trace(fb, a.uv_at(sa)), trace(fa, b.uv_at(sb))) else {
@@ -345,7 +404,13 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
     b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
 
     // Edges: trace the cut boundary along each face from the curve ends on it.
-    let edges = trace_edges(&surface, &clip, a_curves.iter().chain(&b_curves).map(|c| &c.1), opts, spec.sampling.step_mm);
+    let edges = trace_edges(
+        &surface,
+        &clip,
+        a_curves.iter().chain(&b_curves).map(|c| &c.1),
+        opts,
+        spec.sampling.step_mm,
+    );
 
     let mut report = DesignReport::default();
     let mut curves = Vec::new();
@@ -365,8 +430,18 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
     report.a_curves = a_curves.len();
     report.b_curves = b_curves.len();
     report.edges = edges.len();
-    push("A", Family::A, a_curves.into_iter().map(|c| c.1).collect(), &mut report);
-    push("B", Family::B, b_curves.into_iter().map(|c| c.1).collect(), &mut report);
+    push(
+        "A",
+        Family::A,
+        a_curves.into_iter().map(|c| c.1).collect(),
+        &mut report,
+    );
+    push(
+        "B",
+        Family::B,
+        b_curves.into_iter().map(|c| c.1).collect(),
+        &mut report,
+    );
     push("edge", Family::Edge, edges, &mut report);
     let name = spec.name.clone().unwrap_or_else(|| {
         path.file_stem()
@@ -410,10 +485,17 @@ fn station_of(t: &Traced, q: DVec2) -> f64 {
     for k in 1..t.uv.len() {
         let (a, b) = (t.uv[k - 1], t.uv[k]);
         let ab = b - a;
-        let f = if ab.length_squared() > 0.0 { ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        let f = if ab.length_squared() > 0.0 {
+            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let d = q.distance(a + ab * f);
         if d < best.0 {
-            best = (d, t.stations_mm[k - 1] + f * (t.stations_mm[k] - t.stations_mm[k - 1]));
+            best = (
+                d,
+                t.stations_mm[k - 1] + f * (t.stations_mm[k] - t.stations_mm[k - 1]),
+            );
         }
     }
     best.1
@@ -462,19 +544,35 @@ fn trace_edges<'a>(
             }
         }
     }
-    starts.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.x.total_cmp(&b.1.x)).then(a.1.y.total_cmp(&b.1.y)));
+    starts.sort_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(a.1.x.total_cmp(&b.1.x))
+            .then(a.1.y.total_cmp(&b.1.y))
+    });
     let mut edges: Vec<(usize, Traced)> = Vec::new();
     for (face, q) in starts {
         let p = surface.point(q);
         // Within the chord sagitta of an edge already traced on this face.
-        let covered = edges.iter().any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5));
+        let covered = edges
+            .iter()
+            .any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5));
         if covered {
             continue;
         }
         let traced = match clip.faces[face] {
             Face::Plane { point, normal } => {
                 let region = AlongFace { clip, face };
-                trace_through(surface, Field::Level { point_mm: point, normal }, q, &region, opts).ok()
+                trace_through(
+                    surface,
+                    Field::Level {
+                        point_mm: point,
+                        normal,
+                    },
+                    q,
+                    &region,
+                    opts,
+                )
+                .ok()
             }
             Face::Param { a, b } => Some(param_segment(surface, a, b, step_mm)),
         };
@@ -488,7 +586,11 @@ fn trace_edges<'a>(
 fn near_polyline(pts: &[DVec3], p: DVec3, tol: f64) -> bool {
     pts.windows(2).any(|w| {
         let ab = w[1] - w[0];
-        let f = if ab.length_squared() > 0.0 { ((p - w[0]).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        let f = if ab.length_squared() > 0.0 {
+            ((p - w[0]).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         p.distance(w[0] + ab * f) < tol
     })
 }
@@ -504,7 +606,9 @@ fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Tra
         prev = p;
     }
     let n = ((len / step_mm).ceil() as usize).max(1) + 1;
-    let uv: Vec<DVec2> = (0..n).map(|i| a.lerp(b, i as f64 / (n - 1) as f64)).collect();
+    let uv: Vec<DVec2> = (0..n)
+        .map(|i| a.lerp(b, i as f64 / (n - 1) as f64))
+        .collect();
     let points_mm: Vec<DVec3> = uv.iter().map(|&q| surface.point(q)).collect();
     let mut stations_mm = vec![0.0];
     for w in points_mm.windows(2) {

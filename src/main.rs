@@ -299,7 +299,10 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
     let comment = format!(
         "Traced by lamella {} from {}.\nRegenerate: lamella trace {} --out {}",
         env!("CARGO_PKG_VERSION"),
-        spec_path.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+        spec_path
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default(),
         spec_path.display(),
         out.display()
     );
@@ -311,7 +314,12 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
     let length_m: f64 = net
         .curves
         .iter()
-        .map(|c| c.points.windows(2).map(|w| w[1].distance(w[0])).sum::<f64>())
+        .map(|c| {
+            c.points
+                .windows(2)
+                .map(|w| w[1].distance(w[0]))
+                .sum::<f64>()
+        })
         .sum::<f64>()
         / 1000.0;
     println!(
@@ -330,7 +338,10 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
         .collect();
     if !unusual.is_empty() {
-        println!("curves ending elsewhere than the clip: {}", unusual.join(", "));
+        println!(
+            "curves ending elsewhere than the clip: {}",
+            unusual.join(", ")
+        );
     }
     println!("wrote {}", out.display());
     Ok(ExitCode::SUCCESS)

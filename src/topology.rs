@@ -22,6 +22,9 @@ use std::collections::VecDeque;
 /// Nodes closer than this along a curve get a warning (a slot cannot sit there).
 pub const CLOSE_NODES_MM: f64 = 5.0;
 
+/// A curve pair with this many near-tangent contacts overlaps (runs together).
+pub const OVERLAP_CONTACTS: usize = 3;
+
 /// Segments per bounding box in the spatial index.
 const CHUNK_SEGMENTS: usize = 8;
 
@@ -164,13 +167,28 @@ pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> T
             .then(p.sb.total_cmp(&q.sb))
     });
     let merge_mm = 1.0 + 10.0 * tol;
+    // On a closed curve, stations 0 and L are one point.
+    let closed: Vec<Option<f64>> = curves
+        .iter()
+        .map(|c| {
+            let s = c.samples();
+            (s.len() > 2 && s[0].distance(s[s.len() - 1]) <= tol).then(|| c.length_mm())
+        })
+        .collect();
+    let apart = |s1: f64, s2: f64, ci: usize| {
+        let d = (s1 - s2).abs();
+        match closed[ci] {
+            Some(len) => d.min((len - d).abs()),
+            None => d,
+        }
+    };
     let mut kept: Vec<RawNode> = Vec::with_capacity(raw.len() / 2);
     for r in raw {
         let dup = kept
             .iter()
             .rev()
             .take_while(|k| k.a == r.a && k.b == r.b)
-            .position(|k| (k.sa - r.sa).abs() < merge_mm && (k.sb - r.sb).abs() < merge_mm);
+            .position(|k| apart(k.sa, r.sa, r.a) < merge_mm && apart(k.sb, r.sb, r.b) < merge_mm);
         match dup {
             Some(back) => {
                 let idx = kept.len() - 1 - back;
@@ -358,6 +376,45 @@ fn build_topology(
     opts: NodeOptions,
 ) -> Topology {
     let mut warnings = Vec::new();
+    // Curves that run together (several near-tangent contacts of one pair)
+    // overlap: no node is taken there, one warning says where.
+    let angle_of = |r: &RawNode| {
+        let (ta, tb) = (curves[r.a].tangent(r.sa), curves[r.b].tangent(r.sb));
+        ta.dot(tb).abs().min(1.0).acos().to_degrees()
+    };
+    let mut keep = vec![true; raw.len()];
+    let mut start = 0;
+    while start < raw.len() {
+        let end = start
+            + raw[start..]
+                .iter()
+                .take_while(|r| (r.a, r.b) == (raw[start].a, raw[start].b))
+                .count();
+        let tangent: Vec<usize> = (start..end)
+            .filter(|&i| angle_of(&raw[i]) < opts.near_tangent_deg)
+            .collect();
+        if tangent.len() >= OVERLAP_CONTACTS {
+            let (lo, hi) = tangent
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
+                    (lo.min(raw[i].sa), hi.max(raw[i].sa))
+                });
+            warnings.push(format!(
+                "curves {} and {} overlap from station {lo:.1} to {hi:.1} mm of {}: no nodes taken there",
+                net.curves[raw[start].a].id, net.curves[raw[start].b].id, net.curves[raw[start].a].id
+            ));
+            for i in tangent {
+                keep[i] = false;
+            }
+        }
+        start = end;
+    }
+    let raw: Vec<RawNode> = raw
+        .into_iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(r, _)| r)
+        .collect();
     let mut nodes: Vec<Node> = raw
         .iter()
         .enumerate()

@@ -21,12 +21,20 @@ pub enum Field {
     PrincipalMax,
     PrincipalMin,
     /// The level set of the plane (point, unit normal): tangent n_surface × n_plane.
-    Level { point_mm: DVec3, normal: DVec3 },
+    Level {
+        point_mm: DVec3,
+        normal: DVec3,
+    },
 }
 
 impl Field {
     /// The field's unit 3D direction at uv (sign not yet chosen), or the reason it has none.
-    pub fn direction(&self, surface: &dyn Surface, uv: DVec2, flat_k_per_mm2: f64) -> Result<DVec3, Stop> {
+    pub fn direction(
+        &self,
+        surface: &dyn Surface,
+        uv: DVec2,
+        flat_k_per_mm2: f64,
+    ) -> Result<DVec3, Stop> {
         self.direction_at(&surface.derivatives(uv), flat_k_per_mm2)
     }
 
@@ -42,9 +50,17 @@ impl Field {
                 if (c.k1 - c.k2).abs() < flat_k_per_mm2.sqrt() {
                     return Err(Stop::FlatPoint);
                 }
-                Ok(if *self == Field::PrincipalMax { c.d1 } else { c.d2 })
+                Ok(if *self == Field::PrincipalMax {
+                    c.d1
+                } else {
+                    c.d2
+                })
             }
-            Field::Level { normal, .. } => c.normal.cross(*normal).try_normalize().ok_or(Stop::FlatPoint),
+            Field::Level { normal, .. } => c
+                .normal
+                .cross(*normal)
+                .try_normalize()
+                .ok_or(Stop::FlatPoint),
         }
     }
 }
@@ -140,9 +156,16 @@ impl Traced {
     /// between steps followed by nothing else (steps are ≤ max_step apart and
     /// callers re-trace from it, so this only seeds).
     pub fn uv_at(&self, station_mm: f64) -> DVec2 {
-        let k = self.stations_mm.partition_point(|&s| s <= station_mm).clamp(1, self.uv.len() - 1);
+        let k = self
+            .stations_mm
+            .partition_point(|&s| s <= station_mm)
+            .clamp(1, self.uv.len() - 1);
         let (s0, s1) = (self.stations_mm[k - 1], self.stations_mm[k]);
-        let t = if s1 > s0 { ((station_mm - s0) / (s1 - s0)).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if s1 > s0 {
+            ((station_mm - s0) / (s1 - s0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         self.uv[k - 1].lerp(self.uv[k], t)
     }
 }
@@ -161,11 +184,40 @@ const A: [[f64; 6]; 7] = [
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
     [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
-    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
-    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
 ];
-const B5: [f64; 7] = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
+const B5: [f64; 7] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+    0.0,
+];
 const B4: [f64; 7] = [
     5179.0 / 57600.0,
     0.0,
@@ -229,17 +281,21 @@ impl Tracer<'_> {
             if s >= self.opts.max_length_mm {
                 return (out, stations, Stop::MaxLength);
             }
-            h = h.min(self.opts.max_step_mm).min(self.opts.max_length_mm - s);
+            h = h
+                .min(self.opts.max_step_mm)
+                .min(self.opts.max_length_mm - s);
             match self.step(uv, dir, h) {
                 Ok((next, err, d_end)) => {
                     if err > self.opts.tolerance_mm && h > self.opts.min_step_mm {
-                        h = (h * (0.9 * (self.opts.tolerance_mm / err).powf(0.2)).clamp(0.1, 0.9)).max(self.opts.min_step_mm);
+                        h = (h * (0.9 * (self.opts.tolerance_mm / err).powf(0.2)).clamp(0.1, 0.9))
+                            .max(self.opts.min_step_mm);
                         continue;
                     }
                     let p = self.surface.point(next);
                     if !self.region.contains(next, p) {
                         // Bisect the step length for the boundary.
-                        let (b_uv, b_h) = self.bisect(uv, dir, 0.0, h, |q, p| self.region.contains(q, p));
+                        let (b_uv, b_h) =
+                            self.bisect(uv, dir, 0.0, h, |q, p| self.region.contains(q, p));
                         if b_h > 0.0 {
                             out.push(b_uv);
                             stations.push(s + b_h);
@@ -248,7 +304,9 @@ impl Tracer<'_> {
                     }
                     s += h;
                     // Closed loop: back near the start after going some way.
-                    if s > 4.0 * self.opts.max_step_mm && p.distance(p0) < 0.5 * h.min(self.opts.max_step_mm) {
+                    if s > 4.0 * self.opts.max_step_mm
+                        && p.distance(p0) < 0.5 * h.min(self.opts.max_step_mm)
+                    {
                         out.push(uv0);
                         stations.push(s - h + self.surface.point(uv).distance(p0));
                         return (out, stations, Stop::ClosedLoop);
@@ -257,7 +315,11 @@ impl Tracer<'_> {
                     stations.push(s);
                     uv = next;
                     dir = d_end;
-                    let grow = if err > 0.0 { (0.9 * (self.opts.tolerance_mm / err).powf(0.2)).clamp(1.0, 5.0) } else { 5.0 };
+                    let grow = if err > 0.0 {
+                        (0.9 * (self.opts.tolerance_mm / err).powf(0.2)).clamp(1.0, 5.0)
+                    } else {
+                        5.0
+                    };
                     h *= grow;
                 }
                 Err(stop @ (Stop::DomainEdge | Stop::FlatPoint)) => {
@@ -265,7 +327,10 @@ impl Tracer<'_> {
                         // Approach the edge / flat point by bisection.
                         let (b_uv, b_h) = self.bisect(uv, dir, 0.0, h, |q, _| {
                             self.surface.in_domain(q)
-                                && self.field.direction(self.surface, q, self.opts.flat_k_per_mm2).is_ok()
+                                && self
+                                    .field
+                                    .direction(self.surface, q, self.opts.flat_k_per_mm2)
+                                    .is_ok()
                         });
                         if b_h > self.opts.boundary_tolerance_mm {
                             out.push(b_uv);
@@ -284,7 +349,14 @@ impl Tracer<'_> {
 
     /// Largest step length in [lo, hi] whose end satisfies `ok`, by bisection;
     /// returns that end and the length.
-    fn bisect(&self, uv: DVec2, dir: DVec3, mut lo: f64, mut hi: f64, ok: impl Fn(DVec2, DVec3) -> bool) -> (DVec2, f64) {
+    fn bisect(
+        &self,
+        uv: DVec2,
+        dir: DVec3,
+        mut lo: f64,
+        mut hi: f64,
+        ok: impl Fn(DVec2, DVec3) -> bool,
+    ) -> (DVec2, f64) {
         let mut best = (uv, 0.0);
         while hi - lo > self.opts.boundary_tolerance_mm {
             let mid = 0.5 * (lo + hi);
@@ -320,10 +392,20 @@ pub fn trace_through(
     let d0 = field.direction(surface, seed, opts.flat_k_per_mm2)?;
     let (fwd, s_fwd, stop_end) = tracer.run(seed, d0);
     if stop_end == Stop::ClosedLoop {
-        return Ok(assemble(surface, vec![], vec![], fwd, s_fwd, Stop::ClosedLoop, stop_end));
+        return Ok(assemble(
+            surface,
+            vec![],
+            vec![],
+            fwd,
+            s_fwd,
+            Stop::ClosedLoop,
+            stop_end,
+        ));
     }
     let (bwd, s_bwd, stop_start) = tracer.run(seed, -d0);
-    Ok(assemble(surface, bwd, s_bwd, fwd, s_fwd, stop_start, stop_end))
+    Ok(assemble(
+        surface, bwd, s_bwd, fwd, s_fwd, stop_start, stop_end,
+    ))
 }
 
 fn assemble(
@@ -383,7 +465,8 @@ mod tests {
         let s = enneper_mm(4400.0);
         let seed = DVec2::new(0.12, 0.05);
         for field in [Field::AsymptoticA, Field::AsymptoticB] {
-            let t = trace_through(&s, field, seed, &Diamond(0.6), TraceOptions::default()).expect("traced");
+            let t = trace_through(&s, field, seed, &Diamond(0.6), TraceOptions::default())
+                .expect("traced");
             // One of u + v, u − v stays constant along an asymptotic line.
             let (p0, q0) = (seed.x + seed.y, seed.x - seed.y);
             let along_p = t.uv.iter().all(|q| ((q.x + q.y) - p0).abs() < 1e-3);
@@ -398,8 +481,16 @@ mod tests {
                 };
                 worst = worst.max(s.point(*q).distance(s.point(exact)));
             }
-            eprintln!("{field:?}: {worst:e} mm over {} mm, {} steps", t.length_mm(), t.uv.len());
-            assert!(worst < 0.01, "{field:?}: {worst} mm from the closed form over {} mm", t.length_mm());
+            eprintln!(
+                "{field:?}: {worst:e} mm over {} mm, {} steps",
+                t.length_mm(),
+                t.uv.len()
+            );
+            assert!(
+                worst < 0.01,
+                "{field:?}: {worst} mm from the closed form over {} mm",
+                t.length_mm()
+            );
             assert!(t.length_mm() > 3000.0);
             assert_eq!((t.stop_start, t.stop_end), (Stop::Clip, Stop::Clip));
         }

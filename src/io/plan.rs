@@ -250,9 +250,15 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
     // Angles and the kn residual describe the asymptotic net: A×B nodes and
     // A/B strips (edges are neither asymptotic nor crossed at 90°).
     let is_ab = |n: &crate::topology::Node| {
-        net.curves[n.a].family == crate::network::Family::A && net.curves[n.b].family == crate::network::Family::B
+        net.curves[n.a].family == crate::network::Family::A
+            && net.curves[n.b].family == crate::network::Family::B
     };
-    let angles = an.topology.nodes.iter().filter(|n| is_ab(n)).map(|n| n.angle_deg);
+    let angles = an
+        .topology
+        .nodes
+        .iter()
+        .filter(|n| is_ab(n))
+        .map(|n| n.angle_deg);
     let summary = Summary {
         curves: net.curves.len(),
         nodes: nodes.len(),

@@ -17,7 +17,10 @@ pub fn load(path: &Path) -> Result<TraceSpec> {
     serde_yaml::from_str(&text).map_err(|e| {
         let at = e
             .location()
-            .map(|l| Location::LineColumn { line: l.line(), column: l.column() })
+            .map(|l| Location::LineColumn {
+                line: l.line(),
+                column: l.column(),
+            })
             .unwrap_or(Location::File);
         let msg = one_line(&e.to_string());
         let msg = match msg.find(" at line ") {
@@ -115,7 +118,10 @@ pub enum ClipSpec {
     /// Keep what lies inside an axis-aligned box, mm.
     Box { min_mm: [f64; 3], max_mm: [f64; 3] },
     /// Keep the side of the plane opposite its normal.
-    Plane { point_mm: [f64; 3], normal: [f64; 3] },
+    Plane {
+        point_mm: [f64; 3],
+        normal: [f64; 3],
+    },
     /// Keep what lies inside a polygon in plan (x, y), optionally between two heights.
     Polygon {
         points_mm: Vec<[f64; 2]>,
@@ -175,16 +181,28 @@ impl ClipFile {
     pub fn resolve(&self) -> std::result::Result<ClipSpec, usize> {
         let mut found = Vec::new();
         if let Some(b) = &self.box_ {
-            found.push(ClipSpec::Box { min_mm: b.min_mm, max_mm: b.max_mm });
+            found.push(ClipSpec::Box {
+                min_mm: b.min_mm,
+                max_mm: b.max_mm,
+            });
         }
         if let Some(p) = &self.plane {
-            found.push(ClipSpec::Plane { point_mm: p.point_mm, normal: p.normal });
+            found.push(ClipSpec::Plane {
+                point_mm: p.point_mm,
+                normal: p.normal,
+            });
         }
         if let Some(p) = &self.polygon {
-            found.push(ClipSpec::Polygon { points_mm: p.points_mm.clone(), z_min_mm: p.z_min_mm, z_max_mm: p.z_max_mm });
+            found.push(ClipSpec::Polygon {
+                points_mm: p.points_mm.clone(),
+                z_min_mm: p.z_min_mm,
+                z_max_mm: p.z_max_mm,
+            });
         }
         if let Some(p) = &self.parameters {
-            found.push(ClipSpec::Parameters { polygon: p.polygon.clone() });
+            found.push(ClipSpec::Parameters {
+                polygon: p.polygon.clone(),
+            });
         }
         if found.len() == 1 {
             Ok(found.remove(0))

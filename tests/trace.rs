@@ -1,0 +1,292 @@
+//! `lamella trace`: traced asymptotic lines against closed forms, orthogonal
+//! crossings and Beltrami–Enneper on minimal surfaces, the shipped specs
+//! regenerate their samples and run through `nodes` without a warning, and
+//! bad specs get one-line errors.
+
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
+mod common;
+use common::*;
+use glam::DVec2;
+use lamella::design::{design, placed_surface};
+use lamella::io::trace_spec::{self, TraceSpec};
+use lamella::surface::Surface;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn spec(name: &str) -> (TraceSpec, PathBuf) {
+    let p = root().join("samples").join(format!("{name}.trace.yaml"));
+    (trace_spec::load(&p).unwrap(), p)
+}
+
+const SPECS: [&str; 5] = [
+    "enneper-4m",
+    "catenoid",
+    "scherk",
+    "schwarz-d-patch",
+    "hypar-small",
+];
+
+/// Distance from each traced point to the closed-form asymptotic line
+/// u ± v = const through its curve's first point (Enneper and catenoid).
+fn closed_form_error(name: &str) -> (f64, f64) {
+    let (s, p) = spec(name);
+    let (net, _) = design(&s, &p).unwrap();
+    let surface = placed_surface(&s);
+    let mut worst: f64 = 0.0;
+    let mut longest: f64 = 0.0;
+    for c in net
+        .curves
+        .iter()
+        .filter(|c| c.family != lamella::Family::Edge)
+    {
+        // Recover (u, v) of each point by Newton on the surface (from the seed).
+        let uvs: Vec<DVec2> = c.points.iter().map(|p| invert(&surface, *p)).collect();
+        let (p0, q0) = (uvs[0].x + uvs[0].y, uvs[0].x - uvs[0].y);
+        let along_p = uvs.iter().all(|q| ((q.x + q.y) - p0).abs() < 1e-4);
+        let along_q = uvs.iter().all(|q| ((q.x - q.y) - q0).abs() < 1e-4);
+        assert!(
+            along_p || along_q,
+            "{name} {}: not on a line u ± v = const",
+            c.id
+        );
+        for (q, pt) in uvs.iter().zip(&c.points) {
+            let exact = if along_p {
+                let qq = q.x - q.y;
+                DVec2::new((p0 + qq) / 2.0, (p0 - qq) / 2.0)
+            } else {
+                let pp = q.x + q.y;
+                DVec2::new((pp + q0) / 2.0, (pp - q0) / 2.0)
+            };
+            worst = worst.max(pt.distance(surface.point(exact)));
+        }
+        let len: f64 = c.points.windows(2).map(|w| w[1].distance(w[0])).sum();
+        longest = longest.max(len);
+    }
+    (worst, longest)
+}
+
+/// (u, v) of a point on the surface, by Gauss–Newton from a coarse search.
+fn invert(surface: &dyn Surface, p: glam::DVec3) -> DVec2 {
+    let mut best = (f64::INFINITY, DVec2::ZERO);
+    for i in -40..=40 {
+        for j in -40..=40 {
+            let q = DVec2::new(i as f64 * 0.02, j as f64 * 0.02);
+            if surface.in_domain(q) {
+                let d = surface.point(q).distance(p);
+                if d < best.0 {
+                    best = (d, q);
+                }
+            }
+        }
+    }
+    let mut q = best.1;
+    for _ in 0..50 {
+        let j = surface.eval(q);
+        let r = j.p - p;
+        let (a, b, c) = (j.pu.dot(j.pu), j.pu.dot(j.pv), j.pv.dot(j.pv));
+        let (g1, g2) = (j.pu.dot(r), j.pv.dot(r));
+        let det = a * c - b * b;
+        q -= DVec2::new((c * g1 - b * g2) / det, (a * g2 - b * g1) / det);
+    }
+    q
+}
+
+#[test]
+fn traced_enneper_and_catenoid_follow_the_closed_form() {
+    let (worst, longest) = closed_form_error("enneper-4m");
+    assert!(worst < 0.01, "Enneper: {worst} mm");
+    assert!(
+        longest > 3000.0,
+        "a 4 m span: the longest strip is {longest} mm"
+    );
+    let (worst, _) = closed_form_error("catenoid");
+    assert!(worst < 0.01, "catenoid: {worst} mm");
+}
+
+#[test]
+fn minimal_surface_nets_cross_at_90_degrees_and_satisfy_beltrami_enneper() {
+    for name in ["enneper-4m", "catenoid", "scherk", "schwarz-d-patch"] {
+        let (s, p) = spec(name);
+        let (raw, _) = design(&s, &p).unwrap();
+        let surface = placed_surface(&s);
+        // tg² = −K along every traced curve: the surface's geodesic torsion in
+        // the direction of the traced curve (its smooth interpolant's tangent).
+        for c in raw
+            .curves
+            .iter()
+            .filter(|c| c.family != lamella::Family::Edge)
+        {
+            let smooth = lamella::curve::SmoothCurve::new(&c.points);
+            for (i, pt) in c.points.iter().enumerate().step_by(3) {
+                let q = invert(&surface, *pt);
+                let curv = surface.curvature(q);
+                let s_mm = smooth.sample_stations_mm()[i];
+                let tg = curv.geodesic_torsion(smooth.tangent(s_mm));
+                let minus_k = -curv.gaussian();
+                assert!(
+                    (tg * tg - minus_k).abs() < 1e-6 * minus_k,
+                    "{name} {} sample {i}: tg² {} vs −K {minus_k}",
+                    c.id,
+                    tg * tg
+                );
+            }
+        }
+        let (net, an) = run(raw);
+        for n in &an.topology.nodes {
+            if net.curves[n.a].family == lamella::Family::A
+                && net.curves[n.b].family == lamella::Family::B
+            {
+                assert!(
+                    (n.angle_deg - 90.0).abs() < 0.01,
+                    "{name}: node {} at {}°",
+                    n.id,
+                    n.angle_deg
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn shipped_specs_regenerate_their_samples_and_run_clean() {
+    let dir = std::env::temp_dir().join(format!("lamella-trace-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in SPECS {
+        let out = dir.join(format!("{name}.yaml"));
+        let spec = format!("samples/{name}.trace.yaml");
+        let status = Command::new(env!("CARGO_BIN_EXE_lamella"))
+            .args(["trace", &spec, "--out", out.to_str().unwrap()])
+            .current_dir(root())
+            .output()
+            .unwrap();
+        assert!(
+            status.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        // Deterministic: the same bytes as the shipped sample (but for the
+        // regenerate comment, which names the output path).
+        let strip = |t: String| {
+            t.lines()
+                .filter(|l| !l.starts_with('#'))
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        let made = strip(std::fs::read_to_string(&out).unwrap());
+        let shipped =
+            strip(std::fs::read_to_string(root().join(format!("samples/{name}.yaml"))).unwrap());
+        assert!(
+            made == shipped,
+            "{name}: samples/{name}.yaml is not what its spec traces"
+        );
+        let nodes = Command::new(env!("CARGO_BIN_EXE_lamella"))
+            .args([
+                "nodes",
+                out.to_str().unwrap(),
+                "--out",
+                dir.join(name).to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(nodes.status.success());
+        let stderr = String::from_utf8_lossy(&nodes.stderr);
+        assert!(!stderr.contains("warning"), "{name}: {stderr}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+fn bad(name: &str, text: &str, fragments: &[&str]) {
+    let dir = std::env::temp_dir().join(format!("lamella-badspec-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(format!("{name}.trace.yaml"));
+    std::fs::write(&p, text).unwrap();
+    let out = dir.join("net.yaml");
+    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args(["trace", p.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{name}: {stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{name}: {stderr}");
+    assert!(
+        stderr.contains(&format!("{name}.trace.yaml")),
+        "{name}: {stderr}"
+    );
+    for f in fragments {
+        assert!(stderr.contains(f), "{name}: `{f}` not in {stderr}");
+    }
+    assert!(!Path::new(&out).exists(), "{name}: nothing written");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn bad_specs_get_clear_errors() {
+    let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
+    bad(
+        "unknown-surface",
+        &good.replace("surface: enneper", "surface: gyroid"),
+        &["unknown variant `gyroid`", "line"],
+    );
+    bad(
+        "seed-outside",
+        &good.replace("seed: [0.0, 0.0]", "seed: [2.0, 1.0]"),
+        &["seed", "outside", "domain"],
+    );
+    bad(
+        "zero-spacing",
+        &good.replace("spacing_mm: 270", "spacing_mm: 0"),
+        &["spacing_mm", "positive"],
+    );
+    bad(
+        "clip-removes-everything",
+        &good
+            .replace(
+                "min_mm: [-1500, -1500, -3000]",
+                "min_mm: [5000, 5000, -3000]",
+            )
+            .replace("max_mm: [1500, 1500, 3000]", "max_mm: [6000, 6000, 3000]"),
+        &["clip", "removes everything"],
+    );
+    bad(
+        "two-clips",
+        &good.replace(
+            "clip:\n",
+            "clip:\n  plane: {point_mm: [0, 0, 0], normal: [1, 0, 0]}\n",
+        ),
+        &["clip", "exactly one"],
+    );
+    bad("empty", "", &["empty"]);
+}
+
+#[test]
+fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
+    // The façade web: principal curvature lines cross at 90° everywhere and
+    // make 45° with the asymptotic lines on a minimal surface.
+    let (mut s, p) = spec("enneper-4m");
+    s.net = lamella::io::trace_spec::Net::Principal;
+    s.seed = [0.05, 0.02]; // the saddle itself is not umbilic, but keep off the axes
+    let (raw, _) = design(&s, &p).unwrap();
+    let (net, an) = run(raw);
+    let ab: Vec<_> = an
+        .topology
+        .nodes
+        .iter()
+        .filter(|n| {
+            net.curves[n.a].family == lamella::Family::A
+                && net.curves[n.b].family == lamella::Family::B
+        })
+        .collect();
+    assert!(ab.len() > 50);
+    for n in ab {
+        assert!((n.angle_deg - 90.0).abs() < 0.01);
+        let c = placed_surface(&s).curvature(invert(&placed_surface(&s), n.position_mm));
+        let (a, _) = c.asymptotic(0.0).unwrap();
+        let ang = n.tangent_a.dot(a).abs().acos().to_degrees();
+        assert!((ang - 45.0).abs() < 0.01, "principal vs asymptotic: {ang}°");
+    }
+}
