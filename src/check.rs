@@ -22,6 +22,8 @@ use crate::profile::{LamellaOffset, Profile};
 /// Which stress term is largest at the governing point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Governs {
+    /// No stress at all (a straight, untwisted lamella).
+    Nothing,
     Bending,
     Torsion,
     Trapeze,
@@ -30,6 +32,7 @@ pub enum Governs {
 impl Governs {
     pub fn as_str(self) -> &'static str {
         match self {
+            Governs::Nothing => "nothing",
             Governs::Bending => "bending",
             Governs::Torsion => "torsion",
             Governs::Trapeze => "trapeze",
@@ -66,7 +69,9 @@ impl Stresses {
         let b = self.bending_stress_mpa;
         let t = 3f64.sqrt() * self.torsion_shear_mpa;
         let w = self.trapeze_stress_mpa;
-        if t >= b && t >= w {
+        if self.combined_stress_mpa == 0.0 {
+            Governs::Nothing
+        } else if t >= b && t >= w {
             Governs::Torsion
         } else if b >= w {
             Governs::Bending
@@ -173,7 +178,12 @@ fn scan(
         kmax = kmax.max(kg.abs());
         tmax = tmax.max(tg.abs());
         let s = Stresses::of(profile, kg, tg);
-        let u = s.combined_stress_mpa / fd;
+        // A non-finite stress (broken geometry) counts as failing, never as 0.
+        let u = if s.combined_stress_mpa.is_finite() {
+            s.combined_stress_mpa / fd
+        } else {
+            f64::INFINITY
+        };
         if u > worst.0 {
             worst = (u, i, s);
         }
@@ -196,10 +206,16 @@ pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Check every lamella of every strip. `straight_curvature_per_mm` decides
-/// when a lamella has no bending radius.
+/// Check every lamella of every A and B strip. Edge strips are not checked
+/// here: they lie tangential to the surface and are cut as curved bands
+/// (fabrication.md), so kg does not bend them about their weak axis.
 pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
-    let strips = crate::analyze::par_map(&an.strips, |s| {
+    let checked: Vec<&crate::strip::StripGeometry> = an
+        .strips
+        .iter()
+        .filter(|s| s.family != crate::network::Family::Edge)
+        .collect();
+    let strips = crate::analyze::par_map(&checked, |s| {
         let smooth = &an.curves[s.curve];
         let lamellas: Vec<LamellaCheck> = profile
             .lamella_offsets(s.family)
@@ -222,7 +238,8 @@ pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
                     governing_curve_station_mm: curve_station,
                     governs: stresses.governs(),
                     stresses,
-                    min_bending_radius_mm: (kmax > 1e-5).then(|| 1.0 / kmax),
+                    min_bending_radius_mm: (kmax > s.straight_curvature_per_mm())
+                        .then(|| 1.0 / kmax),
                     max_twist_deg_per_m: tmax.to_degrees() * 1000.0,
                 }
             })

@@ -18,6 +18,10 @@ use std::path::{Path, PathBuf};
 /// two curves that still makes a node.
 pub const DEFAULT_TOLERANCE_MM: f64 = 0.5;
 
+/// Largest turn (degrees) between consecutive chords of a curve: more is a
+/// fold or a kink, not samples of a smooth strip.
+pub const MAX_TURN_DEG: f64 = 120.0;
+
 /// Points closer than this (mm) are the same sample.
 pub const DUPLICATE_POINT_MM: f64 = 1e-9;
 
@@ -39,19 +43,27 @@ impl Family {
             _ => None,
         }
     }
-    /// Family from the leading characters of a layer or object name
-    /// (`A03` → A, `edge-north` → edge). Names starting with `edge`
-    /// (any case) are edges; otherwise the first letter decides.
+    /// Family from a layer or object name: `A`, `B` or `edge` (any case),
+    /// alone or followed by a digit, `-`, `_`, `.` or a space (`A03`, `B-12`,
+    /// `edge north`). Other names (`Annotations`, `Boundary`, `0`) give None.
     pub fn from_prefix(name: &str) -> Option<Family> {
         let n = name.trim();
-        if n.len() >= 4 && n[..4].eq_ignore_ascii_case("edge") {
-            return Some(Family::Edge);
+        let rest_ok = |rest: &str| {
+            rest.chars()
+                .next()
+                .is_none_or(|c| c.is_ascii_digit() || matches!(c, '-' | '_' | '.' | ' '))
+        };
+        let lower = n.to_ascii_lowercase();
+        if let Some(rest) = lower.strip_prefix("edge") {
+            return rest_ok(rest).then_some(Family::Edge);
         }
-        match n.chars().next() {
-            Some('A') | Some('a') => Some(Family::A),
-            Some('B') | Some('b') => Some(Family::B),
-            _ => None,
+        if let Some(rest) = lower.strip_prefix('a') {
+            return rest_ok(rest).then_some(Family::A);
         }
+        if let Some(rest) = lower.strip_prefix('b') {
+            return rest_ok(rest).then_some(Family::B);
+        }
+        None
     }
     pub fn as_str(self) -> &'static str {
         match self {
@@ -254,6 +266,37 @@ impl Network {
                     at(),
                     "zero-length curve (all points coincide)",
                 ));
+            }
+            if let Some(k) = points_mm.iter().position(|p| !p.is_finite()) {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    format!("point {k} overflows when converted to mm"),
+                ));
+            }
+            // A strip cannot turn back on itself between two samples.
+            for (k, w) in points_mm.windows(3).enumerate() {
+                let (d1, d2) = (w[1] - w[0], w[2] - w[1]);
+                let turn = d1.angle_between(d2).to_degrees();
+                if turn > MAX_TURN_DEG {
+                    return Err(Error::input(
+                        source,
+                        at(),
+                        format!(
+                            "turns back on itself at point {} ({turn:.0}° between chords)",
+                            k + 1
+                        ),
+                    ));
+                }
+            }
+            if let Some(ns) = &normals {
+                if let Some(k) = ns.windows(2).position(|w| w[0].dot(w[1]) < 0.0) {
+                    return Err(Error::input(
+                        source,
+                        at(),
+                        format!("normal {} points the other way from normal {k}: normals must be oriented consistently", k + 1),
+                    ));
+                }
             }
             curves.push(Curve {
                 id: c.id,

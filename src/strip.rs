@@ -309,6 +309,11 @@ impl StripGeometry {
         strip
     }
 
+    /// Below this curvature (1/mm) the strip counts as straight.
+    pub fn straight_curvature_per_mm(&self) -> f64 {
+        self.straight_curvature_per_mm
+    }
+
     /// Lengths between consecutive nodes, mm.
     pub fn node_to_node_mm(&self) -> Vec<f64> {
         self.nodes

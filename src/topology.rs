@@ -25,6 +25,10 @@ pub const CLOSE_NODES_MM: f64 = 5.0;
 /// A curve pair with this many near-tangent contacts overlaps (runs together).
 pub const OVERLAP_CONTACTS: usize = 3;
 
+/// Near-tangent contacts of one curve pair closer than this (mm, along the
+/// first curve) belong to one overlap.
+pub const OVERLAP_GAP_MM: f64 = 100.0;
+
 /// Segments per bounding box in the spatial index.
 const CHUNK_SEGMENTS: usize = 8;
 
@@ -390,23 +394,38 @@ fn build_topology(
                 .iter()
                 .take_while(|r| (r.a, r.b) == (raw[start].a, raw[start].b))
                 .count();
-        let tangent: Vec<usize> = (start..end)
-            .filter(|&i| angle_of(&raw[i]) < opts.near_tangent_deg)
-            .collect();
-        if tangent.len() >= OVERLAP_CONTACTS {
-            let (lo, hi) = tangent
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
-                    (lo.min(raw[i].sa), hi.max(raw[i].sa))
-                });
-            warnings.push(format!(
-                "curves {} and {} overlap from station {lo:.1} to {hi:.1} mm of {}: no nodes taken there",
-                net.curves[raw[start].a].id, net.curves[raw[start].b].id, net.curves[raw[start].a].id
-            ));
-            for i in tangent {
-                keep[i] = false;
+        // Runs of consecutive near-tangent contacts, each within the overlap
+        // gap of the previous one.
+        let mut run: Vec<usize> = Vec::new();
+        let flush = |run: &mut Vec<usize>, keep: &mut Vec<bool>, warnings: &mut Vec<String>| {
+            if run.len() >= OVERLAP_CONTACTS {
+                let (lo, hi) = (raw[run[0]].sa, raw[run[run.len() - 1]].sa);
+                warnings.push(format!(
+                    "curves {} and {} overlap from station {lo:.1} to {hi:.1} mm of {}: no nodes taken there",
+                    net.curves[raw[start].a].id,
+                    net.curves[raw[start].b].id,
+                    net.curves[raw[start].a].id
+                ));
+                for &i in run.iter() {
+                    keep[i] = false;
+                }
+            }
+            run.clear();
+        };
+        for i in start..end {
+            if angle_of(&raw[i]) < opts.near_tangent_deg {
+                if run
+                    .last()
+                    .is_some_and(|&j| raw[i].sa - raw[j].sa > OVERLAP_GAP_MM)
+                {
+                    flush(&mut run, &mut keep, &mut warnings);
+                }
+                run.push(i);
+            } else {
+                flush(&mut run, &mut keep, &mut warnings);
             }
         }
+        flush(&mut run, &mut keep, &mut warnings);
         start = end;
     }
     let raw: Vec<RawNode> = raw

@@ -45,9 +45,25 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
     let mut curves = Vec::new();
     for entity in drawing.entities() {
         let layer = entity.common.layer.clone();
+        // Entities on other layers (annotations, the surface, layer 0) are not curves of the network.
+        let Some(family) = Family::from_prefix(&layer) else {
+            continue;
+        };
         let points: Vec<DVec3> = match &entity.specific {
             EntityType::Polyline(p) => {
-                let mut pts: Vec<DVec3> = p.vertices().map(|v| to_vec(&v.location)).collect();
+                if p.is_polyface_mesh() || p.is_3d_polygon_mesh() {
+                    continue;
+                }
+                let mut pts: Vec<DVec3> = if p.is_3d_polyline() {
+                    p.vertices().map(|v| to_vec(&v.location)).collect()
+                } else {
+                    // A 2D polyline: vertices in its object coordinates at its elevation.
+                    let ocs = Ocs::new(to_vec3(&p.normal));
+                    let z = p.location.z;
+                    p.vertices()
+                        .map(|v| ocs.to_world(DVec3::new(v.location.x, v.location.y, z)))
+                        .collect()
+                };
                 if p.is_closed() {
                     if let Some(&first) = pts.first() {
                         pts.push(first);
@@ -57,15 +73,27 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
             }
             EntityType::LwPolyline(p) => {
                 let ocs = Ocs::new(to_vec3(&p.extrusion_direction));
-                let mut pts: Vec<DVec3> = p
-                    .vertices
-                    .iter()
-                    .map(|v| ocs.to_world(DVec3::new(v.x, v.y, 0.0)))
-                    .collect();
-                if p.is_closed() {
-                    if let Some(&first) = pts.first() {
-                        pts.push(first);
+                let z = entity.common.elevation;
+                let n = p.vertices.len();
+                let segments = if p.is_closed() {
+                    n
+                } else {
+                    n.saturating_sub(1)
+                };
+                let mut pts: Vec<DVec3> = Vec::with_capacity(n);
+                for k in 0..segments {
+                    let (a, b) = (&p.vertices[k], &p.vertices[(k + 1) % n]);
+                    let (pa, pb) = (glam::DVec2::new(a.x, a.y), glam::DVec2::new(b.x, b.y));
+                    for q in bulge_arc(pa, pb, a.bulge) {
+                        pts.push(ocs.to_world(q.extend(z)));
                     }
+                }
+                if let Some(last) = p.vertices.get(if p.is_closed() {
+                    0
+                } else {
+                    n.saturating_sub(1)
+                }) {
+                    pts.push(ocs.to_world(DVec3::new(last.x, last.y, z)));
                 }
                 pts
             }
@@ -81,13 +109,6 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
             }
             _ => continue,
         };
-        let family = Family::from_prefix(&layer).ok_or_else(|| {
-            Error::input(
-                path,
-                Location::Field(format!("layer {layer}")),
-                "layer name must start with A, B or edge to give the family",
-            )
-        })?;
         let n = counters.entry(layer.clone()).or_insert(0);
         *n += 1;
         let handle = entity.common.handle.0;
@@ -107,7 +128,7 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
         return Err(Error::input(
             path,
             Location::File,
-            "no POLYLINE, LWPOLYLINE, LINE or SPLINE entities found",
+            "no POLYLINE, LWPOLYLINE, LINE or SPLINE entities on layers A…, B… or edge…",
         ));
     }
     Ok(RawNetwork {
@@ -126,6 +147,31 @@ fn to_vec(p: &dxf::Point) -> DVec3 {
 }
 fn to_vec3(v: &dxf::Vector) -> DVec3 {
     DVec3::new(v.x, v.y, v.z)
+}
+
+/// Points from `a` up to (not including) `b` along a polyline segment with a
+/// bulge (tan of a quarter of the included angle; 0 is straight), sampled
+/// every 5° of arc.
+fn bulge_arc(a: glam::DVec2, b: glam::DVec2, bulge: f64) -> Vec<glam::DVec2> {
+    if bulge.abs() < 1e-12 || a.distance(b) == 0.0 {
+        return vec![a];
+    }
+    let theta = 4.0 * bulge.atan(); // signed included angle
+    let chord = b - a;
+    let half = chord.length() / 2.0;
+    let radius = half / (theta / 2.0).sin();
+    let mid = (a + b) / 2.0;
+    // Centre: from the chord's midpoint along its left normal (for a positive bulge).
+    let normal = glam::DVec2::new(-chord.y, chord.x) / chord.length();
+    let centre = mid + normal * (radius * (theta / 2.0).cos());
+    let start = (a - centre).to_angle();
+    let steps = ((theta.abs().to_degrees() / 5.0).ceil() as usize).max(2);
+    std::iter::once(a)
+        .chain((1..steps).map(|i| {
+            let ang = start + theta * i as f64 / steps as f64;
+            centre + glam::DVec2::from_angle(ang) * radius.abs()
+        }))
+        .collect()
 }
 
 /// The DXF arbitrary-axis algorithm: object coordinates → world.
@@ -302,6 +348,33 @@ mod tests {
             assert!((p.length() - 100.0).abs() < 1e-9, "{p}");
         }
         assert!(c.eval(1.0).distance(DVec3::new(0.0, 100.0, 0.0)) < 1e-12);
+    }
+
+    #[test]
+    fn bulge_arcs_lie_on_their_circle() {
+        // A quarter circle of radius 1 about the origin, counter-clockwise.
+        let pts = bulge_arc(
+            glam::DVec2::X,
+            glam::DVec2::Y,
+            (std::f64::consts::PI / 8.0).tan(),
+        );
+        assert!(pts.len() >= 2 && pts[0] == glam::DVec2::X);
+        for p in &pts {
+            assert!((p.length() - 1.0).abs() < 1e-12, "{p}");
+            assert!(p.x >= -1e-12 && p.y >= -1e-12, "the short way round: {p}");
+        }
+        // Clockwise: a negative bulge from (1, 0) to (0, -1).
+        for p in bulge_arc(
+            glam::DVec2::X,
+            -glam::DVec2::Y,
+            -(std::f64::consts::PI / 8.0).tan(),
+        ) {
+            assert!((p.length() - 1.0).abs() < 1e-12 && p.y <= 1e-12);
+        }
+        assert_eq!(
+            bulge_arc(glam::DVec2::ZERO, glam::DVec2::X, 0.0),
+            vec![glam::DVec2::ZERO]
+        );
     }
 
     #[test]

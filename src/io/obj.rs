@@ -83,6 +83,16 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
                     }
                     idx.push(resolved as usize);
                 }
+                if idx.len() < 2 {
+                    return Err(Error::input(
+                        path,
+                        Location::Line(line_no),
+                        format!(
+                            "polyline with {} vertex index(es); a polyline needs at least 2",
+                            idx.len()
+                        ),
+                    ));
+                }
                 // Continue the object's last piece when this one chains on.
                 match pieces.last_mut() {
                     Some((pid, _, last)) if *pid == id && last.last() == idx.first() => {
