@@ -11,6 +11,8 @@ use glam::DVec2;
 use lamella::design::{design, placed_surface};
 use lamella::io::trace_spec::{self, TraceSpec};
 use lamella::surface::Surface;
+#[allow(unused_imports)]
+use serde_yaml as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -289,4 +291,179 @@ fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
         let ang = n.tangent_a.dot(a).abs().acos().to_degrees();
         assert!((ang - 45.0).abs() < 0.01, "principal vs asymptotic: {ang}°");
     }
+}
+
+mod stops {
+    use glam::{DVec2, DVec3};
+    use lamella::surface::{Catenoid, Hypar, Scherk, Surface, SurfaceJet};
+    use lamella::trace::{trace_through, Everywhere, Field, Stop, TraceOptions};
+
+    #[test]
+    fn a_level_set_around_the_catenoid_closes_its_loop() {
+        // The plane z = 300 cuts the catenoid (c = 1000) in a circle.
+        let s = Catenoid { c: 1000.0 };
+        let v = (0.3f64).asinh().min(0.3);
+        let seed = DVec2::new(0.0, v);
+        let plane = Field::Level {
+            point_mm: DVec3::new(0.0, 0.0, 1000.0 * v),
+            normal: DVec3::Z,
+        };
+        let t = trace_through(&s, plane, seed, &Everywhere, TraceOptions::default()).unwrap();
+        assert_eq!(t.stop_end, Stop::ClosedLoop);
+        let r = 1000.0 * v.cosh();
+        assert!(
+            (t.length_mm() - 2.0 * std::f64::consts::PI * r).abs() < 0.01,
+            "{} vs {}",
+            t.length_mm(),
+            2.0 * std::f64::consts::PI * r
+        );
+        assert!(t.points_mm.iter().all(|p| (p.z - 1000.0 * v).abs() < 1e-6));
+    }
+
+    #[test]
+    fn scherk_traces_stop_at_the_domain_edge() {
+        let t = trace_through(
+            &Scherk,
+            Field::AsymptoticA,
+            DVec2::new(0.1, 0.0),
+            &Everywhere,
+            TraceOptions {
+                max_step_mm: 0.02,
+                ..TraceOptions::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(
+            (t.stop_start, t.stop_end),
+            (Stop::DomainEdge, Stop::DomainEdge)
+        );
+        let end = t.uv[t.uv.len() - 1];
+        assert!(
+            end.x.abs().max(end.y.abs()) > std::f64::consts::FRAC_PI_2 - 1e-3,
+            "{end}"
+        );
+    }
+
+    /// z = x³ − 3xy² (the monkey saddle): flat (K = 0) at the origin.
+    struct Monkey;
+    impl Surface for Monkey {
+        fn eval(&self, q: DVec2) -> SurfaceJet {
+            let (x, y) = (q.x, q.y);
+            SurfaceJet {
+                p: DVec3::new(x, y, x * x * x - 3.0 * x * y * y),
+                pu: DVec3::new(1.0, 0.0, 3.0 * x * x - 3.0 * y * y),
+                pv: DVec3::new(0.0, 1.0, -6.0 * x * y),
+                puu: DVec3::new(0.0, 0.0, 6.0 * x),
+                puv: DVec3::new(0.0, 0.0, -6.0 * y),
+                pvv: DVec3::new(0.0, 0.0, -6.0 * x),
+            }
+        }
+    }
+
+    #[test]
+    fn no_asymptotic_curve_through_a_flat_point() {
+        assert_eq!(
+            trace_through(
+                &Monkey,
+                Field::AsymptoticA,
+                DVec2::ZERO,
+                &Everywhere,
+                TraceOptions::default()
+            ),
+            Err(Stop::FlatPoint)
+        );
+        // A hypar is nowhere flat.
+        assert!(trace_through(
+            &Hypar { c: 1.0 },
+            Field::AsymptoticA,
+            DVec2::ZERO,
+            &Everywhere,
+            TraceOptions {
+                max_length_mm: 10.0,
+                ..TraceOptions::default()
+            }
+        )
+        .is_ok());
+    }
+}
+
+#[test]
+fn a_plane_clip_cuts_with_an_edge_on_the_plane() {
+    let (mut s, p) = spec("enneper-4m");
+    s.clip =
+        Some(serde_yaml::from_str("plane: {point_mm: [0, 0, 600], normal: [0, 0, 1]}").unwrap());
+    s.max_curves_per_side = 6;
+    let (raw, report) = design(&s, &p).unwrap();
+    assert!(report.edges >= 1);
+    for c in raw
+        .curves
+        .iter()
+        .filter(|c| c.family == lamella::Family::Edge)
+    {
+        assert!(
+            c.points.iter().all(|q| (q.z - 600.0).abs() < 1e-5),
+            "{} off the plane",
+            c.id
+        );
+    }
+    for c in raw.curves.iter() {
+        assert!(
+            c.points.iter().all(|q| q.z <= 600.0 + 1e-5),
+            "{} beyond the plane",
+            c.id
+        );
+    }
+}
+
+#[test]
+fn alternating_design_keeps_diagonal_cells_square() {
+    let (s, p) = spec("scherk");
+    assert_eq!(s.design, lamella::io::trace_spec::Design::Alternating);
+    let (raw, report) = design(&s, &p).unwrap();
+    assert_eq!(
+        report.a_curves, report.b_curves,
+        "alternating adds A and B curves in pairs"
+    );
+    let (net, an) = run(raw);
+    // Curve i of each family is the i-th by offset, so A_i × B_i runs along
+    // the diagonal. Every diagonal cell has all four sides close to the spacing.
+    let station = |a: usize, b: usize| -> Option<(f64, f64)> {
+        let (ia, ib) = (
+            net.curve_index(&format!("A{a:02}"))?,
+            net.curve_index(&format!("B{b:02}"))?,
+        );
+        let n = an.topology.nodes.iter().find(|n| n.a == ia && n.b == ib)?;
+        Some((n.station_a_mm, n.station_b_mm))
+    };
+    let mut worst: f64 = 0.0;
+    let mut cells = 0;
+    for i in 0..report.a_curves - 1 {
+        // Cells cut by the clip are not whole.
+        let corners = [
+            station(i, i),
+            station(i, i + 1),
+            station(i + 1, i),
+            station(i + 1, i + 1),
+        ];
+        if corners.iter().any(Option::is_none) {
+            continue;
+        }
+        let station = |a: usize, b: usize| station(a, b).unwrap();
+        cells += 1;
+        let sides = [
+            (station(i, i + 1).0 - station(i, i).0).abs(),
+            (station(i + 1, i + 1).0 - station(i + 1, i).0).abs(),
+            (station(i + 1, i).1 - station(i, i).1).abs(),
+            (station(i + 1, i + 1).1 - station(i, i + 1).1).abs(),
+        ];
+        for side in sides {
+            worst = worst.max((side / s.spacing_mm - 1.0).abs());
+        }
+    }
+    assert!(cells >= 6, "{cells} whole diagonal cells");
+    assert!(
+        worst < 0.15,
+        "a diagonal cell side differs from the spacing by {:.1} %",
+        100.0 * worst
+    );
 }
