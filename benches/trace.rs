@@ -22,6 +22,8 @@ fn main() {
         "scherk",
         "schwarz-d-patch",
         "hypar-small",
+        "schwarz-d-pavilion-1to5",
+        "schwarz-d-pavilion",
     ] {
         let path = root.join("samples").join(format!("{name}.trace.yaml"));
         let spec = trace_spec::load(&path).expect("spec");

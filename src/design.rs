@@ -108,6 +108,29 @@ impl Clip {
                 }
                 prism = Some(pts);
             }
+            Some(ClipSpec::Block {
+                center_mm,
+                size_mm,
+                rotate_deg,
+            }) => {
+                let [rx, ry, rz] = rotate_deg.map(f64::to_radians);
+                let r = DMat3::from_rotation_z(rz)
+                    * DMat3::from_rotation_y(ry)
+                    * DMat3::from_rotation_x(rx);
+                let c = DVec3::from_array(*center_mm);
+                for (axis, size) in size_mm.iter().enumerate() {
+                    let n = r.col(axis);
+                    let half = 0.5 * size;
+                    faces.push(Face::Plane {
+                        point: c + n * half,
+                        normal: n,
+                    });
+                    faces.push(Face::Plane {
+                        point: c - n * half,
+                        normal: -n,
+                    });
+                }
+            }
             Some(ClipSpec::Parameters { polygon }) => {
                 let pts = ccw(polygon.iter().map(|p| DVec2::from_array(*p)).collect());
                 for k in 0..pts.len() {
@@ -293,6 +316,26 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
         }
         _ => {}
     }
+    if spec.periodic {
+        if spec.surface != SurfaceName::SchwarzD {
+            return err(
+                "periodic",
+                format!(
+                    "no periodic patch is known for {:?} (only schwarz_d)",
+                    spec.surface
+                ),
+            );
+        }
+        if spec.design != Design::Central {
+            return err("design", "a periodic network is designed `central`".into());
+        }
+        if matches!(clip, Some(ClipSpec::Parameters { .. })) {
+            return err("clip", "a periodic network is clipped in space (box, block, plane, polygon), not in parameters".into());
+        }
+        if clip.is_none() {
+            return err("clip", "a periodic surface is endless: give a clip".into());
+        }
+    }
     Ok(clip)
 }
 
@@ -331,6 +374,9 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
             Location::Field("clip".into()),
             "the clip removes everything around the seed (the seed lies outside it)",
         ));
+    }
+    if spec.periodic {
+        return design_periodic(spec, path, &surface, &clip, opts);
     }
     let (fa, fb) = match spec.net {
         Net::Asymptotic => (Field::AsymptoticA, Field::AsymptoticB),
@@ -622,4 +668,188 @@ fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Tra
         stop_start: Stop::Clip,
         stop_end: Stop::Clip,
     }
+}
+
+/// The network of a periodic surface: traced on its fundamental patch and
+/// unfolded across the patch's edges by the surface's half-turn symmetries.
+fn design_periodic(
+    spec: &TraceSpec,
+    path: &Path,
+    surface: &Placed,
+    clip: &Clip,
+    opts: TraceOptions,
+) -> Result<(RawNetwork, DesignReport)> {
+    use crate::periodic::{schwarz_d_patch, unfold_through, Placement, Site, Unfolded, WorldField};
+    let edges = schwarz_d_patch(surface);
+    let seed_uv = DVec2::from_array(spec.seed);
+    let seed_err = |what: String| Error::input(path, Location::Field("seed".into()), what);
+    let seed = Site {
+        placement: Placement::IDENTITY,
+        uv: seed_uv,
+    };
+    let curvature = surface.curvature(seed_uv);
+    let (a_dir, b_dir) = curvature.asymptotic(opts.flat_k_per_mm2).ok_or_else(|| {
+        seed_err("the seed is a flat point: no asymptotic curves through it".into())
+    })?;
+    if spec.net != Net::Asymptotic {
+        return Err(Error::input(
+            path,
+            Location::Field("net".into()),
+            "a periodic network is asymptotic",
+        ));
+    }
+    let trace = |site: Site, dir: DVec3| {
+        unfold_through(
+            surface,
+            &edges,
+            WorldField::Asymptotic,
+            site,
+            dir,
+            clip,
+            opts,
+        )
+    };
+    let a0 = trace(seed, a_dir);
+    let b0 = trace(seed, b_dir);
+    if a0.length_mm() < 1.0 || b0.length_mm() < 1.0 {
+        return Err(Error::input(
+            path,
+            Location::Field("clip".into()),
+            "the clip leaves no curve through the seed",
+        ));
+    }
+    // World tangent of an unfolded curve at a station.
+    let tangent = |u: &Unfolded, s: f64| {
+        let k = u
+            .stations_mm
+            .partition_point(|&x| x <= s)
+            .clamp(1, u.points_mm.len() - 1);
+        (u.points_mm[k] - u.points_mm[k - 1]).normalize_or_zero()
+    };
+    // The other family's direction at a site: the asymptotic direction most
+    // transverse to the parent curve's tangent, in world terms.
+    let transverse = |site: &Site, parent: DVec3| -> Option<DVec3> {
+        let c = surface.curvature(site.uv);
+        let (a, b) = c.asymptotic(opts.flat_k_per_mm2)?;
+        let (wa, wb) = (site.placement.vector(a), site.placement.vector(b));
+        Some(if wa.dot(parent).abs() < wb.dot(parent).abs() {
+            wa
+        } else {
+            wb
+        })
+    };
+    let d = spec.spacing_mm;
+    let max_k = spec.max_curves_per_side;
+    let station_of_seed = |u: &Unfolded| {
+        u.sites
+            .iter()
+            .zip(&u.stations_mm)
+            .find(|(s, _)| s.placement == Placement::IDENTITY && s.uv.distance(seed_uv) < 1e-12)
+            .map_or(0.0, |(_, st)| *st)
+    };
+    let mut a_curves: Vec<(i64, Unfolded)> = Vec::new();
+    let mut b_curves: Vec<(i64, Unfolded)> = Vec::new();
+    for (k, s) in marks(station_of_seed(&a0), a0.length_mm(), d, max_k) {
+        let site = a0.site_at(s);
+        if let Some(dir) = transverse(&site, tangent(&a0, s)) {
+            b_curves.push((k, trace(site, dir)));
+        }
+    }
+    for (k, s) in marks(station_of_seed(&b0), b0.length_mm(), d, max_k) {
+        let site = b0.site_at(s);
+        if let Some(dir) = transverse(&site, tangent(&b0, s)) {
+            a_curves.push((k, trace(site, dir)));
+        }
+    }
+    a_curves.push((0, a0));
+    b_curves.push((0, b0));
+    a_curves.sort_by_key(|c| c.0);
+    b_curves.sort_by_key(|c| c.0);
+    let min_len = (spec.spacing_mm * 0.05).max(1.0);
+    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
+    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
+
+    // Edges: the clip's faces on the unfolded surface, from the curve ends on them.
+    let mut starts: Vec<(usize, Site, DVec3)> = Vec::new();
+    for u in a_curves.iter().chain(&b_curves).map(|c| &c.1) {
+        for (stop, i) in [(u.stop_start, 0), (u.stop_end, u.points_mm.len() - 1)] {
+            if stop != Stop::Clip {
+                continue;
+            }
+            if let Some(f) = clip.face_of(u.sites[i].uv, u.points_mm[i]) {
+                starts.push((f, u.sites[i], u.points_mm[i]));
+            }
+        }
+    }
+    starts.sort_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(a.2.x.total_cmp(&b.2.x))
+            .then(a.2.y.total_cmp(&b.2.y))
+            .then(a.2.z.total_cmp(&b.2.z))
+    });
+    let mut edge_curves: Vec<(usize, Unfolded)> = Vec::new();
+    for (face, site, p) in starts {
+        if edge_curves
+            .iter()
+            .any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5))
+        {
+            continue;
+        }
+        let Face::Plane { point, normal } = clip.faces[face] else {
+            continue;
+        };
+        let field = WorldField::Level {
+            point_mm: point,
+            normal,
+        };
+        let world_normal = site.placement.normal(surface.normal(site.uv));
+        let along = world_normal.cross(normal);
+        let region = AlongFace { clip, face };
+        let Some(dir) = along.try_normalize() else {
+            continue;
+        };
+        let e = unfold_through(surface, &edges, field, site, dir, &region, opts);
+        if e.points_mm.len() >= 2 && e.length_mm() > 1.0 {
+            edge_curves.push((face, e));
+        }
+    }
+    let mut report = DesignReport {
+        a_curves: a_curves.len(),
+        b_curves: b_curves.len(),
+        edges: edge_curves.len(),
+        stops: Vec::new(),
+    };
+    let mut curves = Vec::new();
+    let lists: [(&str, Family, Vec<Unfolded>); 3] = [
+        ("A", Family::A, a_curves.into_iter().map(|c| c.1).collect()),
+        ("B", Family::B, b_curves.into_iter().map(|c| c.1).collect()),
+        (
+            "edge",
+            Family::Edge,
+            edge_curves.into_iter().map(|c| c.1).collect(),
+        ),
+    ];
+    for (prefix, family, list) in lists {
+        let width = if list.len() > 100 { 3 } else { 2 };
+        for (i, u) in list.into_iter().enumerate() {
+            let id = format!("{prefix}{i:0width$}");
+            report.stops.push((id.clone(), u.stop_start, u.stop_end));
+            curves.push(RawCurve {
+                id,
+                family,
+                points: u.points_mm,
+                normals: Some(u.normals),
+            });
+        }
+    }
+    let name = spec.name.clone().unwrap_or_else(|| "periodic".into());
+    Ok((
+        RawNetwork {
+            name,
+            unit: Unit::Mm,
+            tolerance: Some(0.5),
+            curves,
+        },
+        report,
+    ))
 }

@@ -258,15 +258,22 @@ impl Surface for Scherk {
 
 /// Schwarz's D surface from its Weierstrass data f = (1 − 14z⁴ + z⁸)^(−1/2),
 /// g = z over z = u + iv: X = Re ∫₀^z f·(1 − g², i(1 + g²), 2g) dζ, integrated
-/// along the straight path by 24-point Gauss–Legendre (the integrand is
-/// analytic on the domain |z| < 0.5, inside the branch points at
-/// |z| = (2 − √3)^½ ≈ 0.518). The diagonals z = t·e^{±iπ/4} are the surface's
-/// straight lines through the centre.
+/// along the straight path by Gauss–Legendre (graded near the end). The domain
+/// is the disc inside the branch points at |z| = (2 − √3)^½ ≈ 0.518, the flat
+/// vertices of the skew quadrilateral {z: |z| < ...} whose edges are straight
+/// lines through z = (√2 − 1)·e^{i(π/4 + kπ/2)}. The diagonals z = t·e^{±iπ/4}
+/// are straight lines through the centre.
 #[derive(Debug, Clone, Copy)]
 pub struct SchwarzD;
 
-/// Domain radius of [`SchwarzD`] in the z plane.
-pub const SCHWARZ_D_RADIUS: f64 = 0.5;
+/// Domain radius of [`SchwarzD`] in the z plane: the branch points
+/// z⁴ = 7 − 4√3 (|z| = (2 − √3)^½), images of the flat vertices of its skew
+/// quadrilaterals.
+pub const SCHWARZ_D_RADIUS: f64 = 0.517_638_090_205_041_5;
+
+/// |z| of the midpoints of the quadrilateral's edges on the diagonals
+/// z = t·e^{±iπ/4}: √2 − 1 (where the normals at t and −t are perpendicular).
+pub const SCHWARZ_D_EDGE_MIDPOINT: f64 = std::f64::consts::SQRT_2 - 1.0;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct C64 {
@@ -382,17 +389,29 @@ impl Surface for SchwarzD {
     }
     fn eval(&self, q: DVec2) -> SurfaceJet {
         let z = C64::new(q.x, q.y);
-        // ∫₀^z φ(ζ) dζ along ζ = t z, t ∈ [0, 1]: z · ∫₀¹ φ(t z) dt.
+        // ∫₀^z φ(ζ) dζ along ζ = t z, t ∈ [0, 1]: z · ∫₀¹ φ(t z) dt, on panels
+        // graded towards t = 1 (the end may lie near a branch point, where φ
+        // grows like (z − z₀)^(−½)).
         let mut acc = [C64::new(0.0, 0.0); 3];
-        let mut add = |t: f64, w: f64| {
-            let (phi, _) = SchwarzD::phi(z.scale(t));
-            for k in 0..3 {
-                acc[k] = acc[k].add(phi[k].scale(w));
+        let (xs, ws) = gl24();
+        let mut panel = |t0: f64, t1: f64| {
+            for (x, w) in xs.iter().zip(ws) {
+                let (phi, _) = SchwarzD::phi(z.scale(t0 + (t1 - t0) * x));
+                for k in 0..3 {
+                    acc[k] = acc[k].add(phi[k].scale(w * (t1 - t0)));
+                }
             }
         };
-        let (xs, ws) = gl24();
-        for (x, w) in xs.iter().zip(ws) {
-            add(*x, *w);
+        let panels = if q.length() > 0.4 { 10 } else { 1 };
+        let mut t0 = 0.0;
+        for k in 1..=panels {
+            let t1 = if k == panels {
+                1.0
+            } else {
+                1.0 - 0.5f64.powi(k)
+            };
+            panel(t0, t1);
+            t0 = t1;
         }
         let integral = [z.mul(acc[0]), z.mul(acc[1]), z.mul(acc[2])];
         let (phi, dphi) = SchwarzD::phi(z);

@@ -372,6 +372,25 @@ impl Tracer<'_> {
     }
 }
 
+/// Trace one way from `uv0`, in the direction of `field` closest to `dir0`:
+/// the parameters and stations of every accepted step, and why it stopped.
+pub fn trace_from(
+    surface: &dyn Surface,
+    field: Field,
+    uv0: DVec2,
+    dir0: DVec3,
+    region: &dyn Region,
+    opts: TraceOptions,
+) -> (Vec<DVec2>, Vec<f64>, Stop) {
+    Tracer {
+        surface,
+        field,
+        region,
+        opts,
+    }
+    .run(uv0, dir0)
+}
+
 /// Trace the curve of `field` through `seed` in both directions.
 pub fn trace_through(
     surface: &dyn Surface,

@@ -467,3 +467,53 @@ fn alternating_design_keeps_diagonal_cells_square() {
         100.0 * worst
     );
 }
+
+#[test]
+fn the_unfolded_pavilion_is_an_orthogonal_asymptotic_net() {
+    // Traced on one skew quadrilateral of Schwarz D and unfolded by half-turns
+    // about its edges: the copies join into one asymptotic net.
+    let (s, p) = spec("schwarz-d-pavilion-1to5");
+    assert!(s.periodic);
+    let (raw, report) = design(&s, &p).unwrap();
+    assert!(report.a_curves > 20 && report.b_curves > 20 && report.edges > 4);
+    // The net spans several copies of the patch: far beyond the quadrilateral
+    // (edge 715 mm) around the seed.
+    let far = raw
+        .curves
+        .iter()
+        .flat_map(|c| &c.points)
+        .map(|q| q.length())
+        .fold(0.0, f64::max);
+    assert!(far > 1000.0, "{far}");
+    let (net, an) = run(raw);
+    assert!(an.warnings().is_empty(), "{:?}", an.warnings());
+    let mut ab = 0;
+    for n in &an.topology.nodes {
+        if net.curves[n.a].family == lamella::Family::A
+            && net.curves[n.b].family == lamella::Family::B
+        {
+            assert!(
+                (n.angle_deg - 90.0).abs() < 0.01,
+                "node {} at {}°",
+                n.id,
+                n.angle_deg
+            );
+            ab += 1;
+        }
+    }
+    assert!(ab > 300, "{ab} A×B nodes");
+    // kn = 0: the normals carried across copies stay the surface's, and the
+    // strips asymptotic (the residual from the normals' rotation).
+    for st in an
+        .strips
+        .iter()
+        .filter(|st| st.family != lamella::Family::Edge)
+    {
+        assert!(
+            st.max_abs_kn_per_mm < 1e-6,
+            "{}: kn {}",
+            st.id,
+            st.max_abs_kn_per_mm
+        );
+    }
+}

@@ -58,6 +58,10 @@ pub struct TraceSpec {
     pub max_curves_per_side: usize,
     #[serde(default)]
     pub clip: Option<ClipFile>,
+    /// Trace on the fundamental patch and unfold across its edges by the
+    /// surface's symmetries (Schwarz D).
+    #[serde(default)]
+    pub periodic: bool,
     #[serde(default)]
     pub sampling: SamplingSpec,
 }
@@ -130,6 +134,13 @@ pub enum ClipSpec {
     },
     /// Keep what lies inside a polygon in the parameter plane (u, v).
     Parameters { polygon: Vec<[f64; 2]> },
+    /// Keep what lies inside a block (a box turned about x, then y, then z
+    /// about its centre).
+    Block {
+        center_mm: [f64; 3],
+        size_mm: [f64; 3],
+        rotate_deg: [f64; 3],
+    },
 }
 
 /// The clip as written: exactly one of its keys.
@@ -144,6 +155,17 @@ pub struct ClipFile {
     pub polygon: Option<PolygonClip>,
     #[serde(default)]
     pub parameters: Option<ParameterClip>,
+    #[serde(default)]
+    pub block: Option<BlockClip>,
+}
+
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BlockClip {
+    pub center_mm: [f64; 3],
+    pub size_mm: [f64; 3],
+    #[serde(default)]
+    pub rotate_deg: [f64; 3],
 }
 
 #[derive(Debug, Clone, Deserialize, PartialEq)]
@@ -202,6 +224,13 @@ impl ClipFile {
         if let Some(p) = &self.parameters {
             found.push(ClipSpec::Parameters {
                 polygon: p.polygon.clone(),
+            });
+        }
+        if let Some(b) = &self.block {
+            found.push(ClipSpec::Block {
+                center_mm: b.center_mm,
+                size_mm: b.size_mm,
+                rotate_deg: b.rotate_deg,
             });
         }
         if found.len() == 1 {
