@@ -517,3 +517,50 @@ fn the_unfolded_pavilion_is_an_orthogonal_asymptotic_net() {
         );
     }
 }
+
+#[test]
+fn a_4_m_catenoid_asymptotic_line_follows_the_closed_form() {
+    use lamella::surface::{Catenoid, Placed};
+    use lamella::trace::{trace_through, Everywhere, Field, TraceOptions};
+    let s = Placed {
+        surface: std::sync::Arc::new(Catenoid { c: 1.0 }),
+        scale_mm: 1500.0,
+        rotation: glam::DMat3::IDENTITY,
+        translation_mm: glam::DVec3::ZERO,
+    };
+    let seed = DVec2::new(0.3, 0.1);
+    let opts = TraceOptions {
+        max_length_mm: 2000.0,
+        ..TraceOptions::default()
+    };
+    for field in [Field::AsymptoticA, Field::AsymptoticB] {
+        let t = trace_through(&s, field, seed, &Everywhere, opts).unwrap();
+        assert!(
+            (t.length_mm() - 4000.0).abs() < 1e-6,
+            "a 4 m line: {}",
+            t.length_mm()
+        );
+        let (p0, q0) = (seed.x + seed.y, seed.x - seed.y);
+        let along_p = t.uv.iter().all(|q| ((q.x + q.y) - p0).abs() < 1e-3);
+        let mut worst: f64 = 0.0;
+        for q in &t.uv {
+            let exact = if along_p {
+                let qq = q.x - q.y;
+                DVec2::new((p0 + qq) / 2.0, (p0 - qq) / 2.0)
+            } else {
+                let pp = q.x + q.y;
+                DVec2::new((pp + q0) / 2.0, (pp - q0) / 2.0)
+            };
+            worst = worst.max(s.point(*q).distance(s.point(exact)));
+        }
+        assert!(worst < 0.01, "{field:?}: {worst} mm from the closed form");
+        // And its length is the closed form's: √2·c·|sinh v₁ − sinh v₀|.
+        let (v0, v1) = (t.uv[0].y, t.uv[t.uv.len() - 1].y);
+        let exact_len = std::f64::consts::SQRT_2 * 1500.0 * (v1.sinh() - v0.sinh()).abs();
+        assert!(
+            (t.length_mm() - exact_len).abs() < 0.01,
+            "{} vs {exact_len}",
+            t.length_mm()
+        );
+    }
+}
