@@ -458,43 +458,66 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
         spec.sampling.step_mm,
     );
 
-    let mut report = DesignReport::default();
-    let mut curves = Vec::new();
-    let mut push = |prefix: &str, family: Family, list: Vec<Traced>, report: &mut DesignReport| {
+    let finished = |t: Traced| FinishedCurve {
+        normals: t.uv.iter().map(|&q| surface.normal(q)).collect(),
+        points: t.points_mm,
+        stops: (t.stop_start, t.stop_end),
+    };
+    Ok(assemble(
+        spec,
+        path,
+        a_curves.into_iter().map(|c| finished(c.1)).collect(),
+        b_curves.into_iter().map(|c| finished(c.1)).collect(),
+        edges.into_iter().map(finished).collect(),
+    ))
+}
+
+/// A traced curve ready for the network file: world points and normals.
+struct FinishedCurve {
+    points: Vec<DVec3>,
+    normals: Vec<DVec3>,
+    stops: (Stop, Stop),
+}
+
+/// Name the curves (`A00…`, `B00…`, `edge00…`, three digits past 100) and
+/// make the network and the report.
+fn assemble(
+    spec: &TraceSpec,
+    path: &Path,
+    a: Vec<FinishedCurve>,
+    b: Vec<FinishedCurve>,
+    edges: Vec<FinishedCurve>,
+) -> (RawNetwork, DesignReport) {
+    let mut report = DesignReport {
+        a_curves: a.len(),
+        b_curves: b.len(),
+        edges: edges.len(),
+        stops: Vec::new(),
+    };
+    let mut curves = Vec::with_capacity(a.len() + b.len() + edges.len());
+    for (prefix, family, list) in [
+        ("A", Family::A, a),
+        ("B", Family::B, b),
+        ("edge", Family::Edge, edges),
+    ] {
         let width = if list.len() > 100 { 3 } else { 2 };
-        for (i, t) in list.into_iter().enumerate() {
+        for (i, c) in list.into_iter().enumerate() {
             let id = format!("{prefix}{i:0width$}");
-            report.stops.push((id.clone(), t.stop_start, t.stop_end));
+            report.stops.push((id.clone(), c.stops.0, c.stops.1));
             curves.push(RawCurve {
                 id,
                 family,
-                normals: Some(t.uv.iter().map(|&q| surface.normal(q)).collect()),
-                points: t.points_mm,
+                points: c.points,
+                normals: Some(c.normals),
             });
         }
-    };
-    report.a_curves = a_curves.len();
-    report.b_curves = b_curves.len();
-    report.edges = edges.len();
-    push(
-        "A",
-        Family::A,
-        a_curves.into_iter().map(|c| c.1).collect(),
-        &mut report,
-    );
-    push(
-        "B",
-        Family::B,
-        b_curves.into_iter().map(|c| c.1).collect(),
-        &mut report,
-    );
-    push("edge", Family::Edge, edges, &mut report);
+    }
     let name = spec.name.clone().unwrap_or_else(|| {
         path.file_stem()
             .map(|s| s.to_string_lossy().trim_end_matches(".trace").to_string())
             .unwrap_or_else(|| "traced".into())
     });
-    Ok((
+    (
         RawNetwork {
             name,
             unit: Unit::Mm,
@@ -502,7 +525,7 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
             curves,
         },
         report,
-    ))
+    )
 }
 
 /// Stations at k·d from `s0` (k = ±1, ±2, …) inside (0, len), with k.
@@ -813,43 +836,16 @@ fn design_periodic(
             edge_curves.push((face, e));
         }
     }
-    let mut report = DesignReport {
-        a_curves: a_curves.len(),
-        b_curves: b_curves.len(),
-        edges: edge_curves.len(),
-        stops: Vec::new(),
+    let finished = |u: Unfolded| FinishedCurve {
+        points: u.points_mm,
+        normals: u.normals,
+        stops: (u.stop_start, u.stop_end),
     };
-    let mut curves = Vec::new();
-    let lists: [(&str, Family, Vec<Unfolded>); 3] = [
-        ("A", Family::A, a_curves.into_iter().map(|c| c.1).collect()),
-        ("B", Family::B, b_curves.into_iter().map(|c| c.1).collect()),
-        (
-            "edge",
-            Family::Edge,
-            edge_curves.into_iter().map(|c| c.1).collect(),
-        ),
-    ];
-    for (prefix, family, list) in lists {
-        let width = if list.len() > 100 { 3 } else { 2 };
-        for (i, u) in list.into_iter().enumerate() {
-            let id = format!("{prefix}{i:0width$}");
-            report.stops.push((id.clone(), u.stop_start, u.stop_end));
-            curves.push(RawCurve {
-                id,
-                family,
-                points: u.points_mm,
-                normals: Some(u.normals),
-            });
-        }
-    }
-    let name = spec.name.clone().unwrap_or_else(|| "periodic".into());
-    Ok((
-        RawNetwork {
-            name,
-            unit: Unit::Mm,
-            tolerance: Some(0.5),
-            curves,
-        },
-        report,
+    Ok(assemble(
+        spec,
+        path,
+        a_curves.into_iter().map(|c| finished(c.1)).collect(),
+        b_curves.into_iter().map(|c| finished(c.1)).collect(),
+        edge_curves.into_iter().map(|c| finished(c.1)).collect(),
     ))
 }

@@ -88,3 +88,44 @@ pub fn one_line(s: &str) -> String {
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Where a YAML parser error sits and its message without serde's trailing
+/// " at line L column C" (the location is reported by [`Location`]).
+pub fn yaml_error_parts(e: &serde_yaml::Error) -> (Location, String) {
+    let at = e
+        .location()
+        .map(|l| Location::LineColumn {
+            line: l.line(),
+            column: l.column(),
+        })
+        .unwrap_or(Location::File);
+    (at, strip_serde_location(&e.to_string()))
+}
+
+/// Remove every " at line L column C" that serde puts into a message.
+pub fn strip_serde_location(msg: &str) -> String {
+    const AT: &str = " at line ";
+    const COL: &str = " column ";
+    let digits = |s: &str| s.len() - s.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+    let msg = one_line(msg);
+    let mut out = String::with_capacity(msg.len());
+    let mut rest = msg.as_str();
+    while let Some(i) = rest.find(AT) {
+        let after = &rest[i + AT.len()..];
+        let n = digits(after);
+        if n > 0 {
+            if let Some(col) = after[n..].strip_prefix(COL) {
+                let m = digits(col);
+                if m > 0 {
+                    out.push_str(&rest[..i]);
+                    rest = &col[m..];
+                    continue;
+                }
+            }
+        }
+        out.push_str(&rest[..i + AT.len()]);
+        rest = after;
+    }
+    out.push_str(rest);
+    out
+}

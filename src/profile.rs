@@ -386,18 +386,7 @@ fn upgrade(value: serde_yaml::Value, version: u64, path: &Path) -> Result<serde_
 /// A YAML error as one line with its location, and a hint when a field was
 /// written without its unit (`thickness:` for `thickness_mm:`).
 fn yaml_error(path: &Path, e: &serde_yaml::Error) -> Error {
-    let at = e
-        .location()
-        .map(|l| Location::LineColumn {
-            line: l.line(),
-            column: l.column(),
-        })
-        .unwrap_or(Location::File);
-    let msg = one_line(&e.to_string());
-    let msg = match msg.find(" at line ") {
-        Some(i) => msg[..i].to_string(),
-        None => msg,
-    };
+    let (at, msg) = crate::error::yaml_error_parts(e);
     // serde_yaml writes "section: unknown field `x`, expected one of ...".
     if let Some(i) = msg.find("unknown field `") {
         let prefix = msg[..i].trim_end_matches([' ', ':']);

@@ -1,6 +1,6 @@
 //! The network file of pipeline.md, as YAML or JSON (the same fields).
 
-use crate::error::{one_line, Error, Location, Result};
+use crate::error::{Error, Location, Result};
 use crate::network::{Family, Network, RawCurve, RawNetwork, Unit};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -45,18 +45,8 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
     }
     let file: NetworkFile = match syntax {
         Syntax::Yaml => serde_yaml::from_str(text).map_err(|e| {
-            let at = e
-                .location()
-                .map(|l| Location::LineColumn {
-                    line: l.line(),
-                    column: l.column(),
-                })
-                .unwrap_or(Location::File);
-            Error::input(
-                path,
-                at,
-                format!("invalid YAML: {}", strip_location(&e.to_string())),
-            )
+            let (at, msg) = crate::error::yaml_error_parts(&e);
+            Error::input(path, at, format!("invalid YAML: {msg}"))
         })?,
         Syntax::Json => serde_json::from_str(text).map_err(|e| {
             Error::input(
@@ -65,7 +55,10 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
                     line: e.line(),
                     column: e.column(),
                 },
-                format!("invalid JSON: {}", strip_location(&e.to_string())),
+                format!(
+                    "invalid JSON: {}",
+                    crate::error::strip_serde_location(&e.to_string())
+                ),
             )
         })?,
     };
@@ -110,36 +103,6 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
         tolerance: file.tolerance,
         curves,
     })
-}
-
-/// serde messages carry " at line L column C" (YAML ones can carry it twice,
-/// for the problem and its context); we report the location ourselves, so
-/// every such mark is dropped.
-fn strip_location(msg: &str) -> String {
-    const AT: &str = " at line ";
-    const COL: &str = " column ";
-    let digits = |s: &str| s.len() - s.trim_start_matches(|c: char| c.is_ascii_digit()).len();
-    let msg = one_line(msg);
-    let mut out = String::with_capacity(msg.len());
-    let mut rest = msg.as_str();
-    while let Some(i) = rest.find(AT) {
-        let after = &rest[i + AT.len()..];
-        let n = digits(after);
-        if n > 0 {
-            if let Some(col) = after[n..].strip_prefix(COL) {
-                let m = digits(col);
-                if m > 0 {
-                    out.push_str(&rest[..i]);
-                    rest = &col[m..];
-                    continue;
-                }
-            }
-        }
-        out.push_str(&rest[..i + AT.len()]);
-        rest = after;
-    }
-    out.push_str(rest);
-    out
 }
 
 /// Write a network as YAML in the file format, coordinates with `decimals`

@@ -1,7 +1,7 @@
 //! The trace spec (YAML): which surface, its scale and placement, the seed,
 //! the spacing, the clip and the sampling of a network to trace.
 
-use crate::error::{one_line, Error, Location, Result};
+use crate::error::{Error, Location, Result};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -15,18 +15,7 @@ pub fn load(path: &Path) -> Result<TraceSpec> {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
     serde_yaml::from_str(&text).map_err(|e| {
-        let at = e
-            .location()
-            .map(|l| Location::LineColumn {
-                line: l.line(),
-                column: l.column(),
-            })
-            .unwrap_or(Location::File);
-        let msg = one_line(&e.to_string());
-        let msg = match msg.find(" at line ") {
-            Some(i) => msg[..i].to_string(),
-            None => msg,
-        };
+        let (at, msg) = crate::error::yaml_error_parts(&e);
         Error::input(path, at, msg)
     })
 }
