@@ -316,6 +316,12 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
         }
         _ => {}
     }
+    if spec.fill && !spec.periodic {
+        return err(
+            "fill",
+            "filling gaps is for periodic designs (periodic: true)".into(),
+        );
+    }
     if spec.periodic {
         if spec.surface != SurfaceName::SchwarzD {
             return err(
@@ -526,6 +532,38 @@ fn assemble(
         },
         report,
     )
+}
+
+/// Rounds of filling gaps in a periodic design.
+const FILL_ROUNDS: usize = 6;
+/// A gap to fill: no curve of the family within this many spacings.
+const FILL_GAP: f64 = 0.75;
+
+/// Nearest-sample distance queries over curves' points (an R-tree).
+struct PointIndex {
+    tree: rstar::RTree<[f64; 3]>,
+}
+
+impl PointIndex {
+    fn new<'a>(curves: impl Iterator<Item = &'a Vec<DVec3>>) -> PointIndex {
+        PointIndex {
+            tree: rstar::RTree::bulk_load(
+                curves
+                    .flat_map(|c| c.iter().map(|p| p.to_array()))
+                    .collect(),
+            ),
+        }
+    }
+    fn add(&mut self, points: &[DVec3]) {
+        for p in points {
+            self.tree.insert(p.to_array());
+        }
+    }
+    fn nearest_distance(&self, p: DVec3) -> f64 {
+        self.tree
+            .nearest_neighbor(&p.to_array())
+            .map_or(f64::INFINITY, |q| p.distance(DVec3::from_array(*q)))
+    }
 }
 
 /// Stations at k·d from `s0` (k = ±1, ±2, …) inside (0, len), with k.
@@ -791,6 +829,50 @@ fn design_periodic(
     let min_len = (spec.spacing_mm * 0.05).max(1.0);
     a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
     b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
+
+    // Fill: where the central curves left gaps (beyond flat vertices, in the
+    // clip's far corners), seed more curves along the other family wherever
+    // no curve of this family passes within `FILL_GAP` spacings.
+    if spec.fill {
+        let mut next_k = max_k as i64 + 1;
+        for _round in 0..FILL_ROUNDS {
+            let mut added = false;
+            for family_is_a in [true, false] {
+                let (parents, children) = if family_is_a {
+                    (&b_curves, &mut a_curves)
+                } else {
+                    (&a_curves, &mut b_curves)
+                };
+                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_mm));
+                let mut born = Vec::new();
+                for (_, parent) in parents.iter() {
+                    let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
+                    for i in 1..steps {
+                        let s = 0.5 * d * i as f64;
+                        let site = parent.site_at(s);
+                        let p = site.placement.point(surface.point(site.uv));
+                        if index.nearest_distance(p) < FILL_GAP * d {
+                            continue;
+                        }
+                        let Some(dir) = transverse(&site, tangent(parent, s)) else {
+                            continue;
+                        };
+                        let child = trace(site, dir);
+                        if child.length_mm() >= min_len && child.points_mm.len() >= 2 {
+                            index.add(&child.points_mm);
+                            born.push((next_k, child));
+                            next_k += 1;
+                        }
+                    }
+                }
+                added |= !born.is_empty();
+                children.extend(born);
+            }
+            if !added {
+                break;
+            }
+        }
+    }
 
     // Edges: the clip's faces on the unfolded surface, from the curve ends on them.
     let mut starts: Vec<(usize, Site, DVec3)> = Vec::new();

@@ -564,3 +564,44 @@ fn a_4_m_catenoid_asymptotic_line_follows_the_closed_form() {
         );
     }
 }
+
+#[test]
+fn fill_covers_the_gaps_the_central_design_leaves() {
+    let (mut s, p) = spec("schwarz-d-pavilion-1to5");
+    let (plain, plain_report) = design(&s, &p).unwrap();
+    s.fill = true;
+    let (filled, report) = design(&s, &p).unwrap();
+    assert!(
+        report.a_curves > 2 * plain_report.a_curves && report.b_curves > 2 * plain_report.b_curves
+    );
+    let total = |n: &lamella::network::RawNetwork| -> f64 {
+        n.curves
+            .iter()
+            .filter(|c| c.family != lamella::Family::Edge)
+            .map(|c| {
+                c.points
+                    .windows(2)
+                    .map(|w| w[1].distance(w[0]))
+                    .sum::<f64>()
+            })
+            .sum()
+    };
+    assert!(total(&filled) > 1.5 * total(&plain));
+    let (net, an) = run(filled);
+    for n in &an.topology.nodes {
+        if net.curves[n.a].family == lamella::Family::A
+            && net.curves[n.b].family == lamella::Family::B
+        {
+            assert!(
+                (n.angle_deg - 90.0).abs() < 0.01,
+                "node {} at {}°",
+                n.id,
+                n.angle_deg
+            );
+        }
+    }
+    // Filling is only for periodic designs.
+    let (mut flat, fp) = spec("enneper-4m");
+    flat.fill = true;
+    assert!(design(&flat, &fp).is_err());
+}

@@ -51,6 +51,10 @@ pub struct TraceSpec {
     /// surface's symmetries (Schwarz D).
     #[serde(default)]
     pub periodic: bool,
+    /// Periodic designs: after the central curves, seed more curves where a
+    /// family leaves gaps wider than ¾ of the spacing.
+    #[serde(default)]
+    pub fill: bool,
     #[serde(default)]
     pub sampling: SamplingSpec,
 }
