@@ -24,6 +24,9 @@ use crate::network::{Curve, Family};
 use crate::topology::{CurveNode, Node};
 use glam::DVec3;
 
+/// Largest distance between the stations where curvatures are evaluated, mm.
+pub const MAX_CURVATURE_SPACING_MM: f64 = 50.0;
+
 /// Options of the strip-geometry stage.
 #[derive(Debug, Clone, Copy)]
 pub struct FrameOptions {
@@ -173,7 +176,8 @@ pub struct StripGeometry {
     pub normal_source: NormalSource,
     /// The curve's nodes, by station.
     pub nodes: Vec<CurveNode>,
-    /// Curvatures at every sample of the curve.
+    /// Curvatures at every sample of the curve, and between samples farther
+    /// apart than [`MAX_CURVATURE_SPACING_MM`]; sorted by station.
     pub samples: Vec<Curvatures>,
     pub max_abs_kg_per_mm: f64,
     pub max_abs_tg_per_mm: f64,
@@ -268,18 +272,33 @@ impl StripGeometry {
             },
             straight_curvature_per_mm: opts.straight_curvature_per_mm,
         };
-        let samples: Vec<Curvatures> = (0..n)
-            .map(|i| {
-                let (k, u) = knot(i);
-                let f = strip.frame_at_param(smooth, k, u, smooth.sample_stations_mm()[i]);
-                Curvatures {
-                    station_mm: f.station_mm,
-                    kg_per_mm: f.kg_per_mm,
-                    kn_per_mm: f.kn_per_mm,
-                    tg_per_mm: f.tg_per_mm,
+        // Curvatures at every sample, and between samples where they are
+        // sparse (at most `MAX_CURVATURE_SPACING_MM` apart), so extremes of a
+        // coarsely sampled curve (DXF LINEs, short polylines) are not missed.
+        let stations = smooth.sample_stations_mm();
+        let mut samples: Vec<Curvatures> = Vec::with_capacity(n);
+        let mut push = |k: usize, u: f64, station: f64| {
+            let f = strip.frame_at_param(smooth, k, u, station);
+            samples.push(Curvatures {
+                station_mm: f.station_mm,
+                kg_per_mm: f.kg_per_mm,
+                kn_per_mm: f.kn_per_mm,
+                tg_per_mm: f.tg_per_mm,
+            });
+        };
+        for i in 0..n {
+            let (k, u) = knot(i);
+            push(k, u, stations[i]);
+            if i + 1 < n {
+                let len = stations[i + 1] - stations[i];
+                let parts = (len / MAX_CURVATURE_SPACING_MM).ceil() as usize;
+                for p in 1..parts {
+                    let target = stations[i] + len * p as f64 / parts as f64;
+                    let (k, u) = smooth.locate_station(target);
+                    push(k, u, target);
                 }
-            })
-            .collect();
+            }
+        }
         strip.max_abs_kg_per_mm = samples
             .iter()
             .map(|c| c.kg_per_mm.abs())

@@ -257,3 +257,57 @@ fn edge_strips_are_not_checked_as_bent_lamellas() {
     assert!(stdout.contains("PASS: all 2 strips"), "{stdout}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn sparse_curves_get_curvature_between_their_samples() {
+    // A 1 m arc of radius 500 mm given by 5 points: the frames are evaluated
+    // at most 50 mm apart, and the bending radius is found between samples.
+    use glam::DVec3;
+    use lamella::network::{Family, Network, RawCurve, RawNetwork, Unit};
+    let arc: Vec<DVec3> = (0..5)
+        .map(|i| {
+            let a = 2.0 * i as f64 / 4.0;
+            DVec3::new(500.0 * a.sin(), 500.0 * (1.0 - a.cos()), 0.0)
+        })
+        .collect();
+    let raw = RawNetwork {
+        name: "sparse".into(),
+        unit: Unit::Mm,
+        tolerance: None,
+        curves: vec![
+            RawCurve {
+                id: "A0".into(),
+                family: Family::A,
+                points: arc,
+                normals: None,
+            },
+            RawCurve {
+                id: "B0".into(),
+                family: Family::B,
+                points: vec![
+                    DVec3::new(400.0, -200.0, 0.0),
+                    DVec3::new(400.0, 600.0, 0.0),
+                ],
+                normals: None,
+            },
+        ],
+    };
+    let net = Network::new(raw, std::path::Path::new("sparse.yaml")).unwrap();
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+    for s in &an.strips {
+        assert!(
+            s.samples
+                .windows(2)
+                .all(|w| w[1].station_mm - w[0].station_mm
+                    <= lamella::strip::MAX_CURVATURE_SPACING_MM + 1e-9),
+            "{}",
+            s.id
+        );
+    }
+    let r = an.strips[0].min_bending_radius_mm().unwrap();
+    // 5 samples 0.5 rad apart: the interpolant holds the radius to ~10 %.
+    assert!(
+        (r - 500.0).abs() < 50.0,
+        "radius {r} from 5 samples of a 500 mm arc"
+    );
+}
