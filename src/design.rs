@@ -285,8 +285,37 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
     if spec.seed.iter().any(|x| !x.is_finite()) {
         return err("seed", "must be two finite numbers".into());
     }
-    if spec.max_curves_per_side == 0 {
-        return err("max_curves_per_side", "must be at least 1".into());
+    if spec.max_curves_per_side == 0 || spec.max_curves_per_side > MAX_CURVES_PER_SIDE {
+        return err(
+            "max_curves_per_side",
+            format!(
+                "must be 1 to {MAX_CURVES_PER_SIDE}, got {}",
+                spec.max_curves_per_side
+            ),
+        );
+    }
+    if spec.spacing_mm < 10.0 * s.step_mm.min(1.0) {
+        return err(
+            "spacing_mm",
+            format!("{} mm is too small a spacing for strips", spec.spacing_mm),
+        );
+    }
+    if spec.scale_mm > 1e7 {
+        return err(
+            "scale_mm",
+            format!("{:e} mm per unit is beyond any structure", spec.scale_mm),
+        );
+    }
+    let p = &spec.placement;
+    if p.rotate_deg
+        .iter()
+        .chain(&p.translate_mm)
+        .any(|x| !x.is_finite())
+    {
+        return err(
+            "placement",
+            "rotations and translation must be finite numbers".into(),
+        );
     }
     let clip = match &spec.clip {
         None => None,
@@ -533,6 +562,9 @@ fn assemble(
         report,
     )
 }
+
+/// Most curves a design may seed on each side of the seed, per family.
+pub const MAX_CURVES_PER_SIDE: usize = 1000;
 
 /// Rounds of filling gaps in a periodic design.
 const FILL_ROUNDS: usize = 6;

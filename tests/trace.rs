@@ -263,6 +263,39 @@ fn bad_specs_get_clear_errors() {
         &["clip", "exactly one"],
     );
     bad("empty", "", &["empty"]);
+    bad(
+        "tiny-spacing",
+        &good.replace("spacing_mm: 270", "spacing_mm: 0.001"),
+        &["spacing_mm", "too small"],
+    );
+    bad(
+        "nan-seed",
+        &good.replace("seed: [0.0, 0.0]", "seed: [.nan, 0.0]"),
+        &["seed", "finite"],
+    );
+    bad(
+        "nan-rotation",
+        &good.replace("rotate_deg: [0, 0, 45]", "rotate_deg: [.nan, 0, 45]"),
+        &["placement", "finite"],
+    );
+    bad(
+        "huge-scale",
+        &good.replace("scale_mm: 4400 ", "scale_mm: 1.0e300 "),
+        &["scale_mm", "beyond"],
+    );
+    bad(
+        "too-many-curves",
+        &good.replace(
+            "design: central",
+            "design: central\nmax_curves_per_side: 99999999",
+        ),
+        &["max_curves_per_side", "1 to 1000"],
+    );
+    bad(
+        "fill-without-periodic",
+        &good.replace("design: central", "design: central\nfill: true"),
+        &["fill", "periodic"],
+    );
 }
 
 #[test]
