@@ -152,9 +152,9 @@ impl Traced {
     pub fn length_mm(&self) -> f64 {
         *self.stations_mm.last().unwrap_or(&0.0)
     }
-    /// The parameter point at a station, by Hermite-free linear interpolation
-    /// between steps followed by nothing else (steps are ≤ max_step apart and
-    /// callers re-trace from it, so this only seeds).
+    /// The parameter point at a station, interpolated linearly between the
+    /// two steps around it (steps are at most `max_step_mm` apart; used to
+    /// seed new curves, whose own traces are exact).
     pub fn uv_at(&self, station_mm: f64) -> DVec2 {
         let k = self
             .stations_mm
@@ -177,8 +177,7 @@ struct Tracer<'a> {
     opts: TraceOptions,
 }
 
-// Dormand–Prince 5(4) tableau.
-const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+// Dormand–Prince 5(4) tableau (the field is autonomous: no c column needed).
 const A: [[f64; 6]; 7] = [
     [0.0; 6],
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
@@ -249,7 +248,6 @@ impl Tracer<'_> {
             for (j, kj) in k.iter().enumerate().take(i) {
                 y += *kj * (h * A[i][j]);
             }
-            let _ = C[i];
             let (v, d) = self.velocity(y, reference)?;
             reference = d;
             k[i] = v;

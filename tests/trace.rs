@@ -48,7 +48,8 @@ fn closed_form_error(name: &str) -> (f64, f64) {
     {
         // Recover (u, v) of each point by Newton on the surface (from the seed).
         let uvs: Vec<DVec2> = c.points.iter().map(|p| invert(&surface, *p)).collect();
-        let (p0, q0) = (uvs[0].x + uvs[0].y, uvs[0].x - uvs[0].y);
+        let start = uvs[0];
+        let (p0, q0) = (start.x + start.y, start.x - start.y);
         let along_p = uvs.iter().all(|q| ((q.x + q.y) - p0).abs() < 1e-4);
         let along_q = uvs.iter().all(|q| ((q.x - q.y) - q0).abs() < 1e-4);
         assert!(
@@ -57,13 +58,7 @@ fn closed_form_error(name: &str) -> (f64, f64) {
             c.id
         );
         for (q, pt) in uvs.iter().zip(&c.points) {
-            let exact = if along_p {
-                let qq = q.x - q.y;
-                DVec2::new((p0 + qq) / 2.0, (p0 - qq) / 2.0)
-            } else {
-                let pp = q.x + q.y;
-                DVec2::new((pp + q0) / 2.0, (pp - q0) / 2.0)
-            };
+            let exact = diagonal_closed_form(start, *q, along_p);
             worst = worst.max(pt.distance(surface.point(exact)));
         }
         let len: f64 = c.points.windows(2).map(|w| w[1].distance(w[0])).sum();
@@ -139,18 +134,7 @@ fn minimal_surface_nets_cross_at_90_degrees_and_satisfy_beltrami_enneper() {
             }
         }
         let (net, an) = run(raw);
-        for n in &an.topology.nodes {
-            if net.curves[n.a].family == lamella::Family::A
-                && net.curves[n.b].family == lamella::Family::B
-            {
-                assert!(
-                    (n.angle_deg - 90.0).abs() < 0.01,
-                    "{name}: node {} at {}°",
-                    n.id,
-                    n.angle_deg
-                );
-            }
-        }
+        assert!(assert_ab_orthogonal(&net, &an, name) > 0);
     }
 }
 
@@ -520,20 +504,7 @@ fn the_unfolded_pavilion_is_an_orthogonal_asymptotic_net() {
     assert!(far > 1000.0, "{far}");
     let (net, an) = run(raw);
     assert!(an.warnings().is_empty(), "{:?}", an.warnings());
-    let mut ab = 0;
-    for n in &an.topology.nodes {
-        if net.curves[n.a].family == lamella::Family::A
-            && net.curves[n.b].family == lamella::Family::B
-        {
-            assert!(
-                (n.angle_deg - 90.0).abs() < 0.01,
-                "node {} at {}°",
-                n.id,
-                n.angle_deg
-            );
-            ab += 1;
-        }
-    }
+    let ab = assert_ab_orthogonal(&net, &an, "pavilion");
     assert!(ab > 300, "{ab} A×B nodes");
     // kn = 0: the normals carried across copies stay the surface's, and the
     // strips asymptotic (the residual from the normals' rotation).
@@ -573,17 +544,12 @@ fn a_4_m_catenoid_asymptotic_line_follows_the_closed_form() {
             "a 4 m line: {}",
             t.length_mm()
         );
-        let (p0, q0) = (seed.x + seed.y, seed.x - seed.y);
+        let start = seed;
+        let p0 = seed.x + seed.y;
         let along_p = t.uv.iter().all(|q| ((q.x + q.y) - p0).abs() < 1e-3);
         let mut worst: f64 = 0.0;
         for q in &t.uv {
-            let exact = if along_p {
-                let qq = q.x - q.y;
-                DVec2::new((p0 + qq) / 2.0, (p0 - qq) / 2.0)
-            } else {
-                let pp = q.x + q.y;
-                DVec2::new((pp + q0) / 2.0, (pp - q0) / 2.0)
-            };
+            let exact = diagonal_closed_form(start, *q, along_p);
             worst = worst.max(s.point(*q).distance(s.point(exact)));
         }
         assert!(worst < 0.01, "{field:?}: {worst} mm from the closed form");
@@ -621,18 +587,7 @@ fn fill_covers_the_gaps_the_central_design_leaves() {
     };
     assert!(total(&filled) > 1.5 * total(&plain));
     let (net, an) = run(filled);
-    for n in &an.topology.nodes {
-        if net.curves[n.a].family == lamella::Family::A
-            && net.curves[n.b].family == lamella::Family::B
-        {
-            assert!(
-                (n.angle_deg - 90.0).abs() < 0.01,
-                "node {} at {}°",
-                n.id,
-                n.angle_deg
-            );
-        }
-    }
+    assert!(assert_ab_orthogonal(&net, &an, "filled pavilion") > 300);
     // Filling is only for periodic designs.
     let (mut flat, fp) = spec("enneper-4m");
     flat.fill = true;

@@ -132,10 +132,7 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
         ));
     }
     Ok(RawNetwork {
-        name: path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "network".into()),
+        name: crate::io::default_name(path),
         unit,
         tolerance: None,
         curves,

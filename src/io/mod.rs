@@ -72,6 +72,13 @@ pub fn read_raw(path: &Path, opts: ReadOptions) -> Result<RawNetwork> {
     }
 }
 
+/// A network's default name: the file stem (`samples/x.yaml` → `x`).
+pub fn default_name(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "network".into())
+}
+
 /// Read a whole text file, with a one-line error on failure or bad UTF-8.
 pub fn read_text(path: &Path) -> Result<String> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;

@@ -92,11 +92,7 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
                 .map(|n| n.into_iter().map(DVec3::from_array).collect()),
         });
     }
-    let name = file.name.unwrap_or_else(|| {
-        path.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "network".into())
-    });
+    let name = file.name.unwrap_or_else(|| crate::io::default_name(path));
     Ok(RawNetwork {
         name,
         unit,

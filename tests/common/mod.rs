@@ -74,3 +74,36 @@ pub fn rigid(p: DVec3) -> DVec3 {
 pub fn uv(x: f64, y: f64) -> DVec2 {
     DVec2::new(x, y)
 }
+
+/// The point of the closed-form asymptotic line u ± v = const (Enneper,
+/// catenoid) through `start` that shares the other diagonal coordinate with
+/// `q`: along p = u + v when `along_p`, else along q = u − v.
+pub fn diagonal_closed_form(start: DVec2, q: DVec2, along_p: bool) -> DVec2 {
+    let (p0, q0) = (start.x + start.y, start.x - start.y);
+    if along_p {
+        let qq = q.x - q.y;
+        DVec2::new((p0 + qq) / 2.0, (p0 - qq) / 2.0)
+    } else {
+        let pp = q.x + q.y;
+        DVec2::new((pp + q0) / 2.0, (pp - q0) / 2.0)
+    }
+}
+
+/// Every A×B node crosses at 90° ± 0.01°; returns how many there are.
+pub fn assert_ab_orthogonal(net: &Network, an: &Analysis, what: &str) -> usize {
+    let mut ab = 0;
+    for n in &an.topology.nodes {
+        if net.curves[n.a].family == lamella::Family::A
+            && net.curves[n.b].family == lamella::Family::B
+        {
+            assert!(
+                (n.angle_deg - 90.0).abs() < 0.01,
+                "{what}: node {} at {}°",
+                n.id,
+                n.angle_deg
+            );
+            ab += 1;
+        }
+    }
+    ab
+}
