@@ -12,6 +12,9 @@ use crate::topology::{find_nodes, NodeOptions, Topology};
 pub struct AnalysisOptions {
     pub nodes: NodeOptions,
     pub frames: FrameOptions,
+    /// The grid the coordinates are rounded to, mm (0: exact): curves are
+    /// smoothed to it. Defaults to what the file's decimals imply.
+    pub precision_mm: f64,
 }
 
 impl AnalysisOptions {
@@ -19,6 +22,7 @@ impl AnalysisOptions {
         AnalysisOptions {
             nodes: NodeOptions::new(net.tolerance_mm),
             frames: FrameOptions::default(),
+            precision_mm: net.precision_mm,
         }
     }
 }
@@ -41,7 +45,9 @@ impl Analysis {
 /// Interpolate, find nodes and compute strip geometry. Fails when the
 /// network has no A×B crossing.
 pub fn analyze(net: &Network, opts: AnalysisOptions) -> Result<Analysis> {
-    let curves: Vec<SmoothCurve> = par_map(&net.curves, |c| SmoothCurve::new(&c.points_mm));
+    let curves: Vec<SmoothCurve> = par_map(&net.curves, |c| {
+        SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
+    });
     let topology = find_nodes(net, &curves, opts.nodes);
     let ab = topology
         .nodes

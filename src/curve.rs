@@ -1,18 +1,44 @@
 //! Curves as smooth interpolants of their samples.
 //!
-//! A [`Hermite5`] passes a C² piecewise quintic through the samples of any
-//! vector-valued function of a parameter `t`; the first and second
-//! derivatives at each sample come from a local least-squares polynomial fit
-//! (degree 4 over the 7 nearest samples), which is exact for quartics and
-//! robust to rounding in the input. A [`SmoothCurve`] is such an interpolant
-//! over the cumulative chord length, with its arc length tabulated by
-//! Gauss–Legendre quadrature, so that stations (arc length from the first
-//! point) map to points and tangents to far better than the chord polygon.
+//! A [`Hermite5`] passes a C² piecewise quintic through values at strictly
+//! increasing parameters, with the first and second derivatives at each
+//! sample from a local least-squares polynomial fit. A [`SmoothCurve`] is
+//! such an interpolant over the cumulative chord length, with its arc length
+//! tabulated by Gauss–Legendre quadrature, so that stations (arc length from
+//! the first point) map to points and tangents to far better than the chord
+//! polygon.
+//!
+//! **Precision.** Exported coordinates are rounded (Rhino: 0.001 mm). A
+//! curvature from second differences of rounded samples carries an error of
+//! order ε/h², its derivative ε/h³: the denser the sampling, the worse. So a
+//! curve is smoothed to the precision of its coordinates: each sample's value
+//! and derivatives come from a degree-4 least-squares fit over the samples
+//! within a half-width W of it (at least 7), with W chosen so that the
+//! rounding noise in the curvature stays below
+//! [`CURVATURE_NOISE_TARGET_PER_MM`] (W ∝ (ε²·h)^(1/5)), and no wider than a
+//! fifth of the smallest bending radius so the fit's own bias stays below
+//! ~1e-4 relative. Exact coordinates (precision below [`EXACT_PRECISION_MM`])
+//! keep the 7-sample fit and the interpolant passes through every sample;
+//! smoothed ones lie within the rounding of them.
 
 use glam::DVec3;
 
-/// Samples in each local fit window.
+/// Samples in each local fit window (the least).
 const FIT_WINDOW: usize = 7;
+/// Coordinates rounded more finely than this (mm) count as exact: no
+/// smoothing beyond the 7-sample fit.
+pub const EXACT_PRECISION_MM: f64 = 1e-6;
+/// The rounding noise the smoothing window allows in the curvature, 1/mm
+/// (a bending radius of 10 km).
+pub const CURVATURE_NOISE_TARGET_PER_MM: f64 = 1e-7;
+/// The smoothing half-width stays below this fraction of the smallest
+/// bending radius (the degree-4 fit's bias in the curvature is then of
+/// order (W/R)⁴ ≈ 1e-3 relative at most).
+const WINDOW_PER_RADIUS: f64 = 0.2;
+/// Variance factor of the second derivative from a centred degree-4
+/// biweight-kernel least-squares fit of N evenly spaced samples over
+/// [−W, W]: var(f'') ≈ C·ε²/(N·W⁴), C ≈ 1180 (from the design's hat matrix).
+const D2_VARIANCE_FACTOR: f64 = 1180.0;
 /// Degree of the local least-squares fit for sampled curves (smooths rounding).
 pub const FIT_DEGREE_SAMPLES: usize = 4;
 /// Largest fit degree: with 7 samples, interpolation (for exact data such as
@@ -82,6 +108,13 @@ impl Hermite5 {
             d1,
             d2,
         }
+    }
+
+    /// A Hermite interpolant with given values and derivatives at `t`.
+    pub fn from_parts(t: Vec<f64>, p: Vec<DVec3>, d1: Vec<DVec3>, d2: Vec<DVec3>) -> Hermite5 {
+        debug_assert!(t.len() >= 2 && t.len() == p.len() && p.len() == d1.len());
+        debug_assert!(d1.len() == d2.len());
+        Hermite5 { t, p, d1, d2 }
     }
 
     pub fn knots(&self) -> &[f64] {
@@ -177,6 +210,231 @@ pub fn fit_derivatives(t: &[f64], v: &[DVec3], degree: usize) -> (Vec<DVec3>, Ve
     (d1, d2)
 }
 
+/// A curve's samples smoothed to the precision of its coordinates: fitted
+/// values, first and second derivatives over `t`, and the standard deviation
+/// of the rounding noise left in each second derivative (1/mm for a chord
+/// parameter).
+#[derive(Debug, Clone)]
+pub struct SmoothedSamples {
+    pub values: Vec<DVec3>,
+    pub d1: Vec<DVec3>,
+    pub d2: Vec<DVec3>,
+    pub d2_noise: Vec<f64>,
+    /// Half-width of the fit window used, mm (0: the 7-sample fit).
+    pub half_width_mm: f64,
+}
+
+/// Smooth samples `v` at chord parameters `t` whose coordinates are rounded
+/// to `precision_mm` (module docs): degree-4 least-squares fits over the
+/// samples within the chosen half-width of each sample.
+pub fn smooth_samples(t: &[f64], v: &[DVec3], precision_mm: f64) -> SmoothedSamples {
+    let n = t.len();
+    if precision_mm < EXACT_PRECISION_MM || n < FIT_WINDOW {
+        let (d1, d2) = fit_derivatives(t, v, FIT_DEGREE_SAMPLES);
+        return SmoothedSamples {
+            values: v.to_vec(),
+            d1,
+            d2,
+            d2_noise: vec![0.0; n],
+            half_width_mm: 0.0,
+        };
+    }
+    // Rounding to a grid of `precision` is uniform noise of this deviation.
+    let eps = precision_mm / 12f64.sqrt();
+    let h = (t[n - 1] - t[0]) / (n - 1) as f64;
+    let target = CURVATURE_NOISE_TARGET_PER_MM;
+    let w_noise = (0.5 * D2_VARIANCE_FACTOR * eps * eps * h / (target * target)).powf(0.2);
+    let first = fit_window(t, v, w_noise, eps);
+    // Bias cap: no wider than a fraction of the smallest bending radius
+    // (from a robust high percentile of the smoothed curvature).
+    let mut kappa: Vec<f64> = (0..n)
+        .map(|i| {
+            let d1 = first.d1[i];
+            d1.cross(first.d2[i]).length() / d1.length().powi(3).max(1e-300)
+        })
+        .collect();
+    kappa.sort_by(f64::total_cmp);
+    let k95 = kappa[(n * 95 / 100).min(n - 1)];
+    let w_bias = WINDOW_PER_RADIUS / k95.max(1e-12);
+    if w_bias < w_noise {
+        fit_window(t, v, w_bias, eps)
+    } else {
+        first
+    }
+}
+
+/// Degree-4 fits over [t_i − w, t_i + w] (shifted inside the curve at its
+/// ends, at least 7 samples).
+fn fit_window(t: &[f64], v: &[DVec3], w: f64, eps: f64) -> SmoothedSamples {
+    let n = t.len();
+    let mut out = SmoothedSamples {
+        values: Vec::with_capacity(n),
+        d1: Vec::with_capacity(n),
+        d2: Vec::with_capacity(n),
+        d2_noise: Vec::with_capacity(n),
+        half_width_mm: w,
+    };
+    let (t_first, t_last) = (t[0], t[n - 1]);
+    for i in 0..n {
+        // The window [a, b] of width 2w, moved inside [t_first, t_last].
+        let (mut a, mut b) = (t[i] - w, t[i] + w);
+        if a < t_first {
+            b = (b + (t_first - a)).min(t_last);
+            a = t_first;
+        }
+        if b > t_last {
+            a = (a - (b - t_last)).max(t_first);
+            b = t_last;
+        }
+        let mut lo = t.partition_point(|&x| x < a);
+        let mut hi = t.partition_point(|&x| x <= b);
+        // At least FIT_WINDOW + 2 samples (the outermost weigh almost
+        // nothing), taken nearest first.
+        while hi - lo < FIT_WINDOW + 2 {
+            let left = lo > 0;
+            let right = hi < n;
+            match (left, right) {
+                (true, true) => {
+                    if t[i] - t[lo - 1] <= t[hi] - t[i] {
+                        lo -= 1
+                    } else {
+                        hi += 1
+                    }
+                }
+                (true, false) => lo -= 1,
+                (false, true) => hi += 1,
+                (false, false) => break,
+            }
+        }
+        let half = 0.5 * (t[hi - 1] - t[lo]);
+        // The kernel reaches just past the farthest sample of the window, so
+        // samples enter and leave a moving window with vanishing weight and
+        // neighbouring fits agree (no wiggles between samples).
+        let radius = (t[i] - t[lo]).max(t[hi - 1] - t[i]) * (1.0 + 1e-9) + 1e-12;
+        let deg = FIT_DEGREE_SAMPLES.min(hi - lo - 3);
+        let (coef, var2) = kernel_fit(&t[lo..hi], &v[lo..hi], t[i], half, radius, deg);
+        out.values.push(coef[0]);
+        out.d1.push(coef[1] / half);
+        out.d2.push(coef[2] * (2.0 / (half * half)));
+        out.d2_noise
+            .push(2.0 * eps * var2.max(0.0).sqrt() / (half * half));
+    }
+    out
+}
+
+/// Weighted least-squares polynomial of degree `deg` through (t, v) in
+/// τ = (t − t0)/scale, with biweight kernel weights (1 − (|t − t0|/radius)²)²;
+/// returns the coefficients and Σ aⱼ², where c₂ = Σ aⱼ vⱼ (the variance of the
+/// τ² coefficient per unit variance of the data).
+fn kernel_fit(
+    t: &[f64],
+    v: &[DVec3],
+    t0: f64,
+    scale: f64,
+    radius: f64,
+    deg: usize,
+) -> ([DVec3; MAX_DEGREE + 1], f64) {
+    let k = deg + 1;
+    let weight = |tj: f64| {
+        let r = ((tj - t0) / radius).abs().min(1.0);
+        let q = 1.0 - r * r;
+        q * q
+    };
+    let mut sums = [0.0f64; 2 * MAX_DEGREE + 1];
+    let mut rhs = [DVec3::ZERO; MAX_DEGREE + 1];
+    for (tj, vj) in t.iter().zip(v) {
+        let (tau, w) = ((tj - t0) / scale, weight(*tj));
+        let mut pw = w;
+        for (q, s) in sums.iter_mut().enumerate().take(2 * deg + 1) {
+            if q <= deg {
+                rhs[q] += *vj * pw;
+            }
+            *s += pw;
+            pw *= tau;
+        }
+    }
+    let mut m = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    for (r, row) in m.iter_mut().enumerate().take(k) {
+        for (c, cell) in row.iter_mut().enumerate().take(k) {
+            *cell = sums[r + c];
+        }
+    }
+    let mut coef = [DVec3::ZERO; MAX_DEGREE + 1];
+    for axis in 0..3 {
+        let mut mm = m;
+        let mut b = [0.0f64; MAX_DEGREE + 1];
+        for q in 0..k {
+            b[q] = rhs[q][axis];
+        }
+        let x = solve_small(&mut mm, &mut b, k);
+        for q in 0..k {
+            coef[q][axis] = x[q];
+        }
+    }
+    if deg < 2 {
+        return (coef, 0.0);
+    }
+    // Row 2 of M⁻¹, then aⱼ = wⱼ Σ_q z_q τⱼ^q.
+    let mut e2 = [0.0f64; MAX_DEGREE + 1];
+    e2[2] = 1.0;
+    let z = solve_small(&mut m, &mut e2, k);
+    let mut sum_a2 = 0.0;
+    for &tj in t {
+        let tau = (tj - t0) / scale;
+        let mut pw = 1.0;
+        let mut a = 0.0;
+        for zq in z.iter().take(k) {
+            a += zq * pw;
+            pw *= tau;
+        }
+        let a = a * weight(tj);
+        sum_a2 += a * a;
+    }
+    (coef, sum_a2)
+}
+
+/// Gaussian elimination with partial pivoting on the leading k×k block.
+fn solve_small(
+    m: &mut [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1],
+    rhs: &mut [f64; MAX_DEGREE + 1],
+    k: usize,
+) -> [f64; MAX_DEGREE + 1] {
+    for col in 0..k {
+        let piv = (col..k)
+            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
+            .unwrap_or(col);
+        m.swap(col, piv);
+        rhs.swap(col, piv);
+        let d = m[col][col];
+        if d.abs() < 1e-300 {
+            continue;
+        }
+        for r in col + 1..k {
+            let f = m[r][col] / d;
+            if f != 0.0 {
+                let pivot_row = m[col];
+                for (cell, p) in m[r][col..k].iter_mut().zip(&pivot_row[col..k]) {
+                    *cell -= f * p;
+                }
+                rhs[r] -= rhs[col] * f;
+            }
+        }
+    }
+    let mut x = [0.0f64; MAX_DEGREE + 1];
+    for r in (0..k).rev() {
+        let mut acc = rhs[r];
+        for c in r + 1..k {
+            acc -= x[c] * m[r][c];
+        }
+        x[r] = if m[r][r].abs() < 1e-300 {
+            0.0
+        } else {
+            acc / m[r][r]
+        };
+    }
+    x
+}
+
 /// Least-squares polynomial of degree `deg` through (t, v) in τ = (t − t0)/scale;
 /// returns the coefficients of τ^0..τ^deg (unused ones zero).
 fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; MAX_DEGREE + 1] {
@@ -245,6 +503,12 @@ pub struct SmoothCurve {
     h: Hermite5,
     /// Arc length (mm) at each sample.
     s: Vec<f64>,
+    /// Rounding noise left in the second derivative at each sample, 1/mm.
+    d2_noise: Vec<f64>,
+    /// Precision of the coordinates the curve was made from, mm.
+    precision_mm: f64,
+    /// Half-width of the smoothing window, mm (0: 7-sample fits).
+    smoothing_mm: f64,
 }
 
 /// Position and unit tangent at a station.
@@ -256,8 +520,14 @@ pub struct CurvePoint {
 }
 
 impl SmoothCurve {
-    /// Interpolate points (mm; at least 2, consecutive points distinct).
+    /// Interpolate exact points (mm; at least 2, consecutive points distinct).
     pub fn new(points_mm: &[DVec3]) -> SmoothCurve {
+        SmoothCurve::with_precision(points_mm, 0.0)
+    }
+
+    /// A smooth curve through points whose coordinates are rounded to
+    /// `precision_mm` (0 for exact), smoothed to that precision (module docs).
+    pub fn with_precision(points_mm: &[DVec3], precision_mm: f64) -> SmoothCurve {
         let mut t = Vec::with_capacity(points_mm.len());
         let mut acc = 0.0;
         t.push(0.0);
@@ -265,7 +535,24 @@ impl SmoothCurve {
             acc += w[1].distance(w[0]);
             t.push(acc);
         }
-        let h = Hermite5::new(t, points_mm.to_vec());
+        let smoothed = smooth_samples(&t, points_mm, precision_mm);
+        let smoothing_mm = smoothed.half_width_mm;
+        let d2_noise = smoothed.d2_noise;
+        let h = if smoothing_mm > 0.0 {
+            // The chord parameter of rounded samples is itself noisy: take it
+            // from the smoothed positions and interpolate those exactly.
+            let values = smoothed.values;
+            let mut t = Vec::with_capacity(values.len());
+            let mut acc = 0.0;
+            t.push(0.0);
+            for w in values.windows(2) {
+                acc += w[1].distance(w[0]).max(1e-9);
+                t.push(acc);
+            }
+            Hermite5::new(t, values)
+        } else {
+            Hermite5::from_parts(t, smoothed.values, smoothed.d1, smoothed.d2)
+        };
         let mut s = Vec::with_capacity(points_mm.len());
         s.push(0.0);
         let mut total = 0.0;
@@ -274,7 +561,27 @@ impl SmoothCurve {
             total += integrate_speed(&a, 1.0);
             s.push(total);
         }
-        SmoothCurve { h, s }
+        SmoothCurve {
+            h,
+            s,
+            d2_noise,
+            precision_mm,
+            smoothing_mm,
+        }
+    }
+
+    /// Precision of the coordinates, mm (0: exact).
+    pub fn precision_mm(&self) -> f64 {
+        self.precision_mm
+    }
+    /// Half-width of the smoothing window, mm (0: 7-sample fits).
+    pub fn smoothing_mm(&self) -> f64 {
+        self.smoothing_mm
+    }
+    /// Standard deviation of the rounding noise in the curvature at sample
+    /// `i`, 1/mm (0 for exact coordinates).
+    pub fn curvature_noise_per_mm(&self, i: usize) -> f64 {
+        self.d2_noise[i]
     }
 
     /// Total arc length, mm.

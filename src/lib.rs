@@ -15,6 +15,7 @@ pub mod design;
 pub mod error;
 pub mod io;
 pub mod network;
+pub mod normal_field;
 pub mod periodic;
 pub mod profile;
 pub mod strip;

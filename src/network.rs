@@ -164,6 +164,9 @@ pub struct Network {
     /// The unit the file was written in (lengths here are already mm).
     pub file_unit: Unit,
     pub tolerance_mm: f64,
+    /// The grid the file's coordinates are rounded to, mm (0: unrounded).
+    /// Curves are smoothed to it (see `curve`).
+    pub precision_mm: f64,
     pub curves: Vec<Curve>,
 }
 
@@ -189,6 +192,7 @@ impl Network {
                 "the network has no curves",
             ));
         }
+        let precision_mm = coordinate_precision(&raw.curves).map_or(0.0, |q| q * scale);
         let mut seen = HashSet::with_capacity(raw.curves.len());
         let mut curves = Vec::with_capacity(raw.curves.len());
         for (index, c) in raw.curves.into_iter().enumerate() {
@@ -319,6 +323,7 @@ impl Network {
             source: source.to_path_buf(),
             file_unit: raw.unit,
             tolerance_mm,
+            precision_mm,
             curves,
         })
     }
@@ -331,4 +336,32 @@ impl Network {
     pub fn point_count(&self) -> usize {
         self.curves.iter().map(|c| c.points_mm.len()).sum()
     }
+}
+
+/// Finest decimal places looked for in coordinates.
+const MAX_DECIMALS: i32 = 9;
+
+/// The coarsest decimal grid (10^−d file units, d = 0…9) that every
+/// coordinate lies on: 0.001 for a Rhino export rounded to three decimals.
+/// `None` when the coordinates are finer than 1e−9 (unrounded doubles).
+pub fn coordinate_precision(curves: &[RawCurve]) -> Option<f64> {
+    let mut d = 0;
+    let on_grid = |x: f64, d: i32| {
+        let y = x * 10f64.powi(d);
+        (y - y.round()).abs() <= 1e-6f64.max(y.abs() * 1e-14)
+    };
+    for x in curves
+        .iter()
+        .flat_map(|c| c.points.iter())
+        .flat_map(|p| [p.x, p.y, p.z])
+        .filter(|x| x.is_finite())
+    {
+        while d <= MAX_DECIMALS && !on_grid(x, d) {
+            d += 1;
+        }
+        if d > MAX_DECIMALS {
+            return None;
+        }
+    }
+    Some(10f64.powi(-d))
 }

@@ -6,12 +6,11 @@
 //! Where the surface normal comes from (geometry.md):
 //! * the file's normals, interpolated like the points; kn and tg from their
 //!   rotation (z' = −kn·x − tg·y);
-//! * otherwise the binormal (the osculating plane of an asymptotic curve is
-//!   the tangent plane), with tg = the curve's torsion;
-//! * where the curve is straight (curvature below
-//!   [`FrameOptions::straight_curvature_per_mm`]) the node normals
-//!   (tangent_a × tangent_b), interpolated along the curve, and tg from their
-//!   rotation.
+//! * otherwise a [`NormalField`]: the normal's angle about the tangent in a
+//!   rotation-minimising frame, fitted to the node normals (tangent_a ×
+//!   tangent_b) and, on A and B curves, to the binormal weighted by how
+//!   well the curvature is known; tg is the angle's derivative. Edge curves
+//!   take their normal from their nodes only (they are not asymptotic).
 //!
 //! Without file normals the kn residual is measured at the nodes, as the
 //! curve's curvature vector against the node normal.
@@ -21,6 +20,7 @@
 
 use crate::curve::{Hermite5, SmoothCurve};
 use crate::network::{Curve, Family};
+use crate::normal_field::{NormalField, NormalFieldOptions};
 use crate::topology::{CurveNode, Node};
 use glam::DVec3;
 
@@ -30,12 +30,8 @@ pub const MAX_CURVATURE_SPACING_MM: f64 = 50.0;
 /// Options of the strip-geometry stage.
 #[derive(Debug, Clone, Copy)]
 pub struct FrameOptions {
-    /// Below this curvature (1/mm) the binormal is too uncertain to be the
-    /// surface normal, which then comes from the nodes.
-    pub binormal_min_curvature_per_mm: f64,
-    /// Where the curvature is about this (1/mm), binormal and node normals
-    /// weigh equally; the binormal's weight is κ²/(κ² + this²).
-    pub binormal_trust_curvature_per_mm: f64,
+    /// How the normal field of a curve without file normals is fitted.
+    pub field: NormalFieldOptions,
     /// A strip whose curvature stays below this (1/mm) is straight: it has no
     /// minimum bending radius.
     pub straight_curvature_per_mm: f64,
@@ -44,8 +40,7 @@ pub struct FrameOptions {
 impl Default for FrameOptions {
     fn default() -> Self {
         FrameOptions {
-            binormal_min_curvature_per_mm: 2e-6,
-            binormal_trust_curvature_per_mm: 2e-5,
+            field: NormalFieldOptions::default(),
             straight_curvature_per_mm: 1e-5,
         }
     }
@@ -97,63 +92,13 @@ pub struct Curvatures {
     pub tg_per_mm: f64,
 }
 
-/// Unit normals along a curve, interpolated over station from its nodes.
+/// The normals of a strip.
 #[derive(Debug, Clone)]
-struct NodeNormals {
-    stations: Vec<f64>,
-    normals: Vec<DVec3>,
-    field: Option<Hermite5>,
-}
-
-impl NodeNormals {
-    fn new(nodes: &[CurveNode], all: &[Node]) -> Option<NodeNormals> {
-        let mut stations = Vec::with_capacity(nodes.len());
-        let mut normals = Vec::with_capacity(nodes.len());
-        for cn in nodes {
-            if stations
-                .last()
-                .is_some_and(|&s: &f64| cn.station_mm - s < 1e-6)
-            {
-                continue;
-            }
-            stations.push(cn.station_mm);
-            normals.push(all[cn.node].normal);
-        }
-        if stations.is_empty() {
-            return None;
-        }
-        let field = (stations.len() >= 2).then(|| {
-            Hermite5::with_fit_degree(
-                stations.clone(),
-                normals.clone(),
-                crate::curve::FIT_DEGREE_EXACT,
-            )
-        });
-        Some(NodeNormals {
-            stations,
-            normals,
-            field,
-        })
-    }
-
-    /// Unit normal and its derivative with respect to station.
-    fn at(&self, station_mm: f64) -> (DVec3, DVec3) {
-        let Some(h) = &self.field else {
-            return (self.normals[0], DVec3::ZERO);
-        };
-        let (first, last) = (self.stations[0], *self.stations.last().unwrap_or(&0.0));
-        let (v, d) = if station_mm < first {
-            let j = h.jet(first);
-            (j.value + j.d1 * (station_mm - first), j.d1)
-        } else if station_mm > last {
-            let j = h.jet(last);
-            (j.value + j.d1 * (station_mm - last), j.d1)
-        } else {
-            let j = h.jet(station_mm);
-            (j.value, j.d1)
-        };
-        unit_and_derivative(v, d)
-    }
+enum Normals {
+    /// The file's, over the curve's chord parameter.
+    File(Hermite5),
+    /// Fitted to nodes (and binormals).
+    Field(NormalField),
 }
 
 /// Normalise v and carry its derivative: (v/|v|)' = (v' − v̂(v̂·v'))/|v|.
@@ -183,9 +128,7 @@ pub struct StripGeometry {
     pub max_abs_tg_per_mm: f64,
     /// Largest |kn| (the residual: zero on an exact asymptotic curve).
     pub max_abs_kn_per_mm: f64,
-    /// Surface normals over the curve's chord parameter, one per sample:
-    /// the file's, or the oriented binormal / node normal at each sample.
-    normals: Hermite5,
+    normals: Normals,
     straight_curvature_per_mm: f64,
 }
 
@@ -200,58 +143,36 @@ impl StripGeometry {
         opts: FrameOptions,
     ) -> StripGeometry {
         let n = smooth.samples().len();
-        let t: Vec<f64> = (0..n).map(|i| smooth.sample_param(i)).collect();
         let knot = |i: usize| if i + 1 < n { (i, 0.0) } else { (n - 2, 1.0) };
-        let (normal_values, normal_source) = match &curve.normals {
-            Some(file) => (file.clone(), NormalSource::File),
+        let (normals, normal_source) = match &curve.normals {
+            Some(file) => {
+                let t: Vec<f64> = (0..n).map(|i| smooth.sample_param(i)).collect();
+                (
+                    Normals::File(Hermite5::new(t, file.clone())),
+                    NormalSource::File,
+                )
+            }
             None => {
-                let reference = NodeNormals::new(nodes, all_nodes);
-                let (mut binormal, mut from_nodes) = (false, false);
-                let mut values = Vec::with_capacity(n);
-                for (i, &station) in smooth.sample_stations_mm().iter().enumerate() {
-                    let (k, u) = knot(i);
-                    let j = smooth.jet_at(k, u);
-                    let cross = j.d1.cross(j.d2);
-                    let curvature = cross.length() / j.d1.length().powi(3);
-                    let r = reference.as_ref().map(|nn| nn.at(station).0);
-                    let z = match r {
-                        Some(r) if curvature <= opts.binormal_min_curvature_per_mm => {
-                            from_nodes = true;
-                            r
-                        }
-                        _ => {
-                            binormal = true;
-                            let b = cross
-                                .try_normalize()
-                                .unwrap_or_else(|| j.d1.any_orthonormal_vector());
-                            // Orient along the node normals, else keep continuity, else up.
-                            let up = r.or(values.last().copied()).unwrap_or(DVec3::Z);
-                            let b = if b.dot(up) < 0.0 { -b } else { b };
-                            // Near an inflection the binormal's direction is
-                            // uncertain (its error grows as 1/κ): lean on the
-                            // node normals there, smoothly.
-                            match r {
-                                Some(r) => {
-                                    let k0 = opts.binormal_trust_curvature_per_mm;
-                                    let w =
-                                        curvature * curvature / (curvature * curvature + k0 * k0);
-                                    if w < 0.999 {
-                                        from_nodes = true;
-                                    }
-                                    (b * w + r * (1.0 - w)).normalize_or(b)
-                                }
-                                None => b,
-                            }
-                        }
-                    };
-                    values.push(z);
+                let mut at_nodes: Vec<(f64, DVec3)> = Vec::with_capacity(nodes.len());
+                for cn in nodes {
+                    if at_nodes
+                        .last()
+                        .is_some_and(|&(s, _)| cn.station_mm - s < 1e-6)
+                    {
+                        continue;
+                    }
+                    at_nodes.push((cn.station_mm, all_nodes[cn.node].normal));
                 }
-                let source = match (binormal, from_nodes) {
+                // Edge curves are not asymptotic: their binormal is not the
+                // surface normal. Only a curve with no node at all falls back on it.
+                let use_binormal = curve.family != Family::Edge || at_nodes.is_empty();
+                let field = NormalField::new(smooth, &at_nodes, use_binormal, opts.field);
+                let source = match (field.sources.binormals, field.sources.nodes) {
                     (true, true) => NormalSource::BinormalAndNodes,
                     (true, false) => NormalSource::Binormal,
                     _ => NormalSource::Nodes,
                 };
-                (values, source)
+                (Normals::Field(field), source)
             }
         };
         let mut strip = StripGeometry {
@@ -265,11 +186,7 @@ impl StripGeometry {
             max_abs_kg_per_mm: 0.0,
             max_abs_tg_per_mm: 0.0,
             max_abs_kn_per_mm: 0.0,
-            normals: if normal_source == NormalSource::File {
-                Hermite5::new(t, normal_values)
-            } else {
-                Hermite5::with_fit_degree(t, normal_values, crate::curve::FIT_DEGREE_EXACT)
-            },
+            normals,
             straight_curvature_per_mm: opts.straight_curvature_per_mm,
         };
         // Curvatures at every sample, and between samples where they are
@@ -365,11 +282,20 @@ impl StripGeometry {
         let speed = j.d1.length();
         let x = j.d1 / speed;
         let kvec = curvature_vector(smooth, k, u);
-        let nj = self.normals.jet_at(k, u);
-        let (zt, dz_dt) = unit_and_derivative(nj.value, nj.d1);
-        let z = (zt - x * zt.dot(x)).try_normalize().unwrap_or(zt);
-        let y = z.cross(x);
-        let dz_ds = dz_dt / speed;
+        let (z, y, kn_per_mm, tg_per_mm) = match &self.normals {
+            Normals::File(h) => {
+                let nj = h.jet_at(k, u);
+                let (zt, dz_dt) = unit_and_derivative(nj.value, nj.d1);
+                let z = (zt - x * zt.dot(x)).try_normalize().unwrap_or(zt);
+                let y = z.cross(x);
+                let dz_ds = dz_dt / speed;
+                (z, y, -dz_ds.dot(x), -dz_ds.dot(y))
+            }
+            Normals::Field(f) => {
+                let (z, tg) = f.at(station_mm, j.value, x);
+                (z, z.cross(x), kvec.dot(z), tg)
+            }
+        };
         DarbouxFrame {
             station_mm,
             point_mm: j.value,
@@ -377,8 +303,8 @@ impl StripGeometry {
             y,
             z,
             kg_per_mm: kvec.dot(y),
-            kn_per_mm: -dz_ds.dot(x),
-            tg_per_mm: -dz_ds.dot(y),
+            kn_per_mm,
+            tg_per_mm,
         }
     }
 

@@ -1,0 +1,496 @@
+//! The surface normal along a curve that has no file normals, as an angle
+//! field in a rotation-minimising frame.
+//!
+//! A curve's tangent x is known to first order from its samples; the surface
+//! normal z ⟂ x is then one angle θ(s) about x. Measured in a
+//! rotation-minimising frame (u₁, u₂ = x × u₁, x), whose u's do not turn
+//! about x, the geodesic torsion is exactly θ′(s) (geometry.md: with
+//! y = z × x, z′·y = −θ′), and kn, kg follow from the curvature vector. So
+//! the twist needs θ to first order only, and θ is observed:
+//!
+//! * at every node, from the two crossing tangents (z = tₐ × t_b): first
+//!   derivatives only, the most reliable observation there is;
+//! * along an asymptotic curve (A, B), from its binormal, whose direction is
+//!   the surface normal; its uncertainty is the curvature's rounding noise
+//!   over the curvature itself (σθ = σκ/κ), so it weighs nothing near
+//!   inflections and on straight stretches.
+//!
+//! θ(s) is the weighted least-squares cubic B-spline (uniform knots) through
+//! these observations with a small third-difference penalty (P-spline) that
+//! bridges gaps without bending quadratic trends: between nodes on a straight
+//! ruling it is a smooth interpolant of the node angles. Edge curves are not
+//! asymptotic: their normal comes from their nodes only.
+
+use crate::curve::SmoothCurve;
+use glam::DVec3;
+
+/// One observation of the normal's angle.
+#[derive(Debug, Clone, Copy)]
+struct Observation {
+    station_mm: f64,
+    theta: f64,
+    weight: f64,
+}
+
+/// A uniform cubic B-spline θ(s) over [0, length], fitted by penalised
+/// least squares.
+#[derive(Debug, Clone)]
+pub struct AngleSpline {
+    step_mm: f64,
+    intervals: usize,
+    coef: Vec<f64>,
+}
+
+/// Uniform cubic B-spline basis values and u-derivatives at local u.
+fn basis(u: f64) -> ([f64; 4], [f64; 4]) {
+    let v = 1.0 - u;
+    (
+        [
+            v * v * v / 6.0,
+            (3.0 * u * u * u - 6.0 * u * u + 4.0) / 6.0,
+            (-3.0 * u * u * u + 3.0 * u * u + 3.0 * u + 1.0) / 6.0,
+            u * u * u / 6.0,
+        ],
+        [
+            -v * v / 2.0,
+            (3.0 * u * u - 4.0 * u) / 2.0,
+            (-3.0 * u * u + 2.0 * u + 1.0) / 2.0,
+            u * u / 2.0,
+        ],
+    )
+}
+
+/// Half-bandwidth of the normal equations (cubic basis, third differences).
+const BAND: usize = 3;
+
+impl AngleSpline {
+    /// Fit θ(s) on [0, length_mm] with knots about `knot_step_mm` apart to
+    /// weighted observations; `smoothing` scales the third-difference penalty
+    /// relative to the mean observation weight per interval.
+    fn fit(length_mm: f64, knot_step_mm: f64, obs: &[Observation], smoothing: f64) -> AngleSpline {
+        let intervals = ((length_mm / knot_step_mm).ceil() as usize).max(1);
+        let step_mm = length_mm.max(1e-9) / intervals as f64;
+        let n = intervals + 3;
+        if obs.is_empty() {
+            return AngleSpline {
+                step_mm,
+                intervals,
+                coef: vec![0.0; n],
+            };
+        }
+        // Banded normal matrix: a[i][d] = A(i, i + d).
+        let mut a = vec![[0.0f64; BAND + 1]; n];
+        let mut rhs = vec![0.0f64; n];
+        let mut total_weight = 0.0;
+        let locate = |s: f64| {
+            let x = (s / step_mm).clamp(0.0, intervals as f64);
+            let k = (x.floor() as usize).min(intervals - 1);
+            (k, x - k as f64)
+        };
+        for o in obs {
+            let (k, u) = locate(o.station_mm);
+            let (b, _) = basis(u);
+            for m in 0..4 {
+                rhs[k + m] += o.weight * b[m] * o.theta;
+                for l in m..4 {
+                    a[k + m][l - m] += o.weight * b[m] * b[l];
+                }
+            }
+            total_weight += o.weight;
+        }
+        let lambda = smoothing * total_weight / intervals as f64;
+        // Third differences; with fewer than three distinct stations (whose
+        // quadratic would be free) also vanishing second and first ones.
+        let mut distinct = 0;
+        let mut last = f64::NEG_INFINITY;
+        for o in obs {
+            if (o.station_mm - last).abs() > 1e-6 {
+                distinct += 1;
+                last = o.station_mm;
+            }
+        }
+        let low = if distinct < 3 { lambda * 1e-6 } else { 0.0 };
+        let diffs: [(&[f64], f64); 3] = [
+            (&[-1.0, 3.0, -3.0, 1.0], lambda),
+            (&[1.0, -2.0, 1.0], low),
+            (&[-1.0, 1.0], low),
+        ];
+        for (d, weight) in diffs {
+            for j in 0..=n - d.len() {
+                for m in 0..d.len() {
+                    for l in m..d.len() {
+                        a[j + m][l - m] += weight * d[m] * d[l];
+                    }
+                }
+            }
+        }
+        let coef = solve_banded(a, rhs);
+        AngleSpline {
+            step_mm,
+            intervals,
+            coef,
+        }
+    }
+
+    /// θ and dθ/ds (rad/mm) at a station (clamped to the curve).
+    pub fn eval(&self, station_mm: f64) -> (f64, f64) {
+        let x = (station_mm / self.step_mm).clamp(0.0, self.intervals as f64);
+        let k = (x.floor() as usize).min(self.intervals - 1);
+        let (b, db) = basis(x - k as f64);
+        let c = &self.coef[k..k + 4];
+        let theta = (0..4).map(|m| c[m] * b[m]).sum();
+        let dtheta = (0..4).map(|m| c[m] * db[m]).sum::<f64>() / self.step_mm;
+        (theta, dtheta)
+    }
+}
+
+/// Solve the symmetric positive definite banded system (upper band rows
+/// a[i][d] = A(i, i + d)) by Cholesky factorisation.
+fn solve_banded(mut a: Vec<[f64; BAND + 1]>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    // In place: a becomes the upper factor R with A = RᵀR.
+    for i in 0..n {
+        for k in i.saturating_sub(BAND)..i {
+            let r_ki = a[k][i - k];
+            for j in i..(k + BAND + 1).min(n) {
+                let r_kj = a[k][j - k];
+                a[i][j - i] -= r_ki * r_kj;
+            }
+        }
+        let d = a[i][0].max(1e-300).sqrt();
+        for j in i..(i + BAND + 1).min(n) {
+            a[i][j - i] /= d;
+        }
+    }
+    // Rᵀ y = b, then R x = y.
+    for i in 0..n {
+        for k in i.saturating_sub(BAND)..i {
+            b[i] -= a[k][i - k] * b[k];
+        }
+        b[i] /= a[i][0];
+    }
+    for i in (0..n).rev() {
+        for j in i + 1..(i + BAND + 1).min(n) {
+            b[i] -= a[i][j - i] * b[j];
+        }
+        b[i] /= a[i][0];
+    }
+    b
+}
+
+/// Options of the normal field.
+#[derive(Debug, Clone, Copy)]
+pub struct NormalFieldOptions {
+    /// Standard deviation of a node normal's angle, rad.
+    pub node_sigma_rad: f64,
+    /// Curvature error (1/mm) of an exact interpolant, added to the rounding
+    /// noise when weighing binormals.
+    pub curvature_floor_per_mm: f64,
+    /// Binormals less certain than this (rad) are not used.
+    pub max_binormal_sigma_rad: f64,
+    /// Largest spacing of the rotation-minimising frame's stations, mm.
+    pub max_frame_step_mm: f64,
+    /// Penalty weight of the angle spline (relative).
+    pub smoothing: f64,
+}
+
+impl Default for NormalFieldOptions {
+    fn default() -> Self {
+        NormalFieldOptions {
+            node_sigma_rad: 1e-4,
+            curvature_floor_per_mm: 1e-7,
+            max_binormal_sigma_rad: 0.3,
+            max_frame_step_mm: 20.0,
+            smoothing: 1e-4,
+        }
+    }
+}
+
+/// What the angle field was fitted to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FieldSources {
+    pub nodes: bool,
+    pub binormals: bool,
+}
+
+/// The normal along a curve: a rotation-minimising frame at stations and
+/// the fitted angle θ(s) of the normal in it.
+#[derive(Debug, Clone)]
+pub struct NormalField {
+    stations_mm: Vec<f64>,
+    points_mm: Vec<DVec3>,
+    tangents: Vec<DVec3>,
+    /// u₁ of the rotation-minimising frame at each station.
+    refs: Vec<DVec3>,
+    angle: AngleSpline,
+    pub sources: FieldSources,
+}
+
+/// One double reflection (Wang, Jüttler, Zheng & Liu 2008): carry the frame
+/// vector `r` at (p0, t0) to (p1, t1) without rotation about the tangent.
+fn double_reflection(p0: DVec3, t0: DVec3, r: DVec3, p1: DVec3, t1: DVec3) -> DVec3 {
+    let v1 = p1 - p0;
+    let c1 = v1.length_squared();
+    let (r_l, t_l) = if c1 > 1e-300 {
+        (
+            r - v1 * (2.0 / c1 * v1.dot(r)),
+            t0 - v1 * (2.0 / c1 * v1.dot(t0)),
+        )
+    } else {
+        (r, t0)
+    };
+    let v2 = t1 - t_l;
+    let c2 = v2.length_squared();
+    let r1 = if c2 > 1e-300 {
+        r_l - v2 * (2.0 / c2 * v2.dot(r_l))
+    } else {
+        r_l
+    };
+    (r1 - t1 * r1.dot(t1))
+        .try_normalize()
+        .unwrap_or_else(|| t1.any_orthonormal_vector())
+}
+
+/// Position, unit tangent and curvature vector (1/mm) at a station.
+fn point_tangent_curvature(smooth: &SmoothCurve, station_mm: f64) -> (DVec3, DVec3, DVec3) {
+    let (k, u) = smooth.locate_station(station_mm);
+    let j = smooth.jet_at(k, u);
+    let v2 = j.d1.length_squared();
+    let x = j.d1 / v2.sqrt();
+    (j.value, x, (j.d2 - x * j.d2.dot(x)) / v2)
+}
+
+impl NormalField {
+    /// Fit the normal field of a curve to its node normals (`nodes`:
+    /// station and unit normal, oriented consistently, sorted by station)
+    /// and, when `use_binormal`, to its binormals.
+    pub fn new(
+        smooth: &SmoothCurve,
+        nodes: &[(f64, DVec3)],
+        use_binormal: bool,
+        opts: NormalFieldOptions,
+    ) -> NormalField {
+        let length = smooth.length_mm();
+        // Frame stations: every sample, subdivided to the largest step.
+        let samples = smooth.sample_stations_mm();
+        let mut stations_mm = Vec::with_capacity(samples.len());
+        let mut noise = Vec::with_capacity(samples.len());
+        for (i, w) in samples.windows(2).enumerate() {
+            let parts = ((w[1] - w[0]) / opts.max_frame_step_mm).ceil().max(1.0) as usize;
+            for p in 0..parts {
+                stations_mm.push(w[0] + (w[1] - w[0]) * p as f64 / parts as f64);
+                let near = if p * 2 < parts { i } else { i + 1 };
+                noise.push(smooth.curvature_noise_per_mm(near));
+            }
+        }
+        stations_mm.push(length);
+        noise.push(smooth.curvature_noise_per_mm(samples.len() - 1));
+
+        let mut points_mm = Vec::with_capacity(stations_mm.len());
+        let mut tangents = Vec::with_capacity(stations_mm.len());
+        let mut curvatures = Vec::with_capacity(stations_mm.len());
+        for &s in &stations_mm {
+            let (p, x, k) = point_tangent_curvature(smooth, s);
+            points_mm.push(p);
+            tangents.push(x);
+            curvatures.push(k);
+        }
+        let mut refs = Vec::with_capacity(stations_mm.len());
+        refs.push(tangents[0].any_orthonormal_vector());
+        for i in 1..stations_mm.len() {
+            let r = double_reflection(
+                points_mm[i - 1],
+                tangents[i - 1],
+                refs[i - 1],
+                points_mm[i],
+                tangents[i],
+            );
+            refs.push(r);
+        }
+        let mut field = NormalField {
+            stations_mm,
+            points_mm,
+            tangents,
+            refs,
+            angle: AngleSpline {
+                step_mm: length.max(1e-9),
+                intervals: 1,
+                coef: vec![0.0; 4],
+            },
+            sources: FieldSources {
+                nodes: !nodes.is_empty(),
+                binormals: false,
+            },
+        };
+        let knot_step = knot_step_mm(smooth);
+
+        // Node angles, unwrapped along the curve (normals oriented alike).
+        let node_weight = 1.0 / (opts.node_sigma_rad * opts.node_sigma_rad);
+        let mut obs: Vec<Observation> = Vec::with_capacity(nodes.len());
+        for &(s, z) in nodes {
+            let (p, x, _) = point_tangent_curvature(smooth, s);
+            let mut theta = field.angle_of(s, p, x, z);
+            if let Some(prev) = obs.last() {
+                theta = unwrap_near(theta, prev.theta, std::f64::consts::TAU);
+            }
+            obs.push(Observation {
+                station_mm: s,
+                theta,
+                weight: node_weight,
+            });
+        }
+        let from_nodes = AngleSpline::fit(length, knot_step, &obs, opts.smoothing);
+
+        if use_binormal {
+            let mut previous: Option<f64> = None;
+            let mut binormals = Vec::new();
+            for i in 0..field.stations_mm.len() {
+                let kvec = curvatures[i];
+                let kappa = kvec.length();
+                let sigma_kappa = noise[i].hypot(opts.curvature_floor_per_mm);
+                let sigma = sigma_kappa / kappa.max(1e-300);
+                if sigma > opts.max_binormal_sigma_rad {
+                    continue;
+                }
+                let (s, x) = (field.stations_mm[i], field.tangents[i]);
+                let b = x.cross(kvec / kappa);
+                let raw = field.angle_of(s, field.points_mm[i], x, b);
+                // The binormal is the normal up to sign: take the branch
+                // nearest the node field, else the previous binormal, else
+                // the one whose normal points up.
+                let theta = if !nodes.is_empty() {
+                    unwrap_near(raw, from_nodes.eval(s).0, std::f64::consts::PI)
+                } else if let Some(prev) = previous {
+                    unwrap_near(raw, prev, std::f64::consts::PI)
+                } else if b.z < 0.0 {
+                    raw + std::f64::consts::PI
+                } else {
+                    raw
+                };
+                previous = Some(theta);
+                binormals.push(Observation {
+                    station_mm: s,
+                    theta,
+                    weight: 1.0 / (sigma * sigma),
+                });
+            }
+            if !binormals.is_empty() {
+                field.sources.binormals = true;
+                obs.extend(binormals);
+            }
+        }
+        field.angle = if field.sources.binormals {
+            AngleSpline::fit(length, knot_step, &obs, opts.smoothing)
+        } else {
+            from_nodes
+        };
+        field
+    }
+
+    /// The rotation-minimising u₁ at station s, point p, unit tangent x.
+    fn reference(&self, station_mm: f64, p: DVec3, x: DVec3) -> DVec3 {
+        let i = self
+            .stations_mm
+            .partition_point(|&t| t <= station_mm)
+            .saturating_sub(1)
+            .min(self.stations_mm.len() - 1);
+        double_reflection(self.points_mm[i], self.tangents[i], self.refs[i], p, x)
+    }
+
+    /// Angle of the vector z (any, not necessarily ⟂ x) about x in the frame.
+    fn angle_of(&self, station_mm: f64, p: DVec3, x: DVec3, z: DVec3) -> f64 {
+        let u1 = self.reference(station_mm, p, x);
+        let u2 = x.cross(u1);
+        z.dot(u2).atan2(z.dot(u1))
+    }
+
+    /// Unit normal and geodesic torsion (rad/mm) at a station with point p
+    /// and unit tangent x.
+    pub fn at(&self, station_mm: f64, p: DVec3, x: DVec3) -> (DVec3, f64) {
+        let u1 = self.reference(station_mm, p, x);
+        let u2 = x.cross(u1);
+        let (theta, dtheta) = self.angle.eval(station_mm);
+        (u1 * theta.cos() + u2 * theta.sin(), dtheta)
+    }
+}
+
+/// `theta` moved by a multiple of `period` to lie nearest `target`.
+fn unwrap_near(theta: f64, target: f64, period: f64) -> f64 {
+    theta + ((target - theta) / period).round() * period
+}
+
+/// Knot spacing of the angle spline: about twice the smoothing window (the
+/// binormals' noise is correlated over it), within 10…100 mm.
+fn knot_step_mm(smooth: &SmoothCurve) -> f64 {
+    let n = smooth.sample_stations_mm().len();
+    let h = smooth.length_mm() / (n - 1).max(1) as f64;
+    (2.5 * smooth.smoothing_mm()).max(3.0 * h).clamp(10.0, 400.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fit_samples(f: impl Fn(f64) -> f64) -> AngleSpline {
+        let obs: Vec<Observation> = (0..=100)
+            .map(|i| {
+                let s = 10.0 * i as f64;
+                Observation {
+                    station_mm: s,
+                    theta: f(s),
+                    weight: 1.0,
+                }
+            })
+            .collect();
+        AngleSpline::fit(1000.0, 50.0, &obs, 1e-4)
+    }
+
+    #[test]
+    fn spline_reproduces_a_quadratic_exactly() {
+        // Quadratics are the null space of the third-difference penalty.
+        let sp = fit_samples(|s| 0.3 + 1e-3 * s - 2e-6 * s * s);
+        for i in 0..=40 {
+            let s = 25.0 * i as f64;
+            let (t, dt) = sp.eval(s);
+            assert!((t - (0.3 + 1e-3 * s - 2e-6 * s * s)).abs() < 1e-10, "θ at {s}");
+            assert!((dt - (1e-3 - 4e-6 * s)).abs() < 1e-12, "θ' at {s}");
+        }
+    }
+
+    #[test]
+    fn spline_follows_a_cubic_slope_closely() {
+        // The penalty leans on the cubic term, lightly: θ' within 0.1 % of
+        // its range, ends included.
+        let sp = fit_samples(|s| 0.3 + 1e-3 * s - 2e-6 * s * s + 1e-9 * s * s * s);
+        for i in 0..=40 {
+            let s = 25.0 * i as f64;
+            let want = 1e-3 - 4e-6 * s + 3e-9 * s * s;
+            let (_, dt) = sp.eval(s);
+            assert!((dt - want).abs() < 1e-3 * 1e-3, "θ' at {s}: {dt} vs {want}");
+        }
+    }
+
+    #[test]
+    fn sparse_nodes_are_interpolated_smoothly() {
+        // Angles at five points only (a straight ruling's nodes): the fit
+        // passes through them and its slope follows a smooth trend.
+        let f = |s: f64| (s / 1000.0).atan();
+        let obs: Vec<Observation> = (0..5)
+            .map(|i| {
+                let s = 300.0 * i as f64;
+                Observation {
+                    station_mm: s,
+                    theta: f(s),
+                    weight: 1e8,
+                }
+            })
+            .collect();
+        let sp = AngleSpline::fit(1200.0, 20.0, &obs, 1e-4);
+        for o in &obs {
+            assert!((sp.eval(o.station_mm).0 - o.theta).abs() < 1e-6);
+        }
+        let (_, slope) = sp.eval(600.0);
+        let want = 1000.0 / (600.0f64.powi(2) + 1e6);
+        assert!((slope - want).abs() < 0.02 * want, "{slope} vs {want}");
+    }
+}
