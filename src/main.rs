@@ -80,6 +80,11 @@ struct ReadArgs {
     /// (default: the file's `tolerance`, else 0.5 mm).
     #[arg(long)]
     tolerance: Option<f64>,
+    /// The grid the coordinates are rounded to, mm (0: exact): curves are
+    /// smoothed to it before curvature and twist are taken (default: what
+    /// the file's decimals imply, e.g. 0.001 for a Rhino export).
+    #[arg(long, value_name = "MM", value_parser = parse_precision)]
+    precision: Option<f64>,
 }
 
 impl ReadArgs {
@@ -87,7 +92,17 @@ impl ReadArgs {
         ReadOptions {
             unit: self.units,
             tolerance_mm: self.tolerance,
+            precision_mm: self.precision,
         }
+    }
+}
+
+fn parse_precision(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(p) if p.is_finite() && (0.0..=10.0).contains(&p) => Ok(p),
+        _ => Err(format!(
+            "'{s}' is not a precision: give the rounding grid in mm, from 0 (exact) to 10"
+        )),
     }
 }
 

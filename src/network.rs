@@ -365,3 +365,31 @@ pub fn coordinate_precision(curves: &[RawCurve]) -> Option<f64> {
     }
     Some(10f64.powi(-d))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn curve(points: Vec<DVec3>) -> RawCurve {
+        RawCurve {
+            id: "A".into(),
+            family: Family::A,
+            points,
+            normals: None,
+        }
+    }
+
+    #[test]
+    fn precision_is_the_grid_of_the_decimals() {
+        let rhino = curve(vec![
+            DVec3::new(1234.567, -0.001, 12.5),
+            DVec3::new(-98765.432, 3.0, 0.25),
+        ]);
+        assert_eq!(coordinate_precision(&[rhino]), Some(0.001));
+        let whole = curve(vec![DVec3::new(10.0, -20.0, 3.0)]);
+        assert_eq!(coordinate_precision(&[whole]), Some(1.0));
+        let exact = curve(vec![DVec3::new(1.0 / 3.0, 2.0f64.sqrt(), 0.1)]);
+        assert_eq!(coordinate_precision(&[exact]), None);
+    }
+}

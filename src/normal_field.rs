@@ -424,7 +424,9 @@ fn unwrap_near(theta: f64, target: f64, period: f64) -> f64 {
 fn knot_step_mm(smooth: &SmoothCurve) -> f64 {
     let n = smooth.sample_stations_mm().len();
     let h = smooth.length_mm() / (n - 1).max(1) as f64;
-    (2.5 * smooth.smoothing_mm()).max(3.0 * h).clamp(10.0, 400.0)
+    (2.5 * smooth.smoothing_mm())
+        .max(3.0 * h)
+        .clamp(10.0, 400.0)
 }
 
 #[cfg(test)]
@@ -452,7 +454,10 @@ mod tests {
         for i in 0..=40 {
             let s = 25.0 * i as f64;
             let (t, dt) = sp.eval(s);
-            assert!((t - (0.3 + 1e-3 * s - 2e-6 * s * s)).abs() < 1e-10, "θ at {s}");
+            assert!(
+                (t - (0.3 + 1e-3 * s - 2e-6 * s * s)).abs() < 1e-10,
+                "θ at {s}"
+            );
             assert!((dt - (1e-3 - 4e-6 * s)).abs() < 1e-12, "θ' at {s}");
         }
     }

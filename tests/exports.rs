@@ -235,3 +235,35 @@ fn catenoid_exports() {
 fn helicoid_exports() {
     check_exports(helicoid(), "profiles/steel-1.5.yaml");
 }
+
+/// The smoothing is what makes this work: the same 5 mm export read as exact
+/// coordinates (`--precision 0`) gives a twist many times too large.
+#[test]
+fn precision_option_switches_the_smoothing() {
+    let profile = Profile::load(Path::new("profiles/steel-1.5.yaml")).expect("profile");
+    let case = enneper(4400.0);
+    let dir = scratch("precision");
+    let path = dir.join("enneper-5.obj");
+    write_obj(&raw(&case, 5.0, false), &path);
+    let exact = Network::new(raw(&case, 10.0, true), Path::new("exact.yaml")).unwrap();
+    let want = evaluate(&exact, &profile).max_tg;
+    let worst = |opts: ReadOptions| {
+        let net = read_network(&path, opts).unwrap();
+        let got = evaluate(&net, &profile).max_tg;
+        got.iter()
+            .zip(&want)
+            .map(|(g, w)| (g - w).abs() / w)
+            .fold(0.0, f64::max)
+    };
+    let implied = read_network(&path, ReadOptions::default()).unwrap();
+    assert_eq!(implied.precision_mm, 0.001, "precision from the decimals");
+    assert!(worst(ReadOptions::default()) < REL_TOL);
+    let unsmoothed = worst(ReadOptions {
+        precision_mm: Some(0.0),
+        ..Default::default()
+    });
+    assert!(
+        unsmoothed > 1.0,
+        "exact reading of rounded samples: {unsmoothed}"
+    );
+}

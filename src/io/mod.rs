@@ -21,6 +21,8 @@ pub struct ReadOptions {
     pub unit: Option<Unit>,
     /// Replace the file's node tolerance (mm).
     pub tolerance_mm: Option<f64>,
+    /// Replace the coordinate precision implied by the file's decimals (mm).
+    pub precision_mm: Option<f64>,
 }
 
 /// Read and validate a network file; the format follows the extension
@@ -37,6 +39,9 @@ pub fn read_network(path: &Path, opts: ReadOptions) -> Result<Network> {
             ));
         }
         net.tolerance_mm = t;
+    }
+    if let Some(p) = opts.precision_mm {
+        net.precision_mm = p;
     }
     Ok(net)
 }

@@ -12,6 +12,20 @@ pub fn validate(raw: RawNetwork) -> Network {
     Network::new(raw, Path::new("test.yaml")).expect("valid network")
 }
 
+/// The network as a designer exports it when `rounded`: coordinates rounded
+/// to 0.001 mm (Rhino's three decimals), no normals; else unchanged.
+pub fn export(mut raw: RawNetwork, rounded: bool) -> RawNetwork {
+    if rounded {
+        for c in &mut raw.curves {
+            for p in &mut c.points {
+                *p = (*p * 1000.0).round() / 1000.0;
+            }
+            c.normals = None;
+        }
+    }
+    raw
+}
+
 pub fn run(raw: RawNetwork) -> (Network, Analysis) {
     let net = validate(raw);
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
