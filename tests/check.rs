@@ -76,7 +76,7 @@ fn helicoid_rulings_are_pure_twist() {
                 // Twist is largest at the ruling's inner end, v = vs[0], station 0.
                 let v = vs[0];
                 let tg = C / (v * v + C * C);
-                let stretch = (1.0 + (l.offset.dy_mm * tg).powi(2)).sqrt();
+                let stretch = (1.0 + (l.line.offset.dy_mm * tg).powi(2)).sqrt();
                 let (sb, tau, sw, sv) = hand(&p, 0.0, tg / stretch);
                 assert_eq!(sb, 0.0);
                 assert!(
@@ -118,7 +118,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
         for l in &sc.lamellas {
             // The sign of kg on this lamella's side: from the computed frame.
             let kg_signed = strip.samples[10].kg_per_mm.signum() * kg0;
-            let dy = l.offset.dy_mm;
+            let dy = l.line.offset.dy_mm;
             let stretch = ((1.0 - dy * kg_signed).powi(2) + (dy * tg0).powi(2)).sqrt();
             let (sb, tau, sw, sv) = hand(&p, kg0 / stretch, tg0 / stretch);
             close(l.stresses.bending_stress_mpa, sb, 1e-4, "bending");
@@ -138,7 +138,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
             );
             // The lamella's length: the helix length times the constant stretch.
             close(
-                l.length_mm,
+                l.line.length_mm,
                 strip.length_mm * stretch,
                 1e-6,
                 "lamella length",
@@ -149,7 +149,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
         assert!(sc
             .lamellas
             .iter()
-            .all(|l| l.length_mm >= w.length_mm - 1e-9));
+            .all(|l| l.line.length_mm >= w.line.length_mm - 1e-9));
     }
 }
 
@@ -176,7 +176,7 @@ fn enneper_twist_is_two_over_lambda_squared() {
         let sc = report.strips.iter().find(|s| s.id == id).unwrap();
         for l in &sc.lamellas {
             let tg = 2.0 / scale;
-            let stretch = (1.0 + (l.offset.dy_mm * tg).powi(2)).sqrt();
+            let stretch = (1.0 + (l.line.offset.dy_mm * tg).powi(2)).sqrt();
             let (_, tau, sw, sv) = hand(&p, 0.0, tg / stretch);
             // The worst sample lies within half a sample spacing of the centre.
             close(

@@ -118,7 +118,7 @@ fn curves_passing_near_do_not_make_a_node() {
     assert!(an
         .warnings()
         .iter()
-        .any(|w| w.contains("B1") && w.contains("crosses no other curve")));
+        .any(|w| w.message.contains("B1") && w.message.contains("crosses no other curve")));
 }
 
 #[test]
@@ -151,11 +151,11 @@ fn a_near_tangent_crossing_warns() {
     assert!(an
         .warnings()
         .iter()
-        .any(|w| w.contains("near-tangent") && w.contains("B0")));
+        .any(|w| w.message.contains("near-tangent") && w.message.contains("B0")));
     assert!(!an
         .warnings()
         .iter()
-        .any(|w| w.contains("B1") && w.contains("near-tangent")));
+        .any(|w| w.message.contains("B1") && w.message.contains("near-tangent")));
 }
 
 #[test]
