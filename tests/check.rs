@@ -496,3 +496,28 @@ fn suggest_ignores_edge_strips_as_check_does() {
     let t = suggest(&edged, &steel).max_thickness_mm.unwrap();
     assert!(t > 1.5, "suggested {t} mm for a passing 1.5 mm grid");
 }
+
+#[test]
+fn profile_is_built_from_the_file_type_and_back() {
+    use lamella::io::profile_file::ProfileFile;
+    for name in ["steel-1.5.yaml", "poplar-ply-4.yaml", "beech-veneer.yaml"] {
+        let text = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("profiles")
+                .join(name),
+        )
+        .unwrap();
+        let file: ProfileFile = serde_yaml::from_str(&text).unwrap();
+        let p = Profile::try_from(file.clone()).unwrap();
+        assert_eq!(p.thickness_mm(), file.lamella.thickness_mm);
+        assert_eq!(p.material.name, file.material.name);
+        // `resolved` is the whole profile as read.
+        assert_eq!(p.resolved(), file, "{name}");
+        assert_eq!(profile(name).resolved(), file, "{name}");
+        // Validation lives in TryFrom: a bad field is named.
+        let mut bad = file.clone();
+        bad.lamella.thickness_mm = -1.0;
+        let e = Profile::try_from(bad).unwrap_err();
+        assert_eq!(e.field, "lamella.thickness_mm");
+    }
+}
