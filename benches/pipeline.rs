@@ -91,7 +91,8 @@ fn measure(path: &Path) {
             strips.len()
         );
     }
-    let p = plan::build(&net, &an);
+    let model = lamella::model::Model::new(&net, &an);
+    let p = plan::build(&net, &an, &model);
     let json = plan::to_json(&p);
     let t3 = Instant::now();
     let n = net.curves.len() / 2;

@@ -5,7 +5,7 @@ use crate::curve::SmoothCurve;
 use crate::error::{Error, Result};
 use crate::network::{Family, Network};
 use crate::strip::{FrameOptions, StripGeometry};
-use crate::topology::{find_nodes, NodeOptions, Topology};
+use crate::topology::{find_nodes, NodeOptions, Topology, Warning};
 
 /// Options of the geometric stages.
 #[derive(Debug, Clone, Copy)]
@@ -37,8 +37,20 @@ pub struct Analysis {
 }
 
 impl Analysis {
-    pub fn warnings(&self) -> &[String] {
+    pub fn warnings(&self) -> &[Warning] {
         &self.topology.warnings
+    }
+
+    /// The strips that become lamellas: families A and B, in strip order.
+    /// Every stage that bends, checks or cuts lamellas starts here.
+    pub fn lamella_strips(&self) -> impl Iterator<Item = &StripGeometry> + Clone + '_ {
+        self.strips.iter().filter(|s| s.family != Family::Edge)
+    }
+
+    /// The edge strips (the cut boundary), in strip order: tangential to the
+    /// surface, cut as curved bands, never checked as lamellas.
+    pub fn edge_strips(&self) -> impl Iterator<Item = &StripGeometry> + Clone + '_ {
+        self.strips.iter().filter(|s| s.family == Family::Edge)
     }
 }
 

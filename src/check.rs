@@ -17,6 +17,7 @@
 //! its curvatures are the curve's divided by the stretch ds'/ds.
 
 use crate::analyze::Analysis;
+use crate::model::LamellaLine;
 use crate::profile::{LamellaOffset, Profile};
 
 /// Which stress term is largest at the governing point.
@@ -84,9 +85,8 @@ impl Stresses {
 /// The check of one lamella.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LamellaCheck {
-    pub offset: LamellaOffset,
-    /// Length of the lamella's own line, mm.
-    pub length_mm: f64,
+    /// The lamella on its own line: number, offsets, length, node stations.
+    pub line: LamellaLine,
     pub utilization: f64,
     /// Where it governs, on the lamella's own line (what the workshop measures).
     pub governing_station_mm: f64,
@@ -191,16 +191,15 @@ fn scan(
     (worst.0.max(0.0), worst.1, worst.2, kmax, tmax)
 }
 
-/// The largest utilisation of any lamella (fast: no station bookkeeping).
+/// The largest utilisation of any lamella of an A or B strip (the strips
+/// [`check`] checks; fast: no station bookkeeping).
 pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
-    an.strips
-        .iter()
-        .enumerate()
-        .flat_map(|(i, s)| {
+    an.lamella_strips()
+        .flat_map(|s| {
             profile
                 .lamella_offsets(s.family)
                 .into_iter()
-                .map(move |o| (i, o))
+                .map(move |o| (s.curve, o))
         })
         .map(|(i, o)| scan(an, i, o, profile).0)
         .fold(0.0, f64::max)
@@ -210,11 +209,7 @@ pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
 /// here: they lie tangential to the surface and are cut as curved bands
 /// (fabrication.md), so kg does not bend them about their weak axis.
 pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
-    let checked: Vec<&crate::strip::StripGeometry> = an
-        .strips
-        .iter()
-        .filter(|s| s.family != crate::network::Family::Edge)
-        .collect();
+    let checked: Vec<&crate::strip::StripGeometry> = an.lamella_strips().collect();
     let strips = crate::analyze::par_map(&checked, |s| {
         let smooth = &an.curves[s.curve];
         let lamellas: Vec<LamellaCheck> = profile
@@ -223,16 +218,9 @@ pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
             .map(|off| {
                 let (u, i, stresses, kmax, tmax) = scan(an, s.curve, off, profile);
                 let curve_station = s.samples[i].station_mm;
-                let on_line = s.offset_stations(
-                    smooth,
-                    off.dy_mm,
-                    off.dz_mm,
-                    &[curve_station, s.length_mm],
-                    25.0,
-                );
+                let (line, on_line) = LamellaLine::with_stations(s, smooth, off, &[curve_station]);
                 LamellaCheck {
-                    offset: off,
-                    length_mm: on_line[1],
+                    line,
                     utilization: u,
                     governing_station_mm: on_line[0],
                     governing_curve_station_mm: curve_station,
@@ -316,7 +304,8 @@ pub fn suggest(an: &Analysis, profile: &Profile) -> Suggestion {
     // so a passing design also shows its headroom.
     let max_thickness_mm = largest_passing(SUGGEST_RESOLUTION_MM, 4.0 * t0, |t| ok(t, h0));
     // Height matters through the trapeze term only; σw grows with h².
-    let trapeze_matters = an.strips.iter().any(|s| s.max_abs_tg_per_mm > 0.0);
+    // Only A and B strips, as `check`: edges are never checked as lamellas.
+    let trapeze_matters = an.lamella_strips().any(|s| s.max_abs_tg_per_mm > 0.0);
     let max_height_mm = if trapeze_matters {
         largest_passing(2.0 * t0, 4.0 * h0, |h| ok(t0, h))
     } else {

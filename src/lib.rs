@@ -5,7 +5,8 @@
 //! [`network::Network`] in mm; [`curve`] interpolates every curve smoothly;
 //! [`topology`] finds the nodes; [`strip`] computes Darboux frames,
 //! curvatures and node-to-node lengths; [`analyze`] runs them in order;
-//! [`io::plan`] writes plan.json. [`synth`] makes networks from closed forms
+//! [`model`] gathers the finished model (lamella lines, summary, check);
+//! [`io::plan`] writes it as plan.json. [`synth`] makes networks from closed forms
 //! for tests, benchmarks and samples.
 
 pub mod analyze;
@@ -14,6 +15,7 @@ pub mod curve;
 pub mod design;
 pub mod error;
 pub mod io;
+pub mod model;
 pub mod network;
 pub mod normal_field;
 pub mod periodic;

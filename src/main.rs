@@ -2,6 +2,7 @@
 
 use clap::{Parser, Subcommand};
 use lamella::io::{self, plan, ReadOptions};
+use lamella::model::Model;
 use lamella::network::Unit;
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
@@ -150,21 +151,26 @@ fn check(
     let report = lamella::check::check(&an, &profile);
     let suggestion = want_suggestion.then(|| lamella::check::suggest(&an, &profile));
     if let Some(dir) = out {
-        let mut plan = plan::build(&net, &an);
-        plan::add_check(&mut plan, &profile, &report, suggestion.as_ref());
+        let model = Model::checked(
+            &net,
+            &an,
+            profile.clone(),
+            report.clone(),
+            suggestion.clone(),
+        );
+        let plan = plan::build(&net, &an, &model);
         plan::write_atomic(&dir.join("plan.json"), plan::to_json(&plan).as_bytes())?;
     }
     for w in an.warnings() {
         eprintln!("warning: {w}");
     }
-    let f = &profile.file;
     println!(
         "{} on {}: {} × {} mm, {} per strip; f_d = {:.1} MPa; limits: R ≥ {:.0} mm in pure bending, twist ≤ {:.1} °/m in pure twist",
-        f.name,
+        profile.name,
         net.name,
-        f.lamella.thickness_mm,
-        f.lamella.height_mm,
-        f.lamella.per_strip,
+        profile.section.thickness_mm,
+        profile.section.height_mm,
+        profile.section.per_strip,
         report.design_strength_mpa,
         report.limit_bending_radius_mm,
         report.limit_twist_deg_per_m
@@ -180,7 +186,7 @@ fn check(
         println!(
             "{:<12} {:>7} {:>11.3} {:>11.1} {:>13} {:>10.2}  {}{}",
             s.id,
-            l.offset.number,
+            l.line.offset.number,
             l.utilization,
             l.governing_station_mm,
             l.min_bending_radius_mm
@@ -205,7 +211,7 @@ fn check(
             report.strips.len(),
             w.worst().utilization,
             w.id,
-            w.worst().offset.number,
+            w.worst().line.offset.number,
             w.worst().governs.as_str()
         ),
         Some(w) => println!(
@@ -213,7 +219,7 @@ fn check(
             report.overstressed(),
             report.strips.len(),
             w.id,
-            w.worst().offset.number,
+            w.worst().line.offset.number,
             w.worst().utilization,
             w.worst().governs.as_str()
         ),
@@ -235,10 +241,11 @@ fn check(
 fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> {
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
-    let plan = plan::build(&net, &an);
+    let model = Model::new(&net, &an);
+    let plan = plan::build(&net, &an, &model);
     let target = out.join("plan.json");
     plan::write_atomic(&target, plan::to_json(&plan).as_bytes())?;
-    for w in &plan.warnings {
+    for w in an.warnings() {
         eprintln!("warning: {w}");
     }
     let s = &plan.summary;

@@ -7,15 +7,77 @@
 //! rotations are quarter turns; timber cut along the grain allows only 0/180°.
 
 use crate::error::{one_line, Error, Location, Result};
-use crate::io::profile_file::{Grain, JointSystem, ProfileFile, CURRENT_VERSION};
+use crate::io::profile_file::{
+    self, Bolt, Cutting, Grain, JointSystem, ProfileFile, ShearBlock, Splice, Stock, Stud, Washer,
+    CURRENT_VERSION,
+};
 use crate::network::Family;
 use std::path::{Path, PathBuf};
 
-/// A validated material profile.
+/// A validated material profile: the working type every stage reads, built
+/// from the file type ([`ProfileFile`]) by `TryFrom` (which validates) and
+/// turned back into it by `From` (the `resolved` profile of plan.json).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Profile {
-    pub file: ProfileFile,
+    pub name: String,
+    pub description: String,
+    /// The file it was read from (empty when built in memory).
     pub source: PathBuf,
+    pub material: Material,
+    pub section: Section,
+    pub joint: Joint,
+    /// The parts later stages size (plain data, as in the file).
+    pub node_bolt: Option<Bolt>,
+    pub washer: Option<Washer>,
+    pub shear_block: Option<ShearBlock>,
+    pub stud: Option<Stud>,
+    pub splice: Option<Splice>,
+    pub stock: Stock,
+    pub cutting: Cutting,
+}
+
+/// The material's elastic and strength values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub name: String,
+    pub youngs_modulus_mpa: f64,
+    pub shear_modulus_mpa: f64,
+    pub characteristic_strength_mpa: f64,
+    /// γ_M.
+    pub partial_factor: f64,
+    /// k_mod.
+    pub modification_factor: f64,
+    pub density_kg_per_m3: f64,
+    pub grain: Grain,
+}
+
+/// The lamella section and how many lamellas make a strip.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    pub thickness_mm: f64,
+    pub height_mm: f64,
+    /// 1 (single) or 2 (doubled).
+    pub per_strip: u32,
+    /// Clear gap between the lamellas of a doubled strip.
+    pub gap_mm: f64,
+    pub end_allowance_mm: f64,
+}
+
+/// How strips are joined at the nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    pub system: JointSystem,
+    pub slot_clearance_mm: f64,
+    pub rotation_tolerance_deg: f64,
+    /// Two levels: family A sits this far above the surface, B below.
+    pub level_offset_mm: f64,
+}
+
+/// What is wrong with a profile: the dotted field name and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FieldError {
+    pub field: String,
+    pub message: String,
 }
 
 /// One lamella's reference line relative to its strip's curve.
@@ -27,6 +89,105 @@ pub struct LamellaOffset {
     pub dy_mm: f64,
     /// Normal offset along z, mm.
     pub dz_mm: f64,
+}
+
+impl LamellaOffset {
+    /// The single lamella on the centre line (no profile).
+    pub const CENTRE: LamellaOffset = LamellaOffset {
+        number: 1,
+        dy_mm: 0.0,
+        dz_mm: 0.0,
+    };
+}
+
+impl TryFrom<ProfileFile> for Profile {
+    type Error = FieldError;
+
+    /// Validate a profile file and build the working profile (`source` empty).
+    fn try_from(f: ProfileFile) -> std::result::Result<Profile, FieldError> {
+        validate(&f)?;
+        let m = f.material;
+        let l = f.lamella;
+        let j = f.joint;
+        Ok(Profile {
+            name: f.name,
+            description: f.description,
+            source: PathBuf::new(),
+            material: Material {
+                name: m.name,
+                youngs_modulus_mpa: m.youngs_modulus_mpa,
+                shear_modulus_mpa: m.shear_modulus_mpa,
+                characteristic_strength_mpa: m.characteristic_strength_mpa,
+                partial_factor: m.partial_factor,
+                modification_factor: m.modification_factor,
+                density_kg_per_m3: m.density_kg_per_m3,
+                grain: m.grain,
+            },
+            section: Section {
+                thickness_mm: l.thickness_mm,
+                height_mm: l.height_mm,
+                per_strip: l.per_strip,
+                gap_mm: l.gap_mm,
+                end_allowance_mm: l.end_allowance_mm,
+            },
+            joint: Joint {
+                system: j.system,
+                slot_clearance_mm: j.slot_clearance_mm,
+                rotation_tolerance_deg: j.rotation_tolerance_deg,
+                level_offset_mm: j.level_offset_mm,
+            },
+            node_bolt: f.node_bolt,
+            washer: f.washer,
+            shear_block: f.shear_block,
+            stud: f.stud,
+            splice: f.splice,
+            stock: f.stock,
+            cutting: f.cutting,
+        })
+    }
+}
+
+impl From<&Profile> for ProfileFile {
+    /// The profile as a file (current version): what plan.json keeps as
+    /// `resolved`.
+    fn from(p: &Profile) -> ProfileFile {
+        let (m, l, j) = (&p.material, &p.section, &p.joint);
+        ProfileFile {
+            version: CURRENT_VERSION,
+            name: p.name.clone(),
+            description: p.description.clone(),
+            material: profile_file::Material {
+                name: m.name.clone(),
+                youngs_modulus_mpa: m.youngs_modulus_mpa,
+                shear_modulus_mpa: m.shear_modulus_mpa,
+                characteristic_strength_mpa: m.characteristic_strength_mpa,
+                partial_factor: m.partial_factor,
+                modification_factor: m.modification_factor,
+                density_kg_per_m3: m.density_kg_per_m3,
+                grain: m.grain,
+            },
+            lamella: profile_file::Lamella {
+                thickness_mm: l.thickness_mm,
+                height_mm: l.height_mm,
+                per_strip: l.per_strip,
+                gap_mm: l.gap_mm,
+                end_allowance_mm: l.end_allowance_mm,
+            },
+            joint: profile_file::Joint {
+                system: j.system,
+                slot_clearance_mm: j.slot_clearance_mm,
+                rotation_tolerance_deg: j.rotation_tolerance_deg,
+                level_offset_mm: j.level_offset_mm,
+            },
+            node_bolt: p.node_bolt.clone(),
+            washer: p.washer.clone(),
+            shear_block: p.shear_block.clone(),
+            stud: p.stud.clone(),
+            splice: p.splice.clone(),
+            stock: p.stock.clone(),
+            cutting: p.cutting.clone(),
+        }
+    }
 }
 
 impl Profile {
@@ -70,240 +231,243 @@ impl Profile {
                 Ok(_) => Error::input(path, Location::File, one_line(&e.to_string())),
             }
         })?;
-        let profile = Profile {
-            file,
-            source: path.to_path_buf(),
-        };
-        profile.validate()?;
+        let mut profile = Profile::try_from(file)
+            .map_err(|e| Error::input(path, Location::Field(e.field), e.message))?;
+        profile.source = path.to_path_buf();
         Ok(profile)
     }
 
-    fn validate(&self) -> Result<()> {
-        let f = &self.file;
-        let path = &self.source;
-        let err = |field: &str, what: String| {
-            Err(Error::input(path, Location::Field(field.into()), what))
-        };
-        let positive = |field: &str, x: f64| -> Result<()> {
-            if x.is_finite() && x > 0.0 {
-                Ok(())
-            } else {
-                err(field, format!("must be positive, got {x}"))
+    /// The whole profile as a file would hold it (plan.json's `resolved`).
+    pub fn resolved(&self) -> ProfileFile {
+        ProfileFile::from(self)
+    }
+}
+
+/// Check every field of a profile file (see the module's guarantees).
+fn validate(f: &ProfileFile) -> std::result::Result<(), FieldError> {
+    let err = |field: &str, what: String| {
+        Err(FieldError {
+            field: field.into(),
+            message: what,
+        })
+    };
+    let positive = |field: &str, x: f64| -> std::result::Result<(), FieldError> {
+        if x.is_finite() && x > 0.0 {
+            Ok(())
+        } else {
+            err(field, format!("must be positive, got {x}"))
+        }
+    };
+    let non_negative = |field: &str, x: f64| -> std::result::Result<(), FieldError> {
+        if x.is_finite() && x >= 0.0 {
+            Ok(())
+        } else {
+            err(field, format!("must be zero or more, got {x}"))
+        }
+    };
+    if f.name.trim().is_empty() {
+        return err("name", "must not be empty".into());
+    }
+    let m = &f.material;
+    positive("material.youngs_modulus_mpa", m.youngs_modulus_mpa)?;
+    positive("material.shear_modulus_mpa", m.shear_modulus_mpa)?;
+    positive(
+        "material.characteristic_strength_mpa",
+        m.characteristic_strength_mpa,
+    )?;
+    positive("material.partial_factor", m.partial_factor)?;
+    positive("material.modification_factor", m.modification_factor)?;
+    positive("material.density_kg_per_m3", m.density_kg_per_m3)?;
+    if m.partial_factor < 1.0 {
+        return err(
+            "material.partial_factor",
+            format!("must be at least 1, got {}", m.partial_factor),
+        );
+    }
+    if m.modification_factor > 1.1 {
+        return err(
+            "material.modification_factor",
+            format!("must be at most 1.1, got {}", m.modification_factor),
+        );
+    }
+    if m.shear_modulus_mpa >= m.youngs_modulus_mpa {
+        return err(
+            "material.shear_modulus_mpa",
+            format!(
+                "{} is not below Young's modulus {}",
+                m.shear_modulus_mpa, m.youngs_modulus_mpa
+            ),
+        );
+    }
+    let l = &f.lamella;
+    positive("lamella.thickness_mm", l.thickness_mm)?;
+    positive("lamella.height_mm", l.height_mm)?;
+    non_negative("lamella.gap_mm", l.gap_mm)?;
+    non_negative("lamella.end_allowance_mm", l.end_allowance_mm)?;
+    if l.thickness_mm >= l.height_mm {
+        return err(
+            "lamella.thickness_mm",
+            format!("{} is not below the height {}", l.thickness_mm, l.height_mm),
+        );
+    }
+    match l.per_strip {
+        1 => {}
+        2 => positive("lamella.gap_mm", l.gap_mm).map_err(|_| FieldError {
+            field: "lamella.gap_mm".into(),
+            message: "a doubled strip (per_strip: 2) needs a gap above 0".into(),
+        })?,
+        n => return err("lamella.per_strip", format!("must be 1 or 2, got {n}")),
+    }
+    let j = &f.joint;
+    non_negative("joint.slot_clearance_mm", j.slot_clearance_mm)?;
+    non_negative("joint.level_offset_mm", j.level_offset_mm)?;
+    if !(0.0..90.0).contains(&j.rotation_tolerance_deg) {
+        return err(
+            "joint.rotation_tolerance_deg",
+            format!("must be in [0, 90), got {}", j.rotation_tolerance_deg),
+        );
+    }
+    match j.system {
+        JointSystem::TwoLevel => {
+            if f.stud.is_none() {
+                return err("stud", "a two-level joint needs studs".into());
             }
-        };
-        let non_negative = |field: &str, x: f64| -> Result<()> {
-            if x.is_finite() && x >= 0.0 {
-                Ok(())
-            } else {
-                err(field, format!("must be zero or more, got {x}"))
-            }
-        };
-        if f.name.trim().is_empty() {
-            return err("name", "must not be empty".into());
-        }
-        let m = &f.material;
-        positive("material.youngs_modulus_mpa", m.youngs_modulus_mpa)?;
-        positive("material.shear_modulus_mpa", m.shear_modulus_mpa)?;
-        positive(
-            "material.characteristic_strength_mpa",
-            m.characteristic_strength_mpa,
-        )?;
-        positive("material.partial_factor", m.partial_factor)?;
-        positive("material.modification_factor", m.modification_factor)?;
-        positive("material.density_kg_per_m3", m.density_kg_per_m3)?;
-        if m.partial_factor < 1.0 {
-            return err(
-                "material.partial_factor",
-                format!("must be at least 1, got {}", m.partial_factor),
-            );
-        }
-        if m.modification_factor > 1.1 {
-            return err(
-                "material.modification_factor",
-                format!("must be at most 1.1, got {}", m.modification_factor),
-            );
-        }
-        if m.shear_modulus_mpa >= m.youngs_modulus_mpa {
-            return err(
-                "material.shear_modulus_mpa",
-                format!(
-                    "{} is not below Young's modulus {}",
-                    m.shear_modulus_mpa, m.youngs_modulus_mpa
-                ),
-            );
-        }
-        let l = &f.lamella;
-        positive("lamella.thickness_mm", l.thickness_mm)?;
-        positive("lamella.height_mm", l.height_mm)?;
-        non_negative("lamella.gap_mm", l.gap_mm)?;
-        non_negative("lamella.end_allowance_mm", l.end_allowance_mm)?;
-        if l.thickness_mm >= l.height_mm {
-            return err(
-                "lamella.thickness_mm",
-                format!("{} is not below the height {}", l.thickness_mm, l.height_mm),
-            );
-        }
-        match l.per_strip {
-            1 => {}
-            2 => positive("lamella.gap_mm", l.gap_mm).map_err(|_| {
-                Error::input(
-                    path,
-                    Location::Field("lamella.gap_mm".into()),
-                    "a doubled strip (per_strip: 2) needs a gap above 0",
-                )
-            })?,
-            n => return err("lamella.per_strip", format!("must be 1 or 2, got {n}")),
-        }
-        let j = &f.joint;
-        non_negative("joint.slot_clearance_mm", j.slot_clearance_mm)?;
-        non_negative("joint.level_offset_mm", j.level_offset_mm)?;
-        if !(0.0..90.0).contains(&j.rotation_tolerance_deg) {
-            return err(
-                "joint.rotation_tolerance_deg",
-                format!("must be in [0, 90), got {}", j.rotation_tolerance_deg),
-            );
-        }
-        match j.system {
-            JointSystem::TwoLevel => {
-                if f.stud.is_none() {
-                    return err("stud", "a two-level joint needs studs".into());
-                }
-                if l.per_strip != 2 {
-                    return err(
-                        "lamella.per_strip",
-                        "a two-level joint puts its stud in the gap of a doubled strip: use 2"
-                            .into(),
-                    );
-                }
-                positive("joint.level_offset_mm", j.level_offset_mm)?;
-            }
-            JointSystem::Interlocking => {
-                if j.level_offset_mm != 0.0 {
-                    return err(
-                        "joint.level_offset_mm",
-                        "an interlocking joint has one level: use 0".into(),
-                    );
-                }
-            }
-        }
-        if let Some(b) = &f.node_bolt {
-            positive("node_bolt.diameter_mm", b.diameter_mm)?;
-            non_negative("node_bolt.hole_clearance_mm", b.hole_clearance_mm)?;
-            if l.per_strip == 2 && b.diameter_mm > l.gap_mm {
-                return err(
-                    "node_bolt.diameter_mm",
-                    format!(
-                        "{} does not pass through the {} mm gap between the lamellas",
-                        b.diameter_mm, l.gap_mm
-                    ),
-                );
-            }
-        }
-        if let Some(w) = &f.washer {
-            positive("washer.thickness_mm", w.thickness_mm)?;
-            positive("washer.arm_length_mm", w.arm_length_mm)?;
-            positive("washer.arm_width_mm", w.arm_width_mm)?;
-            if w.per_node == 0 {
-                return err("washer.per_node", "must be at least 1".into());
-            }
-            if f.node_bolt.is_none() {
-                return err(
-                    "washer",
-                    "washers are tightened by a node bolt: add node_bolt".into(),
-                );
-            }
-        }
-        if let Some(s) = &f.shear_block {
-            positive("shear_block.length_mm", s.length_mm)?;
-            positive("shear_block.max_spacing_mm", s.max_spacing_mm)?;
-            positive("shear_block.slenderness_limit", s.slenderness_limit)?;
-            non_negative("shear_block.clearance_mm", s.clearance_mm)?;
-            positive("shear_block.bolt_diameter_mm", s.bolt_diameter_mm)?;
             if l.per_strip != 2 {
                 return err(
-                    "shear_block",
-                    "shear blocks couple two lamellas: needs lamella.per_strip 2".into(),
+                    "lamella.per_strip",
+                    "a two-level joint puts its stud in the gap of a doubled strip: use 2".into(),
+                );
+            }
+            positive("joint.level_offset_mm", j.level_offset_mm)?;
+        }
+        JointSystem::Interlocking => {
+            if j.level_offset_mm != 0.0 {
+                return err(
+                    "joint.level_offset_mm",
+                    "an interlocking joint has one level: use 0".into(),
                 );
             }
         }
-        if let Some(s) = &f.stud {
-            positive("stud.length_mm", s.length_mm)?;
-            positive("stud.fastener_diameter_mm", s.fastener_diameter_mm)?;
-            positive("stud.bar_length_mm", s.bar_length_mm)?;
-        }
-        if let Some(s) = &f.splice {
-            positive("splice.plate_length_mm", s.plate_length_mm)?;
-            positive("splice.bolt_diameter_mm", s.bolt_diameter_mm)?;
-            if s.bolts_per_side == 0 {
-                return err("splice.bolts_per_side", "must be at least 1".into());
-            }
-        }
-        let st = &f.stock;
-        positive("stock.length_mm", st.length_mm)?;
-        positive("stock.width_mm", st.width_mm)?;
-        if let Some(p) = st.price_per_unit {
-            non_negative("stock.price_per_unit", p)?;
-        }
-        if st.width_mm < l.height_mm {
+    }
+    if let Some(b) = &f.node_bolt {
+        positive("node_bolt.diameter_mm", b.diameter_mm)?;
+        non_negative("node_bolt.hole_clearance_mm", b.hole_clearance_mm)?;
+        if l.per_strip == 2 && b.diameter_mm > l.gap_mm {
             return err(
-                "stock.width_mm",
+                "node_bolt.diameter_mm",
                 format!(
-                    "{} is narrower than a lamella ({} mm)",
-                    st.width_mm, l.height_mm
+                    "{} does not pass through the {} mm gap between the lamellas",
+                    b.diameter_mm, l.gap_mm
                 ),
             );
         }
-        let c = &f.cutting;
-        non_negative("cutting.kerf_mm", c.kerf_mm)?;
-        non_negative("cutting.part_spacing_mm", c.part_spacing_mm)?;
-        non_negative("cutting.edge_margin_mm", c.edge_margin_mm)?;
-        if c.allowed_rotations_deg.is_empty() {
+    }
+    if let Some(w) = &f.washer {
+        positive("washer.thickness_mm", w.thickness_mm)?;
+        positive("washer.arm_length_mm", w.arm_length_mm)?;
+        positive("washer.arm_width_mm", w.arm_width_mm)?;
+        if w.per_node == 0 {
+            return err("washer.per_node", "must be at least 1".into());
+        }
+        if f.node_bolt.is_none() {
             return err(
-                "cutting.allowed_rotations_deg",
-                "must allow at least one rotation".into(),
+                "washer",
+                "washers are tightened by a node bolt: add node_bolt".into(),
             );
         }
+    }
+    if let Some(s) = &f.shear_block {
+        positive("shear_block.length_mm", s.length_mm)?;
+        positive("shear_block.max_spacing_mm", s.max_spacing_mm)?;
+        positive("shear_block.slenderness_limit", s.slenderness_limit)?;
+        non_negative("shear_block.clearance_mm", s.clearance_mm)?;
+        positive("shear_block.bolt_diameter_mm", s.bolt_diameter_mm)?;
+        if l.per_strip != 2 {
+            return err(
+                "shear_block",
+                "shear blocks couple two lamellas: needs lamella.per_strip 2".into(),
+            );
+        }
+    }
+    if let Some(s) = &f.stud {
+        positive("stud.length_mm", s.length_mm)?;
+        positive("stud.fastener_diameter_mm", s.fastener_diameter_mm)?;
+        positive("stud.bar_length_mm", s.bar_length_mm)?;
+    }
+    if let Some(s) = &f.splice {
+        positive("splice.plate_length_mm", s.plate_length_mm)?;
+        positive("splice.bolt_diameter_mm", s.bolt_diameter_mm)?;
+        if s.bolts_per_side == 0 {
+            return err("splice.bolts_per_side", "must be at least 1".into());
+        }
+    }
+    let st = &f.stock;
+    positive("stock.length_mm", st.length_mm)?;
+    positive("stock.width_mm", st.width_mm)?;
+    if let Some(p) = st.price_per_unit {
+        non_negative("stock.price_per_unit", p)?;
+    }
+    if st.width_mm < l.height_mm {
+        return err(
+            "stock.width_mm",
+            format!(
+                "{} is narrower than a lamella ({} mm)",
+                st.width_mm, l.height_mm
+            ),
+        );
+    }
+    let c = &f.cutting;
+    non_negative("cutting.kerf_mm", c.kerf_mm)?;
+    non_negative("cutting.part_spacing_mm", c.part_spacing_mm)?;
+    non_negative("cutting.edge_margin_mm", c.edge_margin_mm)?;
+    if c.allowed_rotations_deg.is_empty() {
+        return err(
+            "cutting.allowed_rotations_deg",
+            "must allow at least one rotation".into(),
+        );
+    }
+    if let Some(r) = c
+        .allowed_rotations_deg
+        .iter()
+        .find(|r| ![0, 90, 180, 270].contains(*r))
+    {
+        return err(
+            "cutting.allowed_rotations_deg",
+            format!("{r} is not one of 0, 90, 180, 270"),
+        );
+    }
+    if m.grain == Grain::AlongStrip {
         if let Some(r) = c
             .allowed_rotations_deg
             .iter()
-            .find(|r| ![0, 90, 180, 270].contains(*r))
+            .find(|r| **r == 90 || **r == 270)
         {
             return err(
-                "cutting.allowed_rotations_deg",
-                format!("{r} is not one of 0, 90, 180, 270"),
-            );
-        }
-        if m.grain == Grain::AlongStrip {
-            if let Some(r) = c
-                .allowed_rotations_deg
-                .iter()
-                .find(|r| **r == 90 || **r == 270)
-            {
-                return err(
                     "cutting.allowed_rotations_deg",
                     format!("{r}° turns a strip across the grain (material.grain: along_strip allows 0 and 180)"),
                 );
-            }
         }
-        Ok(())
     }
+    Ok(())
+}
 
+impl Profile {
     pub fn thickness_mm(&self) -> f64 {
-        self.file.lamella.thickness_mm
+        self.section.thickness_mm
     }
     pub fn height_mm(&self) -> f64 {
-        self.file.lamella.height_mm
+        self.section.height_mm
     }
     pub fn youngs_modulus_mpa(&self) -> f64 {
-        self.file.material.youngs_modulus_mpa
+        self.material.youngs_modulus_mpa
     }
     pub fn shear_modulus_mpa(&self) -> f64 {
-        self.file.material.shear_modulus_mpa
+        self.material.shear_modulus_mpa
     }
 
     /// f_d = k_mod · f_k / γ_M.
     pub fn design_strength_mpa(&self) -> f64 {
-        let m = &self.file.material;
+        let m = &self.material;
         m.modification_factor * m.characteristic_strength_mpa / m.partial_factor
     }
 
@@ -311,10 +475,10 @@ impl Profile {
     /// strip's lamella mid-planes sit at dy = ∓(g + t)/2 (lamella 1 on −y);
     /// two-level systems lift family A by +level offset, B by −level offset.
     pub fn lamella_offsets(&self, family: Family) -> Vec<LamellaOffset> {
-        let l = &self.file.lamella;
-        let dz_mm = match (self.file.joint.system, family) {
-            (JointSystem::TwoLevel, Family::A) => self.file.joint.level_offset_mm,
-            (JointSystem::TwoLevel, Family::B) => -self.file.joint.level_offset_mm,
+        let l = &self.section;
+        let dz_mm = match (self.joint.system, family) {
+            (JointSystem::TwoLevel, Family::A) => self.joint.level_offset_mm,
+            (JointSystem::TwoLevel, Family::B) => -self.joint.level_offset_mm,
             _ => 0.0,
         };
         if l.per_strip == 2 {
@@ -359,8 +523,8 @@ impl Profile {
     /// The same profile with another lamella thickness or height (for `--suggest`).
     pub fn with_section(&self, thickness_mm: f64, height_mm: f64) -> Profile {
         let mut p = self.clone();
-        p.file.lamella.thickness_mm = thickness_mm;
-        p.file.lamella.height_mm = height_mm;
+        p.section.thickness_mm = thickness_mm;
+        p.section.height_mm = height_mm;
         p
     }
 }

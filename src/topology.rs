@@ -70,6 +70,65 @@ pub struct Node {
     pub normal: DVec3,
     /// Acute angle between the tangents, degrees.
     pub angle_deg: f64,
+    /// Oriented angle from A's tangent line to B's tangent line,
+    /// counter-clockwise about `normal`, degrees in [0, 180): above 90 when
+    /// B turns from A by more than a right angle (B crosses A from the right,
+    /// seen from the normal's side with A pointing forward).
+    pub oriented_angle_deg: f64,
+}
+
+/// What a warning is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum WarningKind {
+    /// Two curves cross at less than `NodeOptions::near_tangent_deg`.
+    NearTangent,
+    /// Two curves run together: no nodes taken there.
+    Overlap,
+    /// Two nodes of one curve closer than [`CLOSE_NODES_MM`].
+    CloseNodes,
+    /// A curve that crosses no other curve.
+    IsolatedCurve,
+}
+
+impl WarningKind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            WarningKind::NearTangent => "near_tangent",
+            WarningKind::Overlap => "overlap",
+            WarningKind::CloseNodes => "close_nodes",
+            WarningKind::IsolatedCurve => "isolated_curve",
+        }
+    }
+}
+
+/// A warning of the topology stage: what, a one-line message, the curves
+/// concerned (indices into `Network::curves`) and, where it has one, the
+/// station (mm) on the first of them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warning {
+    pub kind: WarningKind,
+    pub message: String,
+    pub curves: Vec<usize>,
+    pub station_mm: Option<f64>,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// Oriented angle (degrees, in [0, 180)) from the line of `ta` to the line
+/// of `tb`, counter-clockwise about `normal`.
+pub fn oriented_angle_deg(ta: DVec3, tb: DVec3, normal: DVec3) -> f64 {
+    let theta = normal.dot(ta.cross(tb)).atan2(ta.dot(tb)).to_degrees();
+    let theta = if theta < 0.0 { theta + 180.0 } else { theta };
+    // atan2 of (+0, -1) is 180: the same line as 0.
+    if theta >= 180.0 {
+        0.0
+    } else {
+        theta
+    }
 }
 
 /// A node seen from one of its curves.
@@ -86,7 +145,7 @@ pub struct Topology {
     pub nodes: Vec<Node>,
     /// Per curve, its nodes sorted by station.
     pub per_curve: Vec<Vec<CurveNode>>,
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 #[derive(Debug, Clone)]
@@ -397,15 +456,19 @@ fn build_topology(
         // Runs of consecutive near-tangent contacts, each within the overlap
         // gap of the previous one.
         let mut run: Vec<usize> = Vec::new();
-        let flush = |run: &mut Vec<usize>, keep: &mut Vec<bool>, warnings: &mut Vec<String>| {
+        let flush = |run: &mut Vec<usize>, keep: &mut Vec<bool>, warnings: &mut Vec<Warning>| {
             if run.len() >= OVERLAP_CONTACTS {
                 let (lo, hi) = (raw[run[0]].sa, raw[run[run.len() - 1]].sa);
-                warnings.push(format!(
-                    "curves {} and {} overlap from station {lo:.1} to {hi:.1} mm of {}: no nodes taken there",
-                    net.curves[raw[start].a].id,
-                    net.curves[raw[start].b].id,
-                    net.curves[raw[start].a].id
-                ));
+                let (a, b) = (raw[start].a, raw[start].b);
+                warnings.push(Warning {
+                    kind: WarningKind::Overlap,
+                    message: format!(
+                        "curves {} and {} overlap from station {lo:.1} to {hi:.1} mm of {}: no nodes taken there",
+                        net.curves[a].id, net.curves[b].id, net.curves[a].id
+                    ),
+                    curves: vec![a, b],
+                    station_mm: Some(lo),
+                });
                 for &i in run.iter() {
                     keep[i] = false;
                 }
@@ -467,6 +530,7 @@ fn build_topology(
                 tangent_b: pb.tangent,
                 normal,
                 angle_deg,
+                oriented_angle_deg: 0.0, // once the normals are oriented
             }
         })
         .collect();
@@ -491,32 +555,47 @@ fn build_topology(
         });
     }
     orient_normals(net, &mut nodes, &per_curve);
+    for n in &mut nodes {
+        n.oriented_angle_deg = oriented_angle_deg(n.tangent_a, n.tangent_b, n.normal);
+    }
     for n in &nodes {
         if n.angle_deg < opts.near_tangent_deg {
-            warnings.push(format!(
-                "node {} ({} × {}): near-tangent crossing at {:.2}°; its station is ill-defined",
-                n.id, net.curves[n.a].id, net.curves[n.b].id, n.angle_deg
-            ));
+            warnings.push(Warning {
+                kind: WarningKind::NearTangent,
+                message: format!(
+                    "node {} ({} × {}): near-tangent crossing at {:.2}°; its station is ill-defined",
+                    n.id, net.curves[n.a].id, net.curves[n.b].id, n.angle_deg
+                ),
+                curves: vec![n.a, n.b],
+                station_mm: Some(n.station_a_mm),
+            });
         }
     }
     for (ci, list) in per_curve.iter().enumerate() {
         if list.is_empty() {
-            warnings.push(format!(
-                "curve {}: crosses no other curve",
-                net.curves[ci].id
-            ));
+            warnings.push(Warning {
+                kind: WarningKind::IsolatedCurve,
+                message: format!("curve {}: crosses no other curve", net.curves[ci].id),
+                curves: vec![ci],
+                station_mm: None,
+            });
         }
         for w in list.windows(2) {
             let gap = w[1].station_mm - w[0].station_mm;
             if gap < CLOSE_NODES_MM {
-                warnings.push(format!(
-                    "curve {}: nodes {} and {} are only {gap:.2} mm apart (crossing {} and {} at one point?)",
-                    net.curves[ci].id,
-                    w[0].node,
-                    w[1].node,
-                    net.curves[w[0].crossing].id,
-                    net.curves[w[1].crossing].id
-                ));
+                warnings.push(Warning {
+                    kind: WarningKind::CloseNodes,
+                    message: format!(
+                        "curve {}: nodes {} and {} are only {gap:.2} mm apart (crossing {} and {} at one point?)",
+                        net.curves[ci].id,
+                        w[0].node,
+                        w[1].node,
+                        net.curves[w[0].crossing].id,
+                        net.curves[w[1].crossing].id
+                    ),
+                    curves: vec![ci, w[0].crossing, w[1].crossing],
+                    station_mm: Some(w[0].station_mm),
+                });
             }
         }
     }

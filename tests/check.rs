@@ -76,7 +76,7 @@ fn helicoid_rulings_are_pure_twist() {
                 // Twist is largest at the ruling's inner end, v = vs[0], station 0.
                 let v = vs[0];
                 let tg = C / (v * v + C * C);
-                let stretch = (1.0 + (l.offset.dy_mm * tg).powi(2)).sqrt();
+                let stretch = (1.0 + (l.line.offset.dy_mm * tg).powi(2)).sqrt();
                 let (sb, tau, sw, sv) = hand(&p, 0.0, tg / stretch);
                 assert_eq!(sb, 0.0);
                 assert!(
@@ -118,7 +118,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
         for l in &sc.lamellas {
             // The sign of kg on this lamella's side: from the computed frame.
             let kg_signed = strip.samples[10].kg_per_mm.signum() * kg0;
-            let dy = l.offset.dy_mm;
+            let dy = l.line.offset.dy_mm;
             let stretch = ((1.0 - dy * kg_signed).powi(2) + (dy * tg0).powi(2)).sqrt();
             let (sb, tau, sw, sv) = hand(&p, kg0 / stretch, tg0 / stretch);
             close(l.stresses.bending_stress_mpa, sb, 1e-4, "bending");
@@ -138,7 +138,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
             );
             // The lamella's length: the helix length times the constant stretch.
             close(
-                l.length_mm,
+                l.line.length_mm,
                 strip.length_mm * stretch,
                 1e-6,
                 "lamella length",
@@ -149,7 +149,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
         assert!(sc
             .lamellas
             .iter()
-            .all(|l| l.length_mm >= w.length_mm - 1e-9));
+            .all(|l| l.line.length_mm >= w.line.length_mm - 1e-9));
     }
 }
 
@@ -176,7 +176,7 @@ fn enneper_twist_is_two_over_lambda_squared() {
         let sc = report.strips.iter().find(|s| s.id == id).unwrap();
         for l in &sc.lamellas {
             let tg = 2.0 / scale;
-            let stretch = (1.0 + (l.offset.dy_mm * tg).powi(2)).sqrt();
+            let stretch = (1.0 + (l.line.offset.dy_mm * tg).powi(2)).sqrt();
             let (_, tau, sw, sv) = hand(&p, 0.0, tg / stretch);
             // The worst sample lies within half a sample spacing of the centre.
             close(
@@ -280,4 +280,244 @@ fn shipped_profiles_load_and_derive_limits() {
     let beech = profile("beech-veneer.yaml");
     assert_eq!(beech.lamella_offsets(lamella::Family::B).len(), 1);
     assert_eq!(beech.lamella_offsets(lamella::Family::B)[0].dy_mm, 0.0);
+}
+
+/// The steel profile as a single lamella (E = 210 GPa, G = 81 GPa,
+/// t = 1.5 mm, h = 50 mm, f_d = 355 MPa), built in memory.
+fn single_steel() -> Profile {
+    let mut p = profile("steel-1.5.yaml");
+    p.section.per_strip = 1;
+    p.section.gap_mm = 0.0;
+    p.shear_block = None;
+    assert_eq!(p.lamella_offsets(lamella::Family::A).len(), 1);
+    p
+}
+
+fn raw_curve(
+    id: &str,
+    family: lamella::Family,
+    n: usize,
+    f: impl Fn(f64) -> glam::DVec3,
+) -> lamella::network::RawCurve {
+    lamella::network::RawCurve {
+        id: id.into(),
+        family,
+        points: (0..n).map(|i| f(i as f64 / (n - 1) as f64)).collect(),
+        normals: Some(vec![glam::DVec3::Z; n]),
+    }
+}
+
+/// In the plane z = 0 (normal +z): A0 an arc of radius R = 1000 mm (kg =
+/// 1/R, kn = tg = 0), crossed by three radial straight B lines.
+fn planar_arc() -> lamella::network::RawNetwork {
+    use glam::DVec3;
+    let r = 1000.0;
+    let mut curves = vec![raw_curve("A0", lamella::Family::A, 61, |t| {
+        let a = (60.0 * t).to_radians();
+        DVec3::new(r * a.cos(), r * a.sin(), 0.0)
+    })];
+    for (k, deg) in [15.0f64, 30.0, 45.0].iter().enumerate() {
+        let a = deg.to_radians();
+        curves.push(raw_curve(&format!("B{k}"), lamella::Family::B, 21, |t| {
+            DVec3::new(a.cos(), a.sin(), 0.0) * (900.0 + 200.0 * t)
+        }));
+    }
+    lamella::network::RawNetwork {
+        name: "arc".into(),
+        unit: lamella::network::Unit::Mm,
+        tolerance: Some(0.5),
+        curves,
+    }
+}
+
+#[test]
+fn bending_stress_by_hand_on_a_one_metre_arc() {
+    let (net, an) = run(planar_arc());
+    let a0 = net.curve_index("A0").unwrap();
+    // σb = E·|kg|·t/2 = 210 000 MPa × (1/1000 mm) × 1.5 mm / 2 = 157.5 MPa.
+    let report = check(&an, &single_steel());
+    let l = report
+        .strips
+        .iter()
+        .find(|s| s.strip == a0)
+        .unwrap()
+        .worst();
+    assert!(
+        (l.stresses.bending_stress_mpa - 157.5).abs() < 0.01,
+        "σb {}",
+        l.stresses.bending_stress_mpa
+    );
+    assert!(l.stresses.torsion_shear_mpa < 0.01 && l.stresses.trapeze_stress_mpa < 0.01);
+    assert!((l.stresses.combined_stress_mpa - 157.5).abs() < 0.01);
+    assert!((l.utilization - 157.5 / 355.0).abs() < 1e-4);
+    assert_eq!(l.governs, Governs::Bending);
+    assert!((l.min_bending_radius_mm.unwrap() - 1000.0).abs() < 0.01);
+    // Doubled (dy = ±(10 + 1.5)/2 = ±5.75 mm): the lamellas are arcs of radius
+    // 1000 ∓ 5.75 mm, so σb = 315 000 / (2 × 994.25) = 158.4109 MPa on the
+    // inner one and 315 000 / (2 × 1005.75) = 156.5996 MPa on the outer one.
+    let report = check(&an, &profile("steel-1.5.yaml"));
+    let sc = report.strips.iter().find(|s| s.strip == a0).unwrap();
+    let mut sb: Vec<f64> = sc
+        .lamellas
+        .iter()
+        .map(|l| l.stresses.bending_stress_mpa)
+        .collect();
+    sb.sort_by(f64::total_cmp);
+    assert!((sb[0] - 156.5996).abs() < 0.01, "{sb:?}");
+    assert!((sb[1] - 158.4109).abs() < 0.01, "{sb:?}");
+    // The inner lamella is 60° of a 994.25 mm radius: 1041.1762 mm.
+    let inner = sc
+        .lamellas
+        .iter()
+        .max_by(|a, b| {
+            a.stresses
+                .bending_stress_mpa
+                .total_cmp(&b.stresses.bending_stress_mpa)
+        })
+        .unwrap();
+    assert!(
+        (inner.line.length_mm - 1041.1762).abs() < 0.01,
+        "{}",
+        inner.line.length_mm
+    );
+}
+
+#[test]
+fn torsion_and_trapeze_stress_by_hand_on_a_helicoid_ruling() {
+    // Helicoid X = (v cos u, v sin u, c·u), c = 1000 mm: a ruling u = const
+    // is straight (kg = 0) with tg = c/(v² + c²), largest on the axis v = 0:
+    // tg = 1/1000 per mm. Single steel lamella:
+    //   τ  = G·|tg|·t      = 81 000 × 0.001 × 1.5          = 121.5 MPa
+    //   σw = E·tg²·h²/12   = 210 000 × 1e-6 × 50² / 12     = 43.75 MPa
+    //   σv = √(43.75² + 3 × 121.5²)                         = 214.9437 MPa
+    let lines = synth::coordinate_lines(&[0.0, 0.3, 0.6], &[-400.0, -200.0, 200.0, 400.0]);
+    let raw = synth::network(
+        "ruling",
+        &Helicoid { c: C },
+        &lines,
+        1.0,
+        Sampling {
+            step_mm: 10.0,
+            normals: true,
+        },
+    );
+    let (net, an) = run(raw);
+    let report = check(&an, &single_steel());
+    let mut rulings = 0;
+    for sc in report
+        .strips
+        .iter()
+        .filter(|s| net.curves[s.strip].family == lamella::Family::A)
+    {
+        let l = sc.worst();
+        assert!(
+            (l.stresses.torsion_shear_mpa - 121.5).abs() < 0.01,
+            "{}: τ {}",
+            sc.id,
+            l.stresses.torsion_shear_mpa
+        );
+        assert!(
+            (l.stresses.trapeze_stress_mpa - 43.75).abs() < 0.01,
+            "{}: σw {}",
+            sc.id,
+            l.stresses.trapeze_stress_mpa
+        );
+        assert!(l.stresses.bending_stress_mpa < 0.01);
+        assert!((l.stresses.combined_stress_mpa - 214.9437).abs() < 0.01);
+        // On the axis (half way along the 800 mm ruling), within the
+        // sample spacing (the check scans the samples).
+        assert!(
+            (l.governing_station_mm - 400.0).abs() < 10.0,
+            "{}: governs at {} of {}",
+            sc.id,
+            l.governing_station_mm,
+            an.strips[sc.strip].length_mm
+        );
+        rulings += 1;
+    }
+    assert_eq!(rulings, 3);
+}
+
+/// A tight edge arc (R = 30 mm) far from the grid: as curved as no lamella
+/// could be, and not a lamella at all.
+fn with_tight_edge(mut raw: lamella::network::RawNetwork) -> lamella::network::RawNetwork {
+    raw.curves.push(lamella::network::RawCurve {
+        id: "edge-tight".into(),
+        family: lamella::Family::Edge,
+        points: (0..=54)
+            .map(|i| {
+                let a = (5.0 * i as f64).to_radians();
+                glam::DVec3::new(9000.0 + 30.0 * a.cos(), 9000.0 + 30.0 * a.sin(), 0.0)
+            })
+            .collect(),
+        normals: None,
+    });
+    raw
+}
+
+#[test]
+fn suggest_ignores_edge_strips_as_check_does() {
+    let (_n, plain, _vs) = helicoid();
+    let (us, vs): (Vec<f64>, Vec<f64>) = (
+        synth::spread(0.6, 7).iter().map(|u| u + 0.6).collect(),
+        synth::spread(500.0, 6).iter().map(|v| v + 800.0).collect(),
+    );
+    let raw = synth::network(
+        "helicoid",
+        &Helicoid { c: C },
+        &synth::coordinate_lines(&us, &vs),
+        1.0,
+        Sampling {
+            step_mm: 10.0,
+            normals: true,
+        },
+    );
+    let (net, edged) = run(with_tight_edge(raw));
+    let edge = net.curve_index("edge-tight").unwrap();
+    assert!(edged.strips[edge].max_abs_kg_per_mm > 1.0 / 31.0);
+    assert_eq!(edged.lamella_strips().count(), plain.strips.len());
+    assert_eq!(edged.edge_strips().count(), 1);
+    for p in [
+        profile("steel-1.5.yaml"),
+        profile("steel-1.5.yaml").with_section(6.0, 50.0),
+        profile("beech-veneer.yaml"),
+    ] {
+        // The same verdict, the same worst lamella, the same suggestion.
+        let (a, b) = (check(&plain, &p), check(&edged, &p));
+        assert_eq!(a.strips.len(), b.strips.len());
+        assert_eq!(a.max_utilization(), b.max_utilization());
+        assert_eq!(max_utilization(&plain, &p), max_utilization(&edged, &p));
+        assert_eq!(max_utilization(&edged, &p), b.max_utilization());
+        assert_eq!(suggest(&plain, &p), suggest(&edged, &p));
+    }
+    // A passing grid keeps its headroom: edges do not make it thinner.
+    let steel = profile("steel-1.5.yaml");
+    assert!(check(&edged, &steel).passes());
+    let t = suggest(&edged, &steel).max_thickness_mm.unwrap();
+    assert!(t > 1.5, "suggested {t} mm for a passing 1.5 mm grid");
+}
+
+#[test]
+fn profile_is_built_from_the_file_type_and_back() {
+    use lamella::io::profile_file::ProfileFile;
+    for name in ["steel-1.5.yaml", "poplar-ply-4.yaml", "beech-veneer.yaml"] {
+        let text = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("profiles")
+                .join(name),
+        )
+        .unwrap();
+        let file: ProfileFile = serde_yaml::from_str(&text).unwrap();
+        let p = Profile::try_from(file.clone()).unwrap();
+        assert_eq!(p.thickness_mm(), file.lamella.thickness_mm);
+        assert_eq!(p.material.name, file.material.name);
+        // `resolved` is the whole profile as read.
+        assert_eq!(p.resolved(), file, "{name}");
+        assert_eq!(profile(name).resolved(), file, "{name}");
+        // Validation lives in TryFrom: a bad field is named.
+        let mut bad = file.clone();
+        bad.lamella.thickness_mm = -1.0;
+        let e = Profile::try_from(bad).unwrap_err();
+        assert_eq!(e.field, "lamella.thickness_mm");
+    }
 }

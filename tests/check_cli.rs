@@ -79,6 +79,24 @@ fn passing_network_exits_0_and_writes_the_check_into_plan_json() {
     let lamellas = strip["lamellas"].as_array().unwrap();
     assert_eq!(lamellas.len(), 2);
     assert!(lamellas[0]["check"]["utilization"].is_number());
+    // Each lamella on its own line: the strip's nodes, in order, at stations
+    // that differ from the curve's (dy = ∓5.75 mm on a curved strip).
+    let strip_nodes = strip["nodes"].as_array().unwrap();
+    for l in lamellas {
+        let nodes = l["nodes"].as_array().unwrap();
+        assert_eq!(nodes.len(), strip_nodes.len());
+        for (n, sn) in nodes.iter().zip(strip_nodes) {
+            assert_eq!(n["node"], sn["node"]);
+        }
+        let last = nodes.last().unwrap()["station_mm"].as_f64().unwrap();
+        assert!(last <= l["length_mm"].as_f64().unwrap() + 1e-4);
+    }
+    let (s1, s2) = (
+        lamellas[0]["nodes"][1]["station_mm"].as_f64().unwrap(),
+        lamellas[1]["nodes"][1]["station_mm"].as_f64().unwrap(),
+    );
+    assert!((s1 - s2).abs() > 0.01, "{s1} vs {s2}");
+    assert_eq!(profile["resolved"]["lamella"]["thickness_mm"], 1.5);
     assert_eq!(plan["check"]["passes"], true);
     // The node fields of `nodes` stay as they were.
     assert!(strip["nodes"][0]["station_mm"].is_number());
@@ -258,4 +276,93 @@ fn missing_profile_file() {
         stderr.contains("nope.yaml") && stderr.contains("no such file"),
         "{stderr}"
     );
+}
+
+#[test]
+fn nodes_writes_centre_line_lamellas_oriented_angles_and_typed_warnings() {
+    let dir = tmp("nodes-model");
+    // The hypar sample plus a B line far away (crosses nothing).
+    let mut text = std::fs::read_to_string(root().join("samples/hypar-small.yaml")).unwrap();
+    text.push_str(
+        "  - id: B-lost\n    family: B\n    points: [[9000, 0, 0], [9000, 500, 0], [9000, 1000, 0]]\n",
+    );
+    let net = dir.join("net.yaml");
+    std::fs::write(&net, text).unwrap();
+    let out = dir.join("out");
+    let (code, _stdout, stderr) = lamella(&[
+        "nodes",
+        net.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("warning: curve B-lost: crosses no other curve"),
+        "{stderr}"
+    );
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    let warnings = plan["warnings"].as_array().unwrap();
+    let lost = warnings
+        .iter()
+        .find(|w| w["kind"] == "isolated_curve")
+        .expect("typed warning");
+    assert_eq!(lost["curves"], serde_json::json!(["B-lost"]));
+    assert!(lost["station_mm"].is_null());
+    assert_eq!(lost["message"], "curve B-lost: crosses no other curve");
+    for strip in plan["strips"].as_array().unwrap() {
+        if strip["family"] == "edge" {
+            assert!(strip.get("lamellas").is_none());
+            continue;
+        }
+        let lamellas = strip["lamellas"].as_array().unwrap();
+        assert_eq!(lamellas.len(), 1, "{}", strip["id"]);
+        let l = &lamellas[0];
+        assert_eq!(
+            (
+                l["lamella"].as_u64(),
+                l["dy_mm"].as_f64(),
+                l["dz_mm"].as_f64()
+            ),
+            (Some(1), Some(0.0), Some(0.0))
+        );
+        assert_eq!(l["length_mm"], strip["length_mm"]);
+        assert!(l.get("check").is_none(), "no check without a profile");
+        let nodes: Vec<(u64, f64)> = l["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| {
+                (
+                    n["node"].as_u64().unwrap(),
+                    n["station_mm"].as_f64().unwrap(),
+                )
+            })
+            .collect();
+        let on_curve: Vec<(u64, f64)> = strip["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| {
+                (
+                    n["node"].as_u64().unwrap(),
+                    n["station_mm"].as_f64().unwrap(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            nodes, on_curve,
+            "{}: the centre line is the curve",
+            strip["id"]
+        );
+    }
+    for n in plan["nodes"].as_array().unwrap() {
+        let (acute, oriented) = (
+            n["angle_deg"].as_f64().unwrap(),
+            n["oriented_angle_deg"].as_f64().unwrap(),
+        );
+        assert!((0.0..180.0).contains(&oriented));
+        assert!((oriented.min(180.0 - oriented) - acute).abs() < 2e-6, "{n}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
 }

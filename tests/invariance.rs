@@ -5,7 +5,9 @@
 mod common;
 use common::*;
 use glam::DVec2;
+use lamella::model::Model;
 use lamella::network::{RawNetwork, Unit};
+use lamella::profile::Profile;
 use lamella::synth::{self, Enneper, Sampling};
 
 fn base(normals: bool) -> RawNetwork {
@@ -22,24 +24,45 @@ fn base(normals: bool) -> RawNetwork {
     )
 }
 
-/// Per strip: (id, length, node stations, max |kg|, max |tg|).
-type StripSummary = (String, f64, Vec<f64>, f64, f64);
+/// One lamella: (number, dy, length, node stations on its own line).
+type LamellaSummary = (u32, f64, f64, Vec<f64>);
+/// Per strip: (id, length, node stations, max |kg|, max |tg|, lamellas of
+/// the doubled steel profile).
+type StripSummary = (String, f64, Vec<f64>, f64, f64, Vec<LamellaSummary>);
 /// Strips, and the sorted node angles.
 type Summary = (Vec<StripSummary>, Vec<f64>);
 
 /// Per strip: (length, sorted node stations, max |kg|, max |tg|), per node: angle.
 fn summary(raw: RawNetwork) -> Summary {
     let (net, an) = run(raw);
+    let steel = Profile::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"),
+    )
+    .unwrap();
+    let report = lamella::check::check(&an, &steel);
+    let model = Model::checked(&net, &an, steel, report, None);
     let strips = an
         .strips
         .iter()
-        .map(|s| {
+        .zip(&model.strips)
+        .map(|(s, m)| {
             (
                 net.curves[s.curve].id.clone(),
                 s.length_mm,
                 s.nodes.iter().map(|n| n.station_mm).collect(),
                 s.max_abs_kg_per_mm,
                 s.max_abs_tg_per_mm,
+                m.lamellas
+                    .iter()
+                    .map(|l| {
+                        (
+                            l.offset.number,
+                            l.offset.dy_mm,
+                            l.length_mm,
+                            l.nodes.iter().map(|n| n.station_mm).collect(),
+                        )
+                    })
+                    .collect(),
             )
         })
         .collect();
@@ -77,6 +100,15 @@ fn assert_same(a: &Summary, b: &Summary) {
             x.4,
             y.4
         );
+        assert_eq!(x.5.len(), y.5.len(), "{}: lamella count", x.0);
+        for (l, m) in x.5.iter().zip(&y.5) {
+            assert_eq!((l.0, l.1), (m.0, m.1), "{}: lamella", x.0);
+            assert!((l.2 - m.2).abs() < 1e-6, "{} lamella {}: length", x.0, l.0);
+            assert_eq!(l.3.len(), m.3.len(), "{} lamella {}: node count", x.0, l.0);
+            for (s, t) in l.3.iter().zip(&m.3) {
+                assert!((s - t).abs() < 1e-6, "{} lamella {}: {s} vs {t}", x.0, l.0);
+            }
+        }
     }
     assert_eq!(a.1.len(), b.1.len());
     for (p, q) in a.1.iter().zip(&b.1) {
@@ -136,15 +168,55 @@ fn reversing_a_curve_mirrors_its_stations() {
             }
         }
         let b = summary(rev);
+        // Counts first: a reversed curve that lost a node must fail.
+        assert_eq!(a.0.len(), b.0.len(), "strip count");
         for (k, (x, y)) in a.0.iter().zip(&b.0).enumerate() {
             assert!((x.1 - y.1).abs() < 1e-6);
-            let expected: Vec<f64> = if k % 2 == 0 {
-                let mut m: Vec<f64> = x.2.iter().map(|s| x.1 - s).collect();
-                m.reverse();
-                m
+            assert_eq!(x.2.len(), y.2.len(), "{}: node count", x.0);
+            let reversed = k % 2 == 0;
+            let mirror = |len: f64, stations: &[f64]| -> Vec<f64> {
+                stations.iter().rev().map(|s| len - s).collect()
+            };
+            let expected: Vec<f64> = if reversed {
+                mirror(x.1, &x.2)
             } else {
                 x.2.clone()
             };
+            // Reversing flips x and so y (z stays): lamella 1 at −y becomes
+            // lamella 2 at +y. Their lengths swap, their stations mirror.
+            assert_eq!(x.5.len(), 2, "{}: doubled steel", x.0);
+            assert_eq!(y.5.len(), 2, "{}: doubled steel", y.0);
+            for (l, m) in x.5.iter().zip(&y.5) {
+                assert_eq!(l.0, m.0);
+                assert_eq!(l.1, m.1, "lamella {} keeps its side of y", l.0);
+            }
+            for (i, m) in y.5.iter().enumerate() {
+                let l = if reversed { &x.5[1 - i] } else { &x.5[i] };
+                assert!(
+                    (l.2 - m.2).abs() < 1e-6,
+                    "{} lamella {}: length {} vs {}",
+                    x.0,
+                    m.0,
+                    l.2,
+                    m.2
+                );
+                let want = if reversed {
+                    mirror(l.2, &l.3)
+                } else {
+                    l.3.clone()
+                };
+                assert_eq!(want.len(), m.3.len(), "{} lamella {}: node count", x.0, m.0);
+                for (s, t) in want.iter().zip(&m.3) {
+                    assert!(
+                        (s - t).abs() < 1e-6,
+                        "{} lamella {}: mirrored station {s} vs {t}",
+                        x.0,
+                        m.0
+                    );
+                }
+            }
+            // The doubled lamellas differ (else the swap would test nothing).
+            assert!((x.5[0].2 - x.5[1].2).abs() > 0.1, "{}", x.0);
             for (s, t) in expected.iter().zip(&y.2) {
                 assert!((s - t).abs() < 1e-6, "{}: mirrored station {s} vs {t}", x.0);
             }

@@ -118,7 +118,7 @@ fn curves_passing_near_do_not_make_a_node() {
     assert!(an
         .warnings()
         .iter()
-        .any(|w| w.contains("B1") && w.contains("crosses no other curve")));
+        .any(|w| w.message.contains("B1") && w.message.contains("crosses no other curve")));
 }
 
 #[test]
@@ -151,11 +151,11 @@ fn a_near_tangent_crossing_warns() {
     assert!(an
         .warnings()
         .iter()
-        .any(|w| w.contains("near-tangent") && w.contains("B0")));
+        .any(|w| w.message.contains("near-tangent") && w.message.contains("B0")));
     assert!(!an
         .warnings()
         .iter()
-        .any(|w| w.contains("B1") && w.contains("near-tangent")));
+        .any(|w| w.message.contains("B1") && w.message.contains("near-tangent")));
 }
 
 #[test]
@@ -178,4 +178,124 @@ fn dense_grid_finds_every_node_once() {
     for list in &an.topology.per_curve {
         assert_eq!(list.len(), 40);
     }
+}
+
+/// A straight A line along +x and a straight B line through (500, 0, 0)
+/// along (cos β, sin β, 0), with file normals `n` on both.
+fn two_lines(beta_deg: f64, n: DVec3, reverse_b: bool) -> RawNetwork {
+    let with_normals = |mut c: RawCurve| {
+        c.normals = Some(vec![n; c.points.len()]);
+        c
+    };
+    let a = with_normals(curve(
+        "A0",
+        Family::A,
+        |t| DVec3::new(1000.0 * t, 0.0, 0.0),
+        21,
+    ));
+    let d = DVec3::new(
+        beta_deg.to_radians().cos(),
+        beta_deg.to_radians().sin(),
+        0.0,
+    );
+    let mut b = with_normals(curve(
+        "B0",
+        Family::B,
+        |t| DVec3::new(500.0, 0.0, 0.0) + d * (-300.0 + 600.0 * t),
+        21,
+    ));
+    if reverse_b {
+        b.points.reverse();
+    }
+    net(vec![a, b])
+}
+
+#[test]
+fn oriented_angle_turns_from_a_to_b_about_the_normal() {
+    // Seen from +z (normal up), A runs along +x. B along 60° turns
+    // counter-clockwise from A by 60°: oriented 60° (B, crossing from A's
+    // right to its left, leans forward along A). B along 120° leans back
+    // against A: oriented 120°, though both cross at an acute 60°. The
+    // angle is between lines: B's direction does not matter, the normal's
+    // side does.
+    for (beta, up, down) in [
+        (60.0, 60.0, 120.0),
+        (120.0, 120.0, 60.0),
+        (90.0, 90.0, 90.0),
+    ] {
+        for reverse_b in [false, true] {
+            let (_n, an) = run(two_lines(beta, DVec3::Z, reverse_b));
+            assert_eq!(an.topology.nodes.len(), 1);
+            let node = &an.topology.nodes[0];
+            assert!(node.normal.dot(DVec3::Z) > 0.999);
+            assert!((node.angle_deg - beta.min(180.0 - beta)).abs() < 1e-6);
+            assert!(
+                (node.oriented_angle_deg - up).abs() < 1e-6,
+                "B at {beta}° (reversed: {reverse_b}), normal +z: {}",
+                node.oriented_angle_deg
+            );
+            // Seen from below (normal −z) the turn goes the other way.
+            let (_n, an) = run(two_lines(beta, -DVec3::Z, reverse_b));
+            let node = &an.topology.nodes[0];
+            assert!(node.normal.dot(DVec3::Z) < -0.999);
+            assert!(
+                (node.oriented_angle_deg - down).abs() < 1e-6,
+                "B at {beta}° (reversed: {reverse_b}), normal −z: {}",
+                node.oriented_angle_deg
+            );
+        }
+    }
+    // The function itself, on hand vectors.
+    use lamella::topology::oriented_angle_deg;
+    let (x, y) = (DVec3::X, DVec3::Y);
+    assert!((oriented_angle_deg(x, y, DVec3::Z) - 90.0).abs() < 1e-12);
+    assert!((oriented_angle_deg(x, x + y, DVec3::Z) - 45.0).abs() < 1e-12);
+    assert!((oriented_angle_deg(x, -x + y, DVec3::Z) - 135.0).abs() < 1e-12);
+    assert!((oriented_angle_deg(x, x - y, DVec3::Z) - 135.0).abs() < 1e-12);
+    assert!((oriented_angle_deg(x, -x, DVec3::Z)).abs() < 1e-12);
+}
+
+#[test]
+fn warnings_are_typed() {
+    use lamella::topology::WarningKind;
+    // An isolated B line and a near-tangent crossing.
+    let a = curve("A0", Family::A, |t| DVec3::new(1000.0 * t, 0.0, 0.0), 21);
+    let d = DVec3::new(5f64.to_radians().cos(), 5f64.to_radians().sin(), 0.0);
+    let b = curve(
+        "B0",
+        Family::B,
+        |t| DVec3::new(500.0, 0.0, 0.0) + d * (-300.0 + 600.0 * t),
+        31,
+    );
+    let c = curve(
+        "B1",
+        Family::B,
+        |t| DVec3::new(200.0, -300.0 + 600.0 * t, 0.0),
+        31,
+    );
+    let far = curve(
+        "B2",
+        Family::B,
+        |t| DVec3::new(5000.0, -300.0 + 600.0 * t, 0.0),
+        31,
+    );
+    let (net, an) = run(net(vec![a, b, c, far]));
+    let near: Vec<_> = an
+        .warnings()
+        .iter()
+        .filter(|w| w.kind == WarningKind::NearTangent)
+        .collect();
+    assert_eq!(near.len(), 1);
+    assert_eq!(near[0].curves, vec![0, 1]);
+    assert!((near[0].station_mm.unwrap() - 500.0).abs() < 1e-6);
+    assert_eq!(near[0].to_string(), near[0].message);
+    let isolated: Vec<_> = an
+        .warnings()
+        .iter()
+        .filter(|w| w.kind == WarningKind::IsolatedCurve)
+        .collect();
+    assert_eq!(isolated.len(), 1);
+    assert_eq!(isolated[0].curves, vec![net.curve_index("B2").unwrap()]);
+    assert_eq!(isolated[0].station_mm, None);
+    assert_eq!(WarningKind::IsolatedCurve.as_str(), "isolated_curve");
 }

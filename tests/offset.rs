@@ -7,6 +7,8 @@
 mod common;
 use common::*;
 use glam::{DVec2, DVec3};
+use lamella::model::LamellaLine;
+use lamella::profile::LamellaOffset;
 use lamella::synth::{self, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 
 /// Length of t ↦ X(t) + dy·y(t) + dz·z(t) over the whole line (fine polygon with
@@ -42,6 +44,55 @@ fn exact_offset_length(
     b + (b - a) / 3.0
 }
 
+/// Arc lengths of the same exact offset line from its start to each of the
+/// parameters `ts` (ascending, in [t0, t1]): a fine polygon on every
+/// interval between them, Richardson-extrapolated (each interval's count
+/// doubles, so the h² error term cancels interval by interval).
+fn exact_offset_stations(
+    surface: &dyn ParamSurface,
+    line: &ParamLine,
+    scale: f64,
+    (dy, dz, zsign): (f64, f64, f64),
+    ts: &[f64],
+) -> Vec<f64> {
+    let p = |t: f64| {
+        let uv = line.uv(t);
+        let (xu, xv) = surface.partials(uv);
+        let x = (xu * line.dir.x + xv * line.dir.y).normalize();
+        let z = surface.normal(uv) * zsign;
+        let y = z.cross(x);
+        surface.point(uv) * scale + y * dy + z * dz
+    };
+    let span = line.t1 - line.t0;
+    let run = |per_span: f64| {
+        let mut out = Vec::with_capacity(ts.len());
+        let (mut acc, mut prev_t) = (0.0, line.t0);
+        let mut prev = p(prev_t);
+        for &t in ts {
+            let n = ((t - prev_t) / span * per_span).ceil() as usize;
+            for i in 1..=n {
+                let q = p(prev_t + (t - prev_t) * i as f64 / n as f64);
+                acc += q.distance(prev);
+                prev = q;
+            }
+            prev_t = t;
+            prev = p(t);
+            out.push(acc);
+        }
+        out
+    };
+    let (a, b) = (run(10_000.0), run(20_000.0));
+    a.iter().zip(&b).map(|(a, b)| b + (b - a) / 3.0).collect()
+}
+
+/// Parameter on `line` where it crosses `other` (straight lines in (u, v)).
+fn crossing_t(line: &ParamLine, other: &ParamLine) -> f64 {
+    // start + dir·t = o.start + o.dir·s  →  solve the 2×2 system for t.
+    let (d, e, r) = (line.dir, other.dir, other.start - line.start);
+    let det = d.x * (-e.y) - (-e.x) * d.y;
+    (r.x * (-e.y) - (-e.x) * r.y) / det
+}
+
 fn check(
     surface: &dyn ParamSurface,
     lines: &[ParamLine],
@@ -52,6 +103,7 @@ fn check(
 ) {
     let raw = synth::network("o", surface, lines, scale, Sampling { step_mm, normals });
     let (_net, an) = run(raw);
+    let mut nodes_checked = 0;
     for (strip, line) in an.strips.iter().zip(lines) {
         let smooth = &an.curves[strip.curve];
         // Orientation of lamella's z against the analytic normal.
@@ -77,8 +129,46 @@ fn check(
                 strip.id,
                 got[1] - got[0]
             );
+            // Every node's station on the lamella's own line.
+            let lamella = LamellaLine::new(
+                strip,
+                smooth,
+                LamellaOffset {
+                    number: 1,
+                    dy_mm: dy,
+                    dz_mm: dz,
+                },
+            );
+            // The same integral (other breakpoints: the nodes).
+            assert!(
+                (lamella.length_mm - got[1]).abs() < 1e-3,
+                "{}: {} vs {}",
+                strip.id,
+                lamella.length_mm,
+                got[1]
+            );
+            assert_eq!(lamella.nodes.len(), strip.nodes.len(), "{}", strip.id);
+            assert!(!lamella.nodes.is_empty());
+            let ts: Vec<f64> = strip
+                .nodes
+                .iter()
+                .map(|cn| crossing_t(line, &lines[cn.crossing]))
+                .collect();
+            let exact = exact_offset_stations(surface, line, scale, (dy, dz, zsign), &ts);
+            for ((ln, cn), want) in lamella.nodes.iter().zip(&strip.nodes).zip(&exact) {
+                assert_eq!(ln.node, cn.node);
+                assert!(
+                    (ln.station_mm - want).abs() < 0.01,
+                    "{} dy {dy} dz {dz}: node {} at {} on the lamella line, exactly {want}",
+                    strip.id,
+                    ln.node,
+                    ln.station_mm
+                );
+            }
+            nodes_checked += lamella.nodes.len();
         }
     }
+    assert!(nodes_checked > 100, "{nodes_checked} node stations checked");
 }
 
 /// The parameter of the line point closest to `p` (coarse search is enough

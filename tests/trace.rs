@@ -593,3 +593,130 @@ fn fill_covers_the_gaps_the_central_design_leaves() {
     flat.fill = true;
     assert!(design(&flat, &fp).is_err());
 }
+
+/// Tangents of traced asymptotic lines (the smooth interpolant of finely
+/// traced points, away from the ends) at their samples, with the samples'
+/// parameters: (uv, unit tangent) pairs.
+fn traced_tangents(
+    surface: &lamella::surface::Placed,
+    seeds: &[DVec2],
+    max_length_mm: f64,
+) -> Vec<(DVec2, glam::DVec3)> {
+    use lamella::trace::{trace_through, Everywhere, Field, TraceOptions};
+    let opts = TraceOptions {
+        max_step_mm: 4.0,
+        max_length_mm,
+        ..TraceOptions::default()
+    };
+    let mut out = Vec::new();
+    for &seed in seeds {
+        for field in [Field::AsymptoticA, Field::AsymptoticB] {
+            let t = trace_through(surface, field, seed, &Everywhere, opts).unwrap();
+            let smooth = lamella::curve::SmoothCurve::new(&t.points_mm);
+            let stations = smooth.sample_stations_mm();
+            let n = stations.len();
+            assert!(n > 40, "{seed:?} {field:?}: {n} samples");
+            for i in (8..n - 8).step_by(5) {
+                out.push((t.uv[i], smooth.tangent(stations[i])));
+            }
+        }
+    }
+    out
+}
+
+/// Angle (rad) between the line of `t` and the nearest of the lines of `ds`.
+fn angle_to_nearest(t: glam::DVec3, ds: &[glam::DVec3]) -> f64 {
+    ds.iter()
+        .map(|d| {
+            let d = d.normalize();
+            t.cross(d).length().atan2(t.dot(d).abs())
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// First order in the direction (tg² = −K is flat at the asymptotic
+/// direction and cannot see a small error): on Scherk's surface
+/// z = ln cos y − ln cos x, II = sec²x dx² − sec²y dy², so the asymptotic
+/// directions are (dx, dy) ∝ (cos x, ±cos y) (geometry.md), mapped to space
+/// by the partials. The traced tangent must lie on one of them.
+#[test]
+fn traced_scherk_tangents_follow_the_closed_form_directions() {
+    use lamella::surface::{Placed, Scherk};
+    let s = Placed {
+        surface: std::sync::Arc::new(Scherk),
+        scale_mm: 1000.0,
+        rotation: glam::DMat3::from_rotation_z(0.4),
+        translation_mm: glam::DVec3::new(100.0, -50.0, 20.0),
+    };
+    let seeds = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(0.3, -0.2),
+        DVec2::new(-0.5, 0.4),
+    ];
+    let mut worst: f64 = 0.0;
+    let samples = traced_tangents(&s, &seeds, 1200.0);
+    for (q, t) in &samples {
+        let (pu, pv) = s.partials(*q);
+        let (cx, cy) = (q.x.cos(), q.y.cos());
+        worst = worst.max(angle_to_nearest(
+            *t,
+            &[pu * cx + pv * cy, pu * cx - pv * cy],
+        ));
+    }
+    assert!(samples.len() > 300, "{} samples", samples.len());
+    assert!(worst < 1e-6, "Scherk: traced tangent {worst:e} rad off");
+}
+
+/// Schwarz D from its Weierstrass data (f, g = z): the Hopf differential is
+/// f·g'·dz² = f dz², and II ∝ Re(f dz²); asymptotic directions have f dz²
+/// imaginary: arg dz = (π/2 − arg f)/2 mod π/2, independent of the surface
+/// module's shape operator. Also from the surface module's principal
+/// directions: kn = k1·cos 2θ = 0 needs θ = 45° to d1.
+#[test]
+fn traced_schwarz_d_tangents_are_asymptotic_to_first_order() {
+    use lamella::surface::{Placed, SchwarzD};
+    let s = Placed {
+        surface: std::sync::Arc::new(SchwarzD),
+        scale_mm: 1000.0,
+        rotation: glam::DMat3::IDENTITY,
+        translation_mm: glam::DVec3::ZERO,
+    };
+    let seeds = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(0.1, 0.05),
+        DVec2::new(-0.15, 0.12),
+    ];
+    let samples = traced_tangents(&s, &seeds, 250.0);
+    assert!(samples.len() > 100, "{} samples", samples.len());
+    let (mut worst_closed, mut worst_theta): (f64, f64) = (0.0, 0.0);
+    for (q, t) in &samples {
+        // w = 1 − 14 z⁴ + z⁸, f = w^(−½): arg f = −arg(w)/2 (mod π).
+        let (x, y) = (q.x, q.y);
+        let z2 = (x * x - y * y, 2.0 * x * y);
+        let z4 = (z2.0 * z2.0 - z2.1 * z2.1, 2.0 * z2.0 * z2.1);
+        let z8 = (z4.0 * z4.0 - z4.1 * z4.1, 2.0 * z4.0 * z4.1);
+        let w = (1.0 - 14.0 * z4.0 + z8.0, -14.0 * z4.1 + z8.1);
+        let arg_f = -0.5 * w.1.atan2(w.0);
+        let phi = 0.5 * (std::f64::consts::FRAC_PI_2 - arg_f);
+        let (pu, pv) = s.partials(*q);
+        let dirs: Vec<glam::DVec3> = (0..2)
+            .map(|k| {
+                let a = phi + k as f64 * std::f64::consts::FRAC_PI_2;
+                pu * a.cos() + pv * a.sin()
+            })
+            .collect();
+        worst_closed = worst_closed.max(angle_to_nearest(*t, &dirs));
+        // θ from the principal direction d1: 45° on an asymptotic line.
+        let c = s.curvature(*q);
+        let theta = t.dot(c.d2).abs().atan2(t.dot(c.d1).abs());
+        worst_theta = worst_theta.max((theta - std::f64::consts::FRAC_PI_4).abs());
+    }
+    assert!(
+        worst_closed < 1e-6,
+        "Schwarz D: traced tangent {worst_closed:e} rad off the Hopf-differential direction"
+    );
+    assert!(
+        worst_theta < 1e-6,
+        "Schwarz D: traced tangent {worst_theta:e} rad off 45° to the principal direction"
+    );
+}

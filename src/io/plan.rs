@@ -3,8 +3,12 @@
 //! Numbers are rounded to fixed precision so the file is byte-stable.
 
 use crate::analyze::Analysis;
+use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
 use crate::error::{Error, Result};
+use crate::io::profile_file::JointSystem;
+use crate::model::Model;
 use crate::network::Network;
+use crate::profile::Profile;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -19,7 +23,7 @@ pub struct Plan {
     pub summary: Summary,
     pub strips: Vec<PlanStrip>,
     pub nodes: Vec<PlanNode>,
-    pub warnings: Vec<String>,
+    pub warnings: Vec<PlanWarning>,
     /// The resolved material profile (added by `check`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profile: Option<PlanProfile>,
@@ -90,11 +94,37 @@ pub struct PlanStripCheck {
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanWarning {
+    /// near_tangent, overlap, close_nodes or isolated_curve.
+    pub kind: String,
+    pub message: String,
+    /// Ids of the curves concerned.
+    pub curves: Vec<String>,
+    /// Station on the first curve, where the warning has one.
+    pub station_mm: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanLamella {
     pub lamella: u32,
     pub dy_mm: f64,
     pub dz_mm: f64,
     pub length_mm: f64,
+    /// The strip's nodes at their stations on this lamella's own line.
+    pub nodes: Vec<PlanLamellaNode>,
+    /// The elastic check of this lamella (added by `check`).
+    #[serde(flatten, default, skip_serializing_if = "Option::is_none")]
+    pub checked: Option<PlanLamellaCheck>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanLamellaNode {
+    pub node: usize,
+    pub station_mm: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanLamellaCheck {
     pub min_bending_radius_mm: Option<f64>,
     pub max_twist_deg_per_m: f64,
     pub check: PlanStress,
@@ -141,7 +171,8 @@ pub struct PlanStrip {
     /// The worst lamella's elastic check (added by `check`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub check: Option<PlanStripCheck>,
-    /// Every lamella on its own offset line (added by `check`).
+    /// Every lamella on its own offset line (A and B strips): the centre line
+    /// without a profile, the profile's lamellas with `check`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lamellas: Option<Vec<PlanLamella>>,
 }
@@ -167,6 +198,8 @@ pub struct PlanNode {
     pub position_mm: [f64; 3],
     pub normal: [f64; 3],
     pub angle_deg: f64,
+    /// From A's tangent line to B's, counter-clockwise about the normal, [0, 180).
+    pub oriented_angle_deg: f64,
     pub gap_mm: f64,
 }
 
@@ -189,21 +222,60 @@ fn v3(v: glam::DVec3, d: i32) -> [f64; 3] {
     [round(v.x, d), round(v.y, d), round(v.z, d)]
 }
 
-/// Build the plan of a network from its analysis.
-pub fn build(net: &Network, an: &Analysis) -> Plan {
+/// Format a finished model as a plan: ids for indices, rounded numbers.
+/// Nothing is computed here (see [`crate::model`]).
+pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
     let per_m = 1000.0;
+    let id = |i: usize| net.curves[i].id.clone();
+    let checks: Vec<Option<&StripCheck>> = {
+        let mut v = vec![None; an.strips.len()];
+        if let Some(c) = &model.check {
+            for sc in &c.report.strips {
+                v[sc.strip] = Some(sc);
+            }
+        }
+        v
+    };
     let strips: Vec<PlanStrip> = an
         .strips
         .iter()
-        .map(|s| {
+        .zip(&model.strips)
+        .zip(&checks)
+        .map(|((s, m), sc)| {
             let nodes = s
                 .nodes
                 .iter()
                 .map(|cn| PlanStripNode {
                     node: cn.node,
-                    crossing: net.curves[cn.crossing].id.clone(),
+                    crossing: id(cn.crossing),
                     station_mm: round(cn.station_mm, MM),
                     angle_deg: round(an.topology.nodes[cn.node].angle_deg, DEG),
+                })
+                .collect();
+            let lamellas: Vec<PlanLamella> = m
+                .lamellas
+                .iter()
+                .enumerate()
+                .map(|(k, line)| PlanLamella {
+                    lamella: line.offset.number,
+                    dy_mm: round(line.offset.dy_mm, MM),
+                    dz_mm: round(line.offset.dz_mm, MM),
+                    length_mm: round(line.length_mm, MM),
+                    nodes: line
+                        .nodes
+                        .iter()
+                        .map(|n| PlanLamellaNode {
+                            node: n.node,
+                            station_mm: round(n.station_mm, MM),
+                        })
+                        .collect(),
+                    checked: sc
+                        .and_then(|sc| sc.lamellas.get(k))
+                        .map(|l| PlanLamellaCheck {
+                            min_bending_radius_mm: l.min_bending_radius_mm.map(|r| round(r, MM)),
+                            max_twist_deg_per_m: round(l.max_twist_deg_per_m, DEG),
+                            check: plan_stress(l),
+                        }),
                 })
                 .collect();
             PlanStrip {
@@ -211,22 +283,21 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
                 family: s.family.as_str().to_string(),
                 length_mm: round(s.length_mm, MM),
                 nodes,
-                node_to_node_mm: s
-                    .node_to_node_mm()
-                    .into_iter()
-                    .map(|l| round(l, MM))
-                    .collect(),
-                start_to_first_node_mm: s.nodes.first().map(|n| round(n.station_mm, MM)),
-                last_node_to_end_mm: s
-                    .nodes
-                    .last()
-                    .map(|n| round(s.length_mm - n.station_mm, MM)),
+                node_to_node_mm: m.node_to_node_mm.iter().map(|&l| round(l, MM)).collect(),
+                start_to_first_node_mm: m.start_to_first_node_mm.map(|x| round(x, MM)),
+                last_node_to_end_mm: m.last_node_to_end_mm.map(|x| round(x, MM)),
                 min_bending_radius_mm: s.min_bending_radius_mm().map(|r| round(r, MM)),
                 max_twist_deg_per_m: round(s.max_abs_tg_per_mm.to_degrees() * per_m, DEG),
                 max_normal_curvature_per_m: round(s.max_abs_kn_per_mm * per_m, CURV),
                 normals: s.normal_source.as_str().to_string(),
-                check: None,
-                lamellas: None,
+                check: sc.map(|sc| {
+                    let worst = sc.worst();
+                    PlanStripCheck {
+                        lamella: worst.line.offset.number,
+                        stress: plan_stress(worst),
+                    }
+                }),
+                lamellas: (!lamellas.is_empty()).then_some(lamellas),
             }
         })
         .collect();
@@ -236,54 +307,44 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
         .iter()
         .map(|n| PlanNode {
             id: n.id,
-            a: net.curves[n.a].id.clone(),
-            b: net.curves[n.b].id.clone(),
+            a: id(n.a),
+            b: id(n.b),
             station_a_mm: round(n.station_a_mm, MM),
             station_b_mm: round(n.station_b_mm, MM),
             position_mm: v3(n.position_mm, MM),
             normal: v3(n.normal, 7),
             angle_deg: round(n.angle_deg, DEG),
+            oriented_angle_deg: round(n.oriented_angle_deg, DEG),
             gap_mm: round(n.gap_mm, MM),
         })
         .collect();
-    let all_n2n: Vec<f64> = an.strips.iter().flat_map(|s| s.node_to_node_mm()).collect();
-    // Angles and the kn residual describe the asymptotic net: A×B nodes and
-    // A/B strips (edges are neither asymptotic nor crossed at 90°).
-    let is_ab = |n: &crate::topology::Node| {
-        net.curves[n.a].family == crate::network::Family::A
-            && net.curves[n.b].family == crate::network::Family::B
-    };
-    let angles = an
-        .topology
-        .nodes
-        .iter()
-        .filter(|n| is_ab(n))
-        .map(|n| n.angle_deg);
+    let sm = &model.summary;
     let summary = Summary {
-        curves: net.curves.len(),
-        nodes: nodes.len(),
-        total_length_mm: round(an.strips.iter().map(|s| s.length_mm).sum(), MM),
-        shortest_node_to_node_mm: all_n2n
-            .iter()
-            .copied()
-            .reduce(f64::min)
-            .map(|x| round(x, MM)),
-        longest_node_to_node_mm: all_n2n
-            .iter()
-            .copied()
-            .reduce(f64::max)
-            .map(|x| round(x, MM)),
-        max_normal_curvature_per_m: round(
-            an.strips
-                .iter()
-                .filter(|s| s.family != crate::network::Family::Edge)
-                .map(|s| s.max_abs_kn_per_mm)
-                .fold(0.0, f64::max)
-                * per_m,
-            CURV,
+        curves: sm.curves,
+        nodes: sm.nodes,
+        total_length_mm: round(sm.total_length_mm, MM),
+        shortest_node_to_node_mm: sm.shortest_node_to_node_mm.map(|x| round(x, MM)),
+        longest_node_to_node_mm: sm.longest_node_to_node_mm.map(|x| round(x, MM)),
+        max_normal_curvature_per_m: round(sm.max_normal_curvature_per_mm * per_m, CURV),
+        min_angle_deg: sm.min_angle_deg.map(|x| round(x, DEG)),
+        max_angle_deg: sm.max_angle_deg.map(|x| round(x, DEG)),
+    };
+    let warnings = an
+        .warnings()
+        .iter()
+        .map(|w| PlanWarning {
+            kind: w.kind.as_str().into(),
+            message: w.message.clone(),
+            curves: w.curves.iter().map(|&c| id(c)).collect(),
+            station_mm: w.station_mm.map(|x| round(x, MM)),
+        })
+        .collect();
+    let (profile, check) = match &model.check {
+        Some(c) => (
+            Some(plan_profile(&c.profile)),
+            Some(plan_check(&c.report, c.suggestion.as_ref())),
         ),
-        min_angle_deg: angles.clone().reduce(f64::min).map(|x| round(x, DEG)),
-        max_angle_deg: angles.reduce(f64::max).map(|x| round(x, DEG)),
+        None => (None, None),
     };
     Plan {
         schema: SCHEMA.into(),
@@ -291,27 +352,29 @@ pub fn build(net: &Network, an: &Analysis) -> Plan {
         units: "mm".into(),
         network: NetworkSummary {
             name: net.name.clone(),
-            source: net
-                .source
-                .file_name()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
+            source: file_name(&net.source),
             file_units: net.file_unit.as_str().into(),
             tolerance_mm: round(net.tolerance_mm, MM),
         },
         summary,
         strips,
         nodes,
-        warnings: an.warnings().to_vec(),
-        profile: None,
-        check: None,
+        warnings,
+        profile,
+        check,
     }
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }
 
 const MPA: i32 = 4;
 const UTIL: i32 = 6;
 
-fn plan_stress(l: &crate::check::LamellaCheck) -> PlanStress {
+fn plan_stress(l: &LamellaCheck) -> PlanStress {
     PlanStress {
         utilization: round(l.utilization, UTIL),
         governing_station_mm: round(l.governing_station_mm, MM),
@@ -323,62 +386,32 @@ fn plan_stress(l: &crate::check::LamellaCheck) -> PlanStress {
     }
 }
 
-/// Add the profile and the elastic check to a plan.
-pub fn add_check(
-    plan: &mut Plan,
-    profile: &crate::profile::Profile,
-    report: &crate::check::CheckReport,
-    suggestion: Option<&crate::check::Suggestion>,
-) {
-    let f = &profile.file;
-    plan.profile = Some(PlanProfile {
-        name: f.name.clone(),
-        source: profile
-            .source
-            .file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default(),
-        material: f.material.name.clone(),
-        thickness_mm: f.lamella.thickness_mm,
-        height_mm: f.lamella.height_mm,
-        lamellas_per_strip: f.lamella.per_strip,
-        gap_mm: f.lamella.gap_mm,
-        youngs_modulus_mpa: f.material.youngs_modulus_mpa,
-        shear_modulus_mpa: f.material.shear_modulus_mpa,
-        characteristic_strength_mpa: f.material.characteristic_strength_mpa,
-        partial_factor: f.material.partial_factor,
-        modification_factor: f.material.modification_factor,
-        design_strength_mpa: round(profile.design_strength_mpa(), MPA),
-        joint_system: match f.joint.system {
-            crate::io::profile_file::JointSystem::Interlocking => "interlocking".into(),
-            crate::io::profile_file::JointSystem::TwoLevel => "two_level".into(),
+fn plan_profile(p: &Profile) -> PlanProfile {
+    PlanProfile {
+        name: p.name.clone(),
+        source: file_name(&p.source),
+        material: p.material.name.clone(),
+        thickness_mm: p.section.thickness_mm,
+        height_mm: p.section.height_mm,
+        lamellas_per_strip: p.section.per_strip,
+        gap_mm: p.section.gap_mm,
+        youngs_modulus_mpa: p.material.youngs_modulus_mpa,
+        shear_modulus_mpa: p.material.shear_modulus_mpa,
+        characteristic_strength_mpa: p.material.characteristic_strength_mpa,
+        partial_factor: p.material.partial_factor,
+        modification_factor: p.material.modification_factor,
+        design_strength_mpa: round(p.design_strength_mpa(), MPA),
+        joint_system: match p.joint.system {
+            JointSystem::Interlocking => "interlocking".into(),
+            JointSystem::TwoLevel => "two_level".into(),
         },
-        level_offset_mm: f.joint.level_offset_mm,
-        resolved: serde_json::to_value(f).unwrap_or(serde_json::Value::Null),
-    });
-    for sc in &report.strips {
-        let strip = &mut plan.strips[sc.strip];
-        let worst = sc.worst();
-        strip.check = Some(PlanStripCheck {
-            lamella: worst.offset.number,
-            stress: plan_stress(worst),
-        });
-        strip.lamellas = Some(
-            sc.lamellas
-                .iter()
-                .map(|l| PlanLamella {
-                    lamella: l.offset.number,
-                    dy_mm: round(l.offset.dy_mm, MM),
-                    dz_mm: round(l.offset.dz_mm, MM),
-                    length_mm: round(l.length_mm, MM),
-                    min_bending_radius_mm: l.min_bending_radius_mm.map(|r| round(r, MM)),
-                    max_twist_deg_per_m: round(l.max_twist_deg_per_m, DEG),
-                    check: plan_stress(l),
-                })
-                .collect(),
-        );
+        level_offset_mm: p.joint.level_offset_mm,
+        resolved: serde_json::to_value(p.resolved()).unwrap_or(serde_json::Value::Null),
     }
-    plan.check = Some(PlanCheckSummary {
+}
+
+fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanCheckSummary {
+    PlanCheckSummary {
         passes: report.passes(),
         strips_overstressed: report.overstressed(),
         max_utilization: round(report.max_utilization(), UTIL),
@@ -391,7 +424,7 @@ pub fn add_check(
                 .height_and_thickness_mm
                 .map(|(h, t)| [round(h, MM), round(t, MM)]),
         }),
-    });
+    }
 }
 
 /// Serialise a plan (pretty JSON, trailing newline).

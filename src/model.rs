@@ -1,0 +1,237 @@
+//! The finished model later stages and writers build on: per-strip node
+//! bookkeeping, every lamella on its own offset line with the stations of
+//! its nodes, the network's summary statistics and, after `check`, the
+//! profile and the check. Everything is computed here, once; writers
+//! (`io::plan`) only format it.
+//!
+//! Lamella lines exist for A and B strips only: edge strips lie tangential
+//! to the surface and are cut as curved bands (fabrication.md).
+
+use crate::analyze::Analysis;
+use crate::check::{CheckReport, Suggestion};
+use crate::curve::SmoothCurve;
+use crate::network::{Family, Network};
+use crate::profile::{LamellaOffset, Profile};
+use crate::strip::StripGeometry;
+
+/// Largest integration step (mm) along a lamella line.
+pub const LINE_STEP_MM: f64 = 25.0;
+
+/// A node seen from one lamella: its station on the lamella's own line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LamellaNode {
+    /// Node id (index into `Topology::nodes`).
+    pub node: usize,
+    /// Arc length along the lamella line from its start, mm.
+    pub station_mm: f64,
+}
+
+/// One lamella of a strip on its own offset line c(s) + dy·y(s) + dz·z(s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LamellaLine {
+    /// Number (1 on −y, 2 on +y) and offsets from the strip's curve.
+    pub offset: LamellaOffset,
+    /// Length of the lamella line, mm.
+    pub length_mm: f64,
+    /// The strip's nodes in the strip's order, at their stations on this line.
+    pub nodes: Vec<LamellaNode>,
+}
+
+impl LamellaLine {
+    /// The lamella line of `offset` on a strip.
+    pub fn new(strip: &StripGeometry, smooth: &SmoothCurve, offset: LamellaOffset) -> LamellaLine {
+        LamellaLine::with_stations(strip, smooth, offset, &[]).0
+    }
+
+    /// The lamella line of `offset` on a strip, and the line stations of the
+    /// given curve stations (any order), all from one integration along the
+    /// line (`StripGeometry::offset_stations`). On the centre line
+    /// (dy = dz = 0) the stations are the curve's.
+    pub fn with_stations(
+        strip: &StripGeometry,
+        smooth: &SmoothCurve,
+        offset: LamellaOffset,
+        curve_stations_mm: &[f64],
+    ) -> (LamellaLine, Vec<f64>) {
+        // Curve stations wanted: the nodes', the extra ones, the end.
+        let mut wanted: Vec<f64> = strip.nodes.iter().map(|n| n.station_mm).collect();
+        wanted.extend_from_slice(curve_stations_mm);
+        wanted.push(strip.length_mm);
+        let on_line: Vec<f64> = if offset.dy_mm == 0.0 && offset.dz_mm == 0.0 {
+            wanted.clone()
+        } else {
+            let mut order: Vec<usize> = (0..wanted.len()).collect();
+            order.sort_by(|&a, &b| wanted[a].total_cmp(&wanted[b]));
+            let sorted: Vec<f64> = order.iter().map(|&i| wanted[i]).collect();
+            let got =
+                strip.offset_stations(smooth, offset.dy_mm, offset.dz_mm, &sorted, LINE_STEP_MM);
+            let mut out = vec![0.0; wanted.len()];
+            for (k, &i) in order.iter().enumerate() {
+                out[i] = got[k];
+            }
+            out
+        };
+        let n = strip.nodes.len();
+        let line = LamellaLine {
+            offset,
+            length_mm: on_line[on_line.len() - 1],
+            nodes: strip
+                .nodes
+                .iter()
+                .zip(&on_line)
+                .map(|(cn, &s)| LamellaNode {
+                    node: cn.node,
+                    station_mm: s,
+                })
+                .collect(),
+        };
+        (line, on_line[n..on_line.len() - 1].to_vec())
+    }
+
+    /// Lengths between consecutive nodes on this line, mm.
+    pub fn node_to_node_mm(&self) -> Vec<f64> {
+        self.nodes
+            .windows(2)
+            .map(|w| w[1].station_mm - w[0].station_mm)
+            .collect()
+    }
+}
+
+/// Summary statistics of a network.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    pub curves: usize,
+    pub nodes: usize,
+    pub total_length_mm: f64,
+    /// Over all strips.
+    pub shortest_node_to_node_mm: Option<f64>,
+    pub longest_node_to_node_mm: Option<f64>,
+    /// The kn residual over A and B strips (edges are not asymptotic).
+    pub max_normal_curvature_per_mm: f64,
+    /// Crossing angles over A×B nodes (edges do not cross at 90°).
+    pub min_angle_deg: Option<f64>,
+    pub max_angle_deg: Option<f64>,
+}
+
+impl Summary {
+    pub fn of(net: &Network, an: &Analysis) -> Summary {
+        let all_n2n: Vec<f64> = an.strips.iter().flat_map(|s| s.node_to_node_mm()).collect();
+        let angles: Vec<f64> = an
+            .topology
+            .nodes
+            .iter()
+            .filter(|n| net.curves[n.a].family == Family::A && net.curves[n.b].family == Family::B)
+            .map(|n| n.angle_deg)
+            .collect();
+        Summary {
+            curves: net.curves.len(),
+            nodes: an.topology.nodes.len(),
+            total_length_mm: an.strips.iter().map(|s| s.length_mm).sum(),
+            shortest_node_to_node_mm: all_n2n.iter().copied().reduce(f64::min),
+            longest_node_to_node_mm: all_n2n.iter().copied().reduce(f64::max),
+            max_normal_curvature_per_mm: an
+                .lamella_strips()
+                .map(|s| s.max_abs_kn_per_mm)
+                .fold(0.0, f64::max),
+            min_angle_deg: angles.iter().copied().reduce(f64::min),
+            max_angle_deg: angles.iter().copied().reduce(f64::max),
+        }
+    }
+}
+
+/// One strip of the model (index-aligned with `Analysis::strips`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StripModel {
+    /// Lengths between consecutive nodes on the curve.
+    pub node_to_node_mm: Vec<f64>,
+    /// From the curve's start to its first node; None without nodes.
+    pub start_to_first_node_mm: Option<f64>,
+    /// From the last node to the curve's end; None without nodes.
+    pub last_node_to_end_mm: Option<f64>,
+    /// Every lamella on its own line (A and B strips; empty for edges).
+    pub lamellas: Vec<LamellaLine>,
+}
+
+/// The profile a network was checked against, and the results.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checked {
+    pub profile: Profile,
+    pub report: CheckReport,
+    pub suggestion: Option<Suggestion>,
+}
+
+/// The finished model of a network.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Model {
+    pub summary: Summary,
+    pub strips: Vec<StripModel>,
+    /// Added by `check`.
+    pub check: Option<Checked>,
+}
+
+impl Model {
+    /// Without a profile: one lamella per A/B strip, on the centre line.
+    pub fn new(net: &Network, an: &Analysis) -> Model {
+        let lines: Vec<Vec<LamellaLine>> = crate::analyze::par_map(&an.strips, |s| {
+            if s.family == Family::Edge {
+                Vec::new()
+            } else {
+                vec![LamellaLine::new(
+                    s,
+                    &an.curves[s.curve],
+                    LamellaOffset::CENTRE,
+                )]
+            }
+        });
+        Model::build(net, an, lines, None)
+    }
+
+    /// After the check: the profile's lamellas (taken from the report, which
+    /// computed their lines), the profile and the results.
+    pub fn checked(
+        net: &Network,
+        an: &Analysis,
+        profile: Profile,
+        report: CheckReport,
+        suggestion: Option<Suggestion>,
+    ) -> Model {
+        let mut lines: Vec<Vec<LamellaLine>> = vec![Vec::new(); an.strips.len()];
+        for sc in &report.strips {
+            lines[sc.strip] = sc.lamellas.iter().map(|l| l.line.clone()).collect();
+        }
+        Model::build(
+            net,
+            an,
+            lines,
+            Some(Checked {
+                profile,
+                report,
+                suggestion,
+            }),
+        )
+    }
+
+    fn build(
+        net: &Network,
+        an: &Analysis,
+        lines: Vec<Vec<LamellaLine>>,
+        check: Option<Checked>,
+    ) -> Model {
+        let strips = an
+            .strips
+            .iter()
+            .zip(lines)
+            .map(|(s, lamellas)| StripModel {
+                node_to_node_mm: s.node_to_node_mm(),
+                start_to_first_node_mm: s.nodes.first().map(|n| n.station_mm),
+                last_node_to_end_mm: s.nodes.last().map(|n| s.length_mm - n.station_mm),
+                lamellas,
+            })
+            .collect();
+        Model {
+            summary: Summary::of(net, an),
+            strips,
+            check,
+        }
+    }
+}
