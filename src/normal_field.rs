@@ -231,25 +231,29 @@ pub struct NormalField {
 fn double_reflection(p0: DVec3, t0: DVec3, r: DVec3, p1: DVec3, t1: DVec3) -> DVec3 {
     let v1 = p1 - p0;
     let c1 = v1.length_squared();
-    let (r_l, t_l) = if c1 > 1e-300 {
-        (
-            r - v1 * (2.0 / c1 * v1.dot(r)),
-            t0 - v1 * (2.0 / c1 * v1.dot(t0)),
-        )
+    let r1 = if c1 < MIN_REFLECTION_STEP_MM * MIN_REFLECTION_STEP_MM {
+        // So close that v1's direction is rounding noise (reflecting in it
+        // would turn r about the tangent at random): the frame barely moves,
+        // projection is exact to O(|v1|²).
+        r
     } else {
-        (r, t0)
-    };
-    let v2 = t1 - t_l;
-    let c2 = v2.length_squared();
-    let r1 = if c2 > 1e-300 {
-        r_l - v2 * (2.0 / c2 * v2.dot(r_l))
-    } else {
-        r_l
+        let r_l = r - v1 * (2.0 / c1 * v1.dot(r));
+        let t_l = t0 - v1 * (2.0 / c1 * v1.dot(t0));
+        let v2 = t1 - t_l;
+        let c2 = v2.length_squared();
+        if c2 > 1e-300 {
+            r_l - v2 * (2.0 / c2 * v2.dot(r_l))
+        } else {
+            r_l
+        }
     };
     (r1 - t1 * r1.dot(t1))
         .try_normalize()
         .unwrap_or_else(|| t1.any_orthonormal_vector())
 }
+
+/// Below this distance (mm) a frame is carried by projection, not reflection.
+const MIN_REFLECTION_STEP_MM: f64 = 1e-4;
 
 /// Position, unit tangent and curvature vector (1/mm) at a station.
 fn point_tangent_curvature(smooth: &SmoothCurve, station_mm: f64) -> (DVec3, DVec3, DVec3) {
@@ -497,5 +501,32 @@ mod tests {
         let (_, slope) = sp.eval(600.0);
         let want = 1000.0 / (600.0f64.powi(2) + 1e6);
         assert!((slope - want).abs() < 0.02 * want, "{slope} vs {want}");
+    }
+
+    #[test]
+    fn frame_is_continuous_at_its_own_stations() {
+        // A helix; the field's stations are its samples. Evaluating exactly
+        // at a station (where the carried point coincides with the stored
+        // one to rounding) must agree with evaluating next to it.
+        let pts: Vec<DVec3> = (0..60)
+            .map(|i| {
+                let a = i as f64 * 0.02;
+                DVec3::new(900.0 * a.cos(), 900.0 * a.sin(), 300.0 * a)
+            })
+            .collect();
+        let smooth = SmoothCurve::new(&pts);
+        let field = NormalField::new(&smooth, &[], true, NormalFieldOptions::default());
+        for &s in &smooth.sample_stations_mm()[1..58] {
+            for ds in [0.0, 1e-7, -1e-7] {
+                let (k, u) = smooth.locate_station(s + ds);
+                let j = smooth.jet_at(k, u);
+                let (z, tg) = field.at(s + ds, j.value, j.d1.normalize());
+                let (k0, u0) = smooth.locate_station(s + 1e-3);
+                let j0 = smooth.jet_at(k0, u0);
+                let (z0, tg0) = field.at(s + 1e-3, j0.value, j0.d1.normalize());
+                assert!(z.distance(z0) < 1e-5, "normal jumps at {s}{ds:+}");
+                assert!((tg - tg0).abs() < 1e-8, "twist jumps at {s}");
+            }
+        }
     }
 }

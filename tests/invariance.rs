@@ -103,7 +103,16 @@ fn assert_same(a: &Summary, b: &Summary) {
         assert_eq!(x.5.len(), y.5.len(), "{}: lamella count", x.0);
         for (l, m) in x.5.iter().zip(&y.5) {
             assert_eq!((l.0, l.1), (m.0, m.1), "{}: lamella", x.0);
-            assert!((l.2 - m.2).abs() < 1e-6, "{} lamella {}: length", x.0, l.0);
+            assert!(
+                (l.2 - m.2).abs() < 1e-6,
+                "{} lamella {}: length {} vs {} ({:?} vs {:?})",
+                x.0,
+                l.0,
+                l.2,
+                m.2,
+                x.5.iter().map(|l| l.2).collect::<Vec<_>>(),
+                y.5.iter().map(|l| l.2).collect::<Vec<_>>()
+            );
             assert_eq!(l.3.len(), m.3.len(), "{} lamella {}: node count", x.0, l.0);
             for (s, t) in l.3.iter().zip(&m.3) {
                 assert!((s - t).abs() < 1e-6, "{} lamella {}: {s} vs {t}", x.0, l.0);
