@@ -1,4 +1,4 @@
-//! plan.json, schema `lamella-plan/1`: the single source of truth every later
+//! plan.json, schema `lamella-plan/2`: the single source of truth every later
 //! output is drawn from. Later stages add fields; they never rename these.
 //! Numbers are rounded to fixed precision so the file is byte-stable.
 
@@ -12,7 +12,7 @@ use crate::profile::Profile;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-pub const SCHEMA: &str = "lamella-plan/1";
+pub const SCHEMA: &str = "lamella-plan/2";
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Plan {
