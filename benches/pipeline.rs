@@ -66,7 +66,7 @@ fn measure(path: &Path) {
         let opts = AnalysisOptions::for_network(&net);
         let a = Instant::now();
         let curves = lamella::analyze::par_map(&net.curves, |c| {
-            lamella::curve::SmoothCurve::new(&c.points_mm)
+            lamella::curve::SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
         });
         let b = Instant::now();
         let topo = lamella::topology::find_nodes(&net, &curves, opts.nodes);
@@ -83,13 +83,23 @@ fn measure(path: &Path) {
             )
         });
         let d = Instant::now();
+        let model = lamella::model::Model::new(&net, &an);
+        let e = Instant::now();
+        let p = plan::build(&net, &an, &model);
+        let f = Instant::now();
+        let json = plan::to_json(&p);
+        let g = Instant::now();
         eprintln!(
-            "stages: smooth {:.3} s, nodes {:.3} s, strips {:.3} s ({} strips)",
+            "stages: smooth {:.3} s, nodes {:.3} s, strips {:.3} s ({} strips), model {:.3} s, plan {:.3} s, json {:.3} s",
             (b - a).as_secs_f64(),
             (c - b).as_secs_f64(),
             (d - c).as_secs_f64(),
-            strips.len()
+            strips.len(),
+            (e - d).as_secs_f64(),
+            (f - e).as_secs_f64(),
+            (g - f).as_secs_f64(),
         );
+        std::hint::black_box(json.len());
     }
     let model = lamella::model::Model::new(&net, &an);
     let p = plan::build(&net, &an, &model);

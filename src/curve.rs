@@ -359,14 +359,20 @@ fn kernel_fit(
             *cell = sums[r + c];
         }
     }
+    // M is symmetric positive definite: factor once (Cholesky, M = LLᵀ),
+    // solve for the three coordinates and for row 2 of M⁻¹.
+    let Some(l) = cholesky(&m, k) else {
+        // Degenerate window (coincident parameters): fall back to pivoting.
+        let coef = poly_fit(t, v, t0, scale, deg);
+        return (coef, 0.0);
+    };
     let mut coef = [DVec3::ZERO; MAX_DEGREE + 1];
+    let mut rhs_axis = [0.0f64; MAX_DEGREE + 1];
     for axis in 0..3 {
-        let mut mm = m;
-        let mut b = [0.0f64; MAX_DEGREE + 1];
         for q in 0..k {
-            b[q] = rhs[q][axis];
+            rhs_axis[q] = rhs[q][axis];
         }
-        let x = solve_small(&mut mm, &mut b, k);
+        let x = cholesky_solve(&l, &rhs_axis, k);
         for q in 0..k {
             coef[q][axis] = x[q];
         }
@@ -377,7 +383,7 @@ fn kernel_fit(
     // Row 2 of M⁻¹, then aⱼ = wⱼ Σ_q z_q τⱼ^q.
     let mut e2 = [0.0f64; MAX_DEGREE + 1];
     e2[2] = 1.0;
-    let z = solve_small(&mut m, &mut e2, k);
+    let z = cholesky_solve(&l, &e2, k);
     let mut sum_a2 = 0.0;
     for &tj in t {
         let tau = (tj - t0) / scale;
@@ -393,44 +399,48 @@ fn kernel_fit(
     (coef, sum_a2)
 }
 
-/// Gaussian elimination with partial pivoting on the leading k×k block.
-fn solve_small(
-    m: &mut [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1],
-    rhs: &mut [f64; MAX_DEGREE + 1],
-    k: usize,
-) -> [f64; MAX_DEGREE + 1] {
-    for col in 0..k {
-        let piv = (col..k)
-            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
-            .unwrap_or(col);
-        m.swap(col, piv);
-        rhs.swap(col, piv);
-        let d = m[col][col];
-        if d.abs() < 1e-300 {
-            continue;
-        }
-        for r in col + 1..k {
-            let f = m[r][col] / d;
-            if f != 0.0 {
-                let pivot_row = m[col];
-                for (cell, p) in m[r][col..k].iter_mut().zip(&pivot_row[col..k]) {
-                    *cell -= f * p;
+type Small = [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+
+/// Cholesky factor L (lower) of the leading k×k block of a symmetric
+/// positive definite matrix; None if it is not (numerically) definite.
+fn cholesky(m: &Small, k: usize) -> Option<Small> {
+    let mut l = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    for i in 0..k {
+        for j in 0..=i {
+            let mut sum = m[i][j];
+            for p in 0..j {
+                sum -= l[i][p] * l[j][p];
+            }
+            if i == j {
+                if sum <= m[i][i] * 1e-13 {
+                    return None;
                 }
-                rhs[r] -= rhs[col] * f;
+                l[i][i] = sum.sqrt();
+            } else {
+                l[i][j] = sum / l[j][j];
             }
         }
     }
-    let mut x = [0.0f64; MAX_DEGREE + 1];
-    for r in (0..k).rev() {
-        let mut acc = rhs[r];
-        for c in r + 1..k {
-            acc -= x[c] * m[r][c];
+    Some(l)
+}
+
+/// Solve L Lᵀ x = b on the leading k×k block.
+fn cholesky_solve(l: &Small, b: &[f64; MAX_DEGREE + 1], k: usize) -> [f64; MAX_DEGREE + 1] {
+    let mut y = [0.0f64; MAX_DEGREE + 1];
+    for i in 0..k {
+        let mut sum = b[i];
+        for p in 0..i {
+            sum -= l[i][p] * y[p];
         }
-        x[r] = if m[r][r].abs() < 1e-300 {
-            0.0
-        } else {
-            acc / m[r][r]
-        };
+        y[i] = sum / l[i][i];
+    }
+    let mut x = [0.0f64; MAX_DEGREE + 1];
+    for i in (0..k).rev() {
+        let mut sum = y[i];
+        for p in i + 1..k {
+            sum -= l[p][i] * x[p];
+        }
+        x[i] = sum / l[i][i];
     }
     x
 }
@@ -539,8 +549,10 @@ impl SmoothCurve {
         let smoothing_mm = smoothed.half_width_mm;
         let d2_noise = smoothed.d2_noise;
         let h = if smoothing_mm > 0.0 {
-            // The chord parameter of rounded samples is itself noisy: take it
-            // from the smoothed positions and interpolate those exactly.
+            // The chord parameter of rounded samples is itself noisy: take
+            // the chord of the smoothed positions as the parameter (≈ arc
+            // length) and carry the fitted derivatives over to it: unit
+            // tangent, curvature vector as second derivative.
             let values = smoothed.values;
             let mut t = Vec::with_capacity(values.len());
             let mut acc = 0.0;
@@ -549,7 +561,17 @@ impl SmoothCurve {
                 acc += w[1].distance(w[0]).max(1e-9);
                 t.push(acc);
             }
-            Hermite5::new(t, values)
+            let (d1, d2): (Vec<DVec3>, Vec<DVec3>) = smoothed
+                .d1
+                .iter()
+                .zip(&smoothed.d2)
+                .map(|(&a, &b)| {
+                    let v2 = a.length_squared().max(1e-300);
+                    let x = a / v2.sqrt();
+                    (x, (b - x * b.dot(x)) / v2)
+                })
+                .unzip();
+            Hermite5::from_parts(t, values, d1, d2)
         } else {
             Hermite5::from_parts(t, smoothed.values, smoothed.d1, smoothed.d2)
         };

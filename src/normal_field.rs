@@ -200,7 +200,7 @@ impl Default for NormalFieldOptions {
             node_sigma_rad: 1e-4,
             curvature_floor_per_mm: 1e-7,
             max_binormal_sigma_rad: 0.3,
-            max_frame_step_mm: 20.0,
+            max_frame_step_mm: 50.0,
             smoothing: 1e-4,
         }
     }
@@ -255,9 +255,8 @@ fn double_reflection(p0: DVec3, t0: DVec3, r: DVec3, p1: DVec3, t1: DVec3) -> DV
 /// Below this distance (mm) a frame is carried by projection, not reflection.
 const MIN_REFLECTION_STEP_MM: f64 = 1e-4;
 
-/// Position, unit tangent and curvature vector (1/mm) at a station.
-fn point_tangent_curvature(smooth: &SmoothCurve, station_mm: f64) -> (DVec3, DVec3, DVec3) {
-    let (k, u) = smooth.locate_station(station_mm);
+/// Position, unit tangent and curvature vector (1/mm) at segment k, local u.
+fn point_tangent_curvature(smooth: &SmoothCurve, k: usize, u: f64) -> (DVec3, DVec3, DVec3) {
     let j = smooth.jet_at(k, u);
     let v2 = j.d1.length_squared();
     let x = j.d1 / v2.sqrt();
@@ -275,30 +274,38 @@ impl NormalField {
         opts: NormalFieldOptions,
     ) -> NormalField {
         let length = smooth.length_mm();
-        // Frame stations: every sample, subdivided to the largest step.
+        // Frame stations: every sample, each segment subdivided evenly in
+        // its parameter to the largest step.
         let samples = smooth.sample_stations_mm();
-        let mut stations_mm = Vec::with_capacity(samples.len());
-        let mut noise = Vec::with_capacity(samples.len());
-        for (i, w) in samples.windows(2).enumerate() {
-            let parts = ((w[1] - w[0]) / opts.max_frame_step_mm).ceil().max(1.0) as usize;
-            for p in 0..parts {
-                stations_mm.push(w[0] + (w[1] - w[0]) * p as f64 / parts as f64);
-                let near = if p * 2 < parts { i } else { i + 1 };
-                noise.push(smooth.curvature_noise_per_mm(near));
-            }
-        }
-        stations_mm.push(length);
-        noise.push(smooth.curvature_noise_per_mm(samples.len() - 1));
-
-        let mut points_mm = Vec::with_capacity(stations_mm.len());
-        let mut tangents = Vec::with_capacity(stations_mm.len());
-        let mut curvatures = Vec::with_capacity(stations_mm.len());
-        for &s in &stations_mm {
-            let (p, x, k) = point_tangent_curvature(smooth, s);
+        let n = samples.len();
+        let mut stations_mm = Vec::with_capacity(n);
+        let mut noise = Vec::with_capacity(n);
+        let mut points_mm = Vec::with_capacity(n);
+        let mut tangents = Vec::with_capacity(n);
+        let mut curvatures = Vec::with_capacity(n);
+        let mut push = |k: usize, u: f64, station: f64, near: usize| {
+            let (p, x, kv) = point_tangent_curvature(smooth, k, u);
+            stations_mm.push(station);
+            noise.push(smooth.curvature_noise_per_mm(near));
             points_mm.push(p);
             tangents.push(x);
-            curvatures.push(k);
+            curvatures.push(kv);
+        };
+        for k in 0..n - 1 {
+            let parts = ((samples[k + 1] - samples[k]) / opts.max_frame_step_mm)
+                .ceil()
+                .max(1.0) as usize;
+            for p in 0..parts {
+                let u = p as f64 / parts as f64;
+                let station = if p == 0 {
+                    samples[k]
+                } else {
+                    smooth.station_at(k, u)
+                };
+                push(k, u, station, if 2 * p < parts { k } else { k + 1 });
+            }
         }
+        push(n - 2, 1.0, length, n - 1);
         let mut refs = Vec::with_capacity(stations_mm.len());
         refs.push(tangents[0].any_orthonormal_vector());
         for i in 1..stations_mm.len() {
@@ -332,7 +339,8 @@ impl NormalField {
         let node_weight = 1.0 / (opts.node_sigma_rad * opts.node_sigma_rad);
         let mut obs: Vec<Observation> = Vec::with_capacity(nodes.len());
         for &(s, z) in nodes {
-            let (p, x, _) = point_tangent_curvature(smooth, s);
+            let (k, u) = smooth.locate_station(s);
+            let (p, x, _) = point_tangent_curvature(smooth, k, u);
             let mut theta = field.angle_of(s, p, x, z);
             if let Some(prev) = obs.last() {
                 theta = unwrap_near(theta, prev.theta, std::f64::consts::TAU);
@@ -356,9 +364,9 @@ impl NormalField {
                 if sigma > opts.max_binormal_sigma_rad {
                     continue;
                 }
-                let (s, x) = (field.stations_mm[i], field.tangents[i]);
+                let (s, x, u1) = (field.stations_mm[i], field.tangents[i], field.refs[i]);
                 let b = x.cross(kvec / kappa);
-                let raw = field.angle_of(s, field.points_mm[i], x, b);
+                let raw = b.dot(x.cross(u1)).atan2(b.dot(u1));
                 // The binormal is the normal up to sign: take the branch
                 // nearest the node field, else the previous binormal, else
                 // the one whose normal points up.
