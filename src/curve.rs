@@ -407,10 +407,13 @@ fn cholesky(m: &Small, k: usize) -> Option<Small> {
     let mut l = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
     for i in 0..k {
         for j in 0..=i {
-            let mut sum = m[i][j];
-            for p in 0..j {
-                sum -= l[i][p] * l[j][p];
-            }
+            let (row_i, row_j) = (l[i], l[j]);
+            let sum = m[i][j]
+                - row_i[..j]
+                    .iter()
+                    .zip(&row_j[..j])
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>();
             if i == j {
                 if sum <= m[i][i] * 1e-13 {
                     return None;
