@@ -44,6 +44,7 @@ impl Profile {
         if text.trim().is_empty() {
             return Err(Error::input(path, Location::File, "the file is empty"));
         }
+        crate::io::yaml_guard::check(text, path)?;
         let value: serde_yaml::Value =
             serde_yaml::from_str(text).map_err(|e| yaml_error(path, &e))?;
         let version = match value.get("version") {

@@ -8,6 +8,7 @@ pub mod obj;
 pub mod plan;
 pub mod profile_file;
 pub mod trace_spec;
+pub mod yaml_guard;
 
 use crate::error::{Error, Location, Result};
 use crate::network::{Network, RawNetwork, Unit};
@@ -52,15 +53,15 @@ pub fn read_raw(path: &Path, opts: ReadOptions) -> Result<RawNetwork> {
     }
     match ext.as_str() {
         "yaml" | "yml" => {
-            let text = read_text(path)?;
+            let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             network_file::parse(&text, network_file::Syntax::Yaml, path)
         }
         "json" => {
-            let text = read_text(path)?;
+            let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             network_file::parse(&text, network_file::Syntax::Json, path)
         }
         "obj" => {
-            let text = read_text(path)?;
+            let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             obj::parse(&text, opts.unit.unwrap_or(crate::network::Unit::Mm), path)
         }
         "dxf" => dxf_in::read(path, opts.unit),
@@ -79,9 +80,32 @@ pub fn default_name(path: &Path) -> String {
         .unwrap_or_else(|| "network".into())
 }
 
-/// Read a whole text file, with a one-line error on failure or bad UTF-8.
+/// Read a whole text file (a trace spec or a profile: at most
+/// [`yaml_guard::MAX_SMALL_FILE_BYTES`]), with a one-line error on failure or
+/// bad UTF-8; a leading UTF-8 byte-order mark is dropped.
 pub fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    read_text_limited(path, yaml_guard::MAX_SMALL_FILE_BYTES)
+}
+
+/// [`read_text`] with a size limit in bytes.
+pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String> {
+    let len = std::fs::metadata(path)
+        .map_err(|e| Error::io(path, e))?
+        .len();
+    if len > max_bytes {
+        return Err(Error::input(
+            path,
+            Location::File,
+            format!(
+                "{len} bytes is more than the {} MiB lamella reads in such a file",
+                max_bytes >> 20
+            ),
+        ));
+    }
+    let mut bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    if bytes.starts_with(b"\xEF\xBB\xBF") {
+        bytes.drain(..3);
+    }
     String::from_utf8(bytes).map_err(|e| {
         Error::input(
             path,

@@ -8,6 +8,7 @@ use std::path::Path;
 
 /// Parse OBJ text. OBJ carries no unit: the caller says which (`unit`).
 pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     if text.trim().is_empty() {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
