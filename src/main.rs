@@ -78,7 +78,7 @@ struct ReadArgs {
     units: Option<Unit>,
     /// Node tolerance in mm: the largest gap between two curves that is still a node
     /// (default: the file's `tolerance`, else 0.5 mm).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_tolerance)]
     tolerance: Option<f64>,
 }
 
@@ -93,6 +93,50 @@ impl ReadArgs {
 
 fn parse_unit(s: &str) -> Result<Unit, String> {
     Unit::parse(s).ok_or_else(|| format!("unknown unit '{s}' (use mm, cm, m, in or ft)"))
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let max = lamella::network::MAX_TOLERANCE_MM;
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 && t <= max => Ok(t),
+        Ok(_) => Err(format!(
+            "the node tolerance must be a length in mm above 0 and at most {max}"
+        )),
+        Err(_) => Err(format!("'{s}' is not a number (a length in mm)")),
+    }
+}
+
+/// Refuse to write `out` when it is one of the `inputs` (the same file by
+/// canonical path, or by device and inode: symlinks and hard links too).
+fn refuse_overwriting_input(out: &Path, inputs: &[(&str, &Path)]) -> lamella::Result<()> {
+    if !out.exists() {
+        return Ok(());
+    }
+    for (what, input) in inputs {
+        if io::same_file(out, input) {
+            return Err(lamella::Error::input(
+                out,
+                lamella::error::Location::File,
+                format!(
+                    "is the {what} ({}): refusing to overwrite an input; choose another output",
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Serialise a plan, refusing one with a NaN or infinite number (JSON would
+/// write it as null).
+fn plan_json(plan: &plan::Plan, target: &Path) -> lamella::Result<String> {
+    if let Some(field) = io::finite::first_non_finite(plan) {
+        return Err(lamella::Error::network(
+            target,
+            format!("not written: {field} is not a finite number"),
+        ));
+    }
+    Ok(plan::to_json(plan))
 }
 
 fn main() -> ExitCode {
@@ -129,6 +173,10 @@ fn check(
     top: Option<usize>,
     read: &ReadArgs,
 ) -> lamella::Result<ExitCode> {
+    if let Some(dir) = out {
+        let target = dir.join("plan.json");
+        refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
+    }
     let profile = Profile::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
@@ -137,7 +185,8 @@ fn check(
     if let Some(dir) = out {
         let mut plan = plan::build(&net, &an);
         plan::add_check(&mut plan, &profile, &report, suggestion.as_ref());
-        plan::write_atomic(&dir.join("plan.json"), plan::to_json(&plan).as_bytes())?;
+        let target = dir.join("plan.json");
+        plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     }
     for w in an.warnings() {
         eprintln!("warning: {w}");
@@ -218,11 +267,12 @@ fn check(
 }
 
 fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> {
+    let target = out.join("plan.json");
+    refuse_overwriting_input(&target, &[("network", path)])?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     let plan = plan::build(&net, &an);
-    let target = out.join("plan.json");
-    plan::write_atomic(&target, plan::to_json(&plan).as_bytes())?;
+    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     for w in &plan.warnings {
         eprintln!("warning: {w}");
     }
@@ -294,6 +344,7 @@ fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: b
 }
 
 fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
+    refuse_overwriting_input(out, &[("trace spec", spec_path)])?;
     let spec = io::trace_spec::load(spec_path)?;
     let (net, report) = lamella::design::design(&spec, spec_path)?;
     let comment = format!(

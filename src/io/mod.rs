@@ -3,6 +3,7 @@
 //! in file units; [`read_network`] validates it into a [`Network`] in mm.
 
 pub mod dxf_in;
+pub mod finite;
 pub mod network_file;
 pub mod obj;
 pub mod plan;
@@ -30,11 +31,14 @@ pub fn read_network(path: &Path, opts: ReadOptions) -> Result<Network> {
     let raw = read_raw(path, opts)?;
     let mut net = Network::new(raw, path)?;
     if let Some(t) = opts.tolerance_mm {
-        if !(t.is_finite() && t > 0.0) {
+        if !(t.is_finite() && t > 0.0 && t <= crate::network::MAX_TOLERANCE_MM) {
             return Err(Error::input(
                 path,
                 Location::Field("tolerance".into()),
-                "tolerance must be positive",
+                format!(
+                    "tolerance must be positive and at most {} mm",
+                    crate::network::MAX_TOLERANCE_MM
+                ),
             ));
         }
         net.tolerance_mm = t;
@@ -113,4 +117,23 @@ pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String> {
             format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
         )
     })
+}
+
+/// Whether two paths name the same existing file: the same canonical path,
+/// or (on Unix) the same device and inode, so hard links count too.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    let (Ok(ca), Ok(cb)) = (a.canonicalize(), b.canonicalize()) else {
+        return false;
+    };
+    if ca == cb {
+        return true;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(ma), Ok(mb)) = (std::fs::metadata(&ca), std::fs::metadata(&cb)) {
+            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+        }
+    }
+    false
 }
