@@ -362,6 +362,9 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         _ => io::network_file::to_yaml(&net, 4, &comment),
     };
     plan::write_atomic(out, text.as_bytes())?;
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
     let length_m: f64 = net
         .curves
         .iter()
@@ -389,9 +392,16 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
         .collect();
     if !unusual.is_empty() {
+        const SHOWN: usize = 8;
+        let more = unusual.len().saturating_sub(SHOWN);
         println!(
-            "curves ending elsewhere than the clip: {}",
-            unusual.join(", ")
+            "curves ending elsewhere than the clip: {}{}",
+            unusual[..unusual.len().min(SHOWN)].join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
         );
     }
     println!("wrote {}", out.display());

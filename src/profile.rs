@@ -85,16 +85,30 @@ impl Profile {
         let err = |field: &str, what: String| {
             Err(Error::input(path, Location::Field(field.into()), what))
         };
+        // Every number has a sane upper bound, checked under its own name
+        // (a length beyond 10 km is a typo, not a part).
+        let at_most = |field: &str, x: f64| -> Result<()> {
+            let (max, unit) = if field.ends_with("_mm") {
+                (1e7, " mm")
+            } else {
+                (1e12, "")
+            };
+            if x <= max {
+                Ok(())
+            } else {
+                err(field, format!("must be at most {max:e}{unit}, got {x:e}"))
+            }
+        };
         let positive = |field: &str, x: f64| -> Result<()> {
             if x.is_finite() && x > 0.0 {
-                Ok(())
+                at_most(field, x)
             } else {
                 err(field, format!("must be positive, got {x}"))
             }
         };
         let non_negative = |field: &str, x: f64| -> Result<()> {
             if x.is_finite() && x >= 0.0 {
-                Ok(())
+                at_most(field, x)
             } else {
                 err(field, format!("must be zero or more, got {x}"))
             }

@@ -80,6 +80,9 @@ pub enum Stop {
     MaxLength,
     /// The step size fell below its minimum (a singularity of the field).
     StepTooSmall,
+    /// Took more steps than [`TraceOptions::max_steps`] (steps held tiny
+    /// near a singularity).
+    StepLimit,
 }
 
 impl Stop {
@@ -91,6 +94,7 @@ impl Stop {
             Stop::ClosedLoop => "closed loop",
             Stop::MaxLength => "length limit",
             Stop::StepTooSmall => "step too small",
+            Stop::StepLimit => "step limit",
         }
     }
 }
@@ -109,6 +113,8 @@ pub struct TraceOptions {
     pub max_length_mm: f64,
     /// |K| below this (1/mm²) is a flat point.
     pub flat_k_per_mm2: f64,
+    /// Most integrator steps (accepted and rejected) of one direction of a trace.
+    pub max_steps: usize,
 }
 
 impl Default for TraceOptions {
@@ -120,6 +126,7 @@ impl Default for TraceOptions {
             boundary_tolerance_mm: 1e-7,
             max_length_mm: 200_000.0,
             flat_k_per_mm2: 1e-14,
+            max_steps: 4_000_000,
         }
     }
 }
@@ -275,7 +282,7 @@ impl Tracer<'_> {
         let mut stations = vec![0.0];
         let mut h = self.opts.max_step_mm.min(1.0);
         let p0 = self.surface.point(uv0);
-        loop {
+        for _ in 0..self.opts.max_steps {
             if s >= self.opts.max_length_mm {
                 return (out, stations, Stop::MaxLength);
             }
@@ -343,6 +350,7 @@ impl Tracer<'_> {
                 return (out, stations, Stop::StepTooSmall);
             }
         }
+        (out, stations, Stop::StepLimit)
     }
 
     /// Largest step length in [lo, hi] whose end satisfies `ok`, by bisection;
@@ -356,7 +364,11 @@ impl Tracer<'_> {
         ok: impl Fn(DVec2, DVec3) -> bool,
     ) -> (DVec2, f64) {
         let mut best = (uv, 0.0);
-        while hi - lo > self.opts.boundary_tolerance_mm {
+        // Halving from at most max_step_mm to the tolerance takes < 64 rounds.
+        for _ in 0..64 {
+            if hi - lo <= self.opts.boundary_tolerance_mm {
+                break;
+            }
             let mid = 0.5 * (lo + hi);
             match self.step(uv, dir, mid) {
                 Ok((q, _, _)) if ok(q, self.surface.point(q)) => {

@@ -236,7 +236,7 @@ fn bad_specs_get_clear_errors() {
                 "min_mm: [5000, 5000, -3000]",
             )
             .replace("max_mm: [1500, 1500, 3000]", "max_mm: [6000, 6000, 3000]"),
-        &["clip", "removes everything"],
+        &["clip", "seed", "lies outside the clip"],
     );
     bad(
         "two-clips",
