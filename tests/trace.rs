@@ -155,6 +155,8 @@ fn shipped_specs_regenerate_their_samples_and_run_clean() {
             "{name}: {}",
             String::from_utf8_lossy(&status.stderr)
         );
+        let trace_stderr = String::from_utf8_lossy(&status.stderr);
+        assert!(!trace_stderr.contains("warning"), "{name}: {trace_stderr}");
         // Deterministic: the same bytes as the shipped sample (but for the
         // regenerate comment, which names the output path).
         let strip = |t: String| {
@@ -592,4 +594,134 @@ fn fill_covers_the_gaps_the_central_design_leaves() {
     let (mut flat, fp) = spec("enneper-4m");
     flat.fill = true;
     assert!(design(&flat, &fp).is_err());
+}
+
+#[test]
+fn each_bad_clip_and_sampling_gets_its_own_message() {
+    let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
+    let clip = "  box:                    # a 4 m x 4 m plan, rotated so the strips run diagonally\n    min_mm: [-1500, -1500, -3000]\n    max_mm: [1500, 1500, 3000]\n";
+    assert!(good.contains(clip));
+    let with_clip = |c: &str| good.replace(clip, c);
+    bad(
+        "zero-block",
+        &with_clip("  block: {center_mm: [0, 0, 0], size_mm: [0, 3000, 3000]}\n"),
+        &["clip.block.size_mm", "degenerate"],
+    );
+    bad(
+        "flat-polygon",
+        &with_clip("  polygon: {points_mm: [[0, 0], [1, 1], [2, 2]]}\n"),
+        &["clip.polygon.points_mm", "no area"],
+    );
+    bad(
+        "empty-prism",
+        &with_clip("  polygon: {points_mm: [[-9, -9], [9, -9], [0, 9]], z_min_mm: 5, z_max_mm: 1}\n"),
+        &["clip.polygon", "empty", "z_min_mm"],
+    );
+    bad(
+        "empty-box",
+        &with_clip("  box: {min_mm: [0, 0, 0], max_mm: [0, 10, 10]}\n"),
+        &["clip.box", "empty"],
+    );
+    bad(
+        "no-clip-named",
+        &with_clip("  {}\n"),
+        &["clip", "exactly one of box, block"],
+    );
+    bad(
+        "nan-box",
+        &with_clip("  box: {min_mm: [.nan, 0, 0], max_mm: [1, 10, 10]}\n"),
+        &["clip.box", "finite"],
+    );
+    // A step of 1e-9 mm used to be blamed on tolerance_mm.
+    bad(
+        "tiny-step",
+        &good.replace("step_mm: 25", "step_mm: 1.0e-9"),
+        &["sampling.step_mm", "0.1 to 1000 mm"],
+    );
+    bad(
+        "coarse-tolerance",
+        &good.replace("tolerance_mm: 1.0e-7", "tolerance_mm: 5"),
+        &["sampling.tolerance_mm", "too coarse"],
+    );
+    bad(
+        "dup-key",
+        &format!("{good}\nspacing_mm: 300\n"),
+        &["line 19, column 1", "duplicate key `spacing_mm` (first at line 9)"],
+    );
+}
+
+#[test]
+fn a_design_without_both_families_is_an_error() {
+    // A spacing far beyond the clip: no curve is 5 % of it long, and an
+    // empty network used to be written with exit status 0.
+    let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
+    bad(
+        "huge-spacing",
+        &good.replace("spacing_mm: 270", "spacing_mm: 100000"),
+        &["clip", "no A curve", "5 % of spacing_mm"],
+    );
+}
+
+#[test]
+fn a_traced_network_is_validated_as_it_would_be_read() {
+    // Placed 20 km from the origin: the design runs, but a network file
+    // that far out is refused when read, so it is not written.
+    let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
+    let text = good
+        .replace("rotate_deg: [0, 0, 45]", "rotate_deg: [0, 0, 45]\n  translate_mm: [20000000, 0, 0]")
+        .replace("[-1500, -1500, -3000]", "[19998500, -1500, -3000]")
+        .replace("[1500, 1500, 3000]", "[20001500, 1500, 3000]");
+    bad("km", &text, &["would not read back", "curve A00", "10 km"]);
+}
+
+#[test]
+fn design_loops_are_bounded() {
+    // `fill` on a 200 m periodic block ran for minutes.
+    let (_, p) = spec("schwarz-d-pavilion");
+    let text = std::fs::read_to_string(&p)
+        .unwrap()
+        .replace("periodic: true", "periodic: true\nfill: true")
+        .replace("size_mm: [10000, 10000, 5000]", "size_mm: [200000, 200000, 100000]");
+    let t0 = std::time::Instant::now();
+    bad("big-fill", &text, &["clip", "grows beyond"]);
+    assert!(t0.elapsed().as_secs_f64() < 20.0, "{:?}", t0.elapsed());
+    // `fill` keeps to max_curves_per_side.
+    let (_, p) = spec("schwarz-d-pavilion-1to5");
+    let text = std::fs::read_to_string(&p)
+        .unwrap()
+        .replace("periodic: true", "periodic: true\nfill: true\nmax_curves_per_side: 6");
+    bad("fill-count", &text, &["fill", "more than 13 curves"]);
+    // Central designs on an endless surface: bounded by points.
+    let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
+    let i = good.find("clip:").unwrap();
+    let j = good.find("sampling:").unwrap();
+    let text = format!("{}{}", &good[..i], &good[j..])
+        .replace("spacing_mm: 270", "spacing_mm: 30\nmax_curves_per_side: 1000");
+    bad("endless", &text, &["clip", "grows beyond 500000 points"]);
+}
+
+#[test]
+fn enneper_without_a_clip_warns_about_its_self_intersections() {
+    let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
+    let i = good.find("clip:").unwrap();
+    let j = good.find("sampling:").unwrap();
+    let dir = std::env::temp_dir().join(format!("lamella-noclip-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("noclip.trace.yaml");
+    std::fs::write(&p, format!("{}{}", &good[..i], &good[j..])).unwrap();
+    let out = dir.join("noclip.yaml");
+    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args(["trace", p.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{stderr}");
+    assert!(
+        stderr.contains("warning: ")
+            && stderr.contains("not at 90°")
+            && stderr.contains("passes through itself")
+            && stderr.contains("no clip"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
 }
