@@ -1116,13 +1116,7 @@ fn design_periodic(
     };
     let d = spec.spacing_mm;
     let max_k = spec.max_curves_per_side;
-    let station_of_seed = |u: &Unfolded| {
-        u.sites
-            .iter()
-            .zip(&u.stations_mm)
-            .find(|(s, _)| s.placement == Placement::IDENTITY && s.uv.distance(seed_uv) < 1e-12)
-            .map_or(0.0, |(_, st)| *st)
-    };
+    let station_of_seed = |u: &Unfolded| u.seed_station_mm;
     let mut a_curves: Vec<(i64, Unfolded)> = Vec::new();
     let mut b_curves: Vec<(i64, Unfolded)> = Vec::new();
     for (k, s) in marks(station_of_seed(&a0), a0.length_mm(), d, max_k) {

@@ -343,6 +343,11 @@ fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: b
     }
 }
 
+/// Decimals of a traced network's coordinates (mm): 1e-6 mm, so rounding
+/// (±5e-7 mm) stays far below what curvature between samples 25 mm apart
+/// can resolve (4·5e-7 / 25² ≈ 3e-9 1/mm).
+const COORDINATE_DECIMALS: usize = 6;
+
 fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
     refuse_overwriting_input(out, &[("trace spec", spec_path)])?;
     let spec = io::trace_spec::load(spec_path)?;
@@ -358,8 +363,8 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         out.display()
     );
     let text = match out.extension().and_then(|e| e.to_str()) {
-        Some("json") => io::network_file::to_json(&net, 4),
-        _ => io::network_file::to_yaml(&net, 4, &comment),
+        Some("json") => io::network_file::to_json(&net, COORDINATE_DECIMALS),
+        _ => io::network_file::to_yaml(&net, COORDINATE_DECIMALS, &comment),
     };
     plan::write_atomic(out, text.as_bytes())?;
     for w in &report.warnings {
