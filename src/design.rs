@@ -538,7 +538,10 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
             Error::Network { what, .. } => what,
             other => other.to_string(),
         };
-        Error::network(path, format!("the traced network would not read back: {what}"))
+        Error::network(
+            path,
+            format!("the traced network would not read back: {what}"),
+        )
     })?;
     report.warnings = crossing_warnings(spec, &net);
     Ok((raw, report))

@@ -422,7 +422,10 @@ fn bad_tolerance_is_a_usage_error_about_the_option() {
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert_eq!(output.status.code(), Some(2), "{t}: {stderr}");
         assert!(stderr.contains("--tolerance"), "{t}: {stderr}");
-        assert!(!stderr.contains("cross.yaml"), "{t}: blames the file: {stderr}");
+        assert!(
+            !stderr.contains("cross.yaml"),
+            "{t}: blames the file: {stderr}"
+        );
     }
     assert!(!dir.join("out").exists());
     let _ = std::fs::remove_dir_all(&dir);
@@ -447,12 +450,20 @@ fn an_output_that_is_an_input_is_refused() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     // trace SPEC --out SPEC used to overwrite the spec.
     let spec = dir.join("s.trace.yaml");
-    let spec_text = std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml"))
-        .expect("sample spec");
+    let spec_text =
+        std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml")).expect("sample spec");
     std::fs::write(&spec, &spec_text).expect("write spec");
-    let (code, stderr) = lamella(&["trace".as_ref(), spec.as_os_str(), "--out".as_ref(), spec.as_os_str()]);
+    let (code, stderr) = lamella(&[
+        "trace".as_ref(),
+        spec.as_os_str(),
+        "--out".as_ref(),
+        spec.as_os_str(),
+    ]);
     assert_eq!(code, Some(1), "{stderr}");
-    assert!(stderr.contains("refusing to overwrite an input"), "{stderr}");
+    assert!(
+        stderr.contains("refusing to overwrite an input"),
+        "{stderr}"
+    );
     // ... also through a symlink and a hard link.
     #[cfg(unix)]
     {
@@ -461,7 +472,12 @@ fn an_output_that_is_an_input_is_refused() {
         let hard = dir.join("hard.yaml");
         std::fs::hard_link(&spec, &hard).expect("hard link");
         for out in [&link, &hard] {
-            let (code, stderr) = lamella(&["trace".as_ref(), spec.as_os_str(), "--out".as_ref(), out.as_os_str()]);
+            let (code, stderr) = lamella(&[
+                "trace".as_ref(),
+                spec.as_os_str(),
+                "--out".as_ref(),
+                out.as_os_str(),
+            ]);
             assert_eq!(code, Some(1), "{stderr}");
             assert!(stderr.contains("trace spec"), "{stderr}");
         }
@@ -473,7 +489,12 @@ fn an_output_that_is_an_input_is_refused() {
     let network = net_dir.join("plan.json");
     let json = "{\"units\": \"mm\", \"curves\": [{\"id\": \"A\", \"family\": \"A\", \"points\": [[0, -1, 0], [0, 1, 0]]}, {\"id\": \"B\", \"family\": \"B\", \"points\": [[-1, 0, 0], [1, 0, 0]]}]}\n";
     std::fs::write(&network, json).expect("write network");
-    let (code, stderr) = lamella(&["nodes".as_ref(), network.as_os_str(), "--out".as_ref(), net_dir.as_os_str()]);
+    let (code, stderr) = lamella(&[
+        "nodes".as_ref(),
+        network.as_os_str(),
+        "--out".as_ref(),
+        net_dir.as_os_str(),
+    ]);
     assert_eq!(code, Some(1), "{stderr}");
     assert!(stderr.contains("is the network"), "{stderr}");
     let profile_dir = dir.join("prof");

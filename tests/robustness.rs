@@ -337,7 +337,8 @@ fn lamella(args: &[&str]) -> (Option<i32>, String, String) {
 fn coordinates_beyond_ten_km_are_refused_not_analysed() {
     // 1e300 mm once panicked `check` (clamp on NaN) and gave `nodes` a
     // null length and a "NaN m" summary.
-    let text = cross("  - id: A01\n    family: A\n    points: [[20, -100, 0], [1.0e300, 100, 0]]\n");
+    let text =
+        cross("  - id: A01\n    family: A\n    points: [[20, -100, 0], [1.0e300, 100, 0]]\n");
     rejects(
         "huge",
         "huge.yaml",
@@ -356,12 +357,20 @@ fn coordinates_beyond_ten_km_are_refused_not_analysed() {
         dir.join("out").to_str().unwrap(),
     ]);
     assert_eq!(code, Some(1), "{stderr}");
-    assert!(stdout.is_empty() && !stderr.contains("panicked"), "{stderr}");
+    assert!(
+        stdout.is_empty() && !stderr.contains("panicked"),
+        "{stderr}"
+    );
     assert!(stderr.contains("within ±1e7 mm"), "{stderr}");
     assert!(!dir.join("out").exists());
     // In metres, 20 km is out of range too (after unit conversion).
     let text = "units: m\ncurves:\n  - id: A00\n    family: A\n    points: [[0, -1, 0], [0, 1, 0]]\n  - id: B00\n    family: B\n    points: [[-1, 0, 0], [20000, 0, 0]]\n";
-    rejects("huge-m", "huge-m.yaml", text, &["curve B00", "point 1", "10 km"]);
+    rejects(
+        "huge-m",
+        "huge-m.yaml",
+        text,
+        &["curve B00", "point 1", "10 km"],
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 
@@ -370,10 +379,20 @@ fn networks_beyond_a_kilometre_are_refused() {
     // Every coordinate is in range, but the network spans 3 km: scaled-up
     // networks used to run for minutes.
     let text = "units: m\ncurves:\n  - id: A00\n    family: A\n    points: [[0, -1500, 0], [0, 1500, 0]]\n  - id: B00\n    family: B\n    points: [[-1500, 0, 0], [1500, 0, 0]]\n";
-    rejects("wide", "wide.yaml", text, &["spans 3000000 × 3000000", "1 km"]);
+    rejects(
+        "wide",
+        "wide.yaml",
+        text,
+        &["spans 3000000 × 3000000", "1 km"],
+    );
     // A node tolerance in the file beyond a metre is no joint.
     let text = cross("").replacen("units: mm\n", "units: mm\ntolerance: 1.0e300\n", 1);
-    rejects("wide-tol", "tol.yaml", &text, &["tolerance", "at most 1000 mm"]);
+    rejects(
+        "wide-tol",
+        "tol.yaml",
+        &text,
+        &["tolerance", "at most 1000 mm"],
+    );
 }
 
 #[test]
@@ -385,15 +404,25 @@ fn deep_nesting_and_aliases_are_refused_fast() {
         "[".repeat(200_000),
         "]".repeat(200_000)
     );
-    rejects("deep", "deep.yaml", &deep, &["line 9, column 70", "deeper than 64"]);
-    let block: String = (0..200).map(|i| format!("{}k{i}:\n", " ".repeat(i + 1))).collect();
+    rejects(
+        "deep",
+        "deep.yaml",
+        &deep,
+        &["line 9, column 70", "deeper than 64"],
+    );
+    let block: String = (0..200)
+        .map(|i| format!("{}k{i}:\n", " ".repeat(i + 1)))
+        .collect();
     rejects(
         "deep-block",
         "deepb.yaml",
         &format!("{}meta:\n{block}", cross("")),
         &["deeper than 64"],
     );
-    let mut lol = format!("{}meta:\n  a0: &a0 [x, x, x, x, x, x, x, x, x]\n", cross(""));
+    let mut lol = format!(
+        "{}meta:\n  a0: &a0 [x, x, x, x, x, x, x, x, x]\n",
+        cross("")
+    );
     for i in 1..9 {
         lol.push_str(&format!(
             "  a{i}: &a{i} [{}]\n",
@@ -413,14 +442,20 @@ fn duplicate_keys_are_reported_at_their_line() {
         "dupkey",
         "dupkey.yaml",
         &text,
-        &["line 10, column 1", "duplicate key `tolerance` (first at line 2)"],
+        &[
+            "line 10, column 1",
+            "duplicate key `tolerance` (first at line 2)",
+        ],
     );
     let text = cross("").replacen("    family: A\n", "    family: A\n    family: B\n", 1);
     rejects(
         "dupkey-nested",
         "dupkey2.yaml",
         &text,
-        &["line 5, column 5", "duplicate key `family` (first at line 4)"],
+        &[
+            "line 5, column 5",
+            "duplicate key `family` (first at line 4)",
+        ],
     );
 }
 
@@ -437,14 +472,23 @@ fn duplicate_ids_name_both_curves_in_every_format() {
         {"id": "A", "family": "A", "points": [[0, -1, 0], [0, 1, 0]]},
         {"id": "B", "family": "B", "points": [[-1, 0, 0], [1, 0, 0]]},
         {"id": "B", "family": "B", "points": [[-1, 0.5, 0], [1, 0.5, 0]]}]}"#;
-    rejects("dup-json", "dup.json", json, &["curve B", "curves[1] and curves[2]"]);
+    rejects(
+        "dup-json",
+        "dup.json",
+        json,
+        &["curve B", "curves[1] and curves[2]"],
+    );
     // OBJ: a second object with the same name was renamed A1.1, A1.2.
     let obj = "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\nl 3 4\no A1\nv 1 -1 0\nv 1 1 0\nl 5 6\n";
     rejects(
         "dup-obj",
         "dup.obj",
         obj,
-        &["line 12", "'A1' (line 9)", "same name as the object at line 1"],
+        &[
+            "line 12",
+            "'A1' (line 9)",
+            "same name as the object at line 1",
+        ],
     );
     // ... and so was a second, disjoint polyline of one object.
     let obj = "o A1\nv 0 -1 0\nv 0 1 0\nv 1 -1 0\nv 1 1 0\nl 1 2\nl 3 4\no B1\nv -1 0 0\nv 1 0 0\nl 5 6\n";
@@ -459,7 +503,8 @@ fn duplicate_ids_name_both_curves_in_every_format() {
 #[test]
 fn truncated_obj_is_an_error_not_a_missing_curve() {
     // The last object lost its `l` line: it used to vanish silently.
-    let obj = "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\no B2\nv -1 0.5 0\nv 1 0.5 0\n";
+    let obj =
+        "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\no B2\nv -1 0.5 0\nv 1 0.5 0\n";
     rejects(
         "obj-cut",
         "cut.obj",
@@ -467,7 +512,12 @@ fn truncated_obj_is_an_error_not_a_missing_curve() {
         &["line 5", "'B1'", "no polyline", "cut short"],
     );
     let obj = "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\nl 3 4\no B2\nv -1 0.5 0\n";
-    rejects("obj-cut-last", "cut2.obj", obj, &["line 9", "'B2'", "cut short"]);
+    rejects(
+        "obj-cut-last",
+        "cut2.obj",
+        obj,
+        &["line 9", "'B2'", "cut short"],
+    );
 }
 
 #[test]
@@ -503,7 +553,11 @@ fn profile_fields_are_bounded_under_their_own_names() {
     let text = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).unwrap();
     assert!(text.contains("height_mm: 50.0"));
     let p = dir.join("huge.yaml");
-    std::fs::write(&p, text.replacen("height_mm: 50.0", "height_mm: 1.0e300", 1)).unwrap();
+    std::fs::write(
+        &p,
+        text.replacen("height_mm: 50.0", "height_mm: 1.0e300", 1),
+    )
+    .unwrap();
     let (code, _, stderr) = lamella(&[
         "check",
         "samples/hypar-small.yaml",
@@ -521,7 +575,11 @@ fn profile_fields_are_bounded_under_their_own_names() {
 #[test]
 fn deep_profiles_and_specs_are_refused() {
     let dir = scratch("deep-profile");
-    let deep = format!("version: 1\nname: {}{}\n", "{a: ".repeat(100), "}".repeat(100));
+    let deep = format!(
+        "version: 1\nname: {}{}\n",
+        "{a: ".repeat(100),
+        "}".repeat(100)
+    );
     let p = dir.join("deep.yaml");
     std::fs::write(&p, deep).unwrap();
     let e = lamella::profile::Profile::load(&p).unwrap_err().to_string();

@@ -604,7 +604,11 @@ fn fill_covers_the_gaps_the_central_design_leaves() {
         .collect();
     assert!(angles.len() > 300, "{} A×B nodes", angles.len());
     let off = angles.iter().filter(|d| **d > 0.01).count();
-    assert!(off * 100 < angles.len(), "{off} of {} off 90°", angles.len());
+    assert!(
+        off * 100 < angles.len(),
+        "{off} of {} off 90°",
+        angles.len()
+    );
     assert!(angles.iter().all(|d| *d < 0.5), "{angles:?}");
     // Filling is only for periodic designs.
     let (mut flat, fp) = spec("enneper-4m");
@@ -630,7 +634,9 @@ fn each_bad_clip_and_sampling_gets_its_own_message() {
     );
     bad(
         "empty-prism",
-        &with_clip("  polygon: {points_mm: [[-9, -9], [9, -9], [0, 9]], z_min_mm: 5, z_max_mm: 1}\n"),
+        &with_clip(
+            "  polygon: {points_mm: [[-9, -9], [9, -9], [0, 9]], z_min_mm: 5, z_max_mm: 1}\n",
+        ),
         &["clip.polygon", "empty", "z_min_mm"],
     );
     bad(
@@ -662,7 +668,10 @@ fn each_bad_clip_and_sampling_gets_its_own_message() {
     bad(
         "dup-key",
         &format!("{good}\nspacing_mm: 300\n"),
-        &["line 19, column 1", "duplicate key `spacing_mm` (first at line 9)"],
+        &[
+            "line 19, column 1",
+            "duplicate key `spacing_mm` (first at line 9)",
+        ],
     );
 }
 
@@ -684,7 +693,10 @@ fn a_traced_network_is_validated_as_it_would_be_read() {
     // that far out is refused when read, so it is not written.
     let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
     let text = good
-        .replace("rotate_deg: [0, 0, 45]", "rotate_deg: [0, 0, 45]\n  translate_mm: [20000000, 0, 0]")
+        .replace(
+            "rotate_deg: [0, 0, 45]",
+            "rotate_deg: [0, 0, 45]\n  translate_mm: [20000000, 0, 0]",
+        )
         .replace("[-1500, -1500, -3000]", "[19998500, -1500, -3000]")
         .replace("[1500, 1500, 3000]", "[20001500, 1500, 3000]");
     bad("km", &text, &["would not read back", "curve A00", "10 km"]);
@@ -697,22 +709,28 @@ fn design_loops_are_bounded() {
     let text = std::fs::read_to_string(&p)
         .unwrap()
         .replace("periodic: true", "periodic: true\nfill: true")
-        .replace("size_mm: [10000, 10000, 5000]", "size_mm: [200000, 200000, 100000]");
+        .replace(
+            "size_mm: [10000, 10000, 5000]",
+            "size_mm: [200000, 200000, 100000]",
+        );
     let t0 = std::time::Instant::now();
     bad("big-fill", &text, &["clip", "grows beyond"]);
     assert!(t0.elapsed().as_secs_f64() < 20.0, "{:?}", t0.elapsed());
     // `fill` keeps to max_curves_per_side.
     let (_, p) = spec("schwarz-d-pavilion-1to5");
-    let text = std::fs::read_to_string(&p)
-        .unwrap()
-        .replace("periodic: true", "periodic: true\nfill: true\nmax_curves_per_side: 6");
+    let text = std::fs::read_to_string(&p).unwrap().replace(
+        "periodic: true",
+        "periodic: true\nfill: true\nmax_curves_per_side: 6",
+    );
     bad("fill-count", &text, &["fill", "more than 13 curves"]);
     // Central designs on an endless surface: bounded by points.
     let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
     let i = good.find("clip:").unwrap();
     let j = good.find("sampling:").unwrap();
-    let text = format!("{}{}", &good[..i], &good[j..])
-        .replace("spacing_mm: 270", "spacing_mm: 30\nmax_curves_per_side: 1000");
+    let text = format!("{}{}", &good[..i], &good[j..]).replace(
+        "spacing_mm: 270",
+        "spacing_mm: 30\nmax_curves_per_side: 1000",
+    );
     bad("endless", &text, &["clip", "grows beyond 500000 points"]);
 }
 
@@ -752,9 +770,9 @@ fn traced_curves_are_sampled_uniformly() {
         let step = s.sampling.step_mm;
         for c in &raw.curves {
             let chords: Vec<f64> = c.points.windows(2).map(|w| w[1].distance(w[0])).collect();
-            let (lo, hi) = chords
-                .iter()
-                .fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(*x), hi.max(*x)));
+            let (lo, hi) = chords.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| {
+                (lo.min(*x), hi.max(*x))
+            });
             assert!(hi <= step + 1e-9, "{name} {}: a chord of {hi} mm", c.id);
             if c.family != lamella::Family::Edge || name != "schwarz-d-pavilion" {
                 assert!(lo > 0.98 * hi, "{name} {}: chords {lo} to {hi} mm", c.id);
@@ -769,12 +787,21 @@ fn traced_curves_are_sampled_uniformly() {
         max_length_mm: 1234.5,
         ..TraceOptions::default()
     };
-    let t = trace_through(&surface, Field::AsymptoticA, DVec2::new(0.01, 0.02), &Everywhere, opts)
-        .unwrap();
+    let t = trace_through(
+        &surface,
+        Field::AsymptoticA,
+        DVec2::new(0.01, 0.02),
+        &Everywhere,
+        opts,
+    )
+    .unwrap();
     let n = t.stations_mm.len() - 1;
     assert_eq!(n, (2.0f64 * 1234.5 / 25.0).ceil() as usize);
     for (i, st) in t.stations_mm.iter().enumerate() {
-        assert!((st - 2469.0 * i as f64 / n as f64).abs() < 1e-9, "{i}: {st}");
+        assert!(
+            (st - 2469.0 * i as f64 / n as f64).abs() < 1e-9,
+            "{i}: {st}"
+        );
     }
     // The samples lie on the closed-form line through the seed.
     let along_p = (t.uv[0].x + t.uv[0].y - 0.03).abs() < 1e-6;

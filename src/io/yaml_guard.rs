@@ -110,7 +110,8 @@ impl Scan<'_> {
             }
             self.skip = None;
         }
-        if indent == 0 && (body.starts_with("---") || body.starts_with("...") || body.starts_with('%'))
+        if indent == 0
+            && (body.starts_with("---") || body.starts_with("...") || body.starts_with('%'))
         {
             self.levels.clear();
             return Ok(());
@@ -371,13 +372,24 @@ mod tests {
     #[test]
     fn anchors_aliases_depth_and_duplicates_are_refused() {
         let e = scan("meta:\n  a: &x [1, 2]\n  b: *x\n").unwrap_err();
-        assert!(e.contains("line 2, column 6") && e.contains("anchor"), "{e}");
+        assert!(
+            e.contains("line 2, column 6") && e.contains("anchor"),
+            "{e}"
+        );
         let e = scan("meta: [1, *x]\n").unwrap_err();
-        assert!(e.contains("line 1, column 11") && e.contains("alias"), "{e}");
+        assert!(
+            e.contains("line 1, column 11") && e.contains("alias"),
+            "{e}"
+        );
         let deep = format!("meta: {}{}\n", "[".repeat(100_000), "]".repeat(100_000));
         let e = scan(&deep).unwrap_err();
-        assert!(e.contains("line 1, column 70") && e.contains("deeper than 64"), "{e}");
-        let block: String = (0..100).map(|i| format!("{}k{i}:\n", " ".repeat(i))).collect();
+        assert!(
+            e.contains("line 1, column 70") && e.contains("deeper than 64"),
+            "{e}"
+        );
+        let block: String = (0..100)
+            .map(|i| format!("{}k{i}:\n", " ".repeat(i)))
+            .collect();
         let e = scan(&block).unwrap_err();
         assert!(e.contains("line 65") && e.contains("deeper than 64"), "{e}");
         let e = scan("units: mm\ncurves: []\nunits: cm\n").unwrap_err();
@@ -385,9 +397,12 @@ mod tests {
             e.contains("line 3, column 1") && e.contains("duplicate key `units` (first at line 1)"),
             "{e}"
         );
-        let e = scan("curves:\n- id: A\n  family: A\n- id: B\n  family: B\n  family: A\n")
-            .unwrap_err();
-        assert!(e.contains("line 6, column 3") && e.contains("(first at line 5)"), "{e}");
+        let e =
+            scan("curves:\n- id: A\n  family: A\n- id: B\n  family: B\n  family: A\n").unwrap_err();
+        assert!(
+            e.contains("line 6, column 3") && e.contains("(first at line 5)"),
+            "{e}"
+        );
         // The same key in different entries of a sequence is fine.
         assert_eq!(
             scan("curves:\n  - id: A\n    family: A\n  - id: B\n    family: B\n"),
