@@ -270,16 +270,31 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
         return err("c", format!("must be a non-zero number, got {}", spec.c));
     }
     let s = &spec.sampling;
-    if !(s.step_mm.is_finite() && s.step_mm > 0.0) {
+    if !(s.step_mm.is_finite() && (MIN_STEP_MM..=MAX_STEP_MM).contains(&s.step_mm)) {
         return err(
             "sampling.step_mm",
-            format!("must be positive, got {}", s.step_mm),
+            format!(
+                "the largest distance between samples must be {MIN_STEP_MM} to {MAX_STEP_MM} mm, got {}",
+                s.step_mm
+            ),
         );
     }
-    if !(s.tolerance_mm.is_finite() && s.tolerance_mm > 0.0 && s.tolerance_mm < s.step_mm) {
+    if !(s.tolerance_mm.is_finite() && s.tolerance_mm >= MIN_TOLERANCE_MM) {
         return err(
             "sampling.tolerance_mm",
-            format!("must be positive and below step_mm, got {}", s.tolerance_mm),
+            format!(
+                "the integrator's local error must be at least {MIN_TOLERANCE_MM:e} mm, got {}",
+                s.tolerance_mm
+            ),
+        );
+    }
+    if s.tolerance_mm > 0.01 * s.step_mm {
+        return err(
+            "sampling.tolerance_mm",
+            format!(
+                "{} mm is too coarse for samples {} mm apart (at most 1 % of step_mm)",
+                s.tolerance_mm, s.step_mm
+            ),
         );
     }
     if spec.seed.iter().any(|x| !x.is_finite()) {
@@ -306,6 +321,21 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             format!("{:e} mm per unit is beyond any structure", spec.scale_mm),
         );
     }
+    if spec.scale_mm < 1.0 {
+        return err(
+            "scale_mm",
+            format!(
+                "{} mm per unit is too small a surface (at least 1)",
+                spec.scale_mm
+            ),
+        );
+    }
+    if spec.spacing_mm > crate::network::MAX_EXTENT_MM {
+        return err(
+            "spacing_mm",
+            format!("{} mm is beyond any structure", spec.spacing_mm),
+        );
+    }
     let p = &spec.placement;
     if p.rotate_deg
         .iter()
@@ -323,27 +353,12 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             Error::input(
                 path,
                 Location::Field("clip".into()),
-                format!("name exactly one of box, plane, polygon, parameters (found {n})"),
+                format!("name exactly one of box, block, plane, polygon, parameters (found {n})"),
             )
         })?),
     };
-    match &clip {
-        Some(ClipSpec::Plane { normal, .. }) if DVec3::from_array(*normal).length() < 1e-12 => {
-            return err("clip.plane.normal", "must not be zero".into())
-        }
-        Some(ClipSpec::Polygon { points_mm, .. }) if points_mm.len() < 3 => {
-            return err("clip.polygon.points_mm", "needs at least 3 points".into())
-        }
-        Some(ClipSpec::Parameters { polygon }) if polygon.len() < 3 => {
-            return err("clip.parameters.polygon", "needs at least 3 points".into())
-        }
-        Some(ClipSpec::Box { min_mm, max_mm }) if (0..3).any(|i| min_mm[i] >= max_mm[i]) => {
-            return err(
-                "clip.box",
-                "min_mm must be below max_mm on every axis".into(),
-            )
-        }
-        _ => {}
+    if let Some(c) = &clip {
+        validate_clip(c, path)?;
     }
     if spec.fill && !spec.periodic {
         return err(
@@ -374,6 +389,116 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
     Ok(clip)
 }
 
+/// Smallest and largest `sampling.step_mm`.
+pub const MIN_STEP_MM: f64 = 0.1;
+pub const MAX_STEP_MM: f64 = 1000.0;
+/// Smallest `sampling.tolerance_mm`: below, rounding noise in the surface
+/// evaluation exceeds it and steps shrink without end.
+pub const MIN_TOLERANCE_MM: f64 = 1e-10;
+
+/// Each clip's own checks: finite numbers, a size, an inside.
+fn validate_clip(clip: &ClipSpec, path: &Path) -> Result<()> {
+    let err = |field: &str, what: &str| {
+        Err(Error::input(
+            path,
+            Location::Field(format!("clip.{field}")),
+            what.to_string(),
+        ))
+    };
+    let finite = |xs: &[f64]| xs.iter().all(|x| x.is_finite() && x.abs() <= 1e9);
+    let area = |pts: &[[f64; 2]]| {
+        0.5 * (0..pts.len())
+            .map(|k| {
+                let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum::<f64>()
+            .abs()
+    };
+    match clip {
+        ClipSpec::Box { min_mm, max_mm } => {
+            if !finite(min_mm) || !finite(max_mm) {
+                return err("box", "min_mm and max_mm must be finite numbers (mm)");
+            }
+            if (0..3).any(|i| min_mm[i] >= max_mm[i]) {
+                return err(
+                    "box",
+                    "the box is empty: min_mm must be below max_mm on every axis",
+                );
+            }
+        }
+        ClipSpec::Block {
+            center_mm,
+            size_mm,
+            rotate_deg,
+        } => {
+            if !finite(center_mm) || !finite(size_mm) || !finite(rotate_deg) {
+                return err(
+                    "block",
+                    "center_mm, size_mm and rotate_deg must be finite numbers",
+                );
+            }
+            if size_mm.iter().any(|x| *x <= 0.0) {
+                return err(
+                    "block.size_mm",
+                    "the block is degenerate: every size must be above 0",
+                );
+            }
+        }
+        ClipSpec::Plane { point_mm, normal } => {
+            if !finite(point_mm) || !finite(normal) {
+                return err("plane", "point_mm and normal must be finite numbers");
+            }
+            if DVec3::from_array(*normal).length() < 1e-12 {
+                return err("plane.normal", "must not be zero");
+            }
+        }
+        ClipSpec::Polygon {
+            points_mm,
+            z_min_mm,
+            z_max_mm,
+        } => {
+            if points_mm.len() < 3 {
+                return err("polygon.points_mm", "needs at least 3 points");
+            }
+            if !points_mm.iter().all(|p| finite(p))
+                || !z_min_mm.iter().chain(z_max_mm).all(|z| finite(&[*z]))
+            {
+                return err("polygon", "points_mm and heights must be finite numbers");
+            }
+            if area(points_mm) < 1e-6 {
+                return err(
+                    "polygon.points_mm",
+                    "the polygon is degenerate: it encloses no area",
+                );
+            }
+            if let (Some(lo), Some(hi)) = (z_min_mm, z_max_mm) {
+                if lo >= hi {
+                    return err(
+                        "polygon",
+                        "the prism is empty: z_min_mm must be below z_max_mm",
+                    );
+                }
+            }
+        }
+        ClipSpec::Parameters { polygon } => {
+            if polygon.len() < 3 {
+                return err("parameters.polygon", "needs at least 3 points");
+            }
+            if !polygon.iter().all(|p| finite(p)) {
+                return err("parameters.polygon", "must be finite numbers");
+            }
+            if area(polygon) < 1e-12 {
+                return err(
+                    "parameters.polygon",
+                    "the polygon is degenerate: it encloses no area",
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 /// What a design produced, besides the network.
 #[derive(Debug, Clone, Default)]
 pub struct DesignReport {
@@ -382,10 +507,101 @@ pub struct DesignReport {
     pub edges: usize,
     /// (curve id, where its start stopped, where its end stopped).
     pub stops: Vec<(String, Stop, Stop)>,
+    /// What a designer should look at (crossings far from 90°).
+    pub warnings: Vec<String>,
 }
 
-/// Trace the network a spec describes.
+/// Trace the network a spec describes, and check it: it has A and B
+/// curves, and it passes the same validation as a network file read back
+/// (lamella never writes a network it cannot read). Crossings far from 90°
+/// on a minimal surface become warnings in the report.
 pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
+    let (raw, mut report) = trace_network(spec, path)?;
+    let min_len = (spec.spacing_mm * 0.05).max(1.0);
+    for (count, family) in [(report.a_curves, "A"), (report.b_curves, "B")] {
+        if count == 0 {
+            return Err(Error::input(
+                path,
+                Location::Field("clip".into()),
+                format!(
+                    "the design has no {family} curve at least {min_len} mm long (5 % of spacing_mm): the clip leaves too little of the surface"
+                ),
+            ));
+        }
+    }
+    let net = crate::network::Network::new(raw.clone(), path).map_err(|e| {
+        let what = match e {
+            Error::Input { at, what, .. } => match at {
+                Location::File => what,
+                at => format!("{at}: {what}"),
+            },
+            Error::Network { what, .. } => what,
+            other => other.to_string(),
+        };
+        Error::network(
+            path,
+            format!("the traced network would not read back: {what}"),
+        )
+    })?;
+    report.warnings = crossing_warnings(spec, &net);
+    Ok((raw, report))
+}
+
+/// Largest deviation from 90° (degrees) of an A×B crossing on a minimal
+/// surface (or of any principal net) before it is reported.
+pub const RIGHT_ANGLE_SLACK_DEG: f64 = 1.0;
+
+/// On a minimal surface the two asymptotic families cross at right angles
+/// everywhere (the principal families do on any surface): an A×B node far
+/// from 90° is two sheets of the surface passing through each other (Enneper
+/// beyond its self-intersections, a clip that keeps too much), not a
+/// crossing of the net.
+fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<String> {
+    if spec.net == Net::Asymptotic && spec.surface == SurfaceName::Hypar {
+        return Vec::new();
+    }
+    let curves: Vec<crate::curve::SmoothCurve> = net
+        .curves
+        .iter()
+        .map(|c| crate::curve::SmoothCurve::new(&c.points_mm))
+        .collect();
+    let topo = crate::topology::find_nodes(
+        net,
+        &curves,
+        crate::topology::NodeOptions::new(net.tolerance_mm),
+    );
+    let off: Vec<&crate::topology::Node> = topo
+        .nodes
+        .iter()
+        .filter(|n| {
+            net.curves[n.a].family == Family::A
+                && net.curves[n.b].family == Family::B
+                && (90.0 - n.angle_deg).abs() > RIGHT_ANGLE_SLACK_DEG
+        })
+        .collect();
+    let Some(worst) = off
+        .iter()
+        .min_by(|x, y| x.angle_deg.total_cmp(&y.angle_deg))
+    else {
+        return Vec::new();
+    };
+    let p = worst.position_mm;
+    vec![format!(
+        "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): the families of a {} net cross at right angles, so the surface passes through itself there; clip it{}",
+        off.len(),
+        worst.angle_deg,
+        net.curves[worst.a].id,
+        net.curves[worst.b].id,
+        p.x,
+        p.y,
+        p.z,
+        if spec.net == Net::Principal { "principal" } else { "minimal surface's asymptotic" },
+        if spec.clip.is_none() { " (the spec has no clip)" } else { "" }
+    )]
+}
+
+/// Trace the network a spec describes (unchecked).
+fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
     let clip_spec = validate(spec, path)?;
     let surface = placed_surface(spec);
     let clip = Clip::from_spec(clip_spec.as_ref());
@@ -404,10 +620,14 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
         )));
     }
     if !clip.contains(seed, surface.point(seed)) {
+        let p = surface.point(seed);
         return Err(Error::input(
             path,
             Location::Field("clip".into()),
-            "the clip removes everything around the seed (the seed lies outside it)",
+            format!(
+                "the seed's point ({:.1}, {:.1}, {:.1}) mm lies outside the clip: move the seed or the clip",
+                p.x, p.y, p.z
+            ),
         ));
     }
     if spec.periodic {
@@ -417,7 +637,14 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
         Net::Asymptotic => (Field::AsymptoticA, Field::AsymptoticB),
         Net::Principal => (Field::PrincipalMax, Field::PrincipalMin),
     };
-    let trace = |field: Field, at: DVec2| trace_through(&surface, field, at, &clip, opts);
+    let budget = Budget::new(spec, path);
+    let trace = |field: Field, at: DVec2| {
+        let t = trace_through(&surface, field, at, &clip, opts);
+        if let Ok(t) = &t {
+            budget.charge(t.uv.len());
+        }
+        t
+    };
     let a0 = trace(fa, seed)
         .map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
     let b0 = trace(fb, seed)
@@ -442,11 +669,13 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
                 if let Ok(t) = trace(fb, a0.uv_at(s)) {
                     b_curves.push((k, t));
                 }
+                budget.check()?;
             }
             for (k, s) in marks(sb, b0.length_mm(), d, max_k) {
                 if let Ok(t) = trace(fa, b0.uv_at(s)) {
                     a_curves.push((k, t));
                 }
+                budget.check()?;
             }
         }
         Design::Alternating => {
@@ -461,6 +690,7 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
                     let (Ok(nb), Ok(na)) = (trace(fb, a.uv_at(sa)), trace(fa, b.uv_at(sb))) else {
                         break;
                     };
+                    budget.check()?;
                     let kk = if sign > 0.0 { k } else { -k };
                     a_curves.push((kk, na.clone()));
                     b_curves.push((kk, nb.clone()));
@@ -491,7 +721,8 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
         a_curves.iter().chain(&b_curves).map(|c| &c.1),
         opts,
         spec.sampling.step_mm,
-    );
+        &budget,
+    )?;
 
     let finished = |t: Traced| FinishedCurve {
         normals: t.uv.iter().map(|&q| surface.normal(q)).collect(),
@@ -528,6 +759,7 @@ fn assemble(
         b_curves: b.len(),
         edges: edges.len(),
         stops: Vec::new(),
+        warnings: Vec::new(),
     };
     let mut curves = Vec::with_capacity(a.len() + b.len() + edges.len());
     for (prefix, family, list) in [
@@ -561,6 +793,49 @@ fn assemble(
         },
         report,
     )
+}
+
+/// Most sample points a design may trace (all curves and edges together);
+/// a quarter of that on Schwarz D, whose points cost a numerical integral
+/// each (either takes a few seconds).
+pub const MAX_DESIGN_POINTS: usize = 500_000;
+
+/// Counts what a design traces and stops it, with an error naming the
+/// spec, when it grows beyond [`MAX_DESIGN_POINTS`].
+struct Budget<'a> {
+    used: std::cell::Cell<usize>,
+    max: usize,
+    path: &'a Path,
+}
+
+impl Budget<'_> {
+    fn new<'a>(spec: &TraceSpec, path: &'a Path) -> Budget<'a> {
+        Budget {
+            used: std::cell::Cell::new(0),
+            max: if spec.surface == SurfaceName::SchwarzD {
+                MAX_DESIGN_POINTS / 4
+            } else {
+                MAX_DESIGN_POINTS
+            },
+            path,
+        }
+    }
+    fn charge(&self, points: usize) {
+        self.used.set(self.used.get().saturating_add(points));
+    }
+    fn check(&self) -> Result<()> {
+        if self.used.get() > self.max {
+            return Err(Error::input(
+                self.path,
+                Location::Field("clip".into()),
+                format!(
+                    "the design grows beyond {} points: shrink the clip or raise spacing_mm or sampling.step_mm",
+                    self.max
+                ),
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// Most curves a design may seed on each side of the seed, per family.
@@ -671,7 +946,8 @@ fn trace_edges<'a>(
     curves: impl Iterator<Item = &'a Traced>,
     opts: TraceOptions,
     step_mm: f64,
-) -> Vec<Traced> {
+    budget: &Budget,
+) -> Result<Vec<Traced>> {
     let mut starts: Vec<(usize, DVec2)> = Vec::new();
     for t in curves {
         for (stop, q) in [(t.stop_start, t.uv[0]), (t.stop_end, t.uv[t.uv.len() - 1])] {
@@ -713,13 +989,15 @@ fn trace_edges<'a>(
                 )
                 .ok()
             }
-            Face::Param { a, b } => Some(param_segment(surface, a, b, step_mm)),
+            Face::Param { a, b } => param_segment(surface, a, b, step_mm),
         };
         if let Some(t) = traced.filter(|t| t.uv.len() >= 2 && t.length_mm() > 1.0) {
+            budget.charge(t.uv.len());
             edges.push((face, t));
         }
+        budget.check()?;
     }
-    edges.into_iter().map(|e| e.1).collect()
+    Ok(edges.into_iter().map(|e| e.1).collect())
 }
 
 fn near_polyline(pts: &[DVec3], p: DVec3, tol: f64) -> bool {
@@ -734,8 +1012,9 @@ fn near_polyline(pts: &[DVec3], p: DVec3, tol: f64) -> bool {
     })
 }
 
-/// The image of a parameter-plane segment, sampled about `step_mm` apart.
-fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Traced {
+/// The image of a parameter-plane segment, sampled about `step_mm` apart
+/// (None when it is longer than a design may be).
+fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Option<Traced> {
     let fine = 512;
     let mut len = 0.0;
     let mut prev = surface.point(a);
@@ -744,7 +1023,11 @@ fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Tra
         len += p.distance(prev);
         prev = p;
     }
-    let n = ((len / step_mm).ceil() as usize).max(1) + 1;
+    let pieces = (len / step_mm).ceil();
+    if !(pieces.is_finite() && pieces <= MAX_DESIGN_POINTS as f64) {
+        return None;
+    }
+    let n = (pieces as usize).max(1) + 1;
     let uv: Vec<DVec2> = (0..n)
         .map(|i| a.lerp(b, i as f64 / (n - 1) as f64))
         .collect();
@@ -754,13 +1037,13 @@ fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Tra
         let last = *stations_mm.last().unwrap_or(&0.0);
         stations_mm.push(last + w[1].distance(w[0]));
     }
-    Traced {
+    Some(Traced {
         uv,
         points_mm,
         stations_mm,
         stop_start: Stop::Clip,
         stop_end: Stop::Clip,
-    }
+    })
 }
 
 /// The network of a periodic surface: traced on its fundamental patch and
@@ -791,8 +1074,9 @@ fn design_periodic(
             "a periodic network is asymptotic",
         ));
     }
+    let budget = Budget::new(spec, path);
     let trace = |site: Site, dir: DVec3| {
-        unfold_through(
+        let u = unfold_through(
             surface,
             &edges,
             WorldField::Asymptotic,
@@ -800,7 +1084,9 @@ fn design_periodic(
             dir,
             clip,
             opts,
-        )
+        );
+        budget.charge(u.points_mm.len());
+        u
     };
     let a0 = trace(seed, a_dir);
     let b0 = trace(seed, b_dir);
@@ -833,13 +1119,7 @@ fn design_periodic(
     };
     let d = spec.spacing_mm;
     let max_k = spec.max_curves_per_side;
-    let station_of_seed = |u: &Unfolded| {
-        u.sites
-            .iter()
-            .zip(&u.stations_mm)
-            .find(|(s, _)| s.placement == Placement::IDENTITY && s.uv.distance(seed_uv) < 1e-12)
-            .map_or(0.0, |(_, st)| *st)
-    };
+    let station_of_seed = |u: &Unfolded| u.seed_station_mm;
     let mut a_curves: Vec<(i64, Unfolded)> = Vec::new();
     let mut b_curves: Vec<(i64, Unfolded)> = Vec::new();
     for (k, s) in marks(station_of_seed(&a0), a0.length_mm(), d, max_k) {
@@ -847,12 +1127,14 @@ fn design_periodic(
         if let Some(dir) = transverse(&site, tangent(&a0, s)) {
             b_curves.push((k, trace(site, dir)));
         }
+        budget.check()?;
     }
     for (k, s) in marks(station_of_seed(&b0), b0.length_mm(), d, max_k) {
         let site = b0.site_at(s);
         if let Some(dir) = transverse(&site, tangent(&b0, s)) {
             a_curves.push((k, trace(site, dir)));
         }
+        budget.check()?;
     }
     a_curves.push((0, a0));
     b_curves.push((0, b0));
@@ -890,10 +1172,22 @@ fn design_periodic(
                             continue;
                         };
                         let child = trace(site, dir);
+                        budget.check()?;
                         if child.length_mm() >= min_len && child.points_mm.len() >= 2 {
                             index.add(&child.points_mm);
                             born.push((next_k, child));
                             next_k += 1;
+                            if children.len() + born.len() > 2 * max_k + 1 {
+                                return Err(Error::input(
+                                    path,
+                                    Location::Field("fill".into()),
+                                    format!(
+                                        "filling needs more than {} curves of family {} (2 × max_curves_per_side + 1): shrink the clip, raise spacing_mm or max_curves_per_side",
+                                        2 * max_k + 1,
+                                        if family_is_a { "A" } else { "B" }
+                                    ),
+                                ));
+                            }
                         }
                     }
                 }
@@ -946,6 +1240,8 @@ fn design_periodic(
             continue;
         };
         let e = unfold_through(surface, &edges, field, site, dir, &region, opts);
+        budget.charge(e.points_mm.len());
+        budget.check()?;
         if e.points_mm.len() >= 2 && e.length_mm() > 1.0 {
             edge_curves.push((face, e));
         }

@@ -79,7 +79,7 @@ struct ReadArgs {
     units: Option<Unit>,
     /// Node tolerance in mm: the largest gap between two curves that is still a node
     /// (default: the file's `tolerance`, else 0.5 mm).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_tolerance)]
     tolerance: Option<f64>,
     /// The grid the coordinates are rounded to, mm (0: exact): curves are
     /// smoothed to it before curvature and twist are taken (default: what
@@ -109,6 +109,50 @@ fn parse_precision(s: &str) -> Result<f64, String> {
 
 fn parse_unit(s: &str) -> Result<Unit, String> {
     Unit::parse(s).ok_or_else(|| format!("unknown unit '{s}' (use mm, cm, m, in or ft)"))
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let max = lamella::network::MAX_TOLERANCE_MM;
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 && t <= max => Ok(t),
+        Ok(_) => Err(format!(
+            "the node tolerance must be a length in mm above 0 and at most {max}"
+        )),
+        Err(_) => Err(format!("'{s}' is not a number (a length in mm)")),
+    }
+}
+
+/// Refuse to write `out` when it is one of the `inputs` (the same file by
+/// canonical path, or by device and inode: symlinks and hard links too).
+fn refuse_overwriting_input(out: &Path, inputs: &[(&str, &Path)]) -> lamella::Result<()> {
+    if !out.exists() {
+        return Ok(());
+    }
+    for (what, input) in inputs {
+        if io::same_file(out, input) {
+            return Err(lamella::Error::input(
+                out,
+                lamella::error::Location::File,
+                format!(
+                    "is the {what} ({}): refusing to overwrite an input; choose another output",
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Serialise a plan, refusing one with a NaN or infinite number (JSON would
+/// write it as null).
+fn plan_json(plan: &plan::Plan, target: &Path) -> lamella::Result<String> {
+    if let Some(field) = io::finite::first_non_finite(plan) {
+        return Err(lamella::Error::network(
+            target,
+            format!("not written: {field} is not a finite number"),
+        ));
+    }
+    Ok(plan::to_json(plan))
 }
 
 fn main() -> ExitCode {
@@ -145,6 +189,10 @@ fn check(
     top: Option<usize>,
     read: &ReadArgs,
 ) -> lamella::Result<ExitCode> {
+    if let Some(dir) = out {
+        let target = dir.join("plan.json");
+        refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
+    }
     let profile = Profile::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
@@ -159,7 +207,8 @@ fn check(
             suggestion.clone(),
         );
         let plan = plan::build(&net, &an, &model);
-        plan::write_atomic(&dir.join("plan.json"), plan::to_json(&plan).as_bytes())?;
+        let target = dir.join("plan.json");
+        plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     }
     for w in an.warnings() {
         eprintln!("warning: {w}");
@@ -239,12 +288,13 @@ fn check(
 }
 
 fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> {
+    let target = out.join("plan.json");
+    refuse_overwriting_input(&target, &[("network", path)])?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     let model = Model::new(&net, &an);
     let plan = plan::build(&net, &an, &model);
-    let target = out.join("plan.json");
-    plan::write_atomic(&target, plan::to_json(&plan).as_bytes())?;
+    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     for w in an.warnings() {
         eprintln!("warning: {w}");
     }
@@ -315,7 +365,13 @@ fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: b
     }
 }
 
+/// Decimals of a traced network's coordinates (mm): 1e-6 mm, so rounding
+/// (±5e-7 mm) stays far below what curvature between samples 25 mm apart
+/// can resolve (4·5e-7 / 25² ≈ 3e-9 1/mm).
+const COORDINATE_DECIMALS: usize = 6;
+
 fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
+    refuse_overwriting_input(out, &[("trace spec", spec_path)])?;
     let spec = io::trace_spec::load(spec_path)?;
     let (net, report) = lamella::design::design(&spec, spec_path)?;
     let comment = format!(
@@ -329,10 +385,13 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         out.display()
     );
     let text = match out.extension().and_then(|e| e.to_str()) {
-        Some("json") => io::network_file::to_json(&net, 4),
-        _ => io::network_file::to_yaml(&net, 4, &comment),
+        Some("json") => io::network_file::to_json(&net, COORDINATE_DECIMALS),
+        _ => io::network_file::to_yaml(&net, COORDINATE_DECIMALS, &comment),
     };
     plan::write_atomic(out, text.as_bytes())?;
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
     let length_m: f64 = net
         .curves
         .iter()
@@ -360,9 +419,16 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
         .collect();
     if !unusual.is_empty() {
+        const SHOWN: usize = 8;
+        let more = unusual.len().saturating_sub(SHOWN);
         println!(
-            "curves ending elsewhere than the clip: {}",
-            unusual.join(", ")
+            "curves ending elsewhere than the clip: {}{}",
+            unusual[..unusual.len().min(SHOWN)].join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
         );
     }
     println!("wrote {}", out.display());

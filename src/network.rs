@@ -10,7 +10,7 @@
 
 use crate::error::{Error, Location, Result};
 use glam::DVec3;
-use std::collections::HashSet;
+use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -24,6 +24,21 @@ pub const MAX_TURN_DEG: f64 = 120.0;
 
 /// Points closer than this (mm) are the same sample.
 pub const DUPLICATE_POINT_MM: f64 = 1e-9;
+
+/// Largest |coordinate| (mm, after unit conversion): 10 km from the origin.
+pub const MAX_COORDINATE_MM: f64 = 1e7;
+
+/// Largest extent of a network's bounding box along any axis (mm): 1 km.
+pub const MAX_EXTENT_MM: f64 = 1e6;
+
+/// Longest curve (mm): 10 km.
+pub const MAX_CURVE_LENGTH_MM: f64 = 1e7;
+
+/// Most curve length in one network (mm): 100 km.
+pub const MAX_TOTAL_LENGTH_MM: f64 = 1e8;
+
+/// Largest node tolerance (mm): a gap wider than this is no joint.
+pub const MAX_TOLERANCE_MM: f64 = 1000.0;
 
 /// The two asymptotic families and the boundary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -176,7 +191,17 @@ impl Network {
         let scale = raw.unit.mm_per_unit();
         let tolerance_mm = match raw.tolerance {
             None => DEFAULT_TOLERANCE_MM,
-            Some(t) if t.is_finite() && t > 0.0 => t * scale,
+            Some(t) if t.is_finite() && t > 0.0 && t * scale <= MAX_TOLERANCE_MM => t * scale,
+            Some(t) if t.is_finite() && t > 0.0 => {
+                return Err(Error::input(
+                    source,
+                    Location::Field("tolerance".into()),
+                    format!(
+                        "{t} {} is wider than any joint (at most {MAX_TOLERANCE_MM} mm)",
+                        raw.unit.as_str()
+                    ),
+                ))
+            }
             Some(t) => {
                 return Err(Error::input(
                     source,
@@ -193,8 +218,10 @@ impl Network {
             ));
         }
         let precision_mm = coordinate_precision(&raw.curves).map_or(0.0, |q| q * scale);
-        let mut seen = HashSet::with_capacity(raw.curves.len());
+        let mut seen: HashMap<String, usize> = HashMap::with_capacity(raw.curves.len());
         let mut curves = Vec::with_capacity(raw.curves.len());
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        let mut total_mm = 0.0;
         for (index, c) in raw.curves.into_iter().enumerate() {
             let at = || {
                 if c.id.trim().is_empty() {
@@ -206,8 +233,15 @@ impl Network {
             if c.id.trim().is_empty() {
                 return Err(Error::input(source, at(), "empty curve id"));
             }
-            if !seen.insert(c.id.clone()) {
-                return Err(Error::input(source, at(), "duplicate curve id"));
+            if let Some(first) = seen.insert(c.id.clone(), index) {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    format!(
+                        "duplicate curve id: curves[{first}] and curves[{index}] are both {} (ids must be unique)",
+                        c.id
+                    ),
+                ));
             }
             if c.points.len() < 2 {
                 return Err(Error::input(
@@ -278,6 +312,36 @@ impl Network {
                     format!("point {k} overflows when converted to mm"),
                 ));
             }
+            if let Some(k) = c
+                .points
+                .iter()
+                .position(|p| (*p * scale).abs().max_element() > MAX_COORDINATE_MM)
+            {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    format!(
+                        "point {k} lies {:.3e} mm from the origin; coordinates must be within ±{MAX_COORDINATE_MM:e} mm (10 km)",
+                        (c.points[k] * scale).abs().max_element()
+                    ),
+                ));
+            }
+            let length_mm: f64 = points_mm.windows(2).map(|w| w[1].distance(w[0])).sum();
+            if length_mm > MAX_CURVE_LENGTH_MM {
+                return Err(Error::input(
+                    source,
+                    at(),
+                    format!(
+                        "{:.3e} mm long; a curve may be at most {MAX_CURVE_LENGTH_MM:e} mm (10 km)",
+                        length_mm
+                    ),
+                ));
+            }
+            total_mm += length_mm;
+            for p in &points_mm {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
             // A strip cannot turn back on itself between two samples.
             for (k, w) in points_mm.windows(3).enumerate() {
                 let (d1, d2) = (w[1] - w[0], w[2] - w[1]);
@@ -308,6 +372,25 @@ impl Network {
                 points_mm,
                 normals,
             });
+        }
+        let extent = hi - lo;
+        if extent.max_element() > MAX_EXTENT_MM {
+            return Err(Error::network(
+                source,
+                format!(
+                    "the network spans {:.0} × {:.0} × {:.0} mm; lamella reads networks up to {MAX_EXTENT_MM:e} mm (1 km) along each axis",
+                    extent.x, extent.y, extent.z
+                ),
+            ));
+        }
+        if total_mm > MAX_TOTAL_LENGTH_MM {
+            return Err(Error::network(
+                source,
+                format!(
+                    "{:.3e} mm of curves; lamella reads networks up to {MAX_TOTAL_LENGTH_MM:e} mm (100 km) of curves",
+                    total_mm
+                ),
+            ));
         }
         let has_a = curves.iter().any(|c| c.family == Family::A);
         let has_b = curves.iter().any(|c| c.family == Family::B);

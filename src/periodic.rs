@@ -11,7 +11,7 @@
 //! isometry) and keep their family across the edge (chosen by direction).
 
 use crate::surface::{curvature_of, Placed, Surface, SCHWARZ_D_EDGE_MIDPOINT, SCHWARZ_D_RADIUS};
-use crate::trace::{trace_from, Field, Region, Stop, TraceOptions};
+use crate::trace::{pieces, trace_from, Field, Region, Stop, TraceOptions};
 use glam::{DMat3, DVec2, DVec3};
 
 /// A rigid motion of a patch copy: world = rotation · local + translation.
@@ -158,6 +158,8 @@ pub struct Unfolded {
     pub stations_mm: Vec<f64>,
     pub stop_start: Stop,
     pub stop_end: Stop,
+    /// Station of the site the curve was traced through.
+    pub seed_station_mm: f64,
 }
 
 impl Unfolded {
@@ -220,6 +222,54 @@ fn local_field(
     }
 }
 
+/// One segment of an unfolded one-way trace: the local field and its local
+/// direction at the segment's start (None for the zero-length hop between
+/// copies and the segment that closes a loop).
+type Segment = Option<(Field, DVec3)>;
+
+/// One direction of an unfolded trace: sites, stations, and per segment
+/// what to integrate it with.
+struct OneWay {
+    sites: Vec<Site>,
+    stations: Vec<f64>,
+    segments: Vec<Segment>,
+    stop: Stop,
+}
+
+impl OneWay {
+    fn length_mm(&self) -> f64 {
+        *self.stations.last().unwrap_or(&0.0)
+    }
+    /// The site at station `s` (integrated from its segment's start).
+    fn site_at(&self, surface: &Placed, opts: TraceOptions, s: f64) -> Site {
+        let n = self.sites.len();
+        if n < 2 || s <= 0.0 {
+            return self.sites[0];
+        }
+        if s >= self.length_mm() {
+            return self.sites[n - 1];
+        }
+        let k = (self.stations.partition_point(|&x| x <= s) - 1).min(n - 2);
+        let a = self.sites[k];
+        let delta = s - self.stations[k];
+        match self.segments[k] {
+            Some((field, dir)) if delta > 0.0 => {
+                let run = crate::trace::Run {
+                    uv: vec![a.uv, self.sites[k + 1].uv],
+                    stations_mm: vec![0.0, self.stations[k + 1] - self.stations[k]],
+                    dirs: vec![dir],
+                    stop: Stop::Clip,
+                };
+                Site {
+                    placement: a.placement,
+                    uv: run.uv_at(surface, field, opts, delta),
+                }
+            }
+            _ => a,
+        }
+    }
+}
+
 /// Trace one way from a site in the world direction `dir`, unfolding across
 /// the patch's edges; stops where the world clip (or a singularity) stops it.
 fn unfold_one_way(
@@ -230,17 +280,25 @@ fn unfold_one_way(
     dir: DVec3,
     clip: &dyn Region,
     opts: TraceOptions,
-) -> (Vec<Site>, Vec<f64>, Stop) {
-    let mut sites = vec![start];
-    let mut stations = vec![0.0];
+) -> OneWay {
+    let mut w = OneWay {
+        sites: vec![start],
+        stations: vec![0.0],
+        segments: Vec::new(),
+        stop: Stop::MaxLength,
+    };
     let mut site = start;
     let mut world_dir = dir;
     let mut short = 0;
+    let done = |mut w: OneWay, stop: Stop| {
+        w.stop = stop;
+        w
+    };
     for _ in 0..MAX_UNFOLDS {
         let Some((local, local_dir)) =
             local_field(surface, field, &site, world_dir, opts.flat_k_per_mm2)
         else {
-            return (sites, stations, Stop::FlatPoint);
+            return done(w, Stop::FlatPoint);
         };
         let region = PatchRegion {
             surface,
@@ -249,45 +307,42 @@ fn unfold_one_way(
             clip,
         };
         // The length limit holds for the whole curve, across copies.
-        let travelled = *stations.last().unwrap_or(&0.0);
+        let travelled = w.length_mm();
         if travelled >= opts.max_length_mm {
-            return (sites, stations, Stop::MaxLength);
+            return done(w, Stop::MaxLength);
         }
         let piece_opts = TraceOptions {
             max_length_mm: opts.max_length_mm - travelled,
             ..opts
         };
-        let (uv, st, stop) = trace_from(surface, local, site.uv, local_dir, &region, piece_opts);
-        let base = *stations.last().unwrap_or(&0.0);
+        let run = trace_from(surface, local, site.uv, local_dir, &region, piece_opts);
+        let base = travelled;
         let start_world = start.placement.point(surface.point(start.uv));
-        for (q, s) in uv.iter().zip(&st).skip(1) {
-            sites.push(Site {
+        for (k, (q, s)) in run.uv.iter().zip(&run.stations_mm).enumerate().skip(1) {
+            w.sites.push(Site {
                 placement: site.placement,
                 uv: *q,
             });
-            stations.push(base + s);
+            w.stations.push(base + s);
+            w.segments.push(Some((local, run.dirs[k - 1])));
             // Back at the start after going some way, in any copy: a loop.
-            if base + s > 4.0 * opts.max_step_mm
-                && site
-                    .placement
-                    .point(surface.point(*q))
-                    .distance(start_world)
-                    < 0.5 * opts.max_step_mm
-            {
-                sites.push(start);
-                stations.push(
-                    base + s
-                        + site
-                            .placement
-                            .point(surface.point(*q))
-                            .distance(start_world),
-                );
-                return (sites, stations, Stop::ClosedLoop);
+            let gap = site
+                .placement
+                .point(surface.point(*q))
+                .distance(start_world);
+            if base + s > 4.0 * opts.max_step_mm && gap < 0.5 * opts.max_step_mm {
+                w.sites.push(start);
+                w.stations.push(base + s + gap);
+                w.segments.push(None);
+                return done(w, Stop::ClosedLoop);
             }
         }
+        let uv = &run.uv;
+        let st = &run.stations_mm;
+        let stop = run.stop;
         let end = *uv.last().unwrap_or(&site.uv);
         if stop != Stop::Clip {
-            return (sites, stations, stop);
+            return done(w, stop);
         }
         // Which boundary: the world clip ends the curve, a patch edge unfolds it.
         let p = surface.point(end);
@@ -302,7 +357,7 @@ fn unfold_one_way(
                 |a, b| if b.1 < a.1 { b } else { a },
             );
         if dist > 1e-4 || !clip.contains(end, world_p) {
-            return (sites, stations, Stop::Clip);
+            return done(w, Stop::Clip);
         }
         short = if st.last().copied().unwrap_or(0.0) < 1e-6 {
             short + 1
@@ -310,7 +365,7 @@ fn unfold_one_way(
             0
         };
         if short >= 2 {
-            return (sites, stations, Stop::StepTooSmall);
+            return done(w, Stop::StepTooSmall);
         }
         // The direction of arrival, turned by the half-turn about the edge.
         let j = surface.derivatives(end);
@@ -331,13 +386,17 @@ fn unfold_one_way(
             placement: next,
             uv: end,
         };
-        sites.push(site);
-        stations.push(*stations.last().unwrap_or(&0.0));
+        w.sites.push(site);
+        w.stations.push(w.length_mm());
+        w.segments.push(None);
     }
-    (sites, stations, Stop::MaxLength)
+    done(w, Stop::MaxLength)
 }
 
-/// Trace a curve through a site both ways, unfolding across edges.
+/// Trace a curve through a site both ways, unfolding across edges, and
+/// sample it uniformly: n = ⌈length / max_step_mm⌉ equal pieces of arc
+/// length, each point integrated to from the trace's own steps, the ends
+/// exactly where the trace stopped.
 pub fn unfold_through(
     surface: &Placed,
     edges: &[Edge],
@@ -347,27 +406,33 @@ pub fn unfold_through(
     clip: &dyn Region,
     opts: TraceOptions,
 ) -> Unfolded {
-    let (fwd, s_fwd, stop_end) = unfold_one_way(surface, edges, field, seed, world_dir, clip, opts);
-    let (bwd, s_bwd, stop_start) =
-        unfold_one_way(surface, edges, field, seed, -world_dir, clip, opts);
-    let back = s_bwd.last().copied().unwrap_or(0.0);
-    let mut sites: Vec<Site> = bwd.iter().rev().copied().collect();
-    let mut stations: Vec<f64> = s_bwd.iter().rev().map(|s| back - s).collect();
-    sites.pop();
-    stations.pop();
-    sites.extend(fwd.iter().copied());
-    stations.extend(s_fwd.iter().map(|s| back + s));
-    // Drop the zero-length duplicates at edge crossings (same world point).
+    let fwd = unfold_one_way(surface, edges, field, seed, world_dir, clip, opts);
+    let bwd = unfold_one_way(surface, edges, field, seed, -world_dir, clip, opts);
+    let back = bwd.length_mm();
+    let total = back + fwd.length_mm();
+    let n = pieces(total, opts.max_step_mm);
     let mut out = Unfolded {
-        sites: Vec::with_capacity(sites.len()),
-        points_mm: Vec::with_capacity(sites.len()),
-        normals: Vec::with_capacity(sites.len()),
-        stations_mm: Vec::with_capacity(sites.len()),
-        stop_start,
-        stop_end,
+        sites: Vec::with_capacity(n + 1),
+        points_mm: Vec::with_capacity(n + 1),
+        normals: Vec::with_capacity(n + 1),
+        stations_mm: Vec::with_capacity(n + 1),
+        stop_start: bwd.stop,
+        stop_end: fwd.stop,
+        seed_station_mm: back,
     };
-    for (site, s) in sites.into_iter().zip(stations) {
+    for i in 0..=n {
+        let s = total * i as f64 / n as f64;
+        let site = if i == 0 {
+            *bwd.sites.last().unwrap_or(&seed)
+        } else if i == n {
+            *fwd.sites.last().unwrap_or(&seed)
+        } else if s < back {
+            bwd.site_at(surface, opts, back - s)
+        } else {
+            fwd.site_at(surface, opts, s - back)
+        };
         let p = site.placement.point(surface.point(site.uv));
+        // A curve shorter than a nanometre is one point.
         if out
             .points_mm
             .last()

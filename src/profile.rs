@@ -205,6 +205,7 @@ impl Profile {
         if text.trim().is_empty() {
             return Err(Error::input(path, Location::File, "the file is empty"));
         }
+        crate::io::yaml_guard::check(text, path)?;
         let value: serde_yaml::Value =
             serde_yaml::from_str(text).map_err(|e| yaml_error(path, &e))?;
         let version = match value.get("version") {
@@ -251,16 +252,30 @@ fn validate(f: &ProfileFile) -> std::result::Result<(), FieldError> {
             message: what,
         })
     };
+    // Every number has a sane upper bound, checked under its own name
+    // (a length beyond 10 km is a typo, not a part).
+    let at_most = |field: &str, x: f64| -> std::result::Result<(), FieldError> {
+        let (max, unit) = if field.ends_with("_mm") {
+            (1e7, " mm")
+        } else {
+            (1e12, "")
+        };
+        if x <= max {
+            Ok(())
+        } else {
+            err(field, format!("must be at most {max:e}{unit}, got {x:e}"))
+        }
+    };
     let positive = |field: &str, x: f64| -> std::result::Result<(), FieldError> {
         if x.is_finite() && x > 0.0 {
-            Ok(())
+            at_most(field, x)
         } else {
             err(field, format!("must be positive, got {x}"))
         }
     };
     let non_negative = |field: &str, x: f64| -> std::result::Result<(), FieldError> {
         if x.is_finite() && x >= 0.0 {
-            Ok(())
+            at_most(field, x)
         } else {
             err(field, format!("must be zero or more, got {x}"))
         }

@@ -80,6 +80,9 @@ pub enum Stop {
     MaxLength,
     /// The step size fell below its minimum (a singularity of the field).
     StepTooSmall,
+    /// Took more steps than [`TraceOptions::max_steps`] (steps held tiny
+    /// near a singularity).
+    StepLimit,
 }
 
 impl Stop {
@@ -91,6 +94,7 @@ impl Stop {
             Stop::ClosedLoop => "closed loop",
             Stop::MaxLength => "length limit",
             Stop::StepTooSmall => "step too small",
+            Stop::StepLimit => "step limit",
         }
     }
 }
@@ -109,6 +113,8 @@ pub struct TraceOptions {
     pub max_length_mm: f64,
     /// |K| below this (1/mm²) is a flat point.
     pub flat_k_per_mm2: f64,
+    /// Most integrator steps (accepted and rejected) of one direction of a trace.
+    pub max_steps: usize,
 }
 
 impl Default for TraceOptions {
@@ -120,6 +126,7 @@ impl Default for TraceOptions {
             boundary_tolerance_mm: 1e-7,
             max_length_mm: 200_000.0,
             flat_k_per_mm2: 1e-14,
+            max_steps: 4_000_000,
         }
     }
 }
@@ -267,17 +274,30 @@ impl Tracer<'_> {
     }
 
     /// Trace from `uv0` in the direction closest to `dir0`.
-    fn run(&self, uv0: DVec2, dir0: DVec3) -> (Vec<DVec2>, Vec<f64>, Stop) {
+    fn run(&self, uv0: DVec2, dir0: DVec3) -> Run {
+        let (out, stations, dirs, stop) = self.run_inner(uv0, dir0);
+        Run {
+            uv: out,
+            stations_mm: stations,
+            dirs,
+            stop,
+        }
+    }
+
+    /// The samples, their stations, the field direction at the start of
+    /// every segment (one fewer than samples) and why the trace stopped.
+    fn run_inner(&self, uv0: DVec2, dir0: DVec3) -> (Vec<DVec2>, Vec<f64>, Vec<DVec3>, Stop) {
         let mut uv = uv0;
         let mut dir = dir0;
         let mut s = 0.0;
         let mut out = vec![uv0];
         let mut stations = vec![0.0];
+        let mut dirs: Vec<DVec3> = Vec::new();
         let mut h = self.opts.max_step_mm.min(1.0);
         let p0 = self.surface.point(uv0);
-        loop {
+        for _ in 0..self.opts.max_steps {
             if s >= self.opts.max_length_mm {
-                return (out, stations, Stop::MaxLength);
+                return (out, stations, dirs, Stop::MaxLength);
             }
             h = h
                 .min(self.opts.max_step_mm)
@@ -297,8 +317,9 @@ impl Tracer<'_> {
                         if b_h > 0.0 {
                             out.push(b_uv);
                             stations.push(s + b_h);
+                            dirs.push(dir);
                         }
-                        return (out, stations, Stop::Clip);
+                        return (out, stations, dirs, Stop::Clip);
                     }
                     s += h;
                     // Closed loop: back near the start after going some way.
@@ -307,10 +328,12 @@ impl Tracer<'_> {
                     {
                         out.push(uv0);
                         stations.push(s - h + self.surface.point(uv).distance(p0));
-                        return (out, stations, Stop::ClosedLoop);
+                        dirs.push(dir);
+                        return (out, stations, dirs, Stop::ClosedLoop);
                     }
                     out.push(next);
                     stations.push(s);
+                    dirs.push(dir);
                     uv = next;
                     dir = d_end;
                     let grow = if err > 0.0 {
@@ -333,16 +356,18 @@ impl Tracer<'_> {
                         if b_h > self.opts.boundary_tolerance_mm {
                             out.push(b_uv);
                             stations.push(s + b_h);
+                            dirs.push(dir);
                         }
                     }
-                    return (out, stations, stop);
+                    return (out, stations, dirs, stop);
                 }
-                Err(other) => return (out, stations, other),
+                Err(other) => return (out, stations, dirs, other),
             }
             if h < self.opts.min_step_mm {
-                return (out, stations, Stop::StepTooSmall);
+                return (out, stations, dirs, Stop::StepTooSmall);
             }
         }
+        (out, stations, dirs, Stop::StepLimit)
     }
 
     /// Largest step length in [lo, hi] whose end satisfies `ok`, by bisection;
@@ -356,7 +381,11 @@ impl Tracer<'_> {
         ok: impl Fn(DVec2, DVec3) -> bool,
     ) -> (DVec2, f64) {
         let mut best = (uv, 0.0);
-        while hi - lo > self.opts.boundary_tolerance_mm {
+        // Halving from at most max_step_mm to the tolerance takes < 64 rounds.
+        for _ in 0..64 {
+            if hi - lo <= self.opts.boundary_tolerance_mm {
+                break;
+            }
             let mid = 0.5 * (lo + hi);
             match self.step(uv, dir, mid) {
                 Ok((q, _, _)) if ok(q, self.surface.point(q)) => {
@@ -370,6 +399,65 @@ impl Tracer<'_> {
     }
 }
 
+/// One direction of a trace: every accepted step, with the field direction
+/// at the start of each segment, so any station in between can be
+/// integrated to (dense output by a fresh step from the segment's start).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    pub uv: Vec<DVec2>,
+    pub stations_mm: Vec<f64>,
+    /// Direction (3D, unit) at the start of segment k (uv[k] → uv[k + 1]).
+    pub dirs: Vec<DVec3>,
+    pub stop: Stop,
+}
+
+impl Run {
+    pub fn length_mm(&self) -> f64 {
+        *self.stations_mm.last().unwrap_or(&0.0)
+    }
+
+    /// The parameters at a station: one Dormand–Prince step from the start
+    /// of the segment holding it (no longer than the step the trace
+    /// accepted there, so within its tolerance). The ends are exact.
+    pub fn uv_at(&self, surface: &dyn Surface, field: Field, opts: TraceOptions, s: f64) -> DVec2 {
+        let n = self.uv.len();
+        if n < 2 || s <= 0.0 {
+            return self.uv[0];
+        }
+        if s >= self.length_mm() {
+            return self.uv[n - 1];
+        }
+        let k = (self.stations_mm.partition_point(|&x| x <= s) - 1).min(n - 2);
+        let delta = s - self.stations_mm[k];
+        if delta <= 0.0 {
+            return self.uv[k];
+        }
+        let tracer = Tracer {
+            surface,
+            field,
+            region: &Everywhere,
+            opts,
+        };
+        match tracer.step(self.uv[k], self.dirs[k], delta) {
+            Ok((q, _, _)) => q,
+            Err(_) => {
+                let (s0, s1) = (self.stations_mm[k], self.stations_mm[k + 1]);
+                self.uv[k].lerp(self.uv[k + 1], (delta / (s1 - s0)).clamp(0.0, 1.0))
+            }
+        }
+    }
+}
+
+/// How many equal pieces of at most `step_mm` make up `length_mm` (≥ 1).
+pub fn pieces(length_mm: f64, step_mm: f64) -> usize {
+    let n = (length_mm / step_mm * (1.0 - 1e-12)).ceil();
+    if n.is_finite() && n >= 1.0 {
+        n as usize
+    } else {
+        1
+    }
+}
+
 /// Trace one way from `uv0`, in the direction of `field` closest to `dir0`:
 /// the parameters and stations of every accepted step, and why it stopped.
 pub fn trace_from(
@@ -379,7 +467,7 @@ pub fn trace_from(
     dir0: DVec3,
     region: &dyn Region,
     opts: TraceOptions,
-) -> (Vec<DVec2>, Vec<f64>, Stop) {
+) -> Run {
     Tracer {
         surface,
         field,
@@ -389,7 +477,10 @@ pub fn trace_from(
     .run(uv0, dir0)
 }
 
-/// Trace the curve of `field` through `seed` in both directions.
+/// Trace the curve of `field` through `seed` in both directions, and sample
+/// it uniformly: n = ⌈length / max_step_mm⌉ equal pieces of arc length, each
+/// point integrated to from the trace's own steps (so within its
+/// tolerance), the two ends exactly where the trace stopped.
 pub fn trace_through(
     surface: &dyn Surface,
     field: Field,
@@ -407,50 +498,44 @@ pub fn trace_through(
         return Err(Stop::DomainEdge);
     }
     let d0 = field.direction(surface, seed, opts.flat_k_per_mm2)?;
-    let (fwd, s_fwd, stop_end) = tracer.run(seed, d0);
-    if stop_end == Stop::ClosedLoop {
-        return Ok(assemble(
-            surface,
-            vec![],
-            vec![],
-            fwd,
-            s_fwd,
-            Stop::ClosedLoop,
-            stop_end,
-        ));
+    let fwd = tracer.run(seed, d0);
+    let bwd = if fwd.stop == Stop::ClosedLoop {
+        Run {
+            uv: vec![seed],
+            stations_mm: vec![0.0],
+            dirs: Vec::new(),
+            stop: Stop::ClosedLoop,
+        }
+    } else {
+        tracer.run(seed, -d0)
+    };
+    let back = bwd.length_mm();
+    let total = back + fwd.length_mm();
+    let n = pieces(total, opts.max_step_mm);
+    let mut uv = Vec::with_capacity(n + 1);
+    let mut stations_mm = Vec::with_capacity(n + 1);
+    for i in 0..=n {
+        let s = total * i as f64 / n as f64;
+        let q = if i == 0 {
+            *bwd.uv.last().unwrap_or(&seed)
+        } else if i == n {
+            *fwd.uv.last().unwrap_or(&seed)
+        } else if s < back {
+            bwd.uv_at(surface, field, opts, back - s)
+        } else {
+            fwd.uv_at(surface, field, opts, s - back)
+        };
+        uv.push(q);
+        stations_mm.push(s);
     }
-    let (bwd, s_bwd, stop_start) = tracer.run(seed, -d0);
-    Ok(assemble(
-        surface, bwd, s_bwd, fwd, s_fwd, stop_start, stop_end,
-    ))
-}
-
-fn assemble(
-    surface: &dyn Surface,
-    bwd: Vec<DVec2>,
-    s_bwd: Vec<f64>,
-    fwd: Vec<DVec2>,
-    s_fwd: Vec<f64>,
-    stop_start: Stop,
-    stop_end: Stop,
-) -> Traced {
-    let back_len = s_bwd.last().copied().unwrap_or(0.0);
-    let mut uv: Vec<DVec2> = bwd.iter().rev().copied().collect();
-    let mut stations: Vec<f64> = s_bwd.iter().rev().map(|s| back_len - s).collect();
-    if !uv.is_empty() {
-        uv.pop();
-        stations.pop();
-    }
-    uv.extend(fwd.iter().copied());
-    stations.extend(s_fwd.iter().map(|s| back_len + s));
     let points_mm = uv.iter().map(|&q| surface.point(q)).collect();
-    Traced {
+    Ok(Traced {
         uv,
         points_mm,
-        stations_mm: stations,
-        stop_start,
-        stop_end,
-    }
+        stations_mm,
+        stop_start: bwd.stop,
+        stop_end: fwd.stop,
+    })
 }
 
 #[cfg(test)]

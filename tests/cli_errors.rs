@@ -404,3 +404,117 @@ fn sample_network_succeeds() {
     assert!(leftovers.is_empty(), "{leftovers:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bad_tolerance_is_a_usage_error_about_the_option() {
+    let dir = scratch("bad_tolerance");
+    let network = dir.join("cross.yaml");
+    std::fs::write(&network, yaml_with("")).expect("write input");
+    for t in ["NaN", "inf", "0", "-1", "1e9", "wide"] {
+        let output = Command::new(env!("CARGO_BIN_EXE_lamella"))
+            .arg("nodes")
+            .arg(&network)
+            .arg(format!("--tolerance={t}"))
+            .arg("--out")
+            .arg(dir.join("out"))
+            .output()
+            .expect("run lamella");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{t}: {stderr}");
+        assert!(stderr.contains("--tolerance"), "{t}: {stderr}");
+        assert!(
+            !stderr.contains("cross.yaml"),
+            "{t}: blames the file: {stderr}"
+        );
+    }
+    assert!(!dir.join("out").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Run lamella with `args`; (status, stderr).
+fn lamella(args: &[&std::ffi::OsStr]) -> (Option<i32>, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run lamella");
+    (
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn an_output_that_is_an_input_is_refused() {
+    let dir = scratch("output_is_input");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // trace SPEC --out SPEC used to overwrite the spec.
+    let spec = dir.join("s.trace.yaml");
+    let spec_text =
+        std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml")).expect("sample spec");
+    std::fs::write(&spec, &spec_text).expect("write spec");
+    let (code, stderr) = lamella(&[
+        "trace".as_ref(),
+        spec.as_os_str(),
+        "--out".as_ref(),
+        spec.as_os_str(),
+    ]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("refusing to overwrite an input"),
+        "{stderr}"
+    );
+    // ... also through a symlink and a hard link.
+    #[cfg(unix)]
+    {
+        let link = dir.join("link.yaml");
+        std::os::unix::fs::symlink(&spec, &link).expect("symlink");
+        let hard = dir.join("hard.yaml");
+        std::fs::hard_link(&spec, &hard).expect("hard link");
+        for out in [&link, &hard] {
+            let (code, stderr) = lamella(&[
+                "trace".as_ref(),
+                spec.as_os_str(),
+                "--out".as_ref(),
+                out.as_os_str(),
+            ]);
+            assert_eq!(code, Some(1), "{stderr}");
+            assert!(stderr.contains("trace spec"), "{stderr}");
+        }
+    }
+    assert_eq!(std::fs::read_to_string(&spec).expect("spec"), spec_text);
+    // nodes / check --out DIR where DIR/plan.json is the network or the profile.
+    let net_dir = dir.join("net");
+    std::fs::create_dir_all(&net_dir).expect("dir");
+    let network = net_dir.join("plan.json");
+    let json = "{\"units\": \"mm\", \"curves\": [{\"id\": \"A\", \"family\": \"A\", \"points\": [[0, -1, 0], [0, 1, 0]]}, {\"id\": \"B\", \"family\": \"B\", \"points\": [[-1, 0, 0], [1, 0, 0]]}]}\n";
+    std::fs::write(&network, json).expect("write network");
+    let (code, stderr) = lamella(&[
+        "nodes".as_ref(),
+        network.as_os_str(),
+        "--out".as_ref(),
+        net_dir.as_os_str(),
+    ]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("is the network"), "{stderr}");
+    let profile_dir = dir.join("prof");
+    std::fs::create_dir_all(&profile_dir).expect("dir");
+    let profile = profile_dir.join("plan.json");
+    std::fs::copy(root.join("profiles/steel-1.5.yaml"), &profile).expect("copy profile");
+    let (code, stderr) = lamella(&[
+        "check".as_ref(),
+        network.as_os_str(),
+        "--profile".as_ref(),
+        profile.as_os_str(),
+        "--out".as_ref(),
+        profile_dir.as_os_str(),
+    ]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("is the profile"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&network).expect("network"), json);
+    assert_eq!(
+        std::fs::read(&profile).expect("profile"),
+        std::fs::read(root.join("profiles/steel-1.5.yaml")).expect("profile")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

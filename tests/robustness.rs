@@ -311,3 +311,286 @@ fn sparse_curves_get_curvature_between_their_samples() {
         "radius {r} from 5 samples of a 500 mm arc"
     );
 }
+
+// ---- issue 7, bad input ----
+
+/// Two straight crossing curves in mm, and `extra` curves.
+fn cross(extra: &str) -> String {
+    format!("units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, -100, 0], [0, 100, 0]]\n{B_LINE}{extra}")
+}
+
+/// Run lamella with `args` in the crate root; (status, stdout, stderr).
+fn lamella(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn coordinates_beyond_ten_km_are_refused_not_analysed() {
+    // 1e300 mm once panicked `check` (clamp on NaN) and gave `nodes` a
+    // null length and a "NaN m" summary.
+    let text =
+        cross("  - id: A01\n    family: A\n    points: [[20, -100, 0], [1.0e300, 100, 0]]\n");
+    rejects(
+        "huge",
+        "huge.yaml",
+        &text,
+        &["curve A01", "point 1", "within ±1e7 mm"],
+    );
+    let dir = scratch("huge-check");
+    let p = dir.join("huge.yaml");
+    std::fs::write(&p, &text).unwrap();
+    let (code, stdout, stderr) = lamella(&[
+        "check",
+        p.to_str().unwrap(),
+        "--profile",
+        "profiles/steel-1.5.yaml",
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stdout.is_empty() && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("within ±1e7 mm"), "{stderr}");
+    assert!(!dir.join("out").exists());
+    // In metres, 20 km is out of range too (after unit conversion).
+    let text = "units: m\ncurves:\n  - id: A00\n    family: A\n    points: [[0, -1, 0], [0, 1, 0]]\n  - id: B00\n    family: B\n    points: [[-1, 0, 0], [20000, 0, 0]]\n";
+    rejects(
+        "huge-m",
+        "huge-m.yaml",
+        text,
+        &["curve B00", "point 1", "10 km"],
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn networks_beyond_a_kilometre_are_refused() {
+    // Every coordinate is in range, but the network spans 3 km: scaled-up
+    // networks used to run for minutes.
+    let text = "units: m\ncurves:\n  - id: A00\n    family: A\n    points: [[0, -1500, 0], [0, 1500, 0]]\n  - id: B00\n    family: B\n    points: [[-1500, 0, 0], [1500, 0, 0]]\n";
+    rejects(
+        "wide",
+        "wide.yaml",
+        text,
+        &["spans 3000000 × 3000000", "1 km"],
+    );
+    // A node tolerance in the file beyond a metre is no joint.
+    let text = cross("").replacen("units: mm\n", "units: mm\ntolerance: 1.0e300\n", 1);
+    rejects(
+        "wide-tol",
+        "tol.yaml",
+        &text,
+        &["tolerance", "at most 1000 mm"],
+    );
+}
+
+#[test]
+fn deep_nesting_and_aliases_are_refused_fast() {
+    let t0 = std::time::Instant::now();
+    let deep = format!(
+        "{}meta: {}{}\n",
+        cross(""),
+        "[".repeat(200_000),
+        "]".repeat(200_000)
+    );
+    rejects(
+        "deep",
+        "deep.yaml",
+        &deep,
+        &["line 9, column 70", "deeper than 64"],
+    );
+    let block: String = (0..200)
+        .map(|i| format!("{}k{i}:\n", " ".repeat(i + 1)))
+        .collect();
+    rejects(
+        "deep-block",
+        "deepb.yaml",
+        &format!("{}meta:\n{block}", cross("")),
+        &["deeper than 64"],
+    );
+    let mut lol = format!(
+        "{}meta:\n  a0: &a0 [x, x, x, x, x, x, x, x, x]\n",
+        cross("")
+    );
+    for i in 1..9 {
+        lol.push_str(&format!(
+            "  a{i}: &a{i} [{}]\n",
+            vec![format!("*a{}", i - 1); 9].join(", ")
+        ));
+    }
+    rejects("lol", "lol.yaml", &lol, &["line 10, column 7", "anchor"]);
+    // Both used to take seconds (the 200,000 brackets about a minute).
+    assert!(t0.elapsed().as_secs_f64() < 5.0, "{:?}", t0.elapsed());
+}
+
+#[test]
+fn duplicate_keys_are_reported_at_their_line() {
+    // serde_yaml put a repeated top-level key at line 1.
+    let text = cross("").replacen("units: mm\n", "units: mm\ntolerance: 1\n", 1) + "tolerance: 2\n";
+    rejects(
+        "dupkey",
+        "dupkey.yaml",
+        &text,
+        &[
+            "line 10, column 1",
+            "duplicate key `tolerance` (first at line 2)",
+        ],
+    );
+    let text = cross("").replacen("    family: A\n", "    family: A\n    family: B\n", 1);
+    rejects(
+        "dupkey-nested",
+        "dupkey2.yaml",
+        &text,
+        &[
+            "line 5, column 5",
+            "duplicate key `family` (first at line 4)",
+        ],
+    );
+}
+
+#[test]
+fn duplicate_ids_name_both_curves_in_every_format() {
+    let text = cross("  - id: A00\n    family: A\n    points: [[50, -100, 0], [50, 100, 0]]\n");
+    rejects(
+        "dup-yaml",
+        "dup.yaml",
+        &text,
+        &["curve A00", "curves[0] and curves[2]"],
+    );
+    let json = r#"{"units": "mm", "curves": [
+        {"id": "A", "family": "A", "points": [[0, -1, 0], [0, 1, 0]]},
+        {"id": "B", "family": "B", "points": [[-1, 0, 0], [1, 0, 0]]},
+        {"id": "B", "family": "B", "points": [[-1, 0.5, 0], [1, 0.5, 0]]}]}"#;
+    rejects(
+        "dup-json",
+        "dup.json",
+        json,
+        &["curve B", "curves[1] and curves[2]"],
+    );
+    // OBJ: a second object with the same name was renamed A1.1, A1.2.
+    let obj = "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\nl 3 4\no A1\nv 1 -1 0\nv 1 1 0\nl 5 6\n";
+    rejects(
+        "dup-obj",
+        "dup.obj",
+        obj,
+        &[
+            "line 12",
+            "'A1' (line 9)",
+            "same name as the object at line 1",
+        ],
+    );
+    // ... and so was a second, disjoint polyline of one object.
+    let obj = "o A1\nv 0 -1 0\nv 0 1 0\nv 1 -1 0\nv 1 1 0\nl 1 2\nl 3 4\no B1\nv -1 0 0\nv 1 0 0\nl 5 6\n";
+    rejects(
+        "dup-obj-piece",
+        "piece.obj",
+        obj,
+        &["line 7", "'A1' (line 1)", "second polyline"],
+    );
+}
+
+#[test]
+fn truncated_obj_is_an_error_not_a_missing_curve() {
+    // The last object lost its `l` line: it used to vanish silently.
+    let obj =
+        "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\no B2\nv -1 0.5 0\nv 1 0.5 0\n";
+    rejects(
+        "obj-cut",
+        "cut.obj",
+        obj,
+        &["line 5", "'B1'", "no polyline", "cut short"],
+    );
+    let obj = "o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\nl 3 4\no B2\nv -1 0.5 0\n";
+    rejects(
+        "obj-cut-last",
+        "cut2.obj",
+        obj,
+        &["line 9", "'B2'", "cut short"],
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted_by_every_reader() {
+    let dir = scratch("bom");
+    let json = "\u{feff}{\"units\": \"mm\", \"curves\": [{\"id\": \"A\", \"family\": \"A\", \"points\": [[0, -1, 0], [0, 1, 0]]}, {\"id\": \"B\", \"family\": \"B\", \"points\": [[-1, 0, 0], [1, 0, 0]]}]}";
+    let obj = "\u{feff}o A1\nv 0 -1 0\nv 0 1 0\nl 1 2\no B1\nv -1 0 0\nv 1 0 0\nl 3 4\n";
+    let yaml = format!("\u{feff}{}", cross(""));
+    for (name, text) in [("n.json", json), ("n.obj", obj), ("n.yaml", yaml.as_str())] {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        let net = read_network(&p, ReadOptions::default());
+        assert!(net.is_ok(), "{name}: {:?}", net.err());
+    }
+    // A profile and a trace spec with a BOM read too.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let profile = dir.join("p.yaml");
+    let text = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).unwrap();
+    std::fs::write(&profile, format!("\u{feff}{text}")).unwrap();
+    assert!(lamella::profile::Profile::load(&profile).is_ok());
+    let spec = dir.join("s.trace.yaml");
+    let text = std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml")).unwrap();
+    std::fs::write(&spec, format!("\u{feff}{text}")).unwrap();
+    assert!(lamella::io::trace_spec::load(&spec).is_ok());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn profile_fields_are_bounded_under_their_own_names() {
+    // height 1e300 used to be blamed on stock.width_mm.
+    let dir = scratch("profile-huge");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).unwrap();
+    assert!(text.contains("height_mm: 50.0"));
+    let p = dir.join("huge.yaml");
+    std::fs::write(
+        &p,
+        text.replacen("height_mm: 50.0", "height_mm: 1.0e300", 1),
+    )
+    .unwrap();
+    let (code, _, stderr) = lamella(&[
+        "check",
+        "samples/hypar-small.yaml",
+        "--profile",
+        p.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("field `lamella.height_mm`: must be at most 1e7 mm"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn deep_profiles_and_specs_are_refused() {
+    let dir = scratch("deep-profile");
+    let deep = format!(
+        "version: 1\nname: {}{}\n",
+        "{a: ".repeat(100),
+        "}".repeat(100)
+    );
+    let p = dir.join("deep.yaml");
+    std::fs::write(&p, deep).unwrap();
+    let e = lamella::profile::Profile::load(&p).unwrap_err().to_string();
+    assert!(e.contains("line 2") && e.contains("deeper than 64"), "{e}");
+    let s = dir.join("deep.trace.yaml");
+    std::fs::write(&s, "name: x\nalias: *x\n").unwrap();
+    let e = lamella::io::trace_spec::load(&s).unwrap_err().to_string();
+    assert!(e.contains("line 2, column 8") && e.contains("alias"), "{e}");
+    // Specs and profiles are small: a 2 MiB one is refused before parsing.
+    std::fs::write(&s, "#".repeat(2 << 20)).unwrap();
+    let e = lamella::io::trace_spec::load(&s).unwrap_err().to_string();
+    assert!(e.contains("more than the 1 MiB"), "{e}");
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -3,11 +3,13 @@
 //! in file units; [`read_network`] validates it into a [`Network`] in mm.
 
 pub mod dxf_in;
+pub mod finite;
 pub mod network_file;
 pub mod obj;
 pub mod plan;
 pub mod profile_file;
 pub mod trace_spec;
+pub mod yaml_guard;
 
 use crate::error::{Error, Location, Result};
 use crate::network::{Network, RawNetwork, Unit};
@@ -31,11 +33,14 @@ pub fn read_network(path: &Path, opts: ReadOptions) -> Result<Network> {
     let raw = read_raw(path, opts)?;
     let mut net = Network::new(raw, path)?;
     if let Some(t) = opts.tolerance_mm {
-        if !(t.is_finite() && t > 0.0) {
+        if !(t.is_finite() && t > 0.0 && t <= crate::network::MAX_TOLERANCE_MM) {
             return Err(Error::input(
                 path,
                 Location::Field("tolerance".into()),
-                "tolerance must be positive",
+                format!(
+                    "tolerance must be positive and at most {} mm",
+                    crate::network::MAX_TOLERANCE_MM
+                ),
             ));
         }
         net.tolerance_mm = t;
@@ -57,15 +62,15 @@ pub fn read_raw(path: &Path, opts: ReadOptions) -> Result<RawNetwork> {
     }
     match ext.as_str() {
         "yaml" | "yml" => {
-            let text = read_text(path)?;
+            let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             network_file::parse(&text, network_file::Syntax::Yaml, path)
         }
         "json" => {
-            let text = read_text(path)?;
+            let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             network_file::parse(&text, network_file::Syntax::Json, path)
         }
         "obj" => {
-            let text = read_text(path)?;
+            let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             obj::parse(&text, opts.unit.unwrap_or(crate::network::Unit::Mm), path)
         }
         "dxf" => dxf_in::read(path, opts.unit),
@@ -84,9 +89,32 @@ pub fn default_name(path: &Path) -> String {
         .unwrap_or_else(|| "network".into())
 }
 
-/// Read a whole text file, with a one-line error on failure or bad UTF-8.
+/// Read a whole text file (a trace spec or a profile: at most
+/// [`yaml_guard::MAX_SMALL_FILE_BYTES`]), with a one-line error on failure or
+/// bad UTF-8; a leading UTF-8 byte-order mark is dropped.
 pub fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    read_text_limited(path, yaml_guard::MAX_SMALL_FILE_BYTES)
+}
+
+/// [`read_text`] with a size limit in bytes.
+pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String> {
+    let len = std::fs::metadata(path)
+        .map_err(|e| Error::io(path, e))?
+        .len();
+    if len > max_bytes {
+        return Err(Error::input(
+            path,
+            Location::File,
+            format!(
+                "{len} bytes is more than the {} MiB lamella reads in such a file",
+                max_bytes >> 20
+            ),
+        ));
+    }
+    let mut bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    if bytes.starts_with(b"\xEF\xBB\xBF") {
+        bytes.drain(..3);
+    }
     String::from_utf8(bytes).map_err(|e| {
         Error::input(
             path,
@@ -94,4 +122,23 @@ pub fn read_text(path: &Path) -> Result<String> {
             format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
         )
     })
+}
+
+/// Whether two paths name the same existing file: the same canonical path,
+/// or (on Unix) the same device and inode, so hard links count too.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    let (Ok(ca), Ok(cb)) = (a.canonicalize(), b.canonicalize()) else {
+        return false;
+    };
+    if ca == cb {
+        return true;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(ma), Ok(mb)) = (std::fs::metadata(&ca), std::fs::metadata(&cb)) {
+            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+        }
+    }
+    false
 }

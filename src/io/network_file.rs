@@ -40,8 +40,12 @@ pub enum Syntax {
 
 /// Parse network file text (YAML or JSON) into a raw network.
 pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     if text.trim().is_empty() {
         return Err(Error::input(path, Location::File, "the file is empty"));
+    }
+    if syntax == Syntax::Yaml {
+        crate::io::yaml_guard::check(text, path)?;
     }
     let file: NetworkFile = match syntax {
         Syntax::Yaml => serde_yaml::from_str(text).map_err(|e| {

@@ -8,13 +8,29 @@ use std::path::Path;
 
 /// Parse OBJ text. OBJ carries no unit: the caller says which (`unit`).
 pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     if text.trim().is_empty() {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
     let mut vertices: Vec<DVec3> = Vec::new();
     let mut name: Option<(String, usize)> = None;
-    // (id, line of its name, vertex indices)
-    let mut pieces: Vec<(String, usize, Vec<usize>)> = Vec::new();
+    // Vertices and polylines since the current name: an object with vertices
+    // but no polyline is what a file cut short leaves behind.
+    let (mut vertices_since_name, mut lines_since_name) = (0usize, 0usize);
+    // (id, line of its name, line of its first polyline, vertex indices)
+    let mut pieces: Vec<(String, usize, usize, Vec<usize>)> = Vec::new();
+    let unfinished = |name: &Option<(String, usize)>, v: usize, l: usize| -> Result<()> {
+        match name {
+            Some((id, at)) if v > 0 && l == 0 => Err(Error::input(
+                path,
+                Location::Line(*at),
+                format!(
+                    "object '{id}' has {v} vertices but no polyline (`l` element): is the file cut short?"
+                ),
+            )),
+            _ => Ok(()),
+        }
+    };
     for (i, line) in text.lines().enumerate() {
         let line_no = i + 1;
         let line = line.split('#').next().unwrap_or("").trim();
@@ -36,6 +52,7 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
                     })?;
                 }
                 vertices.push(DVec3::from_array(xyz));
+                vertices_since_name += 1;
             }
             "o" | "g" => {
                 let n = words.collect::<Vec<_>>().join(" ");
@@ -46,16 +63,19 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
                         "object/group without a name",
                     ));
                 }
+                unfinished(&name, vertices_since_name, lines_since_name)?;
                 name = Some((n, line_no));
+                (vertices_since_name, lines_since_name) = (0, 0);
             }
             "l" => {
-                let (id, _) = name.clone().ok_or_else(|| {
+                let (id, name_line) = name.clone().ok_or_else(|| {
                     Error::input(
                         path,
                         Location::Line(line_no),
                         "polyline before any object or group name (the name is the curve id)",
                     )
                 })?;
+                lines_since_name += 1;
                 let mut idx = Vec::new();
                 for w in words {
                     let v = w.split('/').next().unwrap_or(w);
@@ -94,16 +114,32 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
                     ));
                 }
                 // Continue the object's last piece when this one chains on.
-                match pieces.last_mut() {
-                    Some((pid, _, last)) if *pid == id && last.last() == idx.first() => {
+                if let Some((pid, _, _, last)) = pieces.last_mut() {
+                    if *pid == id && last.last() == idx.first() {
                         last.extend_from_slice(&idx[1..]);
+                        continue;
                     }
-                    _ => pieces.push((id, line_no, idx)),
                 }
+                // One curve per name: a second polyline of the same object, or
+                // an object named like an earlier one, is refused.
+                if let Some((_, first_name, first_l, _)) = pieces.iter().find(|p| p.0 == id) {
+                    let what = if *first_name == name_line {
+                        format!(
+                            "object '{id}' (line {name_line}) has a second polyline that does not continue its first (line {first_l}); give each curve its own object"
+                        )
+                    } else {
+                        format!(
+                            "object '{id}' (line {name_line}) has the same name as the object at line {first_name}; curve ids must be unique"
+                        )
+                    };
+                    return Err(Error::input(path, Location::Line(line_no), what));
+                }
+                pieces.push((id, name_line, line_no, idx));
             }
             _ => {}
         }
     }
+    unfinished(&name, vertices_since_name, lines_since_name)?;
     if pieces.is_empty() {
         return Err(Error::input(
             path,
@@ -111,27 +147,19 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
             "no polylines (`l` elements) found",
         ));
     }
-    // An object with several disjoint pieces gets ids `name.1`, `name.2`, ...
     let mut curves = Vec::with_capacity(pieces.len());
-    for (k, (id, line_no, idx)) in pieces.iter().enumerate() {
-        let count = pieces.iter().filter(|p| p.0 == *id).count();
-        let curve_id = if count > 1 {
-            let nth = pieces[..=k].iter().filter(|p| p.0 == *id).count();
-            format!("{id}.{nth}")
-        } else {
-            id.clone()
-        };
-        let family = Family::from_prefix(id).ok_or_else(|| {
+    for (id, line_no, _, idx) in pieces {
+        let family = Family::from_prefix(&id).ok_or_else(|| {
             Error::input(
                 path,
-                Location::Line(*line_no),
+                Location::Line(line_no),
                 format!("object '{id}': name must start with A, B or edge to give the family"),
             )
         })?;
         curves.push(RawCurve {
-            id: curve_id,
-            family,
             points: idx.iter().map(|&i| vertices[i]).collect(),
+            id,
+            family,
             normals: None,
         });
     }

@@ -14,6 +14,7 @@ pub fn load(path: &Path) -> Result<TraceSpec> {
     if text.trim().is_empty() {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
+    crate::io::yaml_guard::check(&text, path)?;
     serde_yaml::from_str(&text).map_err(|e| {
         let (at, msg) = crate::error::yaml_error_parts(&e);
         Error::input(path, at, msg)
