@@ -395,7 +395,8 @@ fn unfold_one_way(
 
 /// Trace a curve through a site both ways, unfolding across edges, and
 /// sample it uniformly: n = ⌈length / max_step_mm⌉ equal pieces of arc
-/// length, each point integrated to from the trace's own steps, the ends
+/// length (more where it turns more than [`crate::trace::MAX_SAMPLE_TURN_RAD`] between samples),
+/// each point integrated to from the trace's own steps, the ends
 /// exactly where the trace stopped.
 pub fn unfold_through(
     surface: &Placed,
@@ -410,41 +411,49 @@ pub fn unfold_through(
     let bwd = unfold_one_way(surface, edges, field, seed, -world_dir, clip, opts);
     let back = bwd.length_mm();
     let total = back + fwd.length_mm();
-    let n = pieces(total, opts.max_step_mm);
-    let mut out = Unfolded {
-        sites: Vec::with_capacity(n + 1),
-        points_mm: Vec::with_capacity(n + 1),
-        normals: Vec::with_capacity(n + 1),
-        stations_mm: Vec::with_capacity(n + 1),
-        stop_start: bwd.stop,
-        stop_end: fwd.stop,
-        seed_station_mm: back,
-    };
-    for i in 0..=n {
-        let s = total * i as f64 / n as f64;
-        let site = if i == 0 {
-            *bwd.sites.last().unwrap_or(&seed)
-        } else if i == n {
-            *fwd.sites.last().unwrap_or(&seed)
-        } else if s < back {
-            bwd.site_at(surface, opts, back - s)
-        } else {
-            fwd.site_at(surface, opts, s - back)
+    let sample = |n: usize| {
+        let mut out = Unfolded {
+            sites: Vec::with_capacity(n + 1),
+            points_mm: Vec::with_capacity(n + 1),
+            normals: Vec::with_capacity(n + 1),
+            stations_mm: Vec::with_capacity(n + 1),
+            stop_start: bwd.stop,
+            stop_end: fwd.stop,
+            seed_station_mm: back,
         };
-        let p = site.placement.point(surface.point(site.uv));
-        // A curve shorter than a nanometre is one point.
-        if out
-            .points_mm
-            .last()
-            .is_some_and(|q: &DVec3| q.distance(p) < 1e-6)
-        {
-            continue;
+        for i in 0..=n {
+            let s = total * i as f64 / n as f64;
+            let site = if i == 0 {
+                *bwd.sites.last().unwrap_or(&seed)
+            } else if i == n {
+                *fwd.sites.last().unwrap_or(&seed)
+            } else if s < back {
+                bwd.site_at(surface, opts, back - s)
+            } else {
+                fwd.site_at(surface, opts, s - back)
+            };
+            let p = site.placement.point(surface.point(site.uv));
+            // A curve shorter than a nanometre is one point.
+            if out
+                .points_mm
+                .last()
+                .is_some_and(|q: &DVec3| q.distance(p) < 1e-6)
+            {
+                continue;
+            }
+            out.normals
+                .push(site.placement.normal(surface.normal(site.uv)));
+            out.points_mm.push(p);
+            out.sites.push(site);
+            out.stations_mm.push(s);
         }
-        out.normals
-            .push(site.placement.normal(surface.normal(site.uv)));
-        out.points_mm.push(p);
-        out.sites.push(site);
-        out.stations_mm.push(s);
+        out
+    };
+    let mut n = pieces(total, opts.max_step_mm);
+    let mut out = sample(n);
+    while let Some(finer) = crate::trace::finer_pieces(&out.points_mm, n, total) {
+        n = finer;
+        out = sample(n);
     }
     out
 }

@@ -448,6 +448,30 @@ impl Run {
     }
 }
 
+/// Largest turn between consecutive chords of a resampled curve, rad: a
+/// quintic through samples this close keeps its tangents to ~0.001°, so
+/// crossings near tight bends (flat vertices of Schwarz D) hold 90° ± 0.01°.
+pub const MAX_SAMPLE_TURN_RAD: f64 = 0.05;
+/// Finest spacing the refinement goes to, mm.
+const MIN_SAMPLE_STEP_MM: f64 = 0.05;
+
+/// If the curve sampled in `n` equal pieces of `length_mm` turns more than
+/// [`MAX_SAMPLE_TURN_RAD`] between consecutive chords somewhere (a tight
+/// bend), the number of equal pieces that would not; None if it does not.
+pub fn finer_pieces(points_mm: &[DVec3], n: usize, length_mm: f64) -> Option<usize> {
+    let turn = points_mm
+        .windows(3)
+        .map(|w| (w[1] - w[0]).angle_between(w[2] - w[1]))
+        .filter(|a| a.is_finite())
+        .fold(0.0, f64::max);
+    if turn <= MAX_SAMPLE_TURN_RAD {
+        return None;
+    }
+    let cap = pieces(length_mm, MIN_SAMPLE_STEP_MM);
+    let finer = ((n as f64 * turn / MAX_SAMPLE_TURN_RAD * 1.1).ceil() as usize).min(cap);
+    (finer > n).then_some(finer)
+}
+
 /// How many equal pieces of at most `step_mm` make up `length_mm` (≥ 1).
 pub fn pieces(length_mm: f64, step_mm: f64) -> usize {
     let n = (length_mm / step_mm * (1.0 - 1e-12)).ceil();
@@ -478,7 +502,8 @@ pub fn trace_from(
 }
 
 /// Trace the curve of `field` through `seed` in both directions, and sample
-/// it uniformly: n = ⌈length / max_step_mm⌉ equal pieces of arc length, each
+/// it uniformly: n = ⌈length / max_step_mm⌉ equal pieces of arc length (more
+/// where the curve turns more than [`MAX_SAMPLE_TURN_RAD`] between samples), each
 /// point integrated to from the trace's own steps (so within its
 /// tolerance), the two ends exactly where the trace stopped.
 pub fn trace_through(
@@ -511,24 +536,32 @@ pub fn trace_through(
     };
     let back = bwd.length_mm();
     let total = back + fwd.length_mm();
-    let n = pieces(total, opts.max_step_mm);
-    let mut uv = Vec::with_capacity(n + 1);
-    let mut stations_mm = Vec::with_capacity(n + 1);
-    for i in 0..=n {
-        let s = total * i as f64 / n as f64;
-        let q = if i == 0 {
-            *bwd.uv.last().unwrap_or(&seed)
-        } else if i == n {
-            *fwd.uv.last().unwrap_or(&seed)
-        } else if s < back {
-            bwd.uv_at(surface, field, opts, back - s)
-        } else {
-            fwd.uv_at(surface, field, opts, s - back)
-        };
-        uv.push(q);
-        stations_mm.push(s);
+    let sample = |n: usize| {
+        let mut uv = Vec::with_capacity(n + 1);
+        let mut stations_mm = Vec::with_capacity(n + 1);
+        for i in 0..=n {
+            let s = total * i as f64 / n as f64;
+            let q = if i == 0 {
+                *bwd.uv.last().unwrap_or(&seed)
+            } else if i == n {
+                *fwd.uv.last().unwrap_or(&seed)
+            } else if s < back {
+                bwd.uv_at(surface, field, opts, back - s)
+            } else {
+                fwd.uv_at(surface, field, opts, s - back)
+            };
+            uv.push(q);
+            stations_mm.push(s);
+        }
+        let points_mm: Vec<DVec3> = uv.iter().map(|&q| surface.point(q)).collect();
+        (uv, stations_mm, points_mm)
+    };
+    let mut n = pieces(total, opts.max_step_mm);
+    let (mut uv, mut stations_mm, mut points_mm) = sample(n);
+    while let Some(finer) = finer_pieces(&points_mm, n, total) {
+        n = finer;
+        (uv, stations_mm, points_mm) = sample(n);
     }
-    let points_mm = uv.iter().map(|&q| surface.point(q)).collect();
     Ok(Traced {
         uv,
         points_mm,
