@@ -6,6 +6,10 @@
 //!     cargo bench --bench pipeline            # all sizes
 //!     cargo bench --bench pipeline -- 400     # one size
 
+#[path = "../tests/common/synth.rs"]
+#[allow(dead_code)]
+mod synth;
+
 use lamella::io::{self, plan, ReadOptions};
 use lamella::{analyze, AnalysisOptions};
 use std::path::{Path, PathBuf};
@@ -40,7 +44,7 @@ fn main() {
             // 400 lines per family over a 40 m Enneper: samples ~26 mm apart,
             // 1250 per curve at n = 400 (scaled so every size samples alike).
             let scale_mm = 44_000.0 * n as f64 / 400.0;
-            let raw = lamella::synth::enneper_grid(n, scale_mm, 26.0);
+            let raw = synth::enneper_grid(n, scale_mm, 26.0);
             std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
         }
         let out = Command::new(std::env::current_exe().expect("exe"))
@@ -65,15 +69,15 @@ fn measure(path: &Path) {
     if std::env::var("LAMELLA_BENCH_STAGES").is_ok() {
         let opts = AnalysisOptions::for_network(&net);
         let a = Instant::now();
-        let curves = lamella::analyze::par_map(&net.curves, |c| {
-            lamella::curve::SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
+        let curves = lamella::analysis::par_map(&net.curves, |c| {
+            lamella::geom::curve::SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
         });
         let b = Instant::now();
-        let topo = lamella::topology::find_nodes(&net, &curves, opts.nodes);
+        let topo = lamella::analysis::topology::find_nodes(&net, &curves, opts.nodes);
         let c = Instant::now();
         let idx: Vec<usize> = (0..net.curves.len()).collect();
-        let strips = lamella::analyze::par_map(&idx, |&i| {
-            lamella::strip::StripGeometry::new(
+        let strips = lamella::analysis::par_map(&idx, |&i| {
+            lamella::analysis::strip::StripGeometry::new(
                 i,
                 &net.curves[i],
                 &curves[i],
@@ -83,7 +87,7 @@ fn measure(path: &Path) {
             )
         });
         let d = Instant::now();
-        let model = lamella::model::Model::new(&net, &an);
+        let model = lamella::analysis::model::Model::new(&net, &an);
         let e = Instant::now();
         let p = plan::build(&net, &an, &model);
         let f = Instant::now();
@@ -101,7 +105,7 @@ fn measure(path: &Path) {
         );
         std::hint::black_box(json.len());
     }
-    let model = lamella::model::Model::new(&net, &an);
+    let model = lamella::analysis::model::Model::new(&net, &an);
     let p = plan::build(&net, &an, &model);
     let json = plan::to_json(&p);
     let t3 = Instant::now();

@@ -4,9 +4,9 @@
 //!     cargo bench --bench trace
 
 use glam::DVec2;
+use lamella::design::trace::{trace_through, Everywhere, Field, TraceOptions};
 use lamella::design::{design, placed_surface};
 use lamella::io::trace_spec;
-use lamella::trace::{trace_through, Everywhere, Field, TraceOptions};
 use std::path::Path;
 use std::time::Instant;
 

@@ -1,8 +1,8 @@
 //! The `lamella` command line.
 
 use clap::{Parser, Subcommand};
+use lamella::analysis::model::Model;
 use lamella::io::{self, plan, ReadOptions};
-use lamella::model::Model;
 use lamella::network::Unit;
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
@@ -415,7 +415,9 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
     let unusual: Vec<String> = report
         .stops
         .iter()
-        .filter(|(_, a, b)| *a != lamella::trace::Stop::Clip || *b != lamella::trace::Stop::Clip)
+        .filter(|(_, a, b)| {
+            *a != lamella::design::trace::Stop::Clip || *b != lamella::design::trace::Stop::Clip
+        })
         .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
         .collect();
     if !unusual.is_empty() {

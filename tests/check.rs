@@ -5,11 +5,11 @@
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
 mod common;
+use common::synth::{self, Enneper, Helicoid, Sampling};
 use common::*;
 use glam::DVec2;
 use lamella::check::{check, max_utilization, suggest, Governs};
 use lamella::profile::Profile;
-use lamella::synth::{self, Enneper, Helicoid, Sampling};
 use std::path::Path;
 
 fn profile(name: &str) -> Profile {

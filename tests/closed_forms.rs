@@ -4,10 +4,10 @@
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
 mod common;
+use common::synth::{self, Catenoid, Enneper, Helicoid, Hypar, ParamSurface, Sampling};
 use common::*;
 use glam::DVec2;
-use lamella::strip::NormalSource;
-use lamella::synth::{self, Catenoid, Enneper, Helicoid, Hypar, ParamSurface, Sampling};
+use lamella::analysis::strip::NormalSource;
 
 const SCALE: f64 = synth::ENNEPER_4M_SCALE_MM;
 const HALF: f64 = synth::ENNEPER_4M_HALF;

@@ -6,6 +6,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
+mod common;
+use common::synth::{self, Catenoid, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 use dxf::entities::{Entity, EntityType, Polyline, Vertex};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, Point};
@@ -14,7 +16,6 @@ use lamella::check::check;
 use lamella::io::{read_network, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork};
 use lamella::profile::Profile;
-use lamella::synth::{self, Catenoid, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 use lamella::{analyze, AnalysisOptions};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

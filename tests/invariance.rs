@@ -3,12 +3,12 @@
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
 mod common;
+use common::synth::{self, Enneper, Sampling};
 use common::*;
 use glam::DVec2;
-use lamella::model::Model;
+use lamella::analysis::model::Model;
 use lamella::network::{RawNetwork, Unit};
 use lamella::profile::Profile;
-use lamella::synth::{self, Enneper, Sampling};
 
 fn base(normals: bool) -> RawNetwork {
     let lines = synth::diagonal_lines(0.5, 9, DVec2::new(0.05, -0.03));

@@ -161,14 +161,14 @@ fn a_near_tangent_crossing_warns() {
 #[test]
 fn dense_grid_finds_every_node_once() {
     // A 40 × 40 hypar: 1600 nodes, none twice.
-    let xs = lamella::synth::spread(2000.0, 40);
-    let lines = lamella::synth::coordinate_lines(&xs, &xs);
-    let raw = lamella::synth::network(
+    let xs = common::synth::spread(2000.0, 40);
+    let lines = common::synth::coordinate_lines(&xs, &xs);
+    let raw = common::synth::network(
         "g",
-        &lamella::synth::Hypar { c: 3000.0 },
+        &common::synth::Hypar { c: 3000.0 },
         &lines,
         1.0,
-        lamella::synth::Sampling {
+        common::synth::Sampling {
             step_mm: 30.0,
             normals: false,
         },
@@ -246,7 +246,7 @@ fn oriented_angle_turns_from_a_to_b_about_the_normal() {
         }
     }
     // The function itself, on hand vectors.
-    use lamella::topology::oriented_angle_deg;
+    use lamella::analysis::topology::oriented_angle_deg;
     let (x, y) = (DVec3::X, DVec3::Y);
     assert!((oriented_angle_deg(x, y, DVec3::Z) - 90.0).abs() < 1e-12);
     assert!((oriented_angle_deg(x, x + y, DVec3::Z) - 45.0).abs() < 1e-12);
@@ -257,7 +257,7 @@ fn oriented_angle_turns_from_a_to_b_about_the_normal() {
 
 #[test]
 fn warnings_are_typed() {
-    use lamella::topology::WarningKind;
+    use lamella::analysis::topology::WarningKind;
     // An isolated B line and a near-tangent crossing.
     let a = curve("A0", Family::A, |t| DVec3::new(1000.0 * t, 0.0, 0.0), 21);
     let d = DVec3::new(5f64.to_radians().cos(), 5f64.to_radians().sin(), 0.0);

@@ -5,11 +5,11 @@
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
 mod common;
+use common::synth::{self, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 use common::*;
 use glam::{DVec2, DVec3};
-use lamella::model::LamellaLine;
+use lamella::analysis::model::LamellaLine;
 use lamella::profile::LamellaOffset;
-use lamella::synth::{self, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 
 /// Length of t ↦ X(t) + dy·y(t) + dz·z(t) over the whole line (fine polygon with
 /// Richardson extrapolation), z the analytic unit normal times `zsign`.

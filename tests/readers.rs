@@ -5,13 +5,14 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
+mod common;
+use common::synth::{self, Hypar, Sampling};
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Spline, Vertex};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, LwPolylineVertex, Point, Vector};
 use glam::DVec3;
 use lamella::io::{network_file, read_network, read_raw, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork, Unit};
-use lamella::synth::{self, Hypar, Sampling};
 use lamella::{analyze, AnalysisOptions};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

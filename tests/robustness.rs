@@ -299,7 +299,7 @@ fn sparse_curves_get_curvature_between_their_samples() {
             s.samples
                 .windows(2)
                 .all(|w| w[1].station_mm - w[0].station_mm
-                    <= lamella::strip::MAX_CURVATURE_SPACING_MM + 1e-9),
+                    <= lamella::analysis::strip::MAX_CURVATURE_SPACING_MM + 1e-9),
             "{}",
             s.id
         );

@@ -8,9 +8,9 @@
 mod common;
 use common::*;
 use glam::DVec2;
+use lamella::design::surface::Surface;
 use lamella::design::{design, placed_surface};
 use lamella::io::trace_spec::{self, TraceSpec};
-use lamella::surface::Surface;
 #[allow(unused_imports)]
 use serde_yaml as _;
 use std::path::{Path, PathBuf};
@@ -118,7 +118,7 @@ fn minimal_surface_nets_cross_at_90_degrees_and_satisfy_beltrami_enneper() {
             .iter()
             .filter(|c| c.family != lamella::Family::Edge)
         {
-            let smooth = lamella::curve::SmoothCurve::new(&c.points);
+            let smooth = lamella::geom::curve::SmoothCurve::new(&c.points);
             for (i, pt) in c.points.iter().enumerate().step_by(3) {
                 let q = invert(&surface, *pt);
                 let curv = surface.curvature(q);
@@ -314,8 +314,8 @@ fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
 
 mod stops {
     use glam::{DVec2, DVec3};
-    use lamella::surface::{Catenoid, Hypar, Scherk, Surface, SurfaceJet};
-    use lamella::trace::{trace_through, Everywhere, Field, Stop, TraceOptions};
+    use lamella::design::surface::{Catenoid, Hypar, Scherk, Surface, SurfaceJet};
+    use lamella::design::trace::{trace_through, Everywhere, Field, Stop, TraceOptions};
 
     #[test]
     fn a_level_set_around_the_catenoid_closes_its_loop() {
@@ -526,8 +526,8 @@ fn the_unfolded_pavilion_is_an_orthogonal_asymptotic_net() {
 
 #[test]
 fn a_4_m_catenoid_asymptotic_line_follows_the_closed_form() {
-    use lamella::surface::{Catenoid, Placed};
-    use lamella::trace::{trace_through, Everywhere, Field, TraceOptions};
+    use lamella::design::surface::{Catenoid, Placed};
+    use lamella::design::trace::{trace_through, Everywhere, Field, TraceOptions};
     let s = Placed {
         surface: std::sync::Arc::new(Catenoid { c: 1.0 }),
         scale_mm: 1500.0,
@@ -603,11 +603,11 @@ fn fill_covers_the_gaps_the_central_design_leaves() {
 /// traced points, away from the ends) at their samples, with the samples'
 /// parameters: (uv, unit tangent) pairs.
 fn traced_tangents(
-    surface: &lamella::surface::Placed,
+    surface: &lamella::design::surface::Placed,
     seeds: &[DVec2],
     max_length_mm: f64,
 ) -> Vec<(DVec2, glam::DVec3)> {
-    use lamella::trace::{trace_through, Everywhere, Field, TraceOptions};
+    use lamella::design::trace::{trace_through, Everywhere, Field, TraceOptions};
     let opts = TraceOptions {
         max_step_mm: 4.0,
         max_length_mm,
@@ -617,7 +617,7 @@ fn traced_tangents(
     for &seed in seeds {
         for field in [Field::AsymptoticA, Field::AsymptoticB] {
             let t = trace_through(surface, field, seed, &Everywhere, opts).unwrap();
-            let smooth = lamella::curve::SmoothCurve::new(&t.points_mm);
+            let smooth = lamella::geom::curve::SmoothCurve::new(&t.points_mm);
             let stations = smooth.sample_stations_mm();
             let n = stations.len();
             assert!(n > 40, "{seed:?} {field:?}: {n} samples");
@@ -646,7 +646,7 @@ fn angle_to_nearest(t: glam::DVec3, ds: &[glam::DVec3]) -> f64 {
 /// by the partials. The traced tangent must lie on one of them.
 #[test]
 fn traced_scherk_tangents_follow_the_closed_form_directions() {
-    use lamella::surface::{Placed, Scherk};
+    use lamella::design::surface::{Placed, Scherk};
     let s = Placed {
         surface: std::sync::Arc::new(Scherk),
         scale_mm: 1000.0,
@@ -679,7 +679,7 @@ fn traced_scherk_tangents_follow_the_closed_form_directions() {
 /// directions: kn = k1·cos 2θ = 0 needs θ = 45° to d1.
 #[test]
 fn traced_schwarz_d_tangents_are_asymptotic_to_first_order() {
-    use lamella::surface::{Placed, SchwarzD};
+    use lamella::design::surface::{Placed, SchwarzD};
     let s = Placed {
         surface: std::sync::Arc::new(SchwarzD),
         scale_mm: 1000.0,
@@ -890,7 +890,7 @@ fn traced_curves_are_sampled_uniformly() {
         }
     }
     // Through the tracer: equal stations, the ends on the clip.
-    use lamella::trace::{trace_through, Everywhere, Field, TraceOptions};
+    use lamella::design::trace::{trace_through, Everywhere, Field, TraceOptions};
     let (s, _) = spec("enneper-4m");
     let surface = placed_surface(&s);
     let opts = TraceOptions {

@@ -2,11 +2,11 @@
 //! output is drawn from. Later stages add fields; they never rename these.
 //! Numbers are rounded to fixed precision so the file is byte-stable.
 
-use crate::analyze::Analysis;
+use crate::analysis::model::Model;
+use crate::analysis::Analysis;
 use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
 use crate::error::{Error, Result};
 use crate::io::profile_file::JointSystem;
-use crate::model::Model;
 use crate::network::Network;
 use crate::profile::Profile;
 use serde::{Deserialize, Serialize};
@@ -223,7 +223,7 @@ fn v3(v: glam::DVec3, d: i32) -> [f64; 3] {
 }
 
 /// Format a finished model as a plan: ids for indices, rounded numbers.
-/// Nothing is computed here (see [`crate::model`]).
+/// Nothing is computed here (see [`crate::analysis::model`]).
 pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
     let per_m = 1000.0;
     let id = |i: usize| net.curves[i].id.clone();

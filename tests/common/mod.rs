@@ -3,10 +3,12 @@
 #![allow(dead_code)]
 
 use glam::{DVec2, DVec3};
-use lamella::analyze::{analyze, Analysis, AnalysisOptions};
+use lamella::analysis::{analyze, Analysis, AnalysisOptions};
 use lamella::network::{Network, RawNetwork};
-use lamella::synth::{ParamLine, ParamSurface};
+pub mod synth;
+
 use std::path::Path;
+use synth::{ParamLine, ParamSurface};
 
 pub fn validate(raw: RawNetwork) -> Network {
     Network::new(raw, Path::new("test.yaml")).expect("valid network")

@@ -10,8 +10,10 @@
 //! the rotation. Asymptotic curves stay asymptotic (the rotation is an
 //! isometry) and keep their family across the edge (chosen by direction).
 
-use crate::surface::{curvature_of, Placed, Surface, SCHWARZ_D_EDGE_MIDPOINT, SCHWARZ_D_RADIUS};
-use crate::trace::{pieces, trace_from, Field, Region, Stop, TraceOptions};
+use crate::design::surface::{
+    curvature_of, Placed, Surface, SCHWARZ_D_EDGE_MIDPOINT, SCHWARZ_D_RADIUS,
+};
+use crate::design::trace::{pieces, trace_from, Field, Region, Stop, TraceOptions};
 use glam::{DMat3, DVec2, DVec3};
 
 /// A rigid motion of a patch copy: world = rotation · local + translation.
@@ -254,7 +256,7 @@ impl OneWay {
         let delta = s - self.stations[k];
         match self.segments[k] {
             Some((field, dir)) if delta > 0.0 => {
-                let run = crate::trace::Run {
+                let run = crate::design::trace::Run {
                     uv: vec![a.uv, self.sites[k + 1].uv],
                     stations_mm: vec![0.0, self.stations[k + 1] - self.stations[k]],
                     dirs: vec![dir],
@@ -395,7 +397,7 @@ fn unfold_one_way(
 
 /// Trace a curve through a site both ways, unfolding across edges, and
 /// sample it uniformly: n = ⌈length / max_step_mm⌉ equal pieces of arc
-/// length (more where it turns more than [`crate::trace::MAX_SAMPLE_TURN_RAD`] between samples),
+/// length (more where it turns more than [`crate::design::trace::MAX_SAMPLE_TURN_RAD`] between samples),
 /// each point integrated to from the trace's own steps, the ends
 /// exactly where the trace stopped.
 pub fn unfold_through(
@@ -451,7 +453,7 @@ pub fn unfold_through(
     };
     let mut n = pieces(total, opts.max_step_mm);
     let mut out = sample(n);
-    while let Some(finer) = crate::trace::finer_pieces(&out.points_mm, n, total) {
+    while let Some(finer) = crate::design::trace::finer_pieces(&out.points_mm, n, total) {
         n = finer;
         out = sample(n);
     }
@@ -461,7 +463,7 @@ pub fn unfold_through(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::SchwarzD;
+    use crate::design::surface::SchwarzD;
     use std::sync::Arc;
 
     fn placed() -> Placed {
@@ -499,7 +501,7 @@ mod tests {
     fn the_straight_diagonal_continues_straight_across_the_edge() {
         let s = placed();
         let edges = schwarz_d_patch(&s);
-        let clip = crate::trace::Everywhere;
+        let clip = crate::design::trace::Everywhere;
         let seed = Site {
             placement: Placement::IDENTITY,
             uv: DVec2::ZERO,

@@ -10,7 +10,7 @@
 //! points (K → 0, where the asymptotic net is singular), on closing a loop,
 //! or at a length limit.
 
-use crate::surface::{curvature_of, to_parameter, Surface, SurfaceJet};
+use crate::design::surface::{curvature_of, to_parameter, Surface, SurfaceJet};
 use glam::{DVec2, DVec3};
 
 /// A direction field on the surface.
@@ -574,7 +574,7 @@ pub fn trace_through(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::{Enneper, Placed};
+    use crate::design::surface::{Enneper, Placed};
     use glam::DMat3;
     use std::sync::Arc;
 

@@ -13,7 +13,7 @@
 //! closer than the merge distance; every node normal is a unit vector,
 //! oriented consistently along each curve and with file normals where given.
 
-use crate::curve::SmoothCurve;
+use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
 use glam::DVec3;
 use rstar::{RTree, RTreeObject, AABB};
@@ -167,7 +167,7 @@ impl RTreeObject for Chunk {
 pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> Topology {
     let tol = opts.tolerance_mm;
     // How far each smooth segment strays from its chord (bounded above).
-    let deviation: Vec<Vec<f64>> = crate::analyze::par_map(curves, segment_deviation);
+    let deviation: Vec<Vec<f64>> = crate::analysis::par_map(curves, segment_deviation);
     let chunks_of = |family: Family| -> Vec<Chunk> {
         let mut out = Vec::new();
         for (ci, c) in net.curves.iter().enumerate() {
@@ -212,7 +212,7 @@ pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> T
     }
     // Refine on all cores; the sort below makes the result order-independent.
     let batches: Vec<&[(&Chunk, &Chunk)]> = pairs.chunks(4096).collect();
-    let mut raw: Vec<RawNode> = crate::analyze::par_map(&batches, |batch| {
+    let mut raw: Vec<RawNode> = crate::analysis::par_map(&batches, |batch| {
         let mut out = Vec::new();
         for (c1, c2) in batch.iter() {
             collect_candidates(c1, c2, curves, &deviation, tol, &mut out);

@@ -16,8 +16,8 @@
 //! frame turns by the same angle on it over a longer or shorter length, so
 //! its curvatures are the curve's divided by the stretch ds'/ds.
 
-use crate::analyze::Analysis;
-use crate::model::LamellaLine;
+use crate::analysis::model::LamellaLine;
+use crate::analysis::Analysis;
 use crate::profile::{LamellaOffset, Profile};
 
 /// Which stress term is largest at the governing point.
@@ -209,8 +209,8 @@ pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
 /// here: they lie tangential to the surface and are cut as curved bands
 /// (fabrication.md), so kg does not bend them about their weak axis.
 pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
-    let checked: Vec<&crate::strip::StripGeometry> = an.lamella_strips().collect();
-    let strips = crate::analyze::par_map(&checked, |s| {
+    let checked: Vec<&crate::analysis::strip::StripGeometry> = an.lamella_strips().collect();
+    let strips = crate::analysis::par_map(&checked, |s| {
         let smooth = &an.curves[s.curve];
         let lamellas: Vec<LamellaCheck> = profile
             .lamella_offsets(s.family)

@@ -21,7 +21,7 @@
 //! ruling it is a smooth interpolant of the node angles. Edge curves are not
 //! asymptotic: their normal comes from their nodes only.
 
-use crate::curve::SmoothCurve;
+use crate::geom::curve::SmoothCurve;
 use glam::DVec3;
 
 /// One observation of the normal's angle.

@@ -3,18 +3,22 @@
 //! Input: a [`TraceSpec`] (surface, scale and placement, seed, spacing, clip,
 //! sampling). Output: a [`RawNetwork`] in mm with normals: families A and B
 //! (asymptotic, or principal for the façade web) and the cut boundary as
-//! `edge` curves. Curves are traced with [`crate::trace`]; the design seeds
+//! `edge` curves. Curves are traced with [`trace`]; the design seeds
 //! them at the spacing along the curves through the seed (`central`) or
 //! alternately along the last curve of the other family (`alternating`).
+
+pub mod periodic;
+pub mod surface;
+pub mod trace;
 
 use crate::error::{Error, Location, Result};
 use crate::io::trace_spec::{ClipSpec, Design, Net, SurfaceName, TraceSpec};
 use crate::network::{Family, RawCurve, RawNetwork, Unit};
-use crate::surface::{self, Placed, Surface};
-use crate::trace::{trace_through, Field, Region, Stop, TraceOptions, Traced};
 use glam::{DMat3, DVec2, DVec3};
 use std::path::Path;
 use std::sync::Arc;
+use surface::{Placed, Surface};
+use trace::{trace_through, Field, Region, Stop, TraceOptions, Traced};
 
 /// The placed surface of a spec.
 pub fn placed_surface(spec: &TraceSpec) -> Placed {
@@ -560,17 +564,17 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
     if spec.net == Net::Asymptotic && spec.surface == SurfaceName::Hypar {
         return Vec::new();
     }
-    let curves: Vec<crate::curve::SmoothCurve> = net
+    let curves: Vec<crate::geom::curve::SmoothCurve> = net
         .curves
         .iter()
-        .map(|c| crate::curve::SmoothCurve::new(&c.points_mm))
+        .map(|c| crate::geom::curve::SmoothCurve::new(&c.points_mm))
         .collect();
-    let topo = crate::topology::find_nodes(
+    let topo = crate::analysis::topology::find_nodes(
         net,
         &curves,
-        crate::topology::NodeOptions::new(net.tolerance_mm),
+        crate::analysis::topology::NodeOptions::new(net.tolerance_mm),
     );
-    let off: Vec<&crate::topology::Node> = topo
+    let off: Vec<&crate::analysis::topology::Node> = topo
         .nodes
         .iter()
         .filter(|n| {
@@ -1055,7 +1059,9 @@ fn design_periodic(
     clip: &Clip,
     opts: TraceOptions,
 ) -> Result<(RawNetwork, DesignReport)> {
-    use crate::periodic::{schwarz_d_patch, unfold_through, Placement, Site, Unfolded, WorldField};
+    use crate::design::periodic::{
+        schwarz_d_patch, unfold_through, Placement, Site, Unfolded, WorldField,
+    };
     let edges = schwarz_d_patch(surface);
     let seed_uv = DVec2::from_array(spec.seed);
     let seed_err = |what: String| Error::input(path, Location::Field("seed".into()), what);

@@ -1,12 +1,13 @@
-//! Networks made from closed forms, for tests, benchmarks and the shipped
-//! samples: analytic surfaces and families of parameter lines on them that
+//! Networks made from closed forms, for tests and benchmarks
+//! (included by benches/pipeline.rs): analytic surfaces and families of parameter lines on them that
 //! are known to be asymptotic (Enneper and catenoid: u ± v = const; helicoid
 //! and hyperbolic paraboloid: the coordinate lines).
 
-use crate::network::{Family, RawCurve, RawNetwork, Unit};
 use glam::DVec2;
+use lamella::network::{Family, RawCurve, RawNetwork, Unit};
 
-pub use crate::surface::{Catenoid, Enneper, Helicoid, Hypar, Surface as ParamSurface};
+#[allow(unused_imports)]
+pub use lamella::design::surface::{Catenoid, Enneper, Helicoid, Hypar, Surface as ParamSurface};
 
 /// A straight line in the parameter plane: uv(t) = start + dir·t, t ∈ [t0, t1].
 #[derive(Debug, Clone, PartialEq)]

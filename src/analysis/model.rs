@@ -7,12 +7,12 @@
 //! Lamella lines exist for A and B strips only: edge strips lie tangential
 //! to the surface and are cut as curved bands (fabrication.md).
 
-use crate::analyze::Analysis;
+use crate::analysis::strip::StripGeometry;
+use crate::analysis::Analysis;
 use crate::check::{CheckReport, Suggestion};
-use crate::curve::SmoothCurve;
+use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
 use crate::profile::{LamellaOffset, Profile};
-use crate::strip::StripGeometry;
 
 /// Largest integration step (mm) along a lamella line.
 pub const LINE_STEP_MM: f64 = 25.0;
@@ -172,7 +172,7 @@ pub struct Model {
 impl Model {
     /// Without a profile: one lamella per A/B strip, on the centre line.
     pub fn new(net: &Network, an: &Analysis) -> Model {
-        let lines: Vec<Vec<LamellaLine>> = crate::analyze::par_map(&an.strips, |s| {
+        let lines: Vec<Vec<LamellaLine>> = crate::analysis::par_map(&an.strips, |s| {
             if s.family == Family::Edge {
                 Vec::new()
             } else {

@@ -1,11 +1,16 @@
 //! Runs the geometric stages in order: smooth curves → topology (nodes) →
 //! strip geometry. Plain data in ([`Network`]), plain data out ([`Analysis`]).
 
-use crate::curve::SmoothCurve;
+pub mod model;
+pub mod normal_field;
+pub mod strip;
+pub mod topology;
+
+use crate::analysis::strip::{FrameOptions, StripGeometry};
+use crate::analysis::topology::{find_nodes, NodeOptions, Topology, Warning};
 use crate::error::{Error, Result};
+use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
-use crate::strip::{FrameOptions, StripGeometry};
-use crate::topology::{find_nodes, NodeOptions, Topology, Warning};
 
 /// Options of the geometric stages.
 #[derive(Debug, Clone, Copy)]

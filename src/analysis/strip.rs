@@ -18,10 +18,10 @@
 //! Sign conventions: z agrees with the oriented node normals; kg and kn change
 //! sign with z, tg does not change with z or with the curve's direction.
 
-use crate::curve::{Hermite5, SmoothCurve};
+use crate::analysis::normal_field::{NormalField, NormalFieldOptions};
+use crate::analysis::topology::{CurveNode, Node};
+use crate::geom::curve::{Hermite5, SmoothCurve};
 use crate::network::{Curve, Family};
-use crate::normal_field::{NormalField, NormalFieldOptions};
-use crate::topology::{CurveNode, Node};
 use glam::DVec3;
 
 /// Largest distance between the stations where curvatures are evaluated, mm.

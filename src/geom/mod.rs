@@ -1,0 +1,3 @@
+//! Geometry shared by the stages: smooth curves through samples.
+
+pub mod curve;
