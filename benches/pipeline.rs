@@ -12,6 +12,7 @@ mod synth;
 
 use lamella::io::{self, plan, ReadOptions};
 use lamella::{analyze, AnalysisOptions};
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -69,23 +70,30 @@ fn measure(path: &Path) {
     if std::env::var("LAMELLA_BENCH_STAGES").is_ok() {
         let opts = AnalysisOptions::for_network(&net);
         let a = Instant::now();
-        let curves = lamella::analysis::par_map(&net.curves, |c| {
-            lamella::geom::curve::SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
-        });
+        let curves = net
+            .curves
+            .par_iter()
+            .map(|c| {
+                lamella::geom::curve::SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
+            })
+            .collect::<Vec<_>>();
         let b = Instant::now();
         let topo = lamella::analysis::topology::find_nodes(&net, &curves, opts.nodes);
         let c = Instant::now();
         let idx: Vec<usize> = (0..net.curves.len()).collect();
-        let strips = lamella::analysis::par_map(&idx, |&i| {
-            lamella::analysis::strip::StripGeometry::new(
-                i,
-                &net.curves[i],
-                &curves[i],
-                &topo.per_curve[i],
-                &topo.nodes,
-                opts.frames,
-            )
-        });
+        let strips = idx
+            .par_iter()
+            .map(|&i| {
+                lamella::analysis::strip::StripGeometry::new(
+                    i,
+                    &net.curves[i],
+                    &curves[i],
+                    &topo.per_curve[i],
+                    &topo.nodes,
+                    opts.frames,
+                )
+            })
+            .collect::<Vec<_>>();
         let d = Instant::now();
         let model = lamella::analysis::model::Model::new(&net, &an);
         let e = Instant::now();

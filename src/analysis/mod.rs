@@ -11,6 +11,7 @@ use crate::analysis::topology::{find_nodes, NodeOptions, Topology, Warning};
 use crate::error::{Error, Result};
 use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
+use rayon::prelude::*;
 
 /// Options of the geometric stages.
 #[derive(Debug, Clone, Copy)]
@@ -62,9 +63,11 @@ impl Analysis {
 /// Interpolate, find nodes and compute strip geometry. Fails when the
 /// network has no A×B crossing.
 pub fn analyze(net: &Network, opts: AnalysisOptions) -> Result<Analysis> {
-    let curves: Vec<SmoothCurve> = par_map(&net.curves, |c| {
-        SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
-    });
+    let curves: Vec<SmoothCurve> = net
+        .curves
+        .par_iter()
+        .map(|c| SmoothCurve::with_precision(&c.points_mm, opts.precision_mm))
+        .collect();
     let topology = find_nodes(net, &curves, opts.nodes);
     let ab = topology
         .nodes
@@ -79,42 +82,22 @@ pub fn analyze(net: &Network, opts: AnalysisOptions) -> Result<Analysis> {
             ),
         ));
     }
-    let indices: Vec<usize> = (0..net.curves.len()).collect();
-    let strips = par_map(&indices, |&i| {
-        StripGeometry::new(
-            i,
-            &net.curves[i],
-            &curves[i],
-            &topology.per_curve[i],
-            &topology.nodes,
-            opts.frames,
-        )
-    });
+    let strips: Vec<StripGeometry> = (0..net.curves.len())
+        .into_par_iter()
+        .map(|i| {
+            StripGeometry::new(
+                i,
+                &net.curves[i],
+                &curves[i],
+                &topology.per_curve[i],
+                &topology.nodes,
+                opts.frames,
+            )
+        })
+        .collect();
     Ok(Analysis {
         curves,
         topology,
         strips,
-    })
-}
-
-/// Map over a slice on all cores, keeping order (deterministic).
-pub fn par_map<T: Sync, U: Send>(items: &[T], f: impl Fn(&T) -> U + Sync) -> Vec<U> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(8);
-    if threads <= 1 || items.len() < 2 {
-        return items.iter().map(&f).collect();
-    }
-    let chunk = items.len().div_ceil(threads);
-    let f = &f;
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = items
-            .chunks(chunk)
-            .map(|part| scope.spawn(move || part.iter().map(f).collect::<Vec<U>>()))
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
     })
 }

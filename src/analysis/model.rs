@@ -13,6 +13,7 @@ use crate::check::{CheckReport, Suggestion};
 use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
 use crate::profile::{LamellaOffset, Profile};
+use rayon::prelude::*;
 
 /// Largest integration step (mm) along a lamella line.
 pub const LINE_STEP_MM: f64 = 25.0;
@@ -172,17 +173,21 @@ pub struct Model {
 impl Model {
     /// Without a profile: one lamella per A/B strip, on the centre line.
     pub fn new(net: &Network, an: &Analysis) -> Model {
-        let lines: Vec<Vec<LamellaLine>> = crate::analysis::par_map(&an.strips, |s| {
-            if s.family == Family::Edge {
-                Vec::new()
-            } else {
-                vec![LamellaLine::new(
-                    s,
-                    &an.curves[s.curve],
-                    LamellaOffset::CENTRE,
-                )]
-            }
-        });
+        let lines: Vec<Vec<LamellaLine>> = an
+            .strips
+            .par_iter()
+            .map(|s| {
+                if s.family == Family::Edge {
+                    Vec::new()
+                } else {
+                    vec![LamellaLine::new(
+                        s,
+                        &an.curves[s.curve],
+                        LamellaOffset::CENTRE,
+                    )]
+                }
+            })
+            .collect::<Vec<_>>();
         Model::build(net, an, lines, None)
     }
 

@@ -16,6 +16,7 @@
 use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
 use glam::DVec3;
+use rayon::prelude::*;
 use rstar::{RTree, RTreeObject, AABB};
 use std::collections::VecDeque;
 
@@ -167,7 +168,7 @@ impl RTreeObject for Chunk {
 pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> Topology {
     let tol = opts.tolerance_mm;
     // How far each smooth segment strays from its chord (bounded above).
-    let deviation: Vec<Vec<f64>> = crate::analysis::par_map(curves, segment_deviation);
+    let deviation: Vec<Vec<f64>> = curves.par_iter().map(segment_deviation).collect::<Vec<_>>();
     let chunks_of = |family: Family| -> Vec<Chunk> {
         let mut out = Vec::new();
         for (ci, c) in net.curves.iter().enumerate() {
@@ -212,16 +213,19 @@ pub fn find_nodes(net: &Network, curves: &[SmoothCurve], opts: NodeOptions) -> T
     }
     // Refine on all cores; the sort below makes the result order-independent.
     let batches: Vec<&[(&Chunk, &Chunk)]> = pairs.chunks(4096).collect();
-    let mut raw: Vec<RawNode> = crate::analysis::par_map(&batches, |batch| {
-        let mut out = Vec::new();
-        for (c1, c2) in batch.iter() {
-            collect_candidates(c1, c2, curves, &deviation, tol, &mut out);
-        }
-        out
-    })
-    .into_iter()
-    .flatten()
-    .collect();
+    let mut raw: Vec<RawNode> = batches
+        .par_iter()
+        .map(|batch| {
+            let mut out = Vec::new();
+            for (c1, c2) in batch.iter() {
+                collect_candidates(c1, c2, curves, &deviation, tol, &mut out);
+            }
+            out
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect();
     // Deduplicate: sort by curve pair and station, merge near-identical hits.
     raw.sort_by(|p, q| {
         (p.a, p.b)

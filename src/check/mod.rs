@@ -19,6 +19,7 @@
 use crate::analysis::model::LamellaLine;
 use crate::analysis::Analysis;
 use crate::profile::{LamellaOffset, Profile};
+use rayon::prelude::*;
 
 /// Which stress term is largest at the governing point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -210,43 +211,47 @@ pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
 /// (fabrication.md), so kg does not bend them about their weak axis.
 pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
     let checked: Vec<&crate::analysis::strip::StripGeometry> = an.lamella_strips().collect();
-    let strips = crate::analysis::par_map(&checked, |s| {
-        let smooth = &an.curves[s.curve];
-        let lamellas: Vec<LamellaCheck> = profile
-            .lamella_offsets(s.family)
-            .into_iter()
-            .map(|off| {
-                let (u, i, stresses, kmax, tmax) = scan(an, s.curve, off, profile);
-                let curve_station = s.samples[i].station_mm;
-                let (line, on_line) = LamellaLine::with_stations(s, smooth, off, &[curve_station]);
-                LamellaCheck {
-                    line,
-                    utilization: u,
-                    governing_station_mm: on_line[0],
-                    governing_curve_station_mm: curve_station,
-                    governs: stresses.governs(),
-                    stresses,
-                    min_bending_radius_mm: (kmax > s.straight_curvature_per_mm())
-                        .then(|| 1.0 / kmax),
-                    max_twist_deg_per_m: tmax.to_degrees() * 1000.0,
-                }
-            })
-            .collect();
-        let worst = (0..lamellas.len())
-            .max_by(|&a, &b| {
-                lamellas[a]
-                    .utilization
-                    .total_cmp(&lamellas[b].utilization)
-                    .then(b.cmp(&a))
-            })
-            .unwrap_or(0);
-        StripCheck {
-            strip: s.curve,
-            id: s.id.clone(),
-            lamellas,
-            worst,
-        }
-    });
+    let strips = checked
+        .par_iter()
+        .map(|s| {
+            let smooth = &an.curves[s.curve];
+            let lamellas: Vec<LamellaCheck> = profile
+                .lamella_offsets(s.family)
+                .into_iter()
+                .map(|off| {
+                    let (u, i, stresses, kmax, tmax) = scan(an, s.curve, off, profile);
+                    let curve_station = s.samples[i].station_mm;
+                    let (line, on_line) =
+                        LamellaLine::with_stations(s, smooth, off, &[curve_station]);
+                    LamellaCheck {
+                        line,
+                        utilization: u,
+                        governing_station_mm: on_line[0],
+                        governing_curve_station_mm: curve_station,
+                        governs: stresses.governs(),
+                        stresses,
+                        min_bending_radius_mm: (kmax > s.straight_curvature_per_mm())
+                            .then(|| 1.0 / kmax),
+                        max_twist_deg_per_m: tmax.to_degrees() * 1000.0,
+                    }
+                })
+                .collect();
+            let worst = (0..lamellas.len())
+                .max_by(|&a, &b| {
+                    lamellas[a]
+                        .utilization
+                        .total_cmp(&lamellas[b].utilization)
+                        .then(b.cmp(&a))
+                })
+                .unwrap_or(0);
+            StripCheck {
+                strip: s.curve,
+                id: s.id.clone(),
+                lamellas,
+                worst,
+            }
+        })
+        .collect::<Vec<_>>();
     CheckReport {
         design_strength_mpa: profile.design_strength_mpa(),
         limit_bending_radius_mm: profile.min_bending_radius_mm(),
