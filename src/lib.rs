@@ -16,6 +16,7 @@ pub mod analysis;
 pub mod check;
 pub mod design;
 pub mod error;
+pub mod fabricate;
 pub mod geom;
 pub mod io;
 pub mod network;

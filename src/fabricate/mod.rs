@@ -1,0 +1,4 @@
+//! Fabrication: every strip turned into the flat parts a laser or waterjet
+//! cuts (fabrication.md).
+
+pub mod slots;

@@ -1,0 +1,315 @@
+//! Interlocking slots swept over the erection (geometry.md, "Slots").
+//!
+//! A lamella of thickness tₐ (this one) is crossed by a lamella of
+//! thickness t_b at the angle φ between their directions, measured in the
+//! tangent plane about the surface normal from this lamella's direction to
+//! the crossing one's. The two plates overlap along this lamella's line over
+//!
+//! ```text
+//! w(φ) = (t_b + tₐ·|cos φ|) / |sin φ|
+//! ```
+//!
+//! centred where the mid-planes meet. With doubled strips, this lamella's
+//! mid-plane sits at offset sₐ (signed, along its strip's y) from its
+//! strip's curve and the crossing lamella's at σ·s_b from the crossing
+//! strip's curve; they meet at
+//!
+//! ```text
+//! ξ(φ) = (sₐ·cos φ − σ·s_b) / sin φ
+//! ```
+//!
+//! from the node along this lamella's line (y_b = z × x_b, so x_a·y_b = −sin φ
+//! and y_a·y_b = cos φ). A grid assembled flat and erected turns each joint
+//! through a range of angles; the slot is the union over that range of
+//! [ξ − w/2, ξ + w/2], plus the clearance (half on each side). Slots of the
+//! two crossing lamellas that overlap merge into one.
+
+/// The narrowest crossing angle a sweep may reach, degrees: below it the
+/// overlap grows without bound (w ∝ 1/sin φ).
+pub const MIN_SWEEP_ANGLE_DEG: f64 = 15.0;
+
+/// Samples of the angle range in a sweep (then refined at the extremes).
+const SWEEP_SAMPLES: usize = 240;
+
+/// One crossing plate seen from this lamella.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crossing {
+    /// This lamella's thickness, mm.
+    pub thickness_mm: f64,
+    /// The crossing lamella's thickness, mm.
+    pub crossing_thickness_mm: f64,
+    /// This lamella's mid-plane offset from its strip's curve (signed, along
+    /// the strip's y), mm.
+    pub offset_mm: f64,
+    /// The crossing lamella's mid-plane offset from its strip's curve
+    /// (signed, along the crossing strip's y), mm.
+    pub crossing_offset_mm: f64,
+}
+
+impl Crossing {
+    /// Overlap length along this lamella's line at angle φ (radians), mm.
+    pub fn overlap_mm(&self, phi: f64) -> f64 {
+        (self.crossing_thickness_mm + self.thickness_mm * phi.cos().abs()) / phi.sin().abs()
+    }
+
+    /// Where the mid-planes meet along this lamella's line at angle φ
+    /// (radians), from the node, mm.
+    pub fn centre_mm(&self, phi: f64) -> f64 {
+        (self.offset_mm * phi.cos() - self.crossing_offset_mm) / phi.sin()
+    }
+
+    /// The interval [lo, hi] along this lamella's line (from the node, mm)
+    /// that the crossing plate occupies at some angle of `range_rad`, without
+    /// clearance. Both ends are extremes of smooth functions of φ, found by
+    /// sampling and golden-section refinement to 1e-9 mm.
+    pub fn swept_mm(&self, range_rad: (f64, f64)) -> (f64, f64) {
+        let lo_f = |phi: f64| self.centre_mm(phi) - 0.5 * self.overlap_mm(phi);
+        let hi_f = |phi: f64| -(self.centre_mm(phi) + 0.5 * self.overlap_mm(phi));
+        (minimise(lo_f, range_rad), -minimise(hi_f, range_rad))
+    }
+}
+
+/// The minimum of a continuous function on [a, b]: the best of evenly spaced
+/// samples (ends included), refined by golden section in the neighbouring
+/// intervals. The functions here are smooth with at most a kink at
+/// φ = 90° (|cos φ|), which lies on a sample when the range is symmetric.
+fn minimise(f: impl Fn(f64) -> f64, (a, b): (f64, f64)) -> f64 {
+    if (b - a).abs() < 1e-15 {
+        return f(a);
+    }
+    let n = SWEEP_SAMPLES;
+    let x = |i: usize| a + (b - a) * i as f64 / n as f64;
+    let (mut best_i, mut best) = (0, f(a));
+    for i in 1..=n {
+        let v = f(x(i));
+        if v < best {
+            best = v;
+            best_i = i;
+        }
+    }
+    let (mut lo, mut hi) = (x(best_i.saturating_sub(1)), x((best_i + 1).min(n)));
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (hi - g * (hi - lo), lo + g * (hi - lo));
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if fc < fd {
+            hi = d;
+            d = c;
+            fd = fc;
+            c = hi - g * (hi - lo);
+            fc = f(c);
+        } else {
+            lo = c;
+            c = d;
+            fc = fd;
+            d = lo + g * (hi - lo);
+            fd = f(d);
+        }
+        if hi - lo < 1e-13 {
+            break;
+        }
+    }
+    best.min(fc).min(fd).min(f(a)).min(f(b))
+}
+
+/// The range of crossing angles a joint turns through: `angle_deg` ± the
+/// tolerance, kept on the same side (0°, 180°) or (−180°, 0°) as the angle
+/// and at least [`MIN_SWEEP_ANGLE_DEG`] from 0° and 180°; radians.
+pub fn sweep_range_rad(angle_deg: f64, tolerance_deg: f64) -> (f64, f64) {
+    let sign = if angle_deg < 0.0 { -1.0 } else { 1.0 };
+    let a = angle_deg.abs();
+    let lo = (a - tolerance_deg).max(MIN_SWEEP_ANGLE_DEG);
+    let hi = (a + tolerance_deg).min(180.0 - MIN_SWEEP_ANGLE_DEG);
+    let (lo, hi) = if lo <= hi { (lo, hi) } else { (a, a) };
+    if sign > 0.0 {
+        (lo.to_radians(), hi.to_radians())
+    } else {
+        (-hi.to_radians(), -lo.to_radians())
+    }
+}
+
+/// A slot along this lamella's line, from the node's station, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlotSpan {
+    /// Start and end along the line, relative to the node, clearance
+    /// included.
+    pub lo_mm: f64,
+    pub hi_mm: f64,
+    /// Which crossing lamellas (their numbers) pass through it.
+    pub crossing_lamellas: [bool; 2],
+}
+
+impl SlotSpan {
+    /// Width along the line, mm.
+    pub fn width_mm(&self) -> f64 {
+        self.hi_mm - self.lo_mm
+    }
+    /// Centre relative to the node, mm.
+    pub fn centre_mm(&self) -> f64 {
+        0.5 * (self.lo_mm + self.hi_mm)
+    }
+}
+
+/// The slots one lamella needs at one node: one swept interval per crossing
+/// lamella (`crossing_offsets_mm`, by crossing lamella number 1, 2), each
+/// widened by half the clearance on both sides, overlapping ones merged;
+/// sorted along the line.
+pub fn node_slots(
+    thickness_mm: f64,
+    crossing_thickness_mm: f64,
+    offset_mm: f64,
+    crossing_offsets_mm: &[f64],
+    range_rad: (f64, f64),
+    clearance_mm: f64,
+) -> Vec<SlotSpan> {
+    let mut spans: Vec<SlotSpan> = crossing_offsets_mm
+        .iter()
+        .enumerate()
+        .map(|(k, &s_b)| {
+            let c = Crossing {
+                thickness_mm,
+                crossing_thickness_mm,
+                offset_mm,
+                crossing_offset_mm: s_b,
+            };
+            let (lo, hi) = c.swept_mm(range_rad);
+            let mut crossing_lamellas = [false; 2];
+            crossing_lamellas[k.min(1)] = true;
+            SlotSpan {
+                lo_mm: lo - 0.5 * clearance_mm,
+                hi_mm: hi + 0.5 * clearance_mm,
+                crossing_lamellas,
+            }
+        })
+        .collect();
+    spans.sort_by(|a, b| a.lo_mm.total_cmp(&b.lo_mm));
+    let mut merged: Vec<SlotSpan> = Vec::with_capacity(spans.len());
+    for s in spans {
+        match merged.last_mut() {
+            Some(m) if s.lo_mm <= m.hi_mm => {
+                m.hi_mm = m.hi_mm.max(s.hi_mm);
+                for k in 0..2 {
+                    m.crossing_lamellas[k] |= s.crossing_lamellas[k];
+                }
+            }
+            _ => merged.push(s),
+        }
+    }
+    merged
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const T: f64 = 1.5;
+
+    #[test]
+    fn overlap_is_the_plate_thickness_at_90_and_grows_off_it() {
+        let c = Crossing {
+            thickness_mm: T,
+            crossing_thickness_mm: T,
+            offset_mm: 0.0,
+            crossing_offset_mm: 0.0,
+        };
+        assert!((c.overlap_mm(90f64.to_radians()) - 1.5).abs() < 1e-12);
+        // Two 1.5 mm plates at 30°: (1.5 + 1.5·cos 30°)/sin 30° = 5.598 mm.
+        assert!((c.overlap_mm(30f64.to_radians()) - 5.598_076_211_353_316).abs() < 1e-9);
+    }
+
+    #[test]
+    fn single_strip_sweep_matches_the_closed_form() {
+        // A single strip at 90° ± θ: t·(1 + sin θ)/cos θ, centred on the node.
+        for theta in [0.0f64, 10.0, 30.0, 45.0, 60.0] {
+            let range = sweep_range_rad(90.0, theta);
+            let slots = node_slots(T, T, 0.0, &[0.0], range, 0.0);
+            assert_eq!(slots.len(), 1);
+            let th = theta.to_radians();
+            let want = T * (1.0 + th.sin()) / th.cos();
+            assert!(
+                (slots[0].width_mm() - want).abs() < 1e-9,
+                "θ = {theta}: {} vs {want}",
+                slots[0].width_mm()
+            );
+            assert!(slots[0].centre_mm().abs() < 1e-9);
+        }
+        // 1.5 mm steel, θ = 60°: 5.6 mm + clearance 0.3 mm.
+        let s = node_slots(T, T, 0.0, &[0.0], sweep_range_rad(90.0, 60.0), 0.3);
+        assert!((s[0].width_mm() - (1.5 * (1.0 + 3f64.sqrt() / 2.0) / 0.5 + 0.3)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn doubled_slots_move_with_the_angle() {
+        // Steel: t = 1.5, gap 10 → s = 5.75. At a fixed 90° (no tolerance)
+        // the crossing lamellas at ±s meet this one (at +s) at ∓s, each
+        // slot t wide: [−s − t/2, −s + t/2] and [s − t/2, s + t/2].
+        let s = 5.75;
+        let at90 = node_slots(T, T, s, &[-s, s], sweep_range_rad(90.0, 0.0), 0.0);
+        assert_eq!(at90.len(), 2);
+        assert!((at90[0].centre_mm() + s).abs() < 1e-9);
+        assert!((at90[1].centre_mm() - s).abs() < 1e-9);
+        assert!((at90[0].width_mm() - T).abs() < 1e-9);
+        assert!(at90[0].crossing_lamellas[1] && at90[1].crossing_lamellas[0]);
+        // At a fixed 60°: centres s(cos φ ∓ 1)/sin φ for σ = ±1, width
+        // (t + t cos φ)/sin φ.
+        let phi = 60f64.to_radians();
+        let at60 = node_slots(T, T, s, &[-s, s], sweep_range_rad(60.0, 0.0), 0.0);
+        let w = (T + T * phi.cos()) / phi.sin();
+        let c_plus = s * (phi.cos() - 1.0) / phi.sin(); // σ = +1
+        let c_minus = s * (phi.cos() + 1.0) / phi.sin(); // σ = −1
+        assert_eq!(at60.len(), 2);
+        assert!((at60[0].centre_mm() - c_plus).abs() < 1e-9);
+        assert!((at60[1].centre_mm() - c_minus).abs() < 1e-9);
+        assert!((at60[0].width_mm() - w).abs() < 1e-9);
+        // The lamella at −s sees the mirror image.
+        let mirror = node_slots(T, T, -s, &[-s, s], sweep_range_rad(60.0, 0.0), 0.0);
+        assert!((mirror[0].centre_mm() + c_minus).abs() < 1e-9);
+        assert!((mirror[1].centre_mm() + c_plus).abs() < 1e-9);
+        // Swept over 90° ± 60°, the extremes are reached at the ends of the
+        // range: each slot spans from its position at 30° to that at 150°.
+        let swept = node_slots(T, T, s, &[-s, s], sweep_range_rad(90.0, 60.0), 0.0);
+        let ends = |phi_deg: f64, sigma: f64| {
+            let p = phi_deg.to_radians();
+            let c = (s * p.cos() - sigma * s) / p.sin();
+            let w = (T + T * p.cos().abs()) / p.sin();
+            (c - w / 2.0, c + w / 2.0)
+        };
+        // σ = +1 (crossing lamella 2) runs from −s·tan 15° to −s·tan 75°,
+        // σ = −1 from s·cot 75° to s·cot 15°: the two overlap around the
+        // node and merge into one slot from the far end of one to the far
+        // end of the other.
+        let (a30, b30) = ends(30.0, 1.0);
+        let (a150, b150) = ends(150.0, 1.0);
+        let (c30, d30) = ends(30.0, -1.0);
+        let (c150, d150) = ends(150.0, -1.0);
+        assert!(b30.max(b150) > c30.min(c150), "the two sweeps overlap");
+        assert_eq!(swept.len(), 1);
+        assert!(swept[0].crossing_lamellas == [true, true]);
+        let lo = a30.min(a150).min(c30).min(c150);
+        let hi = b30.max(b150).max(d30).max(d150);
+        assert!(
+            (swept[0].lo_mm - lo).abs() < 1e-9,
+            "{} vs {lo}",
+            swept[0].lo_mm
+        );
+        assert!(
+            (swept[0].hi_mm - hi).abs() < 1e-9,
+            "{} vs {hi}",
+            swept[0].hi_mm
+        );
+        // With a 10° tolerance they stay apart: two slots.
+        let apart = node_slots(T, T, s, &[-s, s], sweep_range_rad(90.0, 10.0), 0.0);
+        assert_eq!(apart.len(), 2);
+    }
+
+    #[test]
+    fn ranges_stay_clear_of_zero_and_180() {
+        let (a, b) = sweep_range_rad(90.0, 60.0);
+        assert!((a.to_degrees() - 30.0).abs() < 1e-12 && (b.to_degrees() - 150.0).abs() < 1e-12);
+        let (a, b) = sweep_range_rad(40.0, 60.0);
+        assert!((a.to_degrees() - MIN_SWEEP_ANGLE_DEG).abs() < 1e-12);
+        assert!((b.to_degrees() - 100.0).abs() < 1e-12);
+        let (a, b) = sweep_range_rad(-90.0, 10.0);
+        assert!((a.to_degrees() + 100.0).abs() < 1e-12 && (b.to_degrees() + 80.0).abs() < 1e-12);
+    }
+}
