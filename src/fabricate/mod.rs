@@ -2,3 +2,4 @@
 //! cuts (fabrication.md).
 
 pub mod slots;
+pub mod part;

@@ -1,0 +1,199 @@
+//! The parts model: flat parts in their own 2D frame, as a cutter needs them.
+//!
+//! Coordinates of a part are part-local millimetres (`_part` in names): for
+//! a lamella, x runs along its own line from its start and y across its
+//! height from the bottom edge (the top edge on the +normal side). Outlines
+//! are closed polylines (the last point joins the first, not repeated),
+//! counter-clockwise; holes clockwise and inside the outline; engraving is
+//! open single-stroke polylines.
+
+use kurbo::Point;
+
+/// What a part is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PartKind {
+    /// A flat, straight lamella (one of a strip's one or two).
+    Lamella,
+    /// A block coupling the two lamellas of a doubled strip.
+    ShearBlock,
+    /// A star washer at a node.
+    Washer,
+    /// A square stud joining the two levels of a two-level grid.
+    Stud,
+    /// A plate joining two pieces of a spliced lamella.
+    SplicePlate,
+    /// A boundary band, unrolled flat.
+    EdgeStrip,
+}
+
+impl PartKind {
+    /// The name used in plan.json.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PartKind::Lamella => "lamella",
+            PartKind::ShearBlock => "shear_block",
+            PartKind::Washer => "washer",
+            PartKind::Stud => "stud",
+            PartKind::SplicePlate => "splice_plate",
+            PartKind::EdgeStrip => "edge_strip",
+        }
+    }
+}
+
+/// Which long edge of a lamella a slot opens to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlotEdge {
+    /// The edge on the surface normal's side (family A's slots).
+    Top,
+    /// The other edge (family B's slots).
+    Bottom,
+}
+
+impl SlotEdge {
+    /// The name used in plan.json.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SlotEdge::Top => "top",
+            SlotEdge::Bottom => "bottom",
+        }
+    }
+}
+
+/// What a feature is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FeatureKind {
+    /// A notch from a long edge.
+    Slot,
+    /// A round hole.
+    Hole,
+}
+
+impl FeatureKind {
+    /// The name used in plan.json.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            FeatureKind::Slot => "slot",
+            FeatureKind::Hole => "hole",
+        }
+    }
+}
+
+/// Why a hole is there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HoleUse {
+    /// The node bolt, or a stud fastener at a node.
+    Node,
+    /// A shear block's bolt.
+    ShearBlock,
+    /// A splice plate's bolt.
+    Splice,
+    /// Where a lamella ends on an edge strip.
+    EdgeNode,
+}
+
+/// A slot or hole of a part, located in the part's frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Feature {
+    /// Slot or hole.
+    pub kind: FeatureKind,
+    /// For holes: what they are for.
+    pub hole_use: Option<HoleUse>,
+    /// The node it belongs to (index into the topology's nodes), if any.
+    pub node: Option<usize>,
+    /// Id of the crossing strip at that node, if any.
+    pub crossing: Option<String>,
+    /// Centre in the part frame, mm: a slot's centre line at the middle of
+    /// its depth; a hole's centre.
+    pub center_part_mm: Point,
+    /// Along the part's x: a slot's width, a hole's diameter, mm.
+    pub width_mm: f64,
+    /// A slot's depth from its edge, mm (0 for holes).
+    pub depth_mm: f64,
+    /// The edge a slot opens to.
+    pub edge: Option<SlotEdge>,
+    /// The crossing angles a slot was swept over, degrees (signed, from this
+    /// lamella's direction to the crossing one's about the node normal).
+    pub angle_range_deg: Option<(f64, f64)>,
+    /// Station of the feature's centre on this lamella's own line, mm
+    /// (`station_start_mm` + x), where the part has a line.
+    pub station_mm: Option<f64>,
+}
+
+/// One part to cut (or, for studs, to saw), `count` times.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    /// Unique id, also engraved: strip, lamella, piece (`A05-1`, `A05-1.2`),
+    /// or kind and class (`SB`, `W90`, `ST`, `SP`).
+    pub id: String,
+    /// What it is.
+    pub kind: PartKind,
+    /// The strip it belongs to, if any.
+    pub strip: Option<String>,
+    /// Lamella number within the strip (1 on −y, 2 on +y), if any.
+    pub lamella: Option<u32>,
+    /// How many identical parts.
+    pub count: u32,
+    /// Extent along the part's x, mm.
+    pub length_mm: f64,
+    /// Extent along the part's y, mm.
+    pub height_mm: f64,
+    /// For lamellas and edge strips: the station on the part's own line at
+    /// x = 0, mm (negative by the end allowance).
+    pub station_start_mm: Option<f64>,
+    /// Closed outline, counter-clockwise, part frame, mm.
+    pub outline_part_mm: Vec<Point>,
+    /// Closed holes, clockwise, inside the outline, part frame, mm.
+    pub holes_part_mm: Vec<Vec<Point>>,
+    /// Open single-stroke engraving polylines, part frame, mm.
+    pub engraving_part_mm: Vec<Vec<Point>>,
+    /// Slots and holes, by x.
+    pub features: Vec<Feature>,
+}
+
+/// Signed area of a closed polyline (positive counter-clockwise), mm².
+pub fn signed_area_mm2(poly: &[Point]) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            a.x * b.y - b.x * a.y
+        })
+        .sum::<f64>()
+        * 0.5
+}
+
+/// Points on a circle, clockwise, so that no chord strays more than
+/// `tolerance_mm` from the arc (at least 8).
+pub fn circle_cw(center: Point, radius_mm: f64, tolerance_mm: f64) -> Vec<Point> {
+    let half_angle = (1.0 - (tolerance_mm / radius_mm).min(1.0)).acos();
+    let n = ((std::f64::consts::PI / half_angle.max(1e-6)).ceil() as usize).clamp(8, 720);
+    (0..n)
+        .map(|k| {
+            let a = -std::f64::consts::TAU * k as f64 / n as f64;
+            Point::new(
+                center.x + radius_mm * a.cos(),
+                center.y + radius_mm * a.sin(),
+            )
+        })
+        .collect()
+}
+
+/// Largest distance a circle's polyline strays from the arc, mm.
+pub const ARC_TOLERANCE_MM: f64 = 0.01;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn circles_are_clockwise_and_within_tolerance() {
+        let c = circle_cw(Point::new(3.0, 4.0), 4.5, ARC_TOLERANCE_MM);
+        assert!(signed_area_mm2(&c) < 0.0);
+        // The sagitta r(1 − cos(π/n)) is within the tolerance.
+        let n = c.len() as f64;
+        assert!(4.5 * (1.0 - (std::f64::consts::PI / n).cos()) <= ARC_TOLERANCE_MM);
+        for p in &c {
+            assert!((p.distance(Point::new(3.0, 4.0)) - 4.5).abs() < 1e-12);
+        }
+    }
+}
