@@ -63,13 +63,13 @@ pub struct Node {
     pub station_a_mm: f64,
     pub station_b_mm: f64,
     /// Midpoint of the closest approach.
-    pub position_mm: DVec3,
+    pub position_world_mm: DVec3,
     /// Distance between the curves at the node.
     pub gap_mm: f64,
-    pub tangent_a: DVec3,
-    pub tangent_b: DVec3,
+    pub tangent_a_world: DVec3,
+    pub tangent_b_world: DVec3,
     /// Unit surface normal (from file normals, else tangent_a × tangent_b).
-    pub normal: DVec3,
+    pub normal_world: DVec3,
     /// Acute angle between the tangents, degrees.
     pub angle_deg: f64,
     /// Oriented angle from A's tangent line to B's tangent line,
@@ -483,11 +483,11 @@ fn build_topology(
                 b: r.b,
                 station_a_mm: r.sa,
                 station_b_mm: r.sb,
-                position_mm: 0.5 * (pa.point_mm + pb.point_mm),
+                position_world_mm: 0.5 * (pa.point_mm + pb.point_mm),
                 gap_mm: r.gap,
-                tangent_a: pa.tangent,
-                tangent_b: pb.tangent,
-                normal,
+                tangent_a_world: pa.tangent,
+                tangent_b_world: pb.tangent,
+                normal_world: normal,
                 angle_deg,
                 oriented_angle_deg: 0.0, // once the normals are oriented
             }
@@ -515,7 +515,8 @@ fn build_topology(
     }
     orient_normals(net, &mut nodes, &per_curve);
     for n in &mut nodes {
-        n.oriented_angle_deg = oriented_angle_deg(n.tangent_a, n.tangent_b, n.normal);
+        n.oriented_angle_deg =
+            oriented_angle_deg(n.tangent_a_world, n.tangent_b_world, n.normal_world);
     }
     for n in &nodes {
         if n.angle_deg < opts.near_tangent_deg {
@@ -567,7 +568,7 @@ fn build_topology(
 
 /// The file normal of curve `ci` at a station, if the file gave normals.
 fn file_normal(net: &Network, curves: &[SmoothCurve], ci: usize, station_mm: f64) -> Option<DVec3> {
-    let normals = net.curves[ci].normals.as_ref()?;
+    let normals = net.curves[ci].normals_world.as_ref()?;
     let (k, u) = curves[ci].locate_station(station_mm);
     let n = normals[k].lerp(normals[k + 1], u);
     n.try_normalize()
@@ -580,7 +581,9 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
     let n = nodes.len();
     let fixed: Vec<bool> = nodes
         .iter()
-        .map(|nd| net.curves[nd.a].normals.is_some() || net.curves[nd.b].normals.is_some())
+        .map(|nd| {
+            net.curves[nd.a].normals_world.is_some() || net.curves[nd.b].normals_world.is_some()
+        })
         .collect();
     let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); n];
     for list in per_curve {
@@ -600,7 +603,7 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
             continue;
         }
         if !fixed[seed] {
-            let nm = nodes[seed].normal;
+            let nm = nodes[seed].normal_world;
             let up = if nm.z.abs() > 1e-9 {
                 nm.z
             } else if nm.y.abs() > 1e-9 {
@@ -609,7 +612,7 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
                 nm.x
             };
             if up < 0.0 {
-                nodes[seed].normal = -nm;
+                nodes[seed].normal_world = -nm;
             }
         }
         done[seed] = true;
@@ -619,8 +622,8 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
                 if done[j] {
                     continue;
                 }
-                if !fixed[j] && nodes[j].normal.dot(nodes[i].normal) < 0.0 {
-                    nodes[j].normal = -nodes[j].normal;
+                if !fixed[j] && nodes[j].normal_world.dot(nodes[i].normal_world) < 0.0 {
+                    nodes[j].normal_world = -nodes[j].normal_world;
                 }
                 done[j] = true;
                 queue.push_back(j);

@@ -38,7 +38,7 @@ pub(crate) fn trace_edges<'a>(
         // Within the chord sagitta of an edge already traced on this face.
         let covered = edges
             .iter()
-            .any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5));
+            .any(|(f, e)| *f == face && near_polyline(&e.points_world_mm, p, 0.5));
         if covered {
             continue;
         }
@@ -99,15 +99,15 @@ fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Opt
     let uv: Vec<DVec2> = (0..n)
         .map(|i| a.lerp(b, i as f64 / (n - 1) as f64))
         .collect();
-    let points_mm: Vec<DVec3> = uv.iter().map(|&q| surface.point(q)).collect();
+    let points_world_mm: Vec<DVec3> = uv.iter().map(|&q| surface.point(q)).collect();
     let mut stations_mm = vec![0.0];
-    for w in points_mm.windows(2) {
+    for w in points_world_mm.windows(2) {
         let last = *stations_mm.last().unwrap_or(&0.0);
         stations_mm.push(last + w[1].distance(w[0]));
     }
     Some(Traced {
         uv,
-        points_mm,
+        points_world_mm,
         stations_mm,
         stop_start: Stop::Clip,
         stop_end: Stop::Clip,

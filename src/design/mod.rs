@@ -259,7 +259,7 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
     let curves: Vec<crate::geom::curve::SmoothCurve> = net
         .curves
         .iter()
-        .map(|c| crate::geom::curve::SmoothCurve::new(&c.points_mm))
+        .map(|c| crate::geom::curve::SmoothCurve::new(&c.points_world_mm))
         .collect();
     let topo = crate::analysis::topology::find_nodes(
         net,
@@ -281,7 +281,7 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
     else {
         return Vec::new();
     };
-    let p = worst.position_mm;
+    let p = worst.position_world_mm;
     vec![format!(
         "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): the families of a {} net cross at right angles, so the surface passes through itself there; clip it{}",
         off.len(),
@@ -421,8 +421,8 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
     )?;
 
     let finished = |t: Traced| FinishedCurve {
-        normals: t.uv.iter().map(|&q| surface.normal(q)).collect(),
-        points: t.points_mm,
+        normals_world: t.uv.iter().map(|&q| surface.normal(q)).collect(),
+        points_world_mm: t.points_world_mm,
         stops: (t.stop_start, t.stop_end),
     };
     Ok(assemble(
@@ -436,8 +436,8 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
 
 /// A traced curve ready for the network file: world points and normals.
 struct FinishedCurve {
-    points: Vec<DVec3>,
-    normals: Vec<DVec3>,
+    points_world_mm: Vec<DVec3>,
+    normals_world: Vec<DVec3>,
     stops: (Stop, Stop),
 }
 
@@ -470,8 +470,8 @@ fn assemble(
             curves.push(RawCurve {
                 id,
                 family,
-                points: c.points,
-                normals: Some(c.normals),
+                points: c.points_world_mm,
+                normals: Some(c.normals_world),
             });
         }
     }
@@ -578,7 +578,7 @@ fn design_periodic(
             clip,
             opts,
         );
-        budget.charge(u.points_mm.len());
+        budget.charge(u.points_world_mm.len());
         u
     };
     let a0 = trace(seed, a_dir);
@@ -595,8 +595,8 @@ fn design_periodic(
         let k = u
             .stations_mm
             .partition_point(|&x| x <= s)
-            .clamp(1, u.points_mm.len() - 1);
-        (u.points_mm[k] - u.points_mm[k - 1]).normalize_or_zero()
+            .clamp(1, u.points_world_mm.len() - 1);
+        (u.points_world_mm[k] - u.points_world_mm[k - 1]).normalize_or_zero()
     };
     // The other family's direction at a site: the asymptotic direction most
     // transverse to the parent curve's tangent, in world terms.
@@ -634,8 +634,8 @@ fn design_periodic(
     a_curves.sort_by_key(|c| c.0);
     b_curves.sort_by_key(|c| c.0);
     let min_len = (spec.spacing_mm * 0.05).max(1.0);
-    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
-    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
+    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
+    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
 
     // Fill: where the central curves left gaps (beyond flat vertices, in the
     // clip's far corners), seed more curves along the other family wherever
@@ -650,7 +650,7 @@ fn design_periodic(
                 } else {
                     (&a_curves, &mut b_curves)
                 };
-                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_mm));
+                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_world_mm));
                 let mut born = Vec::new();
                 for (_, parent) in parents.iter() {
                     let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
@@ -666,8 +666,8 @@ fn design_periodic(
                         };
                         let child = trace(site, dir);
                         budget.check()?;
-                        if child.length_mm() >= min_len && child.points_mm.len() >= 2 {
-                            index.add(&child.points_mm);
+                        if child.length_mm() >= min_len && child.points_world_mm.len() >= 2 {
+                            index.add(&child.points_world_mm);
                             born.push((next_k, child));
                             next_k += 1;
                             if children.len() + born.len() > 2 * max_k + 1 {
@@ -696,12 +696,12 @@ fn design_periodic(
     // Edges: the clip's faces on the unfolded surface, from the curve ends on them.
     let mut starts: Vec<(usize, Site, DVec3)> = Vec::new();
     for u in a_curves.iter().chain(&b_curves).map(|c| &c.1) {
-        for (stop, i) in [(u.stop_start, 0), (u.stop_end, u.points_mm.len() - 1)] {
+        for (stop, i) in [(u.stop_start, 0), (u.stop_end, u.points_world_mm.len() - 1)] {
             if stop != Stop::Clip {
                 continue;
             }
-            if let Some(f) = clip.face_of(u.sites[i].uv, u.points_mm[i]) {
-                starts.push((f, u.sites[i], u.points_mm[i]));
+            if let Some(f) = clip.face_of(u.sites[i].uv, u.points_world_mm[i]) {
+                starts.push((f, u.sites[i], u.points_world_mm[i]));
             }
         }
     }
@@ -715,7 +715,7 @@ fn design_periodic(
     for (face, site, p) in starts {
         if edge_curves
             .iter()
-            .any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5))
+            .any(|(f, e)| *f == face && near_polyline(&e.points_world_mm, p, 0.5))
         {
             continue;
         }
@@ -733,15 +733,15 @@ fn design_periodic(
             continue;
         };
         let e = unfold_through(surface, &edges, field, site, dir, &region, opts);
-        budget.charge(e.points_mm.len());
+        budget.charge(e.points_world_mm.len());
         budget.check()?;
-        if e.points_mm.len() >= 2 && e.length_mm() > 1.0 {
+        if e.points_world_mm.len() >= 2 && e.length_mm() > 1.0 {
             edge_curves.push((face, e));
         }
     }
     let finished = |u: Unfolded| FinishedCurve {
-        points: u.points_mm,
-        normals: u.normals,
+        points_world_mm: u.points_world_mm,
+        normals_world: u.normals_world,
         stops: (u.stop_start, u.stop_end),
     };
     Ok(assemble(
