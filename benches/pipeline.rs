@@ -74,7 +74,10 @@ fn measure(path: &Path) {
             .curves
             .par_iter()
             .map(|c| {
-                lamella::geom::curve::SmoothCurve::with_precision(&c.points_mm, opts.precision_mm)
+                lamella::geom::curve::SmoothCurve::with_precision(
+                    &c.points_world_mm,
+                    opts.precision_mm,
+                )
             })
             .collect::<Vec<_>>();
         let b = Instant::now();

@@ -113,7 +113,7 @@ fn helicoid_helices_bend_and_twist_in_closed_form() {
         .filter(|s| net.curves[s.strip].family == lamella::Family::B)
     {
         let strip = &an.strips[sc.strip];
-        let v = net.curves[sc.strip].points_mm[0].truncate().length();
+        let v = net.curves[sc.strip].points_world_mm[0].truncate().length();
         let (kg0, tg0) = (v / (v * v + C * C), C / (v * v + C * C));
         for l in &sc.lamellas {
             // The sign of kg on this lamella's side: from the computed frame.

@@ -383,7 +383,7 @@ fn enneper_beltrami_enneper_at_every_sample() {
     // with λ taken from the sample's closed-form parameters.
     let (net, an, lines) = enneper(20.0, true, false);
     for ((strip, line), curve) in an.strips.iter().zip(&lines).zip(&net.curves) {
-        let n = curve.points_mm.len();
+        let n = curve.points_world_mm.len();
         for (i, cv) in strip.samples.iter().enumerate() {
             let t = line.t0 + (line.t1 - line.t0) * i as f64 / (n - 1) as f64;
             let lambda = 1.0 + line.uv(t).length_squared();

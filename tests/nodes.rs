@@ -46,7 +46,12 @@ fn a_pair_crossing_twice_has_two_nodes() {
     );
     let (_n, an) = run(net(vec![arc, line]));
     assert_eq!(an.topology.nodes.len(), 2);
-    let xs: Vec<f64> = an.topology.nodes.iter().map(|n| n.position_mm.x).collect();
+    let xs: Vec<f64> = an
+        .topology
+        .nodes
+        .iter()
+        .map(|n| n.position_world_mm.x)
+        .collect();
     let x = (1000.0f64 * 1000.0 - 500.0 * 500.0).sqrt();
     assert!(
         (xs[0] - x).abs() < 0.01 && (xs[1] + x).abs() < 0.01,
@@ -227,7 +232,7 @@ fn oriented_angle_turns_from_a_to_b_about_the_normal() {
             let (_n, an) = run(two_lines(beta, DVec3::Z, reverse_b));
             assert_eq!(an.topology.nodes.len(), 1);
             let node = &an.topology.nodes[0];
-            assert!(node.normal.dot(DVec3::Z) > 0.999);
+            assert!(node.normal_world.dot(DVec3::Z) > 0.999);
             assert!((node.angle_deg - beta.min(180.0 - beta)).abs() < 1e-6);
             assert!(
                 (node.oriented_angle_deg - up).abs() < 1e-6,
@@ -237,7 +242,7 @@ fn oriented_angle_turns_from_a_to_b_about_the_normal() {
             // Seen from below (normal −z) the turn goes the other way.
             let (_n, an) = run(two_lines(beta, -DVec3::Z, reverse_b));
             let node = &an.topology.nodes[0];
-            assert!(node.normal.dot(DVec3::Z) < -0.999);
+            assert!(node.normal_world.dot(DVec3::Z) < -0.999);
             assert!(
                 (node.oriented_angle_deg - down).abs() < 1e-6,
                 "B at {beta}° (reversed: {reverse_b}), normal −z: {}",

@@ -108,16 +108,17 @@ fn check(
         let smooth = &an.curves[strip.curve];
         // Orientation of lamella's z against the analytic normal.
         let mid = strip.frame_at(smooth, 0.5 * strip.length_mm);
-        let zsign =
-            if mid
-                .z
-                .dot(surface.normal(line.uv(nearest_t(surface, line, scale, mid.point_mm))))
-                < 0.0
-            {
-                -1.0
-            } else {
-                1.0
-            };
+        let zsign = if mid.z.dot(surface.normal(line.uv(nearest_t(
+            surface,
+            line,
+            scale,
+            mid.point_world_mm,
+        )))) < 0.0
+        {
+            -1.0
+        } else {
+            1.0
+        };
         for (dy, dz) in [(10.75, 0.0), (-10.75, 0.0), (0.0, 30.0), (8.0, -25.0)] {
             let stations = [0.0, strip.length_mm];
             let got = strip.offset_stations(smooth, dy, dz, &stations, 25.0);

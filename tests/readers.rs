@@ -200,7 +200,15 @@ fn read_and_analyze(path: &Path, opts: ReadOptions) -> Analysed {
         .topology
         .nodes
         .iter()
-        .map(|n| (n.a, n.b, n.station_a_mm, n.station_b_mm, n.position_mm))
+        .map(|n| {
+            (
+                n.a,
+                n.b,
+                n.station_a_mm,
+                n.station_b_mm,
+                n.position_world_mm,
+            )
+        })
         .collect();
     nodes.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)).then(x.2.total_cmp(&y.2)));
     let lengths = an.strips.iter().map(|s| s.length_mm).collect();
@@ -283,7 +291,12 @@ fn all_formats_give_the_same_network() {
     let want_ids: Vec<&str> = raw.curves.iter().map(|c| c.id.as_str()).collect();
     assert_eq!(ids, want_ids);
     for (c, r) in from_yaml.net.curves.iter().zip(&raw.curves) {
-        assert_points_close(&format!("YAML {}", c.id), &c.points_mm, &r.points, 1e-9);
+        assert_points_close(
+            &format!("YAML {}", c.id),
+            &c.points_world_mm,
+            &r.points,
+            1e-9,
+        );
     }
 
     // JSON and OBJ carry the same polylines.
@@ -293,7 +306,12 @@ fn all_formats_give_the_same_network() {
     assert_eq!(from_obj.net.file_unit, Unit::Mm, "OBJ defaults to mm");
     for (c, r) in from_obj.net.curves.iter().zip(&from_yaml.net.curves) {
         assert_eq!(c.family, r.family);
-        assert_points_close(&format!("OBJ {}", c.id), &c.points_mm, &r.points_mm, 1e-9);
+        assert_points_close(
+            &format!("OBJ {}", c.id),
+            &c.points_world_mm,
+            &r.points_world_mm,
+            1e-9,
+        );
     }
     assert_same_nodes("JSON", &from_json, &from_yaml, STATION_TOL_MM);
     assert_same_nodes("OBJ", &from_obj, &from_yaml, STATION_TOL_MM);
@@ -320,20 +338,25 @@ fn all_formats_give_the_same_network() {
                 // The cubic SPLINE is sampled along its 3 knot spans, not
                 // taken as its 6 control points, and stays on the ruling.
                 let n = 3 * lamella::io::dxf_in::SPLINE_SAMPLES_PER_SPAN + 1;
-                assert_eq!(c.points_mm.len(), n, "spline samples");
+                assert_eq!(c.points_world_mm.len(), n, "spline samples");
                 let (a, b) = (r.points[0], r.points[r.points.len() - 1]);
-                assert!(c.points_mm[0].distance(a) < 1e-9);
-                assert!(c.points_mm[n - 1].distance(b) < 1e-9);
-                for p in &c.points_mm {
+                assert!(c.points_world_mm[0].distance(a) < 1e-9);
+                assert!(c.points_world_mm[n - 1].distance(b) < 1e-9);
+                for p in &c.points_world_mm {
                     let off = (*p - a).cross((b - a).normalize()).length();
                     assert!(off < 1e-9, "spline point {p} is {off} mm off the ruling");
                 }
             }
             "B04" => {
                 let want = [r.points[0], r.points[r.points.len() - 1]];
-                assert_points_close("DXF LINE", &c.points_mm, &want, 1e-9);
+                assert_points_close("DXF LINE", &c.points_world_mm, &want, 1e-9);
             }
-            _ => assert_points_close(&format!("DXF {}", r.id), &c.points_mm, &r.points, 1e-9),
+            _ => assert_points_close(
+                &format!("DXF {}", r.id),
+                &c.points_world_mm,
+                &r.points,
+                1e-9,
+            ),
         }
     }
     assert_same_nodes("DXF", &from_dxf, &from_yaml, STATION_TOL_MM);
@@ -502,7 +525,7 @@ fn obj_unit_override_scales_to_mm() {
     for (c, r) in m.net.curves.iter().zip(&raw.curves) {
         assert_points_close(
             &format!("OBJ in m, {}", c.id),
-            &c.points_mm,
+            &c.points_world_mm,
             &r.points,
             1e-9,
         );
@@ -514,7 +537,7 @@ fn obj_unit_override_scales_to_mm() {
     // Without the override the same file is read as mm: 1000 times smaller.
     let small = read_network(&in_m, ReadOptions::default()).expect("read OBJ as mm");
     assert_eq!(small.file_unit, Unit::Mm);
-    let (a, b) = (&small.curves[0].points_mm, &raw.curves[0].points);
+    let (a, b) = (&small.curves[0].points_world_mm, &raw.curves[0].points);
     assert!((a[a.len() - 1] * 1000.0).distance(b[b.len() - 1]) < 1e-6);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -536,8 +559,8 @@ fn dxf_insunits_meters_scales_to_mm() {
         // Coordinates written with 12 decimals in m: 1e-9 mm resolution.
         assert_points_close(
             &format!("DXF in m, {}", g.id),
-            &g.points_mm,
-            &w.points_mm,
+            &g.points_world_mm,
+            &w.points_world_mm,
             1e-6,
         );
     }
@@ -560,11 +583,11 @@ fn dxf_insunits_meters_scales_to_mm() {
     .expect("read DXF with override");
     assert_eq!(forced.file_unit, Unit::Mm);
     for (g, w) in forced.curves.iter().zip(&mm.net.curves) {
-        let scaled: Vec<DVec3> = g.points_mm.iter().map(|&p| p * 1000.0).collect();
+        let scaled: Vec<DVec3> = g.points_world_mm.iter().map(|&p| p * 1000.0).collect();
         assert_points_close(
             &format!("DXF in m read as mm, {}", g.id),
             &scaled,
-            &w.points_mm,
+            &w.points_world_mm,
             1e-6,
         );
     }
@@ -578,10 +601,10 @@ fn dxf_insunits_meters_scales_to_mm() {
     .expect("read DXF as cm");
     assert_eq!(cm.file_unit, Unit::Cm);
     for (g, w) in cm.curves.iter().zip(&mm.net.curves) {
-        let scaled: Vec<DVec3> = w.points_mm.iter().map(|&p| p * 10.0).collect();
+        let scaled: Vec<DVec3> = w.points_world_mm.iter().map(|&p| p * 10.0).collect();
         assert_points_close(
             &format!("DXF in mm read as cm, {}", g.id),
-            &g.points_mm,
+            &g.points_world_mm,
             &scaled,
             1e-6,
         );
@@ -619,7 +642,7 @@ fn yaml_and_json_units_scale_to_mm() {
             for (c, r) in net.curves.iter().zip(&want.curves) {
                 assert_points_close(
                     &format!("{} {}", path.display(), c.id),
-                    &c.points_mm,
+                    &c.points_world_mm,
                     &r.points,
                     1e-6,
                 );

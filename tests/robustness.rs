@@ -189,14 +189,14 @@ fn dxf_lwpolyline_elevation_bulges_and_other_layers() {
     assert_eq!(net.curves.len(), 3, "Annotations and Boundary skipped");
     assert!(
         net.curves[0]
-            .points_mm
+            .points_world_mm
             .iter()
             .all(|p| (p.z - 500.0).abs() < 1e-9),
         "elevation applied"
     );
     // The arc is sampled on its circle: centre (200, 0), radius 100.
     let arc: Vec<_> = net.curves[0]
-        .points_mm
+        .points_world_mm
         .iter()
         .filter(|p| p.x > 100.0 + 1e-9)
         .collect();
@@ -210,12 +210,12 @@ fn dxf_lwpolyline_elevation_bulges_and_other_layers() {
         .topology
         .nodes
         .iter()
-        .find(|n| n.position_mm.x > 100.0)
+        .find(|n| n.position_world_mm.x > 100.0)
         .unwrap();
     assert!(
-        (apex.position_mm.y + 100.0).abs() < 0.01,
+        (apex.position_world_mm.y + 100.0).abs() < 0.01,
         "the bulge goes clockwise below: {}",
-        apex.position_mm
+        apex.position_world_mm
     );
     std::fs::remove_dir_all(dir).unwrap();
 }

@@ -305,9 +305,9 @@ fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
     assert!(ab.len() > 50);
     for n in ab {
         assert!((n.angle_deg - 90.0).abs() < 0.01);
-        let c = placed_surface(&s).curvature(invert(&placed_surface(&s), n.position_mm));
+        let c = placed_surface(&s).curvature(invert(&placed_surface(&s), n.position_world_mm));
         let (a, _) = c.asymptotic(0.0).unwrap();
-        let ang = n.tangent_a.dot(a).abs().acos().to_degrees();
+        let ang = n.tangent_a_world.dot(a).abs().acos().to_degrees();
         assert!((ang - 45.0).abs() < 0.01, "principal vs asymptotic: {ang}°");
     }
 }
@@ -336,7 +336,10 @@ mod stops {
             t.length_mm(),
             2.0 * std::f64::consts::PI * r
         );
-        assert!(t.points_mm.iter().all(|p| (p.z - 1000.0 * v).abs() < 1e-6));
+        assert!(t
+            .points_world_mm
+            .iter()
+            .all(|p| (p.z - 1000.0 * v).abs() < 1e-6));
     }
 
     #[test]
@@ -617,7 +620,7 @@ fn traced_tangents(
     for &seed in seeds {
         for field in [Field::AsymptoticA, Field::AsymptoticB] {
             let t = trace_through(surface, field, seed, &Everywhere, opts).unwrap();
-            let smooth = lamella::geom::curve::SmoothCurve::new(&t.points_mm);
+            let smooth = lamella::geom::curve::SmoothCurve::new(&t.points_world_mm);
             let stations = smooth.sample_stations_mm();
             let n = stations.len();
             assert!(n > 40, "{seed:?} {field:?}: {n} samples");

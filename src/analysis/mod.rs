@@ -66,7 +66,7 @@ pub fn analyze(net: &Network, opts: AnalysisOptions) -> Result<Analysis> {
     let curves: Vec<SmoothCurve> = net
         .curves
         .par_iter()
-        .map(|c| SmoothCurve::with_precision(&c.points_mm, opts.precision_mm))
+        .map(|c| SmoothCurve::with_precision(&c.points_world_mm, opts.precision_mm))
         .collect();
     let topology = find_nodes(net, &curves, opts.nodes);
     let ab = topology

@@ -71,7 +71,7 @@ impl NormalSource {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DarbouxFrame {
     pub station_mm: f64,
-    pub point_mm: DVec3,
+    pub point_world_mm: DVec3,
     pub x: DVec3,
     pub y: DVec3,
     pub z: DVec3,
@@ -144,7 +144,7 @@ impl StripGeometry {
     ) -> StripGeometry {
         let n = smooth.samples().len();
         let knot = |i: usize| if i + 1 < n { (i, 0.0) } else { (n - 2, 1.0) };
-        let (normals, normal_source) = match &curve.normals {
+        let (normals, normal_source) = match &curve.normals_world {
             Some(file) => {
                 let t: Vec<f64> = (0..n).map(|i| smooth.sample_param(i)).collect();
                 (
@@ -161,7 +161,7 @@ impl StripGeometry {
                     {
                         continue;
                     }
-                    at_nodes.push((cn.station_mm, all_nodes[cn.node].normal));
+                    at_nodes.push((cn.station_mm, all_nodes[cn.node].normal_world));
                 }
                 // Edge curves are not asymptotic: their binormal is not the
                 // surface normal. Only a curve with no node at all falls back on it.
@@ -236,7 +236,7 @@ impl StripGeometry {
                 .map(|cn| {
                     let (k, u) = smooth.locate_station(cn.station_mm);
                     curvature_vector(smooth, k, u)
-                        .dot(all_nodes[cn.node].normal)
+                        .dot(all_nodes[cn.node].normal_world)
                         .abs()
                 })
                 .fold(0.0, f64::max)
@@ -298,7 +298,7 @@ impl StripGeometry {
         };
         DarbouxFrame {
             station_mm,
-            point_mm: j.value,
+            point_world_mm: j.value,
             x,
             y,
             z,

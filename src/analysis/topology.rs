@@ -13,6 +13,7 @@
 //! closer than the merge distance; every node normal is a unit vector,
 //! oriented consistently along each curve and with file normals where given.
 
+use crate::geom::closest::closest_segment_params;
 use crate::geom::curve::SmoothCurve;
 use crate::network::{Family, Network};
 use glam::DVec3;
@@ -62,13 +63,13 @@ pub struct Node {
     pub station_a_mm: f64,
     pub station_b_mm: f64,
     /// Midpoint of the closest approach.
-    pub position_mm: DVec3,
+    pub position_world_mm: DVec3,
     /// Distance between the curves at the node.
     pub gap_mm: f64,
-    pub tangent_a: DVec3,
-    pub tangent_b: DVec3,
+    pub tangent_a_world: DVec3,
+    pub tangent_b_world: DVec3,
     /// Unit surface normal (from file normals, else tangent_a × tangent_b).
-    pub normal: DVec3,
+    pub normal_world: DVec3,
     /// Acute angle between the tangents, degrees.
     pub angle_deg: f64,
     /// Oriented angle from A's tangent line to B's tangent line,
@@ -345,52 +346,6 @@ fn collect_candidates(
     }
 }
 
-/// Parameters (u, v) ∈ [0,1]² of the closest points of segments p0p1 and q0q1
-/// and their squared distance (Ericson, Real-Time Collision Detection 5.1.9).
-pub fn closest_segment_params(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> (f64, f64, f64) {
-    let d1 = p1 - p0;
-    let d2 = q1 - q0;
-    let r = p0 - q0;
-    let a = d1.dot(d1);
-    let e = d2.dot(d2);
-    let f = d2.dot(r);
-    let (s, t);
-    if a <= 1e-300 && e <= 1e-300 {
-        return (0.0, 0.0, r.length_squared());
-    }
-    if a <= 1e-300 {
-        s = 0.0;
-        t = (f / e).clamp(0.0, 1.0);
-    } else {
-        let c = d1.dot(r);
-        if e <= 1e-300 {
-            t = 0.0;
-            s = (-c / a).clamp(0.0, 1.0);
-        } else {
-            let b = d1.dot(d2);
-            let denom = a * e - b * b;
-            let mut s0 = if denom > 1e-12 * a * e {
-                ((b * f - c * e) / denom).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let mut t0 = (b * s0 + f) / e;
-            if t0 < 0.0 {
-                t0 = 0.0;
-                s0 = (-c / a).clamp(0.0, 1.0);
-            } else if t0 > 1.0 {
-                t0 = 1.0;
-                s0 = ((b - c) / a).clamp(0.0, 1.0);
-            }
-            s = s0;
-            t = t0;
-        }
-    }
-    let cp = p0 + d1 * s;
-    let cq = q0 + d2 * t;
-    (s, t, cp.distance_squared(cq))
-}
-
 /// Gauss–Newton on the chord parameters of both smooth curves towards their
 /// closest approach, clamped to the curves. Returns (segment, u) on each
 /// curve and the distance.
@@ -528,11 +483,11 @@ fn build_topology(
                 b: r.b,
                 station_a_mm: r.sa,
                 station_b_mm: r.sb,
-                position_mm: 0.5 * (pa.point_mm + pb.point_mm),
+                position_world_mm: 0.5 * (pa.point_mm + pb.point_mm),
                 gap_mm: r.gap,
-                tangent_a: pa.tangent,
-                tangent_b: pb.tangent,
-                normal,
+                tangent_a_world: pa.tangent,
+                tangent_b_world: pb.tangent,
+                normal_world: normal,
                 angle_deg,
                 oriented_angle_deg: 0.0, // once the normals are oriented
             }
@@ -560,7 +515,8 @@ fn build_topology(
     }
     orient_normals(net, &mut nodes, &per_curve);
     for n in &mut nodes {
-        n.oriented_angle_deg = oriented_angle_deg(n.tangent_a, n.tangent_b, n.normal);
+        n.oriented_angle_deg =
+            oriented_angle_deg(n.tangent_a_world, n.tangent_b_world, n.normal_world);
     }
     for n in &nodes {
         if n.angle_deg < opts.near_tangent_deg {
@@ -612,7 +568,7 @@ fn build_topology(
 
 /// The file normal of curve `ci` at a station, if the file gave normals.
 fn file_normal(net: &Network, curves: &[SmoothCurve], ci: usize, station_mm: f64) -> Option<DVec3> {
-    let normals = net.curves[ci].normals.as_ref()?;
+    let normals = net.curves[ci].normals_world.as_ref()?;
     let (k, u) = curves[ci].locate_station(station_mm);
     let n = normals[k].lerp(normals[k + 1], u);
     n.try_normalize()
@@ -625,7 +581,9 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
     let n = nodes.len();
     let fixed: Vec<bool> = nodes
         .iter()
-        .map(|nd| net.curves[nd.a].normals.is_some() || net.curves[nd.b].normals.is_some())
+        .map(|nd| {
+            net.curves[nd.a].normals_world.is_some() || net.curves[nd.b].normals_world.is_some()
+        })
         .collect();
     let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); n];
     for list in per_curve {
@@ -645,7 +603,7 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
             continue;
         }
         if !fixed[seed] {
-            let nm = nodes[seed].normal;
+            let nm = nodes[seed].normal_world;
             let up = if nm.z.abs() > 1e-9 {
                 nm.z
             } else if nm.y.abs() > 1e-9 {
@@ -654,7 +612,7 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
                 nm.x
             };
             if up < 0.0 {
-                nodes[seed].normal = -nm;
+                nodes[seed].normal_world = -nm;
             }
         }
         done[seed] = true;
@@ -664,8 +622,8 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
                 if done[j] {
                     continue;
                 }
-                if !fixed[j] && nodes[j].normal.dot(nodes[i].normal) < 0.0 {
-                    nodes[j].normal = -nodes[j].normal;
+                if !fixed[j] && nodes[j].normal_world.dot(nodes[i].normal_world) < 0.0 {
+                    nodes[j].normal_world = -nodes[j].normal_world;
                 }
                 done[j] = true;
                 queue.push_back(j);

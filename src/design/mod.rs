@@ -7,7 +7,10 @@
 //! them at the spacing along the curves through the seed (`central`) or
 //! alternately along the last curve of the other family (`alternating`).
 
+mod clip;
+mod edges;
 pub mod periodic;
+mod seed;
 pub mod surface;
 pub mod trace;
 
@@ -19,6 +22,11 @@ use std::path::Path;
 use std::sync::Arc;
 use surface::{Placed, Surface};
 use trace::{trace_through, Field, Region, Stop, TraceOptions, Traced};
+
+pub use clip::Clip;
+use clip::{validate_clip, AlongFace, Face};
+use edges::{near_polyline, trace_edges};
+use seed::{crossing_uv, marks, station_of, PointIndex, FILL_GAP, FILL_ROUNDS};
 
 /// The placed surface of a spec.
 pub fn placed_surface(spec: &TraceSpec) -> Placed {
@@ -39,219 +47,6 @@ pub fn placed_surface(spec: &TraceSpec) -> Placed {
             * DMat3::from_rotation_x(rx),
         translation_mm: DVec3::from_array(spec.placement.translate_mm),
     }
-}
-
-/// One face of a clip region: a plane in space or a segment in the parameter plane.
-#[derive(Debug, Clone, Copy)]
-enum Face {
-    /// Points with (p − point)·normal ≤ 0 are inside.
-    Plane { point: DVec3, normal: DVec3 },
-    /// Parameter-plane segment a→b of a counter-clockwise polygon.
-    Param { a: DVec2, b: DVec2 },
-}
-
-/// A clip region: where traces stay.
-pub struct Clip {
-    faces: Vec<Face>,
-    /// Plan polygon (x, y) for prism clips; faces hold its sides too.
-    prism: Option<Vec<DVec2>>,
-    /// Parameter polygon for parameter clips.
-    param: Option<Vec<DVec2>>,
-    slack_mm: f64,
-}
-
-impl Clip {
-    fn from_spec(spec: Option<&ClipSpec>) -> Clip {
-        let mut faces = Vec::new();
-        let (mut prism, mut param) = (None, None);
-        match spec {
-            None => {}
-            Some(ClipSpec::Box { min_mm, max_mm }) => {
-                for axis in 0..3 {
-                    let mut n = DVec3::ZERO;
-                    n[axis] = 1.0;
-                    faces.push(Face::Plane {
-                        point: DVec3::from_array(*max_mm),
-                        normal: n,
-                    });
-                    faces.push(Face::Plane {
-                        point: DVec3::from_array(*min_mm),
-                        normal: -n,
-                    });
-                }
-            }
-            Some(ClipSpec::Plane { point_mm, normal }) => faces.push(Face::Plane {
-                point: DVec3::from_array(*point_mm),
-                normal: DVec3::from_array(*normal).normalize_or_zero(),
-            }),
-            Some(ClipSpec::Polygon {
-                points_mm,
-                z_min_mm,
-                z_max_mm,
-            }) => {
-                let pts = ccw(points_mm.iter().map(|p| DVec2::from_array(*p)).collect());
-                for k in 0..pts.len() {
-                    let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
-                    let out = DVec2::new(b.y - a.y, a.x - b.x).normalize_or_zero();
-                    faces.push(Face::Plane {
-                        point: a.extend(0.0),
-                        normal: out.extend(0.0),
-                    });
-                }
-                if let Some(z) = z_min_mm {
-                    faces.push(Face::Plane {
-                        point: DVec3::new(0.0, 0.0, *z),
-                        normal: -DVec3::Z,
-                    });
-                }
-                if let Some(z) = z_max_mm {
-                    faces.push(Face::Plane {
-                        point: DVec3::new(0.0, 0.0, *z),
-                        normal: DVec3::Z,
-                    });
-                }
-                prism = Some(pts);
-            }
-            Some(ClipSpec::Block {
-                center_mm,
-                size_mm,
-                rotate_deg,
-            }) => {
-                let [rx, ry, rz] = rotate_deg.map(f64::to_radians);
-                let r = DMat3::from_rotation_z(rz)
-                    * DMat3::from_rotation_y(ry)
-                    * DMat3::from_rotation_x(rx);
-                let c = DVec3::from_array(*center_mm);
-                for (axis, size) in size_mm.iter().enumerate() {
-                    let n = r.col(axis);
-                    let half = 0.5 * size;
-                    faces.push(Face::Plane {
-                        point: c + n * half,
-                        normal: n,
-                    });
-                    faces.push(Face::Plane {
-                        point: c - n * half,
-                        normal: -n,
-                    });
-                }
-            }
-            Some(ClipSpec::Parameters { polygon }) => {
-                let pts = ccw(polygon.iter().map(|p| DVec2::from_array(*p)).collect());
-                for k in 0..pts.len() {
-                    faces.push(Face::Param {
-                        a: pts[k],
-                        b: pts[(k + 1) % pts.len()],
-                    });
-                }
-                param = Some(pts);
-            }
-        }
-        Clip {
-            faces,
-            prism,
-            param,
-            slack_mm: 1e-6,
-        }
-    }
-
-    /// Whether a point is inside, ignoring face `skip` (for tracing along it).
-    fn contains_except(&self, uv: DVec2, p: DVec3, skip: Option<usize>) -> bool {
-        if let Some(poly) = &self.prism {
-            if skip.is_none() && !inside_polygon(poly, p.truncate()) {
-                return false;
-            }
-        }
-        if let Some(poly) = &self.param {
-            if skip.is_none() && !inside_polygon(poly, uv) {
-                return false;
-            }
-        }
-        self.faces.iter().enumerate().all(|(i, f)| {
-            if Some(i) == skip {
-                return true;
-            }
-            match f {
-                Face::Plane { point, normal } => {
-                    // Polygon sides are only half-spaces for convex polygons;
-                    // the polygon test above decides; here, when skipping a
-                    // side, the other sides bound the segment's extent.
-                    if self.prism.is_some() && skip.is_none() && normal.z == 0.0 {
-                        return true;
-                    }
-                    (p - *point).dot(*normal) <= self.slack_mm
-                }
-                Face::Param { a, b } => {
-                    if skip.is_none() {
-                        return true;
-                    }
-                    let n = DVec2::new(b.y - a.y, a.x - b.x);
-                    (uv - *a).dot(n) <= 1e-12
-                }
-            }
-        })
-    }
-
-    /// The face (if any) on which a point lies.
-    fn face_of(&self, uv: DVec2, p: DVec3) -> Option<usize> {
-        let mut best: Option<(usize, f64)> = None;
-        for (i, f) in self.faces.iter().enumerate() {
-            let d = match f {
-                Face::Plane { point, normal } => ((p - *point).dot(*normal)).abs(),
-                Face::Param { a, b } => {
-                    let t = ((uv - *a).dot(*b - *a) / (*b - *a).length_squared()).clamp(0.0, 1.0);
-                    // In mm-ish terms: parameter distance scaled later by the caller's tolerance.
-                    uv.distance(*a + (*b - *a) * t) * 1e3
-                }
-            };
-            if d < 1e-3 && best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((i, d));
-            }
-        }
-        best.map(|b| b.0)
-    }
-}
-
-impl Region for Clip {
-    fn contains(&self, uv: DVec2, p: DVec3) -> bool {
-        self.contains_except(uv, p, None)
-    }
-}
-
-/// A region that is the clip without one face (for tracing an edge along it).
-struct AlongFace<'a> {
-    clip: &'a Clip,
-    face: usize,
-}
-
-impl Region for AlongFace<'_> {
-    fn contains(&self, uv: DVec2, p: DVec3) -> bool {
-        self.clip.contains_except(uv, p, Some(self.face))
-    }
-}
-
-fn ccw(mut pts: Vec<DVec2>) -> Vec<DVec2> {
-    let area: f64 = (0..pts.len())
-        .map(|k| {
-            let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
-            a.x * b.y - b.x * a.y
-        })
-        .sum();
-    if area < 0.0 {
-        pts.reverse();
-    }
-    pts
-}
-
-fn inside_polygon(poly: &[DVec2], q: DVec2) -> bool {
-    let mut inside = false;
-    let n = poly.len();
-    for k in 0..n {
-        let (a, b) = (poly[k], poly[(k + n - 1) % n]);
-        if (a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x {
-            inside = !inside;
-        }
-    }
-    inside
 }
 
 /// Validate a spec before tracing (one-line errors naming the field).
@@ -400,109 +195,6 @@ pub const MAX_STEP_MM: f64 = 1000.0;
 /// evaluation exceeds it and steps shrink without end.
 pub const MIN_TOLERANCE_MM: f64 = 1e-10;
 
-/// Each clip's own checks: finite numbers, a size, an inside.
-fn validate_clip(clip: &ClipSpec, path: &Path) -> Result<()> {
-    let err = |field: &str, what: &str| {
-        Err(Error::input(
-            path,
-            Location::Field(format!("clip.{field}")),
-            what.to_string(),
-        ))
-    };
-    let finite = |xs: &[f64]| xs.iter().all(|x| x.is_finite() && x.abs() <= 1e9);
-    let area = |pts: &[[f64; 2]]| {
-        0.5 * (0..pts.len())
-            .map(|k| {
-                let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
-                a[0] * b[1] - b[0] * a[1]
-            })
-            .sum::<f64>()
-            .abs()
-    };
-    match clip {
-        ClipSpec::Box { min_mm, max_mm } => {
-            if !finite(min_mm) || !finite(max_mm) {
-                return err("box", "min_mm and max_mm must be finite numbers (mm)");
-            }
-            if (0..3).any(|i| min_mm[i] >= max_mm[i]) {
-                return err(
-                    "box",
-                    "the box is empty: min_mm must be below max_mm on every axis",
-                );
-            }
-        }
-        ClipSpec::Block {
-            center_mm,
-            size_mm,
-            rotate_deg,
-        } => {
-            if !finite(center_mm) || !finite(size_mm) || !finite(rotate_deg) {
-                return err(
-                    "block",
-                    "center_mm, size_mm and rotate_deg must be finite numbers",
-                );
-            }
-            if size_mm.iter().any(|x| *x <= 0.0) {
-                return err(
-                    "block.size_mm",
-                    "the block is degenerate: every size must be above 0",
-                );
-            }
-        }
-        ClipSpec::Plane { point_mm, normal } => {
-            if !finite(point_mm) || !finite(normal) {
-                return err("plane", "point_mm and normal must be finite numbers");
-            }
-            if DVec3::from_array(*normal).length() < 1e-12 {
-                return err("plane.normal", "must not be zero");
-            }
-        }
-        ClipSpec::Polygon {
-            points_mm,
-            z_min_mm,
-            z_max_mm,
-        } => {
-            if points_mm.len() < 3 {
-                return err("polygon.points_mm", "needs at least 3 points");
-            }
-            if !points_mm.iter().all(|p| finite(p))
-                || !z_min_mm.iter().chain(z_max_mm).all(|z| finite(&[*z]))
-            {
-                return err("polygon", "points_mm and heights must be finite numbers");
-            }
-            if area(points_mm) < 1e-6 {
-                return err(
-                    "polygon.points_mm",
-                    "the polygon is degenerate: it encloses no area",
-                );
-            }
-            if let (Some(lo), Some(hi)) = (z_min_mm, z_max_mm) {
-                if lo >= hi {
-                    return err(
-                        "polygon",
-                        "the prism is empty: z_min_mm must be below z_max_mm",
-                    );
-                }
-            }
-        }
-        ClipSpec::Parameters { polygon } => {
-            if polygon.len() < 3 {
-                return err("parameters.polygon", "needs at least 3 points");
-            }
-            if !polygon.iter().all(|p| finite(p)) {
-                return err("parameters.polygon", "must be finite numbers");
-            }
-            if area(polygon) < 1e-12 {
-                return err(
-                    "parameters.polygon",
-                    "the polygon is degenerate: it encloses no area",
-                );
-            }
-        }
-    }
-    Ok(())
-}
-
 /// What a design produced, besides the network.
 #[derive(Debug, Clone, Default)]
 pub struct DesignReport {
@@ -567,7 +259,7 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
     let curves: Vec<crate::geom::curve::SmoothCurve> = net
         .curves
         .iter()
-        .map(|c| crate::geom::curve::SmoothCurve::new(&c.points_mm))
+        .map(|c| crate::geom::curve::SmoothCurve::new(&c.points_world_mm))
         .collect();
     let topo = crate::analysis::topology::find_nodes(
         net,
@@ -589,7 +281,7 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
     else {
         return Vec::new();
     };
-    let p = worst.position_mm;
+    let p = worst.position_world_mm;
     vec![format!(
         "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): the families of a {} net cross at right angles, so the surface passes through itself there; clip it{}",
         off.len(),
@@ -729,8 +421,8 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
     )?;
 
     let finished = |t: Traced| FinishedCurve {
-        normals: t.uv.iter().map(|&q| surface.normal(q)).collect(),
-        points: t.points_mm,
+        normals_world: t.uv.iter().map(|&q| surface.normal(q)).collect(),
+        points_world_mm: t.points_world_mm,
         stops: (t.stop_start, t.stop_end),
     };
     Ok(assemble(
@@ -744,8 +436,8 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
 
 /// A traced curve ready for the network file: world points and normals.
 struct FinishedCurve {
-    points: Vec<DVec3>,
-    normals: Vec<DVec3>,
+    points_world_mm: Vec<DVec3>,
+    normals_world: Vec<DVec3>,
     stops: (Stop, Stop),
 }
 
@@ -778,8 +470,8 @@ fn assemble(
             curves.push(RawCurve {
                 id,
                 family,
-                points: c.points,
-                normals: Some(c.normals),
+                points: c.points_world_mm,
+                normals: Some(c.normals_world),
             });
         }
     }
@@ -845,211 +537,6 @@ impl Budget<'_> {
 /// Most curves a design may seed on each side of the seed, per family.
 pub const MAX_CURVES_PER_SIDE: usize = 1000;
 
-/// Rounds of filling gaps in a periodic design.
-const FILL_ROUNDS: usize = 6;
-/// A gap to fill: no curve of the family within this many spacings.
-const FILL_GAP: f64 = 0.75;
-
-/// Nearest-sample distance queries over curves' points (an R-tree).
-struct PointIndex {
-    tree: rstar::RTree<[f64; 3]>,
-}
-
-impl PointIndex {
-    fn new<'a>(curves: impl Iterator<Item = &'a Vec<DVec3>>) -> PointIndex {
-        PointIndex {
-            tree: rstar::RTree::bulk_load(
-                curves
-                    .flat_map(|c| c.iter().map(|p| p.to_array()))
-                    .collect(),
-            ),
-        }
-    }
-    fn add(&mut self, points: &[DVec3]) {
-        for p in points {
-            self.tree.insert(p.to_array());
-        }
-    }
-    fn nearest_distance(&self, p: DVec3) -> f64 {
-        self.tree
-            .nearest_neighbor(&p.to_array())
-            .map_or(f64::INFINITY, |q| p.distance(DVec3::from_array(*q)))
-    }
-}
-
-/// Stations at k·d from `s0` (k = ±1, ±2, …) inside (0, len), with k.
-fn marks(s0: f64, len: f64, d: f64, max_k: usize) -> Vec<(i64, f64)> {
-    let mut out = Vec::new();
-    for k in 1..=max_k as i64 {
-        let s = s0 - k as f64 * d;
-        if s <= 0.0 {
-            break;
-        }
-        out.push((-k, s));
-    }
-    for k in 1..=max_k as i64 {
-        let s = s0 + k as f64 * d;
-        if s >= len {
-            break;
-        }
-        out.push((k, s));
-    }
-    out
-}
-
-/// Station of the polyline point nearest to a parameter point.
-fn station_of(t: &Traced, q: DVec2) -> f64 {
-    let mut best = (f64::INFINITY, 0.0);
-    for k in 1..t.uv.len() {
-        let (a, b) = (t.uv[k - 1], t.uv[k]);
-        let ab = b - a;
-        let f = if ab.length_squared() > 0.0 {
-            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let d = q.distance(a + ab * f);
-        if d < best.0 {
-            best = (
-                d,
-                t.stations_mm[k - 1] + f * (t.stations_mm[k] - t.stations_mm[k - 1]),
-            );
-        }
-    }
-    best.1
-}
-
-/// The first crossing of two traced curves in the parameter plane.
-fn crossing_uv(p: &Traced, q: &Traced) -> Option<DVec2> {
-    for i in 1..p.uv.len() {
-        let (a0, a1) = (p.uv[i - 1], p.uv[i]);
-        for j in 1..q.uv.len() {
-            let (b0, b1) = (q.uv[j - 1], q.uv[j]);
-            let r = a1 - a0;
-            let s = b1 - b0;
-            let den = r.perp_dot(s);
-            if den.abs() < 1e-300 {
-                continue;
-            }
-            let t = (b0 - a0).perp_dot(s) / den;
-            let u = (b0 - a0).perp_dot(r) / den;
-            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
-                return Some(a0 + r * t);
-            }
-        }
-    }
-    None
-}
-
-/// Trace the clip boundary on the surface: along every face, from the curve
-/// ends lying on it, both ways until another face or the domain edge. A start
-/// point already on a traced edge is skipped.
-fn trace_edges<'a>(
-    surface: &dyn Surface,
-    clip: &Clip,
-    curves: impl Iterator<Item = &'a Traced>,
-    opts: TraceOptions,
-    step_mm: f64,
-    budget: &Budget,
-) -> Result<Vec<Traced>> {
-    let mut starts: Vec<(usize, DVec2)> = Vec::new();
-    for t in curves {
-        for (stop, q) in [(t.stop_start, t.uv[0]), (t.stop_end, t.uv[t.uv.len() - 1])] {
-            if stop != Stop::Clip {
-                continue;
-            }
-            if let Some(f) = clip.face_of(q, surface.point(q)) {
-                starts.push((f, q));
-            }
-        }
-    }
-    starts.sort_by(|a, b| {
-        a.0.cmp(&b.0)
-            .then(a.1.x.total_cmp(&b.1.x))
-            .then(a.1.y.total_cmp(&b.1.y))
-    });
-    let mut edges: Vec<(usize, Traced)> = Vec::new();
-    for (face, q) in starts {
-        let p = surface.point(q);
-        // Within the chord sagitta of an edge already traced on this face.
-        let covered = edges
-            .iter()
-            .any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5));
-        if covered {
-            continue;
-        }
-        let traced = match clip.faces[face] {
-            Face::Plane { point, normal } => {
-                let region = AlongFace { clip, face };
-                trace_through(
-                    surface,
-                    Field::Level {
-                        point_mm: point,
-                        normal,
-                    },
-                    q,
-                    &region,
-                    opts,
-                )
-                .ok()
-            }
-            Face::Param { a, b } => param_segment(surface, a, b, step_mm),
-        };
-        if let Some(t) = traced.filter(|t| t.uv.len() >= 2 && t.length_mm() > 1.0) {
-            budget.charge(t.uv.len());
-            edges.push((face, t));
-        }
-        budget.check()?;
-    }
-    Ok(edges.into_iter().map(|e| e.1).collect())
-}
-
-fn near_polyline(pts: &[DVec3], p: DVec3, tol: f64) -> bool {
-    pts.windows(2).any(|w| {
-        let ab = w[1] - w[0];
-        let f = if ab.length_squared() > 0.0 {
-            ((p - w[0]).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        p.distance(w[0] + ab * f) < tol
-    })
-}
-
-/// The image of a parameter-plane segment, sampled about `step_mm` apart
-/// (None when it is longer than a design may be).
-fn param_segment(surface: &dyn Surface, a: DVec2, b: DVec2, step_mm: f64) -> Option<Traced> {
-    let fine = 512;
-    let mut len = 0.0;
-    let mut prev = surface.point(a);
-    for i in 1..=fine {
-        let p = surface.point(a.lerp(b, i as f64 / fine as f64));
-        len += p.distance(prev);
-        prev = p;
-    }
-    let pieces = (len / step_mm).ceil();
-    if !(pieces.is_finite() && pieces <= MAX_DESIGN_POINTS as f64) {
-        return None;
-    }
-    let n = (pieces as usize).max(1) + 1;
-    let uv: Vec<DVec2> = (0..n)
-        .map(|i| a.lerp(b, i as f64 / (n - 1) as f64))
-        .collect();
-    let points_mm: Vec<DVec3> = uv.iter().map(|&q| surface.point(q)).collect();
-    let mut stations_mm = vec![0.0];
-    for w in points_mm.windows(2) {
-        let last = *stations_mm.last().unwrap_or(&0.0);
-        stations_mm.push(last + w[1].distance(w[0]));
-    }
-    Some(Traced {
-        uv,
-        points_mm,
-        stations_mm,
-        stop_start: Stop::Clip,
-        stop_end: Stop::Clip,
-    })
-}
-
 /// The network of a periodic surface: traced on its fundamental patch and
 /// unfolded across the patch's edges by the surface's half-turn symmetries.
 fn design_periodic(
@@ -1091,7 +578,7 @@ fn design_periodic(
             clip,
             opts,
         );
-        budget.charge(u.points_mm.len());
+        budget.charge(u.points_world_mm.len());
         u
     };
     let a0 = trace(seed, a_dir);
@@ -1108,8 +595,8 @@ fn design_periodic(
         let k = u
             .stations_mm
             .partition_point(|&x| x <= s)
-            .clamp(1, u.points_mm.len() - 1);
-        (u.points_mm[k] - u.points_mm[k - 1]).normalize_or_zero()
+            .clamp(1, u.points_world_mm.len() - 1);
+        (u.points_world_mm[k] - u.points_world_mm[k - 1]).normalize_or_zero()
     };
     // The other family's direction at a site: the asymptotic direction most
     // transverse to the parent curve's tangent, in world terms.
@@ -1147,8 +634,8 @@ fn design_periodic(
     a_curves.sort_by_key(|c| c.0);
     b_curves.sort_by_key(|c| c.0);
     let min_len = (spec.spacing_mm * 0.05).max(1.0);
-    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
-    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_mm.len() >= 2);
+    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
+    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
 
     // Fill: where the central curves left gaps (beyond flat vertices, in the
     // clip's far corners), seed more curves along the other family wherever
@@ -1163,7 +650,7 @@ fn design_periodic(
                 } else {
                     (&a_curves, &mut b_curves)
                 };
-                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_mm));
+                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_world_mm));
                 let mut born = Vec::new();
                 for (_, parent) in parents.iter() {
                     let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
@@ -1179,8 +666,8 @@ fn design_periodic(
                         };
                         let child = trace(site, dir);
                         budget.check()?;
-                        if child.length_mm() >= min_len && child.points_mm.len() >= 2 {
-                            index.add(&child.points_mm);
+                        if child.length_mm() >= min_len && child.points_world_mm.len() >= 2 {
+                            index.add(&child.points_world_mm);
                             born.push((next_k, child));
                             next_k += 1;
                             if children.len() + born.len() > 2 * max_k + 1 {
@@ -1209,12 +696,12 @@ fn design_periodic(
     // Edges: the clip's faces on the unfolded surface, from the curve ends on them.
     let mut starts: Vec<(usize, Site, DVec3)> = Vec::new();
     for u in a_curves.iter().chain(&b_curves).map(|c| &c.1) {
-        for (stop, i) in [(u.stop_start, 0), (u.stop_end, u.points_mm.len() - 1)] {
+        for (stop, i) in [(u.stop_start, 0), (u.stop_end, u.points_world_mm.len() - 1)] {
             if stop != Stop::Clip {
                 continue;
             }
-            if let Some(f) = clip.face_of(u.sites[i].uv, u.points_mm[i]) {
-                starts.push((f, u.sites[i], u.points_mm[i]));
+            if let Some(f) = clip.face_of(u.sites[i].uv, u.points_world_mm[i]) {
+                starts.push((f, u.sites[i], u.points_world_mm[i]));
             }
         }
     }
@@ -1228,7 +715,7 @@ fn design_periodic(
     for (face, site, p) in starts {
         if edge_curves
             .iter()
-            .any(|(f, e)| *f == face && near_polyline(&e.points_mm, p, 0.5))
+            .any(|(f, e)| *f == face && near_polyline(&e.points_world_mm, p, 0.5))
         {
             continue;
         }
@@ -1246,15 +733,15 @@ fn design_periodic(
             continue;
         };
         let e = unfold_through(surface, &edges, field, site, dir, &region, opts);
-        budget.charge(e.points_mm.len());
+        budget.charge(e.points_world_mm.len());
         budget.check()?;
-        if e.points_mm.len() >= 2 && e.length_mm() > 1.0 {
+        if e.points_world_mm.len() >= 2 && e.length_mm() > 1.0 {
             edge_curves.push((face, e));
         }
     }
     let finished = |u: Unfolded| FinishedCurve {
-        points: u.points_mm,
-        normals: u.normals,
+        points_world_mm: u.points_world_mm,
+        normals_world: u.normals_world,
         stops: (u.stop_start, u.stop_end),
     };
     Ok(assemble(

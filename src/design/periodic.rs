@@ -155,8 +155,8 @@ pub struct Site {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Unfolded {
     pub sites: Vec<Site>,
-    pub points_mm: Vec<DVec3>,
-    pub normals: Vec<DVec3>,
+    pub points_world_mm: Vec<DVec3>,
+    pub normals_world: Vec<DVec3>,
     pub stations_mm: Vec<f64>,
     pub stop_start: Stop,
     pub stop_end: Stop,
@@ -416,8 +416,8 @@ pub fn unfold_through(
     let sample = |n: usize| {
         let mut out = Unfolded {
             sites: Vec::with_capacity(n + 1),
-            points_mm: Vec::with_capacity(n + 1),
-            normals: Vec::with_capacity(n + 1),
+            points_world_mm: Vec::with_capacity(n + 1),
+            normals_world: Vec::with_capacity(n + 1),
             stations_mm: Vec::with_capacity(n + 1),
             stop_start: bwd.stop,
             stop_end: fwd.stop,
@@ -437,15 +437,15 @@ pub fn unfold_through(
             let p = site.placement.point(surface.point(site.uv));
             // A curve shorter than a nanometre is one point.
             if out
-                .points_mm
+                .points_world_mm
                 .last()
                 .is_some_and(|q: &DVec3| q.distance(p) < 1e-6)
             {
                 continue;
             }
-            out.normals
+            out.normals_world
                 .push(site.placement.normal(surface.normal(site.uv)));
-            out.points_mm.push(p);
+            out.points_world_mm.push(p);
             out.sites.push(site);
             out.stations_mm.push(s);
         }
@@ -453,7 +453,7 @@ pub fn unfold_through(
     };
     let mut n = pieces(total, opts.max_step_mm);
     let mut out = sample(n);
-    while let Some(finer) = crate::design::trace::finer_pieces(&out.points_mm, n, total) {
+    while let Some(finer) = crate::design::trace::finer_pieces(&out.points_world_mm, n, total) {
         n = finer;
         out = sample(n);
     }
@@ -518,9 +518,12 @@ mod tests {
             u.length_mm()
         );
         // The line through the centre is straight in every copy it crosses.
-        let (p0, p1) = (u.points_mm[0], u.points_mm[u.points_mm.len() - 1]);
+        let (p0, p1) = (
+            u.points_world_mm[0],
+            u.points_world_mm[u.points_world_mm.len() - 1],
+        );
         let axis = (p1 - p0).normalize();
-        for p in &u.points_mm {
+        for p in &u.points_world_mm {
             assert!(
                 (*p - p0).cross(axis).length() < 1e-6,
                 "off the line by {}",

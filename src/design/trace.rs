@@ -148,7 +148,7 @@ impl Region for Everywhere {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Traced {
     pub uv: Vec<DVec2>,
-    pub points_mm: Vec<DVec3>,
+    pub points_world_mm: Vec<DVec3>,
     /// Arc length from the first point, mm.
     pub stations_mm: Vec<f64>,
     pub stop_start: Stop,
@@ -564,7 +564,7 @@ pub fn trace_through(
     }
     Ok(Traced {
         uv,
-        points_mm,
+        points_world_mm: points_mm,
         stations_mm,
         stop_start: bwd.stop,
         stop_end: fwd.stop,

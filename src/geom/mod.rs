@@ -1,3 +1,5 @@
 //! Geometry shared by the stages: smooth curves through samples.
 
+pub mod closest;
 pub mod curve;
+pub mod nurbs;

@@ -238,8 +238,8 @@ pub fn raw_from_network(net: &Network) -> RawNetwork {
             .map(|c| RawCurve {
                 id: c.id.clone(),
                 family: c.family,
-                points: c.points_mm.clone(),
-                normals: c.normals.clone(),
+                points: c.points_world_mm.clone(),
+                normals: c.normals_world.clone(),
             })
             .collect(),
     }

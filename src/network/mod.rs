@@ -165,9 +165,9 @@ pub struct RawNetwork {
 pub struct Curve {
     pub id: String,
     pub family: Family,
-    pub points_mm: Vec<DVec3>,
+    pub points_world_mm: Vec<DVec3>,
     /// Unit surface normals, one per point, if the file gave them.
-    pub normals: Option<Vec<DVec3>>,
+    pub normals_world: Option<Vec<DVec3>>,
 }
 
 /// A validated network, in millimetres.
@@ -281,31 +281,31 @@ impl Network {
                 }
             }
             // Scale to mm and drop consecutive duplicate points.
-            let mut points_mm = Vec::with_capacity(c.points.len());
+            let mut points_world_mm = Vec::with_capacity(c.points.len());
             let mut normals = c
                 .normals
                 .as_ref()
                 .map(|_| Vec::with_capacity(c.points.len()));
             for (k, p) in c.points.iter().enumerate() {
                 let p_mm = *p * scale;
-                if let Some(last) = points_mm.last() {
+                if let Some(last) = points_world_mm.last() {
                     if p_mm.distance(*last) <= DUPLICATE_POINT_MM {
                         continue;
                     }
                 }
-                points_mm.push(p_mm);
+                points_world_mm.push(p_mm);
                 if let (Some(out), Some(src)) = (normals.as_mut(), c.normals.as_ref()) {
                     out.push(src[k].normalize());
                 }
             }
-            if points_mm.len() < 2 {
+            if points_world_mm.len() < 2 {
                 return Err(Error::input(
                     source,
                     at(),
                     "zero-length curve (all points coincide)",
                 ));
             }
-            if let Some(k) = points_mm.iter().position(|p| !p.is_finite()) {
+            if let Some(k) = points_world_mm.iter().position(|p| !p.is_finite()) {
                 return Err(Error::input(
                     source,
                     at(),
@@ -326,7 +326,10 @@ impl Network {
                     ),
                 ));
             }
-            let length_mm: f64 = points_mm.windows(2).map(|w| w[1].distance(w[0])).sum();
+            let length_mm: f64 = points_world_mm
+                .windows(2)
+                .map(|w| w[1].distance(w[0]))
+                .sum();
             if length_mm > MAX_CURVE_LENGTH_MM {
                 return Err(Error::input(
                     source,
@@ -338,12 +341,12 @@ impl Network {
                 ));
             }
             total_mm += length_mm;
-            for p in &points_mm {
+            for p in &points_world_mm {
                 lo = lo.min(*p);
                 hi = hi.max(*p);
             }
             // A strip cannot turn back on itself between two samples.
-            for (k, w) in points_mm.windows(3).enumerate() {
+            for (k, w) in points_world_mm.windows(3).enumerate() {
                 let (d1, d2) = (w[1] - w[0], w[2] - w[1]);
                 let turn = d1.angle_between(d2).to_degrees();
                 if turn > MAX_TURN_DEG {
@@ -369,8 +372,8 @@ impl Network {
             curves.push(Curve {
                 id: c.id,
                 family: c.family,
-                points_mm,
-                normals,
+                points_world_mm,
+                normals_world: normals,
             });
         }
         let extent = hi - lo;
@@ -417,7 +420,7 @@ impl Network {
 
     /// Total number of sample points.
     pub fn point_count(&self) -> usize {
-        self.curves.iter().map(|c| c.points_mm.len()).sum()
+        self.curves.iter().map(|c| c.points_world_mm.len()).sum()
     }
 }
 

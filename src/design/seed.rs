@@ -1,0 +1,98 @@
+use super::trace::Traced;
+use glam::{DVec2, DVec3};
+
+/// Rounds of filling gaps in a periodic design.
+pub(crate) const FILL_ROUNDS: usize = 6;
+/// A gap to fill: no curve of the family within this many spacings.
+pub(crate) const FILL_GAP: f64 = 0.75;
+
+/// Nearest-sample distance queries over curves' points (an R-tree).
+pub(crate) struct PointIndex {
+    tree: rstar::RTree<[f64; 3]>,
+}
+
+impl PointIndex {
+    pub(crate) fn new<'a>(curves: impl Iterator<Item = &'a Vec<DVec3>>) -> PointIndex {
+        PointIndex {
+            tree: rstar::RTree::bulk_load(
+                curves
+                    .flat_map(|c| c.iter().map(|p| p.to_array()))
+                    .collect(),
+            ),
+        }
+    }
+    pub(crate) fn add(&mut self, points: &[DVec3]) {
+        for p in points {
+            self.tree.insert(p.to_array());
+        }
+    }
+    pub(crate) fn nearest_distance(&self, p: DVec3) -> f64 {
+        self.tree
+            .nearest_neighbor(&p.to_array())
+            .map_or(f64::INFINITY, |q| p.distance(DVec3::from_array(*q)))
+    }
+}
+
+/// Stations at k·d from `s0` (k = ±1, ±2, …) inside (0, len), with k.
+pub(crate) fn marks(s0: f64, len: f64, d: f64, max_k: usize) -> Vec<(i64, f64)> {
+    let mut out = Vec::new();
+    for k in 1..=max_k as i64 {
+        let s = s0 - k as f64 * d;
+        if s <= 0.0 {
+            break;
+        }
+        out.push((-k, s));
+    }
+    for k in 1..=max_k as i64 {
+        let s = s0 + k as f64 * d;
+        if s >= len {
+            break;
+        }
+        out.push((k, s));
+    }
+    out
+}
+
+/// Station of the polyline point nearest to a parameter point.
+pub(crate) fn station_of(t: &Traced, q: DVec2) -> f64 {
+    let mut best = (f64::INFINITY, 0.0);
+    for k in 1..t.uv.len() {
+        let (a, b) = (t.uv[k - 1], t.uv[k]);
+        let ab = b - a;
+        let f = if ab.length_squared() > 0.0 {
+            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let d = q.distance(a + ab * f);
+        if d < best.0 {
+            best = (
+                d,
+                t.stations_mm[k - 1] + f * (t.stations_mm[k] - t.stations_mm[k - 1]),
+            );
+        }
+    }
+    best.1
+}
+
+/// The first crossing of two traced curves in the parameter plane.
+pub(crate) fn crossing_uv(p: &Traced, q: &Traced) -> Option<DVec2> {
+    for i in 1..p.uv.len() {
+        let (a0, a1) = (p.uv[i - 1], p.uv[i]);
+        for j in 1..q.uv.len() {
+            let (b0, b1) = (q.uv[j - 1], q.uv[j]);
+            let r = a1 - a0;
+            let s = b1 - b0;
+            let den = r.perp_dot(s);
+            if den.abs() < 1e-300 {
+                continue;
+            }
+            let t = (b0 - a0).perp_dot(s) / den;
+            let u = (b0 - a0).perp_dot(r) / den;
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+                return Some(a0 + r * t);
+            }
+        }
+    }
+    None
+}
