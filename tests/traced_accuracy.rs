@@ -64,9 +64,9 @@ fn traced_helices_bend_and_twist_as_the_closed_form() {
             continue;
         }
         let radius = |p: &glam::DVec3| p.truncate().length();
-        let r0 = radius(&curve.points_mm[0]);
+        let r0 = radius(&curve.points_world_mm[0]);
         if curve
-            .points_mm
+            .points_world_mm
             .iter()
             .any(|p| (radius(p) - r0).abs() > 1e-3)
         {
