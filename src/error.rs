@@ -51,6 +51,19 @@ pub enum Error {
     /// The network is well formed but cannot be processed.
     #[error("{}: {what}", path.display())]
     Network { path: PathBuf, what: String },
+    /// A profile cannot build a part of this network: names the profile,
+    /// the strip and, where there is one, the node.
+    #[error("{}: strip {strip}{}: {what}", profile.display(), node.map(|n| format!(", node {n}")).unwrap_or_default())]
+    Fabrication {
+        /// The profile file.
+        profile: PathBuf,
+        /// The strip (curve id), or the part class for shared parts.
+        strip: String,
+        /// The node (its plan.json id), if the problem is at one.
+        node: Option<usize>,
+        /// What is wrong, one line.
+        what: String,
+    },
 }
 
 fn located(at: &Location) -> String {
@@ -71,6 +84,20 @@ impl Error {
         Error::Input {
             path: path.to_path_buf(),
             at,
+            what: one_line(&what.into()),
+        }
+    }
+    /// A fabrication error at a strip (and node).
+    pub fn fabrication(
+        profile: &Path,
+        strip: &str,
+        node: Option<usize>,
+        what: impl Into<String>,
+    ) -> Self {
+        Error::Fabrication {
+            profile: profile.to_path_buf(),
+            strip: strip.to_string(),
+            node,
             what: one_line(&what.into()),
         }
     }
