@@ -51,18 +51,14 @@ pub fn place(
     for n in first.max(1)..=most.max(first.max(1)) {
         let centres: Vec<f64> = (1..=n)
             .map(|k| {
-                (iv.start_mm + span * k as f64 / (n + 1) as f64)
-                    .clamp(iv.free_lo_mm, iv.free_hi_mm)
+                (iv.start_mm + span * k as f64 / (n + 1) as f64).clamp(iv.free_lo_mm, iv.free_hi_mm)
             })
             .collect();
         let mut supports = Vec::with_capacity(n + 2);
         supports.push(iv.start_mm);
         supports.extend_from_slice(&centres);
         supports.push(iv.end_mm);
-        let widest = supports
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold(0.0, f64::max);
+        let widest = supports.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
         let apart = centres
             .windows(2)
             .all(|w| w[1] - w[0] >= block_mm + gap_mm - 1e-9);

@@ -1,0 +1,517 @@
+//! Lamella parts: every lamella of every A/B strip as a flat, straight part
+//! on its own offset line, with the slots (interlocking) or node holes (two
+//! levels), the shear blocks' and splices' bolt holes, split where it is
+//! longer than the stock.
+//!
+//! Positions along a strip are decided once on its centre line (node zones,
+//! block centres, splice cuts) and then carried to each lamella's own line
+//! by integrating that line (`LamellaLine::with_stations`); slots are placed
+//! from each node's station on the lamella's own line.
+
+use super::blocks;
+use super::part::{
+    circle_cw, Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge, ARC_TOLERANCE_MM,
+};
+use super::slots::{node_slots, sweep_range_rad, SlotSpan};
+use crate::analysis::model::LamellaLine;
+use crate::analysis::Analysis;
+use crate::error::{Error, Result};
+use crate::io::profile_file::JointSystem;
+use crate::network::{Family, Network};
+use crate::profile::Profile;
+use kurbo::Point;
+
+/// Clearance added to a bolt's diameter for its hole, mm (EN 1090-2:2018
+/// Table 11, normal round holes for M12 and smaller), where the profile
+/// names none.
+pub const BOLT_HOLE_CLEARANCE_MM: f64 = 1.0;
+
+/// What fabricating one strip made.
+#[derive(Debug, Clone, Default)]
+pub struct StripParts {
+    /// Lamella parts (pieces, if spliced), by lamella then piece.
+    pub lamellas: Vec<Part>,
+    /// Shear blocks along the strip (each couples its two lamellas).
+    pub blocks: usize,
+    /// Splice plates (one per cut per lamella).
+    pub splice_plates: usize,
+}
+
+/// A crossing of this strip with another A/B strip, seen from this strip.
+#[derive(Debug, Clone)]
+struct Crossing {
+    /// Index into the strip's node list.
+    k: usize,
+    /// Node id (plan.json).
+    node_id: usize,
+    /// Crossing strip's id.
+    crossing_id: String,
+    /// Signed angle from this strip's direction to the crossing one's,
+    /// about the node normal, degrees.
+    angle_deg: f64,
+    /// The crossing strip's lamella offsets (by lamella number).
+    crossing_offsets_mm: Vec<f64>,
+}
+
+/// Signed angle (degrees) from direction `a` to direction `b` about `n`.
+fn signed_angle_deg(a: glam::DVec3, b: glam::DVec3, n: glam::DVec3) -> f64 {
+    a.cross(b).dot(n).atan2(a.dot(b)).to_degrees()
+}
+
+/// The parts of strip `i` (an A or B strip).
+pub fn strip_parts(
+    net: &Network,
+    an: &Analysis,
+    profile: &Profile,
+    i: usize,
+) -> Result<StripParts> {
+    let strip = &an.strips[i];
+    let smooth = &an.curves[i];
+    let topo = &an.topology;
+    let sec = &profile.section;
+    let (t, h) = (sec.thickness_mm, sec.height_mm);
+    let allowance = sec.end_allowance_mm;
+    let fail = |node: Option<usize>, what: String| {
+        Error::fabrication(&profile.source, &strip.id, node, what)
+    };
+    let offsets = profile.lamella_offsets(strip.family);
+    let interlocking = profile.joint.system == JointSystem::Interlocking;
+
+    // The A×B crossings, with the angle seen from this strip.
+    let crossings: Vec<Crossing> = strip
+        .nodes
+        .iter()
+        .enumerate()
+        .filter_map(|(k, cn)| {
+            let other = &net.curves[cn.crossing];
+            if other.family == Family::Edge {
+                return None;
+            }
+            let node = &topo.nodes[cn.node];
+            let (mine, theirs) = if node.a == i {
+                (node.tangent_a_world, node.tangent_b_world)
+            } else {
+                (node.tangent_b_world, node.tangent_a_world)
+            };
+            Some(Crossing {
+                k,
+                node_id: node.id,
+                crossing_id: other.id.clone(),
+                angle_deg: signed_angle_deg(mine, theirs, node.normal_world),
+                crossing_offsets_mm: profile
+                    .lamella_offsets(other.family)
+                    .iter()
+                    .map(|o| o.dy_mm)
+                    .collect(),
+            })
+        })
+        .collect();
+
+    // Slots of every lamella at every crossing (relative to the node's
+    // station on that lamella's line).
+    let range_of =
+        |c: &Crossing| sweep_range_rad(c.angle_deg, profile.joint.rotation_tolerance_deg);
+    let slots: Vec<Vec<(usize, Vec<SlotSpan>)>> = offsets
+        .iter()
+        .map(|o| {
+            if !interlocking {
+                return Vec::new();
+            }
+            crossings
+                .iter()
+                .enumerate()
+                .map(|(ci, c)| {
+                    (
+                        ci,
+                        node_slots(
+                            t,
+                            t,
+                            o.dy_mm,
+                            &c.crossing_offsets_mm,
+                            range_of(c),
+                            profile.joint.slot_clearance_mm,
+                        ),
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    let slot_depth = 0.5 * h + profile.joint.slot_clearance_mm;
+    if interlocking && !crossings.is_empty() && slot_depth >= h {
+        return Err(fail(
+            Some(crossings[0].node_id),
+            format!("slots {slot_depth:.2} mm deep would cut through the {h} mm lamella"),
+        ));
+    }
+    let node_hole_mm = (!interlocking)
+        .then(|| profile.stud.as_ref().map(|s| s.fastener_diameter_mm))
+        .flatten()
+        .map(|d| d + BOLT_HOLE_CLEARANCE_MM);
+
+    // Node zones on the centre line: what sits at each crossing.
+    let zone = |ci: usize| -> (f64, f64) {
+        let mut lo: f64 = 0.0;
+        let mut hi: f64 = 0.0;
+        for per_lamella in &slots {
+            for s in &per_lamella[ci].1 {
+                lo = lo.min(s.lo_mm);
+                hi = hi.max(s.hi_mm);
+            }
+        }
+        if let Some(w) = &profile.washer {
+            lo = lo.min(-w.arm_length_mm);
+            hi = hi.max(w.arm_length_mm);
+        }
+        if !interlocking {
+            let half = 0.5 * sec.gap_mm.max(node_hole_mm.unwrap_or(0.0));
+            lo = lo.min(-half);
+            hi = hi.max(half);
+        }
+        (lo, hi)
+    };
+    let zones: Vec<(f64, f64)> = (0..crossings.len())
+        .map(|ci| {
+            let s = strip.nodes[crossings[ci].k].station_mm;
+            let (lo, hi) = zone(ci);
+            (s + lo, s + hi)
+        })
+        .collect();
+
+    // Shear blocks, on the centre line.
+    let mut block_stations: Vec<f64> = Vec::new();
+    let block = profile.shear_block.as_ref().filter(|_| sec.per_strip == 2);
+    if let Some(b) = block {
+        let spacing = blocks::max_spacing_mm(b.max_spacing_mm, b.slenderness_limit, t);
+        let half = 0.5 * b.length_mm + b.clearance_mm;
+        // Supports: the line's ends and every crossing.
+        let mut supports: Vec<(f64, f64, f64, Option<usize>)> = vec![(0.0, 0.0, 0.0, None)];
+        for (ci, c) in crossings.iter().enumerate() {
+            let s = strip.nodes[c.k].station_mm;
+            supports.push((s, zones[ci].0, zones[ci].1, Some(c.node_id)));
+        }
+        supports.push((strip.length_mm, strip.length_mm, strip.length_mm, None));
+        for w in supports.windows(2) {
+            let (a, b2) = (w[0], w[1]);
+            let iv = blocks::Interval {
+                start_mm: a.0,
+                end_mm: b2.0,
+                free_lo_mm: a.2 + half,
+                free_hi_mm: b2.1 - half,
+            };
+            let placed = blocks::place(iv, spacing, b.length_mm, 2.0 * b.clearance_mm)
+                .map_err(|e| fail(a.3.or(b2.3), e))?;
+            block_stations.extend(placed);
+        }
+    }
+
+    // Splices: where a lamella is longer than the stock.
+    let usable = profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm;
+    let total = strip.length_mm + 2.0 * allowance;
+    let mut cuts: Vec<f64> = Vec::new();
+    if total > usable {
+        let Some(sp) = &profile.splice else {
+            return Err(fail(
+                None,
+                format!(
+                    "a {total:.0} mm lamella is longer than the stock's usable {usable:.0} mm and the \
+                     profile has no splice"
+                ),
+            ));
+        };
+        let n = (total / usable).ceil() as usize;
+        // Distance from a candidate cut to the nearest thing on the strip.
+        let mut busy: Vec<(f64, f64)> = zones.clone();
+        if let Some(b) = block {
+            busy.extend(
+                block_stations
+                    .iter()
+                    .map(|&s| (s - 0.5 * b.length_mm, s + 0.5 * b.length_mm)),
+            );
+        }
+        let clearance = |c: f64| {
+            busy.iter()
+                .map(|&(lo, hi)| {
+                    if c < lo {
+                        lo - c
+                    } else if c > hi {
+                        c - hi
+                    } else {
+                        0.0
+                    }
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut prev = -allowance;
+        for k in 1..n {
+            let remaining = n - k;
+            let lo = (strip.length_mm + allowance - remaining as f64 * usable).max(prev + 1.0);
+            let hi = (prev + usable).min(strip.length_mm + allowance - 1.0);
+            if lo > hi {
+                return Err(fail(
+                    None,
+                    "cannot split the lamella into stock lengths".into(),
+                ));
+            }
+            let steps = ((hi - lo) / 1.0).ceil().max(1.0) as usize;
+            let best = (0..=steps)
+                .map(|j| lo + (hi - lo) * j as f64 / steps as f64)
+                .max_by(|a, b| clearance(*a).total_cmp(&clearance(*b)))
+                .unwrap_or(lo);
+            let need = 0.5 * sp.plate_length_mm + profile.joint.slot_clearance_mm;
+            if clearance(best) < need {
+                return Err(fail(
+                    None,
+                    format!(
+                        "no room for a {:.0} mm splice plate: the best cut near {best:.0} mm is {:.1} mm \
+                         from a node or block",
+                        sp.plate_length_mm,
+                        clearance(best)
+                    ),
+                ));
+            }
+            cuts.push(best);
+            prev = best;
+        }
+    }
+    // Splice bolt holes, on the centre line.
+    let splice_holes: Vec<f64> = profile.splice.as_ref().map_or(Vec::new(), |sp| {
+        let n = sp.bolts_per_side.max(1) as usize;
+        let half = 0.5 * sp.plate_length_mm;
+        cuts.iter()
+            .flat_map(|&c| {
+                (0..n).flat_map(move |j| {
+                    let d = half * (j as f64 + 0.5) / n as f64;
+                    [c - d, c + d]
+                })
+            })
+            .collect()
+    });
+
+    // Carry everything to each lamella's own line, and build its parts.
+    let mut out = StripParts {
+        blocks: block_stations.len(),
+        splice_plates: cuts.len() * offsets.len(),
+        ..StripParts::default()
+    };
+    let mut wanted: Vec<f64> = Vec::new();
+    wanted.extend(&block_stations);
+    wanted.extend(&cuts);
+    wanted.extend(&splice_holes);
+    for (j, o) in offsets.iter().enumerate() {
+        let (line, on_line) = LamellaLine::with_stations(strip, smooth, *o, &wanted);
+        let (b_line, rest) = on_line.split_at(block_stations.len());
+        let (cut_line, hole_line) = rest.split_at(cuts.len());
+        let mut features: Vec<Feature> = Vec::new();
+        let edge = if strip.family == Family::A {
+            SlotEdge::Top
+        } else {
+            SlotEdge::Bottom
+        };
+        for (ci, spans) in &slots[j] {
+            let c = &crossings[*ci];
+            let node_line = line.nodes[c.k].station_mm;
+            let (a0, a1) = range_of(c);
+            for s in spans {
+                features.push(Feature {
+                    kind: FeatureKind::Slot,
+                    hole_use: None,
+                    node: Some(c.node_id),
+                    crossing: Some(c.crossing_id.clone()),
+                    center_part_mm: Point::new(
+                        node_line + s.centre_mm(),
+                        if edge == SlotEdge::Top {
+                            h - 0.5 * slot_depth
+                        } else {
+                            0.5 * slot_depth
+                        },
+                    ),
+                    width_mm: s.width_mm(),
+                    depth_mm: slot_depth,
+                    edge: Some(edge),
+                    angle_range_deg: Some((a0.to_degrees(), a1.to_degrees())),
+                    station_mm: Some(node_line + s.centre_mm()),
+                });
+            }
+        }
+        let mut hole = |station: f64,
+                        d: f64,
+                        usage: HoleUse,
+                        node: Option<usize>,
+                        crossing: Option<String>| {
+            features.push(Feature {
+                kind: FeatureKind::Hole,
+                hole_use: Some(usage),
+                node,
+                crossing,
+                center_part_mm: Point::new(station, 0.5 * h),
+                width_mm: d,
+                depth_mm: 0.0,
+                edge: None,
+                angle_range_deg: None,
+                station_mm: Some(station),
+            });
+        };
+        if let Some(d) = node_hole_mm {
+            for c in &crossings {
+                hole(
+                    line.nodes[c.k].station_mm,
+                    d,
+                    HoleUse::Node,
+                    Some(c.node_id),
+                    Some(c.crossing_id.clone()),
+                );
+            }
+        }
+        if let Some(b) = block {
+            for &s in b_line {
+                hole(
+                    s,
+                    b.bolt_diameter_mm + BOLT_HOLE_CLEARANCE_MM,
+                    HoleUse::ShearBlock,
+                    None,
+                    None,
+                );
+            }
+        }
+        if let Some(sp) = &profile.splice {
+            for &s in hole_line {
+                hole(
+                    s,
+                    sp.bolt_diameter_mm + BOLT_HOLE_CLEARANCE_MM,
+                    HoleUse::Splice,
+                    None,
+                    None,
+                );
+            }
+        }
+        // Pieces: [−allowance, cut₁], [cut₁, cut₂], …, [cutₙ, length + allowance].
+        let mut bounds = vec![-allowance];
+        bounds.extend_from_slice(cut_line);
+        bounds.push(line.length_mm + allowance);
+        let pieces = bounds.len() - 1;
+        for p in 0..pieces {
+            let (start, end) = (bounds[p], bounds[p + 1]);
+            let id = if pieces == 1 {
+                format!("{}-{}", strip.id, o.number)
+            } else {
+                format!("{}-{}.{}", strip.id, o.number, p + 1)
+            };
+            let mine: Vec<Feature> = features
+                .iter()
+                .filter(|f| {
+                    let s = f.station_mm.unwrap_or(f64::NAN);
+                    s >= start && s < end
+                })
+                .map(|f| {
+                    let mut f = f.clone();
+                    f.center_part_mm.x -= start;
+                    f
+                })
+                .collect();
+            let part = lamella_part(id, &strip.id, o.number, start, end - start, h, mine)
+                .map_err(|(node, what)| fail(node, what))?;
+            out.lamellas.push(part);
+        }
+    }
+    Ok(out)
+}
+
+/// One lamella piece: the rectangle length × h with its slots notched from
+/// their edges and its holes; features sorted by x. Err (node, what) when a
+/// slot runs past an end or two slots leave less than a lamella thickness of
+/// material between them.
+fn lamella_part(
+    id: String,
+    strip: &str,
+    lamella: u32,
+    station_start_mm: f64,
+    length_mm: f64,
+    h: f64,
+    mut features: Vec<Feature>,
+) -> std::result::Result<Part, (Option<usize>, String)> {
+    features.sort_by(|a, b| a.center_part_mm.x.total_cmp(&b.center_part_mm.x));
+    // Minimum material between two notches on one edge, mm.
+    let min_web = 1.0;
+    let mut outline = vec![Point::new(0.0, 0.0)];
+    let notches = |edge: SlotEdge| -> Vec<&Feature> {
+        features
+            .iter()
+            .filter(|f| f.kind == FeatureKind::Slot && f.edge == Some(edge))
+            .collect()
+    };
+    for edge in [SlotEdge::Bottom, SlotEdge::Top] {
+        let mut last_end = 0.0;
+        for f in notches(edge) {
+            let (x0, x1) = (
+                f.center_part_mm.x - 0.5 * f.width_mm,
+                f.center_part_mm.x + 0.5 * f.width_mm,
+            );
+            if x0 <= 0.0 || x1 >= length_mm {
+                return Err((
+                    f.node,
+                    format!(
+                        "lamella {id}: a {:.2} mm slot at {:.1} mm runs past the lamella's end",
+                        f.width_mm, f.center_part_mm.x
+                    ),
+                ));
+            }
+            if x0 - last_end < min_web && last_end > 0.0 {
+                return Err((
+                    f.node,
+                    format!(
+                        "lamella {id}: slots leave {:.2} mm of material between them at {:.1} mm",
+                        x0 - last_end,
+                        x0
+                    ),
+                ));
+            }
+            last_end = x1;
+        }
+    }
+    for f in notches(SlotEdge::Bottom) {
+        let (x0, x1) = (
+            f.center_part_mm.x - 0.5 * f.width_mm,
+            f.center_part_mm.x + 0.5 * f.width_mm,
+        );
+        outline.extend([
+            Point::new(x0, 0.0),
+            Point::new(x0, f.depth_mm),
+            Point::new(x1, f.depth_mm),
+            Point::new(x1, 0.0),
+        ]);
+    }
+    outline.push(Point::new(length_mm, 0.0));
+    outline.push(Point::new(length_mm, h));
+    for f in notches(SlotEdge::Top).into_iter().rev() {
+        let (x0, x1) = (
+            f.center_part_mm.x - 0.5 * f.width_mm,
+            f.center_part_mm.x + 0.5 * f.width_mm,
+        );
+        outline.extend([
+            Point::new(x1, h),
+            Point::new(x1, h - f.depth_mm),
+            Point::new(x0, h - f.depth_mm),
+            Point::new(x0, h),
+        ]);
+    }
+    outline.push(Point::new(0.0, h));
+    let holes = features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Hole)
+        .map(|f| circle_cw(f.center_part_mm, 0.5 * f.width_mm, ARC_TOLERANCE_MM))
+        .collect();
+    Ok(Part {
+        id,
+        kind: PartKind::Lamella,
+        strip: Some(strip.to_string()),
+        lamella: Some(lamella),
+        count: 1,
+        length_mm,
+        height_mm: h,
+        station_start_mm: Some(station_start_mm),
+        outline_part_mm: outline,
+        holes_part_mm: holes,
+        engraving_part_mm: Vec::new(),
+        features,
+    })
+}
