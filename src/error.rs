@@ -10,7 +10,12 @@ pub enum Location {
     /// The file as a whole.
     File,
     /// A line and column (1-based) in a text file.
-    LineColumn { line: usize, column: usize },
+    LineColumn {
+        /// Line, counted from 1.
+        line: usize,
+        /// Column, counted from 1.
+        column: usize,
+    },
     /// A line (1-based) in a text file.
     Line(usize),
     /// A curve, by id.
@@ -37,20 +42,30 @@ pub enum Error {
     /// A file could not be read or written.
     #[error("{}: {source}", path.display())]
     Io {
+        /// The file.
         path: PathBuf,
+        /// What the operating system reported.
         #[source]
         source: std::io::Error,
     },
     /// An input file is malformed or invalid.
     #[error("{}: {}{what}", path.display(), located(at))]
     Input {
+        /// The input file.
         path: PathBuf,
+        /// Where in the file.
         at: Location,
+        /// What is wrong, one line.
         what: String,
     },
     /// The network is well formed but cannot be processed.
     #[error("{}: {what}", path.display())]
-    Network { path: PathBuf, what: String },
+    Network {
+        /// The network's file.
+        path: PathBuf,
+        /// What is wrong, one line.
+        what: String,
+    },
     /// A profile cannot build a part of this network: names the profile,
     /// the strip and, where there is one, the node.
     #[error("{}: strip {strip}{}: {what}", profile.display(), node.map(|n| format!(", node {n}")).unwrap_or_default())]
@@ -74,12 +89,14 @@ fn located(at: &Location) -> String {
 }
 
 impl Error {
+    /// A read or write of `path` failed.
     pub fn io(path: &Path, source: std::io::Error) -> Self {
         Error::Io {
             path: path.to_path_buf(),
             source,
         }
     }
+    /// A malformed or invalid input at `at` in `path`; `what` is collapsed to one line.
     pub fn input(path: &Path, at: Location, what: impl Into<String>) -> Self {
         Error::Input {
             path: path.to_path_buf(),
@@ -101,6 +118,7 @@ impl Error {
             what: one_line(&what.into()),
         }
     }
+    /// A network from `path` that cannot be processed; `what` is collapsed to one line.
     pub fn network(path: &Path, what: impl Into<String>) -> Self {
         Error::Network {
             path: path.to_path_buf(),
@@ -114,6 +132,7 @@ pub fn one_line(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+/// The library's result: [`Error`] unless said otherwise.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// Where a YAML parser error sits and its message without serde's trailing

@@ -12,6 +12,8 @@
 //!   lines and the finished model ([`analysis::model`]);
 //! * [`check`]: the elastic check of every lamella against a [`profile`].
 
+#![warn(missing_docs)]
+
 pub mod analysis;
 pub mod check;
 pub mod design;

@@ -19,55 +19,78 @@ use std::path::{Path, PathBuf};
 /// turned back into it by `From` (the `resolved` profile of plan.json).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Profile {
+    /// The profile's name.
     pub name: String,
+    /// Free text from the file (may be empty).
     pub description: String,
     /// The file it was read from (empty when built in memory).
     pub source: PathBuf,
+    /// Elastic and strength values.
     pub material: Material,
+    /// The lamella section and lamellas per strip.
     pub section: Section,
+    /// How strips meet at the nodes.
     pub joint: Joint,
     /// The parts later stages size (plain data, as in the file).
     pub node_bolt: Option<Bolt>,
+    /// Star washers at the nodes, if the system has them.
     pub washer: Option<Washer>,
+    /// Shear blocks of a doubled strip, if any.
     pub shear_block: Option<ShearBlock>,
+    /// Studs of a two-level joint (present for `two_level`).
     pub stud: Option<Stud>,
+    /// Splice plates for strips longer than the stock, if any.
     pub splice: Option<Splice>,
+    /// What parts are cut from.
     pub stock: Stock,
+    /// Cutting allowances and allowed rotations (quarter turns).
     pub cutting: Cutting,
 }
 
 /// The material's elastic and strength values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
+    /// The material's name.
     pub name: String,
+    /// Young's modulus E, MPa (positive).
     pub youngs_modulus_mpa: f64,
+    /// Shear modulus G, MPa (positive, below E).
     pub shear_modulus_mpa: f64,
+    /// Characteristic strength f_k, MPa (positive).
     pub characteristic_strength_mpa: f64,
     /// γ_M.
     pub partial_factor: f64,
     /// k_mod.
     pub modification_factor: f64,
+    /// Density, kg/m³ (positive).
     pub density_kg_per_m3: f64,
+    /// Grain direction: none, or along the strip (timber).
     pub grain: Grain,
 }
 
 /// The lamella section and how many lamellas make a strip.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Section {
+    /// Lamella thickness t, mm (positive, below the height).
     pub thickness_mm: f64,
+    /// Lamella height h, along the surface normal, mm (positive).
     pub height_mm: f64,
     /// 1 (single) or 2 (doubled).
     pub per_strip: u32,
     /// Clear gap between the lamellas of a doubled strip.
     pub gap_mm: f64,
+    /// Added at each end of every strip beyond the curve, mm (≥ 0).
     pub end_allowance_mm: f64,
 }
 
 /// How strips are joined at the nodes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Joint {
+    /// Interlocking (one level) or two-level.
     pub system: JointSystem,
+    /// Slot width beyond the crossing lamella's thickness, mm (≥ 0).
     pub slot_clearance_mm: f64,
+    /// How far a joint may turn from 90° during assembly, degrees (≥ 0).
     pub rotation_tolerance_deg: f64,
     /// Two levels: family A sits this far above the surface, B below.
     pub level_offset_mm: f64,
@@ -76,7 +99,9 @@ pub struct Joint {
 /// What is wrong with a profile: the dotted field name and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FieldError {
+    /// Dotted path of the field, as in the file (`lamella.thickness_mm`).
     pub field: String,
+    /// What is wrong, one line.
     pub message: String,
 }
 
@@ -467,15 +492,19 @@ fn validate(f: &ProfileFile) -> std::result::Result<(), FieldError> {
 }
 
 impl Profile {
+    /// Lamella thickness t, mm (positive, below the height).
     pub fn thickness_mm(&self) -> f64 {
         self.section.thickness_mm
     }
+    /// Lamella height h, mm (positive).
     pub fn height_mm(&self) -> f64 {
         self.section.height_mm
     }
+    /// Young's modulus E, MPa (positive).
     pub fn youngs_modulus_mpa(&self) -> f64 {
         self.material.youngs_modulus_mpa
     }
+    /// Shear modulus G, MPa (positive, below E).
     pub fn shear_modulus_mpa(&self) -> f64 {
         self.material.shear_modulus_mpa
     }

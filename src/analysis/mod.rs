@@ -16,7 +16,9 @@ use rayon::prelude::*;
 /// Options of the geometric stages.
 #[derive(Debug, Clone, Copy)]
 pub struct AnalysisOptions {
+    /// How nodes are found (tolerance, near-tangent warning angle).
     pub nodes: NodeOptions,
+    /// How strip frames are built (normal field fit, straightness threshold).
     pub frames: FrameOptions,
     /// The grid the coordinates are rounded to, mm (0: exact): curves are
     /// smoothed to it. Defaults to what the file's decimals imply.
@@ -24,6 +26,8 @@ pub struct AnalysisOptions {
 }
 
 impl AnalysisOptions {
+    /// The defaults for a network: its node tolerance (mm), default frame
+    /// options, and the precision its coordinates imply.
     pub fn for_network(net: &Network) -> AnalysisOptions {
         AnalysisOptions {
             nodes: NodeOptions::new(net.tolerance_mm),
@@ -37,12 +41,16 @@ impl AnalysisOptions {
 /// with `Network::curves`.
 #[derive(Debug, Clone)]
 pub struct Analysis {
+    /// One smooth interpolant per curve of the network, in the world frame, mm.
     pub curves: Vec<SmoothCurve>,
+    /// Every node, per-curve node lists and the topology warnings.
     pub topology: Topology,
+    /// One strip per curve (edges included): frames, curvatures, node stations.
     pub strips: Vec<StripGeometry>,
 }
 
 impl Analysis {
+    /// The topology stage's warnings, in the order they were found.
     pub fn warnings(&self) -> &[Warning] {
         &self.topology.warnings
     }

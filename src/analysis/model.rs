@@ -101,20 +101,28 @@ impl LamellaLine {
 /// Summary statistics of a network.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
+    /// Number of curves in the network, edges included.
     pub curves: usize,
+    /// Number of nodes (A×B, A×edge and B×edge).
     pub nodes: usize,
+    /// Sum of every strip's curve length, edges included, mm.
     pub total_length_mm: f64,
-    /// Over all strips.
+    /// Shortest distance between consecutive nodes along a curve, mm, over all
+    /// strips; None when no strip has two nodes.
     pub shortest_node_to_node_mm: Option<f64>,
+    /// Longest distance between consecutive nodes along a curve, mm, over all
+    /// strips; None when no strip has two nodes.
     pub longest_node_to_node_mm: Option<f64>,
     /// The kn residual over A and B strips (edges are not asymptotic).
     pub max_normal_curvature_per_mm: f64,
     /// Crossing angles over A×B nodes (edges do not cross at 90°).
     pub min_angle_deg: Option<f64>,
+    /// Largest acute crossing angle over A×B nodes, degrees; None without one.
     pub max_angle_deg: Option<f64>,
 }
 
 impl Summary {
+    /// The summary of an analysed network (`an` computed from `net`).
     pub fn of(net: &Network, an: &Analysis) -> Summary {
         let all_n2n: Vec<f64> = an.strips.iter().flat_map(|s| s.node_to_node_mm()).collect();
         let angles: Vec<f64> = an
@@ -156,15 +164,27 @@ pub struct StripModel {
 /// The profile a network was checked against, and the results.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Checked {
+    /// The profile checked against (validated).
     pub profile: Profile,
+    /// Per strip and per lamella: stresses, utilisation, governing station.
     pub report: CheckReport,
+    /// What to change in the section so every strip passes, when asked for (`check --suggest`).
     pub suggestion: Option<Suggestion>,
 }
 
 /// The finished model of a network.
+///
+/// Guarantees: one [`StripModel`] per strip, index-aligned with
+/// `Analysis::strips`; lamella lines for A and B strips only (none on
+/// edges): without a profile one on the centre line, after `check` the
+/// profile's lamellas, taken from the check report; each line lists the
+/// strip's nodes in the strip's order at ascending stations on its own line,
+/// the last at most its length.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Model {
+    /// Counts, lengths and extreme values over the whole network.
     pub summary: Summary,
+    /// One per strip, index-aligned with `Analysis::strips` (and the network's curves).
     pub strips: Vec<StripModel>,
     /// Added by `check`.
     pub check: Option<Checked>,

@@ -209,7 +209,9 @@ impl Default for NormalFieldOptions {
 /// What the angle field was fitted to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FieldSources {
+    /// The field was fitted to node normals (the curve has at least one node).
     pub nodes: bool,
+    /// The field was fitted to the curve's binormal where its curvature is known.
     pub binormals: bool,
 }
 
@@ -223,6 +225,7 @@ pub struct NormalField {
     /// u₁ of the rotation-minimising frame at each station.
     refs: Vec<DVec3>,
     angle: AngleSpline,
+    /// What the angle θ(s) was fitted to.
     pub sources: FieldSources,
 }
 

@@ -49,14 +49,18 @@ impl Default for FrameOptions {
 /// Where a strip's normals came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NormalSource {
+    /// The network file gave normals; they are interpolated like the points.
     File,
+    /// Fitted to the binormal only (a curve with no node).
     Binormal,
     /// Binormal where curved, node normals where straight.
     BinormalAndNodes,
+    /// Fitted to the node normals only (edge curves, straight curves).
     Nodes,
 }
 
 impl NormalSource {
+    /// The name plan.json uses: `file`, `binormal`, `binormal+nodes` or `nodes`.
     pub fn as_str(self) -> &'static str {
         match self {
             NormalSource::File => "file",
@@ -70,10 +74,15 @@ impl NormalSource {
 /// The Darboux frame and curvatures at one station.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DarbouxFrame {
+    /// Arc length from the curve's first point, mm.
     pub station_mm: f64,
+    /// The curve point at this station, world frame, mm.
     pub point_world_mm: DVec3,
+    /// Unit tangent (the strip's long axis), world frame.
     pub x: DVec3,
+    /// Unit in-surface normal z × x (across the strip: its thickness direction), world frame.
     pub y: DVec3,
+    /// Unit surface normal, oriented like the node normals, world frame.
     pub z: DVec3,
     /// Geodesic curvature, 1/mm (bending about z, the strip's weak axis).
     pub kg_per_mm: f64,
@@ -86,9 +95,13 @@ pub struct DarbouxFrame {
 /// Curvatures at one sample of a strip.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Curvatures {
+    /// Arc length from the curve's first point, mm.
     pub station_mm: f64,
+    /// Geodesic curvature, 1/mm (sign follows z).
     pub kg_per_mm: f64,
+    /// Normal curvature, 1/mm (the residual: zero on an exact asymptotic curve).
     pub kn_per_mm: f64,
+    /// Geodesic torsion, rad/mm.
     pub tg_per_mm: f64,
 }
 
@@ -112,19 +125,34 @@ fn unit_and_derivative(v: DVec3, dv: DVec3) -> (DVec3, DVec3) {
 }
 
 /// The geometry of one strip (curve).
+///
+/// Guarantees: one normal per sample (file normals, else the binormal
+/// oriented by the node normals and blended into them near inflections,
+/// else node normals on straight stretches), interpolated like the curve;
+/// kg, kn, tg from the frame x = tangent, z = normal ⟂ x, y = z × x;
+/// `samples` sorted by station, at most [`MAX_CURVATURE_SPACING_MM`] apart;
+/// `max_abs_kn_per_mm` is the residual, per sample with file normals and at
+/// the nodes otherwise.
 #[derive(Debug, Clone)]
 pub struct StripGeometry {
+    /// Index of the curve in `Network::curves` (and `Analysis::curves`).
     pub curve: usize,
+    /// The curve's id, as in the network file.
     pub id: String,
+    /// The curve's family: A, B or edge.
     pub family: Family,
+    /// Arc length of the smooth curve, mm.
     pub length_mm: f64,
+    /// Where the surface normals along this strip came from.
     pub normal_source: NormalSource,
     /// The curve's nodes, by station.
     pub nodes: Vec<CurveNode>,
     /// Curvatures at every sample of the curve, and between samples farther
     /// apart than [`MAX_CURVATURE_SPACING_MM`]; sorted by station.
     pub samples: Vec<Curvatures>,
+    /// Largest |kg| over `samples`, 1/mm.
     pub max_abs_kg_per_mm: f64,
+    /// Largest |tg| over `samples`, rad/mm.
     pub max_abs_tg_per_mm: f64,
     /// Largest |kn| (the residual: zero on an exact asymptotic curve).
     pub max_abs_kn_per_mm: f64,

@@ -44,6 +44,8 @@ pub struct NodeOptions {
 }
 
 impl NodeOptions {
+    /// Options with a node tolerance (mm, the largest gap that is a node) and a
+    /// near-tangent warning below 15°.
     pub fn new(tolerance_mm: f64) -> NodeOptions {
         NodeOptions {
             tolerance_mm,
@@ -53,20 +55,29 @@ impl NodeOptions {
 }
 
 /// One crossing of two curves.
+///
+/// Guarantees: `gap_mm` ≤ the node tolerance; tangents and normal are unit
+/// vectors, the normal ±(tangent_a × tangent_b) unless the file gave
+/// normals, oriented consistently along every curve.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Node {
+    /// Index of this node in `Topology::nodes`.
     pub id: usize,
     /// Curve index of the first curve (family A, or B in a B×edge node).
     pub a: usize,
     /// Curve index of the second curve (family B or edge).
     pub b: usize,
+    /// Station of the node on curve `a`: arc length from its first point, mm.
     pub station_a_mm: f64,
+    /// Station of the node on curve `b`, mm.
     pub station_b_mm: f64,
     /// Midpoint of the closest approach.
     pub position_world_mm: DVec3,
     /// Distance between the curves at the node.
     pub gap_mm: f64,
+    /// Unit tangent of curve `a` at the node, along increasing station, world frame.
     pub tangent_a_world: DVec3,
+    /// Unit tangent of curve `b` at the node, along increasing station, world frame.
     pub tangent_b_world: DVec3,
     /// Unit surface normal (from file normals, else tangent_a × tangent_b).
     pub normal_world: DVec3,
@@ -93,6 +104,7 @@ pub enum WarningKind {
 }
 
 impl WarningKind {
+    /// The name plan.json uses: `near_tangent`, `overlap`, `close_nodes` or `isolated_curve`.
     pub fn as_str(self) -> &'static str {
         match self {
             WarningKind::NearTangent => "near_tangent",
@@ -108,9 +120,14 @@ impl WarningKind {
 /// station (mm) on the first of them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Warning {
+    /// What the warning is about.
     pub kind: WarningKind,
+    /// One line for a person, naming the curves and, where there is one, the place.
     pub message: String,
+    /// The curves concerned, indices into `Network::curves` (the first is the one
+    /// `station_mm` is on).
     pub curves: Vec<usize>,
+    /// Station on the first curve, mm, where the warning has a place.
     pub station_mm: Option<f64>,
 }
 
@@ -136,17 +153,30 @@ pub fn oriented_angle_deg(ta: DVec3, tb: DVec3, normal: DVec3) -> f64 {
 /// A node seen from one of its curves.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurveNode {
+    /// The node's index in `Topology::nodes`.
     pub node: usize,
+    /// The other curve through the node (index into `Network::curves`).
     pub crossing: usize,
+    /// Station of the node on this curve, mm.
     pub station_mm: f64,
 }
 
 /// The output of the topology stage.
+///
+/// Guarantees: nodes sorted by (first curve, second curve, station on the
+/// first); `per_curve` has one list per network curve, sorted by station; no
+/// two nodes of one curve pair within the merge distance (1 mm + 10 × the
+/// tolerance); near-tangent contacts of a pair that run together (at least
+/// [`OVERLAP_CONTACTS`] within [`OVERLAP_GAP_MM`]) are an overlap warning,
+/// not nodes.
 #[derive(Debug, Clone, Default)]
 pub struct Topology {
+    /// Every node, sorted by (first curve, second curve, station on the first);
+    /// `nodes[i].id == i`.
     pub nodes: Vec<Node>,
     /// Per curve, its nodes sorted by station.
     pub per_curve: Vec<Vec<CurveNode>>,
+    /// Near-tangent crossings, overlaps, close nodes and isolated curves.
     pub warnings: Vec<Warning>,
 }
 

@@ -26,12 +26,16 @@ use rayon::prelude::*;
 pub enum Governs {
     /// No stress at all (a straight, untwisted lamella).
     Nothing,
+    /// Bending about the weak axis, σb = E·|kg|·t/2.
     Bending,
+    /// St. Venant shear, √3·τ with τ = G·|tg|·t.
     Torsion,
+    /// The trapeze effect of twist, σw = E·tg²·h²/12.
     Trapeze,
 }
 
 impl Governs {
+    /// The name plan.json and the CLI use: `nothing`, `bending`, `torsion` or `trapeze`.
     pub fn as_str(self) -> &'static str {
         match self {
             Governs::Nothing => "nothing",
@@ -45,9 +49,13 @@ impl Governs {
 /// Stresses at one point of one lamella.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stresses {
+    /// σb = E·|kg|·t/2, MPa.
     pub bending_stress_mpa: f64,
+    /// τ = G·|tg|·t, MPa.
     pub torsion_shear_mpa: f64,
+    /// σw = E·tg²·h²/12, MPa.
     pub trapeze_stress_mpa: f64,
+    /// σv = √((σb + σw)² + 3τ²), MPa (von Mises).
     pub combined_stress_mpa: f64,
 }
 
@@ -67,6 +75,8 @@ impl Stresses {
         }
     }
 
+    /// The largest of σb, √3·τ and σw (ties: torsion, then bending); `Nothing`
+    /// when σv is zero.
     pub fn governs(&self) -> Governs {
         let b = self.bending_stress_mpa;
         let t = 3f64.sqrt() * self.torsion_shear_mpa;
@@ -88,51 +98,71 @@ impl Stresses {
 pub struct LamellaCheck {
     /// The lamella on its own line: number, offsets, length, node stations.
     pub line: LamellaLine,
+    /// σv / f_d at the worst sample (≥ 0; infinite when the geometry gives no
+    /// finite stress).
     pub utilization: f64,
     /// Where it governs, on the lamella's own line (what the workshop measures).
     pub governing_station_mm: f64,
     /// The same point as a station of the strip's curve.
     pub governing_curve_station_mm: f64,
+    /// The stresses at the governing sample.
     pub stresses: Stresses,
+    /// Which stress term is largest at the governing sample.
     pub governs: Governs,
     /// Smallest bending radius of this lamella; None when straight.
     pub min_bending_radius_mm: Option<f64>,
+    /// Largest |tg| of this lamella on its own line, °/m.
     pub max_twist_deg_per_m: f64,
 }
 
 /// The check of one strip: each lamella, and the worst.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StripCheck {
+    /// Index of the strip in `Analysis::strips` (and of its curve in the network).
     pub strip: usize,
+    /// The curve's id.
     pub id: String,
+    /// One per lamella of the profile (1 on −y, 2 on +y), in lamella order.
     pub lamellas: Vec<LamellaCheck>,
     /// Index into `lamellas` of the highest utilisation.
     pub worst: usize,
 }
 
 impl StripCheck {
+    /// The lamella with the highest utilisation (the first of equals).
     pub fn worst(&self) -> &LamellaCheck {
         &self.lamellas[self.worst]
     }
+    /// Every lamella's utilisation is at most 1.
     pub fn passes(&self) -> bool {
         self.worst().utilization <= 1.0
     }
 }
 
 /// The whole network's check.
+///
+/// Guarantees: one [`StripCheck`] per A and B strip in strip order (edges
+/// are never checked), one [`LamellaCheck`] per lamella of the profile;
+/// utilisation = σv/f_d at the worst sample; the governing station is on
+/// the lamella's own line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckReport {
+    /// f_d, the design strength the stresses are compared with, MPa.
     pub design_strength_mpa: f64,
     /// The profile's limits in pure bending and in pure twist.
     pub limit_bending_radius_mm: f64,
+    /// Largest twist in pure torsion, °/m (with `limit_bending_radius_mm`, mm).
     pub limit_twist_deg_per_m: f64,
+    /// One per A and B strip, in strip order (edges are never checked).
     pub strips: Vec<StripCheck>,
 }
 
 impl CheckReport {
+    /// Every strip passes (utilisation ≤ 1 on every lamella).
     pub fn passes(&self) -> bool {
         self.strips.iter().all(StripCheck::passes)
     }
+    /// Number of strips with a lamella above utilisation 1.
     pub fn overstressed(&self) -> usize {
         self.strips.iter().filter(|s| !s.passes()).count()
     }
@@ -148,6 +178,7 @@ impl CheckReport {
         });
         idx
     }
+    /// Highest utilisation over all strips (0 without strips).
     pub fn max_utilization(&self) -> f64 {
         self.strips
             .iter()

@@ -1,3 +1,11 @@
+//! Clip regions: where traced curves stay. A clip is a set of faces, each a
+//! plane in space (box, block, plane, the sides and caps of a polygon prism)
+//! or a segment in the parameter plane (parameter polygon); built from the
+//! spec's [`ClipSpec`] after [`validate_clip`] has checked it. [`Clip`] is the
+//! [`Region`] curves are traced in; [`AlongFace`] is the clip without one face,
+//! the region an edge is traced in along that face. Coordinates are in the
+//! placed surface's frame (the world), mm.
+
 use super::trace::Region;
 use crate::error::{Error, Location, Result};
 use crate::io::trace_spec::ClipSpec;

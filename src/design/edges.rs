@@ -1,3 +1,8 @@
+//! Edge curves: the clip boundary traced on the surface. From every curve end
+//! that stopped on a clip face, the face's level curve on the surface is
+//! traced both ways (a plane face) or its parameter segment sampled (a
+//! parameter face); a start already on a traced edge is skipped.
+
 use super::clip::{AlongFace, Clip, Face};
 use super::surface::Surface;
 use super::trace::{trace_through, Field, Stop, TraceOptions, Traced};

@@ -6,6 +6,9 @@
 //! `edge` curves. Curves are traced with [`trace`]; the design seeds
 //! them at the spacing along the curves through the seed (`central`) or
 //! alternately along the last curve of the other family (`alternating`).
+//!
+//! This module is the driver; the clip regions are in `clip`, the edge
+//! curves along the clip in `edges`, the seeding helpers in `seed`.
 
 mod clip;
 mod edges;
@@ -190,6 +193,7 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
 
 /// Smallest and largest `sampling.step_mm`.
 pub const MIN_STEP_MM: f64 = 0.1;
+/// Largest `sampling.step_mm`.
 pub const MAX_STEP_MM: f64 = 1000.0;
 /// Smallest `sampling.tolerance_mm`: below, rounding noise in the surface
 /// evaluation exceeds it and steps shrink without end.
@@ -198,8 +202,11 @@ pub const MIN_TOLERANCE_MM: f64 = 1e-10;
 /// What a design produced, besides the network.
 #[derive(Debug, Clone, Default)]
 pub struct DesignReport {
+    /// Number of A curves in the network (after dropping those under 5 % of the spacing).
     pub a_curves: usize,
+    /// Number of B curves in the network.
     pub b_curves: usize,
+    /// Number of edge curves (the clip boundary traced on the surface).
     pub edges: usize,
     /// (curve id, where its start stopped, where its end stopped).
     pub stops: Vec<(String, Stop, Stop)>,
@@ -211,6 +218,14 @@ pub struct DesignReport {
 /// curves, and it passes the same validation as a network file read back
 /// (lamella never writes a network it cannot read). Crossings far from 90°
 /// on a minimal surface become warnings in the report.
+///
+/// The network returned: A curves sorted by their offset from the seed, then
+/// B, then edges (`A00…`, `B00…`, `edge00…`); every A/B curve at least 5 % of
+/// the spacing long; points in mm, world frame, with surface normals; node
+/// tolerance 0.5 mm; at least one A and one B curve, and it passes
+/// [`Network::new`](crate::network::Network::new). Fails with a one-line
+/// [`Error::Input`] naming the spec and the field (or [`Error::Network`] when
+/// the result would not read back).
 pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
     let (raw, mut report) = trace_network(spec, path)?;
     let min_len = (spec.spacing_mm * 0.05).max(1.0);

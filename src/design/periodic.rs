@@ -20,20 +20,26 @@ use glam::{DMat3, DVec2, DVec3};
 /// `flipped` when the copy's normals point against the patch's own.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Placement {
+    /// Rotation from the patch's frame to the world (proper, orthonormal).
     pub rotation: DMat3,
+    /// Translation after the rotation, world frame, mm.
     pub translation: DVec3,
+    /// The copy's normals point against the patch's own (an odd number of half-turns).
     pub flipped: bool,
 }
 
 impl Placement {
+    /// The fundamental patch itself: no rotation, no translation, not flipped.
     pub const IDENTITY: Placement = Placement {
         rotation: DMat3::IDENTITY,
         translation: DVec3::ZERO,
         flipped: false,
     };
+    /// The world point (mm) of a point `p` in the patch's frame (mm).
     pub fn point(&self, p: DVec3) -> DVec3 {
         self.rotation * p + self.translation
     }
+    /// The world direction of a direction `v` in the patch's frame (rotation only).
     pub fn vector(&self, v: DVec3) -> DVec3 {
         self.rotation * v
     }
@@ -69,7 +75,9 @@ impl Placement {
 /// unit `dir`, with the side of the patch.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Edge {
+    /// A point of the edge line (the edge's midpoint), in the placed surface's frame, mm.
     pub point: DVec3,
+    /// Unit direction of the edge line, in the placed surface's frame.
     pub dir: DVec3,
     inside_sign: f64,
 }
@@ -141,30 +149,49 @@ pub enum WorldField {
     /// An asymptotic family, told apart by direction at each edge.
     Asymptotic,
     /// The level set of a world plane (point, unit normal): a clip edge.
-    Level { point_mm: DVec3, normal: DVec3 },
+    Level {
+        /// A point of the plane, world frame, mm.
+        point_mm: DVec3,
+        /// Unit normal of the plane, world frame.
+        normal: DVec3,
+    },
 }
 
 /// A point of an unfolded curve: which copy and where in the patch.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Site {
+    /// Which copy of the patch.
     pub placement: Placement,
+    /// Parameters (u, v) in the fundamental patch, |(u, v)| < the Schwarz D domain radius.
     pub uv: DVec2,
 }
 
 /// A curve traced across copies of the patch.
+///
+/// Guarantees (from [`unfold_through`]): samples at equal arc length, at most
+/// `max_step_mm` apart (more where the curve turns tightly); `sites`,
+/// `points_world_mm`, `normals_world` and `stations_mm` index-aligned; the
+/// ends exactly where the trace stopped.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Unfolded {
+    /// Copy and patch parameters of every sample, index-aligned with the points.
     pub sites: Vec<Site>,
+    /// Samples at equal arc length, world frame, mm; at least one.
     pub points_world_mm: Vec<DVec3>,
+    /// Unit surface normal at every sample, world frame, oriented continuously across copies.
     pub normals_world: Vec<DVec3>,
+    /// Arc length of every sample from the first, mm (ascending, 0 first).
     pub stations_mm: Vec<f64>,
+    /// Why the curve ended at its first sample.
     pub stop_start: Stop,
+    /// Why the curve ended at its last sample.
     pub stop_end: Stop,
     /// Station of the site the curve was traced through.
     pub seed_station_mm: f64,
 }
 
 impl Unfolded {
+    /// Arc length of the curve, mm (0 for a single point).
     pub fn length_mm(&self) -> f64 {
         *self.stations_mm.last().unwrap_or(&0.0)
     }

@@ -1,3 +1,9 @@
+//! Seeding helpers: stations at the spacing along a curve ([`marks`]), where a
+//! parameter point falls on a traced curve ([`station_of`]), the crossing of
+//! two traced curves ([`crossing_uv`]) for the alternating design, and the
+//! point index and limits of the periodic fill. The seeding loops themselves
+//! (central, alternating, fill) stay in the driver, `design/mod.rs`.
+
 use super::trace::Traced;
 use glam::{DVec2, DVec3};
 

@@ -12,11 +12,17 @@ use glam::{DMat3, DVec2, DVec3};
 /// A point of a surface with its partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceJet {
+    /// The point X(u, v), in the surface's frame and units (mm and world for [`Placed`]).
     pub p: DVec3,
+    /// ∂X/∂u, same units per unit of u.
     pub pu: DVec3,
+    /// ∂X/∂v.
     pub pv: DVec3,
+    /// ∂²X/∂u².
     pub puu: DVec3,
+    /// ∂²X/∂u∂v.
     pub puv: DVec3,
+    /// ∂²X/∂v².
     pub pvv: DVec3,
 }
 
@@ -29,18 +35,23 @@ pub struct Curvature {
     pub first: [f64; 3],
     /// Second fundamental form L, M, N.
     pub second: [f64; 3],
-    /// Principal curvatures k1 ≥ k2.
+    /// The larger principal curvature (k1 ≥ k2), 1 per surface unit (1/mm
+    /// for [`Placed`]); the normal curvature along d1.
     pub k1: f64,
+    /// The smaller principal curvature, 1 per surface unit (1/mm for [`Placed`]).
     pub k2: f64,
-    /// Unit principal directions (3D) of k1 and k2; d2 = normal × d1.
+    /// Unit principal direction (3D) of k1, tangent to the surface.
     pub d1: DVec3,
+    /// Unit principal direction of k2, normal × d1.
     pub d2: DVec3,
 }
 
 impl Curvature {
+    /// Gaussian curvature K = k1·k2 (negative on an anticlastic surface).
     pub fn gaussian(&self) -> f64 {
         self.k1 * self.k2
     }
+    /// Mean curvature H = (k1 + k2)/2 (zero on a minimal surface).
     pub fn mean(&self) -> f64 {
         0.5 * (self.k1 + self.k2)
     }
@@ -82,6 +93,7 @@ pub trait Surface: Sync + Send {
     fn derivatives(&self, uv: DVec2) -> SurfaceJet {
         self.eval(uv)
     }
+    /// The point X(u, v) (mm, world frame for [`Placed`]).
     fn point(&self, uv: DVec2) -> DVec3 {
         self.eval(uv).p
     }
@@ -172,6 +184,7 @@ impl Surface for Enneper {
 /// Catenoid X = c(cosh v cos u, cosh v sin u, v).
 #[derive(Debug, Clone, Copy)]
 pub struct Catenoid {
+    /// Scale of the neck: waist radius c, in surface units (non-zero).
     pub c: f64,
 }
 
@@ -194,6 +207,7 @@ impl Surface for Catenoid {
 /// Helicoid X = (v cos u, v sin u, c·u).
 #[derive(Debug, Clone, Copy)]
 pub struct Helicoid {
+    /// Pitch: the surface rises 2π·c per turn, in surface units (non-zero).
     pub c: f64,
 }
 
@@ -215,6 +229,7 @@ impl Surface for Helicoid {
 /// Hyperbolic paraboloid z = xy/c over (x, y): anticlastic, not minimal.
 #[derive(Debug, Clone, Copy)]
 pub struct Hypar {
+    /// Curvature scale: z = xy/c, in surface units (non-zero).
     pub c: f64,
 }
 
@@ -435,9 +450,13 @@ impl Surface for SchwarzD {
 /// rotation and a translation (mm): X' = R·(s·X) + t.
 #[derive(Clone)]
 pub struct Placed {
+    /// The surface in its own units.
     pub surface: std::sync::Arc<dyn Surface>,
+    /// Millimetres per surface unit (positive).
     pub scale_mm: f64,
+    /// Rotation applied after scaling (orthonormal).
     pub rotation: DMat3,
+    /// Translation applied last, world frame, mm.
     pub translation_mm: DVec3,
 }
 

@@ -16,13 +16,19 @@ use glam::{DVec2, DVec3};
 /// A direction field on the surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Field {
+    /// The asymptotic direction turned from the first principal direction d1 towards d2 (family A).
     AsymptoticA,
+    /// The other asymptotic direction, turned from d1 away from d2 (family B).
     AsymptoticB,
+    /// The principal direction of the larger curvature k1.
     PrincipalMax,
+    /// The principal direction of the smaller curvature k2.
     PrincipalMin,
     /// The level set of the plane (point, unit normal): tangent n_surface × n_plane.
     Level {
+        /// A point of the plane, in the surface's frame (world for [`Placed`](crate::design::surface::Placed)), mm.
         point_mm: DVec3,
+        /// Unit normal of the plane, in the same frame.
         normal: DVec3,
     },
 }
@@ -86,6 +92,7 @@ pub enum Stop {
 }
 
 impl Stop {
+    /// A few words for messages and the design report (`clip`, `domain edge`, …).
     pub fn as_str(self) -> &'static str {
         match self {
             Stop::Clip => "clip",
@@ -106,6 +113,7 @@ pub struct TraceOptions {
     pub tolerance_mm: f64,
     /// Largest step (and so sample spacing), mm.
     pub max_step_mm: f64,
+    /// Smallest step, mm: a step that must shrink below it ends the trace with [`Stop::StepTooSmall`].
     pub min_step_mm: f64,
     /// How precisely a boundary crossing is located, mm.
     pub boundary_tolerance_mm: f64,
@@ -133,6 +141,8 @@ impl Default for TraceOptions {
 
 /// A region of space (and of the parameter domain) that traces stay inside.
 pub trait Region: Sync {
+    /// Whether the surface point `p_mm` (the surface's frame, mm) at parameters
+    /// `uv` is inside; a point on the boundary may count either way.
     fn contains(&self, uv: DVec2, p_mm: DVec3) -> bool;
 }
 
@@ -144,18 +154,31 @@ impl Region for Everywhere {
     }
 }
 
-/// A traced curve: parameters and points at every accepted step.
+/// A traced curve, both ways from its seed.
+///
+/// Guarantees (from [`trace_through`]): at least two samples, at equal arc
+/// length, at most `max_step_mm` apart (⌈length/step⌉ pieces, more where the
+/// curve turns more than [`MAX_SAMPLE_TURN_RAD`] between chords); each
+/// within the integrator's `tolerance_mm` (local, per step) of the field's
+/// integral curve; an end that stopped at the clip lies on its boundary to
+/// `boundary_tolerance_mm`; points from the exact surface.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Traced {
+    /// Parameters (u, v) of every sample.
     pub uv: Vec<DVec2>,
+    /// The surface point of every sample, in the surface's frame (world for a
+    /// [`Placed`](crate::design::surface::Placed) surface), mm.
     pub points_world_mm: Vec<DVec3>,
     /// Arc length from the first point, mm.
     pub stations_mm: Vec<f64>,
+    /// Why the backward trace (towards the first sample) ended.
     pub stop_start: Stop,
+    /// Why the forward trace (towards the last sample) ended.
     pub stop_end: Stop,
 }
 
 impl Traced {
+    /// Arc length, mm (the last station).
     pub fn length_mm(&self) -> f64 {
         *self.stations_mm.last().unwrap_or(&0.0)
     }
@@ -404,14 +427,18 @@ impl Tracer<'_> {
 /// integrated to (dense output by a fresh step from the segment's start).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Run {
+    /// Parameters (u, v) at the start and after every accepted step.
     pub uv: Vec<DVec2>,
+    /// Arc length of every step from the start, mm (ascending, 0 first).
     pub stations_mm: Vec<f64>,
-    /// Direction (3D, unit) at the start of segment k (uv[k] → uv[k + 1]).
+    /// Direction (3D, unit) at the start of segment k (`uv[k]` → `uv[k + 1]`).
     pub dirs: Vec<DVec3>,
+    /// Why this direction ended.
     pub stop: Stop,
 }
 
 impl Run {
+    /// Arc length of this direction, mm (the last station).
     pub fn length_mm(&self) -> f64 {
         *self.stations_mm.last().unwrap_or(&0.0)
     }

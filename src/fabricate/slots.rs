@@ -131,9 +131,9 @@ pub fn sweep_range_rad(angle_deg: f64, tolerance_deg: f64) -> (f64, f64) {
 /// A slot along this lamella's line, from the node's station, mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlotSpan {
-    /// Start and end along the line, relative to the node, clearance
-    /// included.
+    /// Start along the line, relative to the node, clearance included.
     pub lo_mm: f64,
+    /// End along the line, relative to the node, clearance included.
     pub hi_mm: f64,
     /// Which crossing lamellas (their numbers) pass through it.
     pub crossing_lamellas: [bool; 2],

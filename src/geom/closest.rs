@@ -1,6 +1,8 @@
+//! Closest points of two line segments in space (used to seed node refinement).
+
 use glam::DVec3;
 
-/// Parameters (u, v) ∈ [0,1]² of the closest points of segments p0p1 and q0q1
+/// Parameters (u, v) ∈ \[0, 1\]² of the closest points of segments p0p1 and q0q1
 /// and their squared distance (Ericson, Real-Time Collision Detection 5.1.9).
 pub fn closest_segment_params(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> (f64, f64, f64) {
     let d1 = p1 - p0;

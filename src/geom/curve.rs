@@ -71,9 +71,13 @@ const GL_WEIGHTS: [f64; 8] = [
 /// Value and derivatives (with respect to the parameter) at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Jet {
+    /// The value at the point (same units as the samples).
     pub value: DVec3,
+    /// First derivative with respect to the parameter.
     pub d1: DVec3,
+    /// Second derivative with respect to the parameter.
     pub d2: DVec3,
+    /// Third derivative with respect to the parameter.
     pub d3: DVec3,
 }
 
@@ -117,12 +121,15 @@ impl Hermite5 {
         Hermite5 { t, p, d1, d2 }
     }
 
+    /// The parameters of the samples (strictly increasing).
     pub fn knots(&self) -> &[f64] {
         &self.t
     }
+    /// The values at the knots.
     pub fn values(&self) -> &[DVec3] {
         &self.p
     }
+    /// Number of polynomial pieces (knots − 1, at least 1).
     pub fn segments(&self) -> usize {
         self.t.len() - 1
     }
@@ -216,9 +223,14 @@ pub fn fit_derivatives(t: &[f64], v: &[DVec3], degree: usize) -> (Vec<DVec3>, Ve
 /// parameter).
 #[derive(Debug, Clone)]
 pub struct SmoothedSamples {
+    /// Fitted value at each sample (the sample itself for exact coordinates), mm.
     pub values: Vec<DVec3>,
+    /// First derivative over `t` at each sample.
     pub d1: Vec<DVec3>,
+    /// Second derivative over `t` at each sample.
     pub d2: Vec<DVec3>,
+    /// Standard deviation of the rounding noise in each second derivative (1/mm
+    /// for a chord parameter; 0 for exact coordinates).
     pub d2_noise: Vec<f64>,
     /// Half-width of the fit window used, mm (0: the 7-sample fit).
     pub half_width_mm: f64,
@@ -511,6 +523,14 @@ fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; 
 }
 
 /// A space curve through its samples, parameterised by arc length.
+///
+/// Guarantees: passes through every sample (exact coordinates) or within the
+/// rounding of its coordinates (rounded ones, smoothed to `precision_mm`);
+/// C² (quintic Hermite over the chord-length parameter, derivatives from
+/// local degree-4 least-squares fits over at least 7 samples); stations are
+/// arc length from the first point, by 8-point Gauss–Legendre per segment,
+/// ascending. Points keep the frame and units of the samples (mm; the world
+/// frame for network curves).
 #[derive(Debug, Clone)]
 pub struct SmoothCurve {
     h: Hermite5,
@@ -527,8 +547,11 @@ pub struct SmoothCurve {
 /// Position and unit tangent at a station.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurvePoint {
+    /// Arc length from the first sample, mm, clamped to [0, length].
     pub station_mm: f64,
+    /// The point, in the frame of the curve's samples (world for network curves), mm.
     pub point_mm: DVec3,
+    /// Unit tangent along increasing station (zero only on a degenerate curve).
     pub tangent: DVec3,
 }
 
@@ -617,9 +640,11 @@ impl SmoothCurve {
     pub fn sample_stations_mm(&self) -> &[f64] {
         &self.s
     }
+    /// The (smoothed) samples the curve passes through, mm, one per station.
     pub fn samples(&self) -> &[DVec3] {
         self.h.values()
     }
+    /// The interpolant over the chord parameter.
     pub fn hermite(&self) -> &Hermite5 {
         &self.h
     }

@@ -1,3 +1,7 @@
+//! NURBS curves: rational B-splines evaluated with de Boor's algorithm in
+//! homogeneous coordinates and sampled per knot span (how DXF SPLINEs are
+//! read). Pure geometry: no file format, no units of its own.
+
 use glam::DVec3;
 
 /// A NURBS curve, evaluated with de Boor's algorithm in homogeneous coordinates.
@@ -9,6 +13,10 @@ pub struct Nurbs {
 }
 
 impl Nurbs {
+    /// A curve of `degree` ≥ 1 with `knots` (non-decreasing, finite, exactly
+    /// control points + degree + 1 of them), control points `ctrl` (finite, more
+    /// than `degree`; any length unit, kept) and `weights` (one per control point,
+    /// positive). Fails with a one-line reason when any of that does not hold.
     pub fn new(
         degree: usize,
         knots: Vec<f64>,

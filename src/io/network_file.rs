@@ -34,7 +34,9 @@ struct CurveFile {
 /// Which text syntax a network file uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Syntax {
+    /// YAML (`.yaml`, `.yml`).
     Yaml,
+    /// JSON (`.json`).
     Json,
 }
 

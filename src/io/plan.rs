@@ -12,17 +12,30 @@ use crate::profile::Profile;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+/// The schema name written into every plan; later stages add fields, never rename.
 pub const SCHEMA: &str = "lamella-plan/2";
 
+/// The whole plan.json: what the network is, every strip and node, the
+/// warnings and, after `check`, the profile and the verdict. Lengths in mm,
+/// angles in degrees, stresses in MPa, curvature and twist per metre; numbers
+/// rounded to fixed decimals (lengths 4, angles 6) so equal inputs give equal bytes.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Plan {
+    /// Always [`SCHEMA`] (`lamella-plan/2`).
     pub schema: String,
+    /// `lamella` and the version that wrote the file.
     pub generator: String,
+    /// Always `mm`: every length in the file.
     pub units: String,
+    /// The network read: name, file, units, tolerance.
     pub network: NetworkSummary,
+    /// Counts and extremes over the whole network.
     pub summary: Summary,
+    /// One per curve, in network file order (edges included).
     pub strips: Vec<PlanStrip>,
+    /// Every node, in node id order.
     pub nodes: Vec<PlanNode>,
+    /// The topology warnings, in the order found.
     pub warnings: Vec<PlanWarning>,
     /// The resolved material profile (added by `check`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -32,71 +45,108 @@ pub struct Plan {
     pub check: Option<PlanCheckSummary>,
 }
 
+/// The profile a network was checked against, as used (`check` only).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanProfile {
+    /// The profile's name.
     pub name: String,
+    /// The profile's file name (no directory).
     pub source: String,
+    /// The material's name.
     pub material: String,
+    /// Lamella thickness t, mm.
     pub thickness_mm: f64,
+    /// Lamella height h, along the surface normal, mm.
     pub height_mm: f64,
+    /// Lamellas per strip: 1 or 2.
     pub lamellas_per_strip: u32,
+    /// Gap between the two lamellas of a doubled strip, mm (0 for one lamella).
     pub gap_mm: f64,
+    /// Young's modulus E, MPa.
     pub youngs_modulus_mpa: f64,
+    /// Shear modulus G, MPa.
     pub shear_modulus_mpa: f64,
+    /// Characteristic strength f_k, MPa.
     pub characteristic_strength_mpa: f64,
+    /// Partial safety factor γ_M (dimensionless).
     pub partial_factor: f64,
+    /// Modification factor k_mod (dimensionless; 1 for steel).
     pub modification_factor: f64,
+    /// Design strength f_d = k_mod·f_k/γ_M, MPa (4 decimals).
     pub design_strength_mpa: f64,
+    /// `interlocking` or `two_level`.
     pub joint_system: String,
+    /// Height offset between the two levels of a two-level joint, mm (0 otherwise).
     pub level_offset_mm: f64,
     /// The whole profile as read (every field, for later stages).
     pub resolved: serde_json::Value,
 }
 
+/// The elastic check's verdict over all A and B strips (`check` only).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanCheckSummary {
+    /// Every lamella of every A and B strip has utilisation ≤ 1.
     pub passes: bool,
+    /// Number of strips with a lamella above utilisation 1.
     pub strips_overstressed: usize,
+    /// Highest utilisation σv/f_d over all lamellas (6 decimals).
     pub max_utilization: f64,
     /// The profile's limits: bending radius in pure bending, twist in pure twist.
     pub limit_bending_radius_mm: f64,
+    /// Largest twist in pure torsion, °/m.
     pub limit_twist_deg_per_m: f64,
+    /// The section changes that would pass (`check --suggest` only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub suggestion: Option<PlanSuggestion>,
 }
 
+/// The section changes that make every strip pass (mm, 4 decimals).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanSuggestion {
+    /// Largest thickness at the profile's height at which every strip passes, mm; null if none.
     pub max_thickness_mm: Option<f64>,
+    /// Largest height at the profile's thickness at which every strip passes, mm;
+    /// null when height does not matter (no twist) or none works.
     pub max_height_mm: Option<f64>,
+    /// When no thickness works at the profile's height: [height, thickness] in mm that does.
     pub height_mm_with_thickness_mm: Option<[f64; 2]>,
 }
 
+/// The stresses of one lamella at its governing point (MPa, 4 decimals).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanStress {
+    /// σv/f_d at the governing point (6 decimals; above 1 fails).
     pub utilization: f64,
     /// On the lamella's own line.
     pub governing_station_mm: f64,
+    /// Bending about the weak axis σb = E·|kg|·t/2, MPa.
     pub bending_stress_mpa: f64,
+    /// St. Venant shear τ = G·|tg|·t, MPa.
     pub torsion_shear_mpa: f64,
+    /// Trapeze stress of twist σw = E·tg²·h²/12, MPa.
     pub trapeze_stress_mpa: f64,
+    /// σv = √((σb + σw)² + 3τ²), MPa.
     pub combined_stress_mpa: f64,
     /// bending, torsion or trapeze.
     pub governs: String,
 }
 
+/// A strip's worst lamella and its stresses (`check` only).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanStripCheck {
     /// The worst lamella's number.
     pub lamella: u32,
+    /// The worst lamella's stresses (flattened into this object).
     #[serde(flatten)]
     pub stress: PlanStress,
 }
 
+/// One topology warning.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanWarning {
     /// near_tangent, overlap, close_nodes or isolated_curve.
     pub kind: String,
+    /// One line for a person.
     pub message: String,
     /// Ids of the curves concerned.
     pub curves: Vec<String>,
@@ -104,11 +154,16 @@ pub struct PlanWarning {
     pub station_mm: Option<f64>,
 }
 
+/// One lamella of a strip on its own offset line.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanLamella {
+    /// Lamella number: 1 on −y, 2 on +y (1 for the centre line without a profile).
     pub lamella: u32,
+    /// Offset from the strip's curve across the surface (along y), mm.
     pub dy_mm: f64,
+    /// Offset along the surface normal z, mm.
     pub dz_mm: f64,
+    /// Length of the lamella's own line, mm.
     pub length_mm: f64,
     /// The strip's nodes at their stations on this lamella's own line.
     pub nodes: Vec<PlanLamellaNode>,
@@ -117,54 +172,82 @@ pub struct PlanLamella {
     pub checked: Option<PlanLamellaCheck>,
 }
 
+/// A node on a lamella's own line.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanLamellaNode {
+    /// Node id (index into `nodes`).
     pub node: usize,
+    /// Arc length along the lamella's line from its start, mm.
     pub station_mm: f64,
 }
 
+/// The elastic check of one lamella.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanLamellaCheck {
+    /// Smallest bending radius of this lamella, mm; null when straight.
     pub min_bending_radius_mm: Option<f64>,
+    /// Largest twist of this lamella on its own line, °/m.
     pub max_twist_deg_per_m: f64,
+    /// The stresses at its governing point.
     pub check: PlanStress,
 }
 
+/// The network a plan was made from.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct NetworkSummary {
+    /// The network's name.
     pub name: String,
     /// The file name (not the full path, so plans are portable).
     pub source: String,
+    /// The unit the network file was written in (`mm`, `cm`, `m`, `in`, `ft`).
     pub file_units: String,
+    /// Node tolerance, mm.
     pub tolerance_mm: f64,
 }
 
+/// Counts and extremes over the whole network.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Summary {
+    /// Number of curves, edges included.
     pub curves: usize,
+    /// Number of nodes.
     pub nodes: usize,
+    /// Total curve length, edges included, mm.
     pub total_length_mm: f64,
+    /// Shortest distance between consecutive nodes along any curve, mm; null without one.
     pub shortest_node_to_node_mm: Option<f64>,
+    /// Longest distance between consecutive nodes along any curve, mm; null without one.
     pub longest_node_to_node_mm: Option<f64>,
+    /// Largest |kn| residual over A and B strips, 1/m (zero on exact asymptotic curves).
     pub max_normal_curvature_per_m: f64,
+    /// Smallest acute crossing angle over A×B nodes, degrees; null without one.
     pub min_angle_deg: Option<f64>,
+    /// Largest acute crossing angle over A×B nodes, degrees; null without one.
     pub max_angle_deg: Option<f64>,
 }
 
+/// One strip (curve) of the network.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanStrip {
+    /// The curve's id.
     pub id: String,
+    /// `A`, `B` or `edge`.
     pub family: String,
+    /// Arc length of the curve, mm.
     pub length_mm: f64,
+    /// The strip's nodes by station along the curve.
     pub nodes: Vec<PlanStripNode>,
     /// Lengths between consecutive nodes.
     pub node_to_node_mm: Vec<f64>,
     /// From the strip's start to its first node, and from its last node to its end.
     pub start_to_first_node_mm: Option<f64>,
+    /// From the last node to the strip's end, mm; null without nodes.
     pub last_node_to_end_mm: Option<f64>,
     /// None for a straight strip.
     pub min_bending_radius_mm: Option<f64>,
+    /// Largest geodesic torsion |tg| along the curve, °/m.
     pub max_twist_deg_per_m: f64,
+    /// Largest |kn| residual, 1/m (per sample with file normals, at the nodes otherwise).
     pub max_normal_curvature_per_m: f64,
     /// Where the surface normals came from: file, binormal, binormal+nodes, nodes.
     pub normals: String,
@@ -177,29 +260,41 @@ pub struct PlanStrip {
     pub lamellas: Option<Vec<PlanLamella>>,
 }
 
+/// A node seen from one strip.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanStripNode {
+    /// Node id (index into `nodes`).
     pub node: usize,
     /// Id of the crossing curve.
     pub crossing: String,
+    /// Arc length along the strip's curve from its first point, mm.
     pub station_mm: f64,
+    /// Acute crossing angle, degrees.
     pub angle_deg: f64,
 }
 
+/// One node: where two curves cross.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanNode {
+    /// Node id: its index in `nodes`.
     pub id: usize,
     /// The A curve (or the B curve of a B×edge node).
     pub a: String,
     /// The B curve (or the edge curve).
     pub b: String,
+    /// Station of the node on curve `a`, mm.
     pub station_a_mm: f64,
+    /// Station of the node on curve `b`, mm.
     pub station_b_mm: f64,
+    /// Midpoint of the closest approach, world frame, mm.
     pub position_mm: [f64; 3],
+    /// Unit surface normal, world frame (7 decimals), oriented consistently along every curve.
     pub normal: [f64; 3],
+    /// Acute angle between the two tangents, degrees, in [0, 90].
     pub angle_deg: f64,
     /// From A's tangent line to B's, counter-clockwise about the normal, [0, 180).
     pub oriented_angle_deg: f64,
+    /// Distance between the two curves at the node, mm (at most the tolerance).
     pub gap_mm: f64,
 }
 

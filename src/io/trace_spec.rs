@@ -21,31 +21,38 @@ pub fn load(path: &Path) -> Result<TraceSpec> {
     })
 }
 
+/// A trace spec as written (`X.trace.yaml`): what to trace and how finely.
+/// Validated by [`design`](crate::design::design), which names the field on error.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct TraceSpec {
     /// Network name (default: the spec's file stem).
     #[serde(default)]
     pub name: Option<String>,
+    /// `surface:` which analytic surface.
     pub surface: SurfaceName,
     /// The surface's shape parameter c (catenoid, helicoid, hypar), surface units.
     #[serde(default = "one")]
     pub c: f64,
     /// mm per surface unit.
     pub scale_mm: f64,
+    /// `placement:` rotation and translation of the scaled surface; default none.
     #[serde(default)]
     pub placement: Placement,
     /// Seed point (u, v) in the surface's parameters.
     pub seed: [f64; 2],
     /// Target spacing between neighbouring curves of a family, mm.
     pub spacing_mm: f64,
+    /// `net:` asymptotic (default) or principal families.
     #[serde(default)]
     pub net: Net,
+    /// `design:` how curves are seeded: `central` (default) or `alternating`.
     #[serde(default)]
     pub design: Design,
     /// Most curves per family on each side of the seed.
     #[serde(default = "default_max_curves")]
     pub max_curves_per_side: usize,
+    /// `clip:` what part of the surface to keep; default the whole domain.
     #[serde(default)]
     pub clip: Option<ClipFile>,
     /// Trace on the fundamental patch and unfold across its edges by the
@@ -56,6 +63,7 @@ pub struct TraceSpec {
     /// family leaves gaps wider than ¾ of the spacing.
     #[serde(default)]
     pub fill: bool,
+    /// `sampling:` sample spacing and integrator tolerance.
     #[serde(default)]
     pub sampling: SamplingSpec,
 }
@@ -67,27 +75,37 @@ fn default_max_curves() -> usize {
     200
 }
 
+/// `surface:` the analytic surfaces lamella can trace.
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum SurfaceName {
+    /// Enneper's minimal surface (domain |(u, v)| < √3).
     Enneper,
+    /// The catenoid of waist radius c.
     Catenoid,
+    /// The helicoid of pitch 2π·c.
     Helicoid,
+    /// Scherk's doubly periodic minimal surface.
     Scherk,
+    /// Schwarz's D surface (triply periodic; one patch, or unfolded with `periodic`).
     SchwarzD,
+    /// The hyperbolic paraboloid z = xy/c (anticlastic, not minimal).
     Hypar,
 }
 
+/// `placement:` how the scaled surface is placed in the world: X' = R·X + t.
 #[derive(Debug, Clone, Deserialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Placement {
     /// Rotations about x, then y, then z, degrees.
     #[serde(default)]
     pub rotate_deg: [f64; 3],
+    /// Translation after the rotation, world frame, mm; default zero.
     #[serde(default)]
     pub translate_mm: [f64; 3],
 }
 
+/// `net:` which families of curves become A and B.
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Net {
@@ -98,6 +116,7 @@ pub enum Net {
     Principal,
 }
 
+/// `design:` how the curves of a family are seeded.
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Design {
@@ -114,25 +133,41 @@ pub enum Design {
 #[derive(Debug, Clone, PartialEq)]
 pub enum ClipSpec {
     /// Keep what lies inside an axis-aligned box, mm.
-    Box { min_mm: [f64; 3], max_mm: [f64; 3] },
+    Box {
+        /// Lowest corner (x, y, z), world frame, mm.
+        min_mm: [f64; 3],
+        /// Highest corner (x, y, z), world frame, mm; above `min_mm` on every axis.
+        max_mm: [f64; 3],
+    },
     /// Keep the side of the plane opposite its normal.
     Plane {
+        /// A point of the plane, world frame, mm.
         point_mm: [f64; 3],
+        /// The plane's normal, world frame (any non-zero length): it points out of the kept side.
         normal: [f64; 3],
     },
     /// Keep what lies inside a polygon in plan (x, y), optionally between two heights.
     Polygon {
+        /// Corners (x, y) of the plan polygon, world frame, mm: at least 3, any orientation.
         points_mm: Vec<[f64; 2]>,
+        /// Lowest z kept, mm; none: unbounded below.
         z_min_mm: Option<f64>,
+        /// Highest z kept, mm; none: unbounded above.
         z_max_mm: Option<f64>,
     },
     /// Keep what lies inside a polygon in the parameter plane (u, v).
-    Parameters { polygon: Vec<[f64; 2]> },
+    Parameters {
+        /// Corners (u, v) in the surface's parameters: at least 3, any orientation.
+        polygon: Vec<[f64; 2]>,
+    },
     /// Keep what lies inside a block (a box turned about x, then y, then z
     /// about its centre).
     Block {
+        /// Centre of the block, world frame, mm.
         center_mm: [f64; 3],
+        /// Edge lengths along the block's own x, y, z, mm; each positive.
         size_mm: [f64; 3],
+        /// Rotations about x, then y, then z, degrees.
         rotate_deg: [f64; 3],
     },
 }
@@ -141,54 +176,75 @@ pub enum ClipSpec {
 #[derive(Debug, Clone, Deserialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct ClipFile {
+    /// `box:` an axis-aligned box.
     #[serde(rename = "box", default)]
     pub box_: Option<BoxClip>,
+    /// `plane:` a half-space.
     #[serde(default)]
     pub plane: Option<PlaneClip>,
+    /// `polygon:` a vertical prism over a plan polygon.
     #[serde(default)]
     pub polygon: Option<PolygonClip>,
+    /// `parameters:` a polygon in the parameter plane.
     #[serde(default)]
     pub parameters: Option<ParameterClip>,
+    /// `block:` a rotated box.
     #[serde(default)]
     pub block: Option<BlockClip>,
 }
 
+/// `clip.block:` a box turned about its centre.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct BlockClip {
+    /// Centre, world frame, mm.
     pub center_mm: [f64; 3],
+    /// Edge lengths along the block's own axes, mm; each positive.
     pub size_mm: [f64; 3],
+    /// Rotations about x, then y, then z, degrees; default none.
     #[serde(default)]
     pub rotate_deg: [f64; 3],
 }
 
+/// `clip.box:` an axis-aligned box.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct BoxClip {
+    /// Lowest corner (x, y, z), world frame, mm.
     pub min_mm: [f64; 3],
+    /// Highest corner (x, y, z), world frame, mm.
     pub max_mm: [f64; 3],
 }
 
+/// `clip.plane:` keep the side opposite the normal.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneClip {
+    /// A point of the plane, world frame, mm.
     pub point_mm: [f64; 3],
+    /// Normal pointing out of the kept side, world frame (non-zero, any length).
     pub normal: [f64; 3],
 }
 
+/// `clip.polygon:` a vertical prism over a plan polygon.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct PolygonClip {
+    /// Corners (x, y), world frame, mm: at least 3, enclosing an area.
     pub points_mm: Vec<[f64; 2]>,
+    /// Lowest z kept, mm; optional.
     #[serde(default)]
     pub z_min_mm: Option<f64>,
+    /// Highest z kept, mm; optional.
     #[serde(default)]
     pub z_max_mm: Option<f64>,
 }
 
+/// `clip.parameters:` a polygon in the parameter plane.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ParameterClip {
+    /// Corners (u, v) in the surface's parameters: at least 3, enclosing an area.
     pub polygon: Vec<[f64; 2]>,
 }
 
@@ -235,6 +291,7 @@ impl ClipFile {
     }
 }
 
+/// `sampling:` how finely curves are traced and sampled.
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SamplingSpec {

@@ -43,8 +43,11 @@ pub const MAX_TOLERANCE_MM: f64 = 1000.0;
 /// The two asymptotic families and the boundary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Family {
+    /// The first asymptotic (or principal) family.
     A,
+    /// The second family, crossing A.
     B,
+    /// The cut boundary: crosses A and B, never checked as a lamella.
     Edge,
 }
 
@@ -80,6 +83,7 @@ impl Family {
         }
         None
     }
+    /// The name in files and messages: `A`, `B` or `edge`.
     pub fn as_str(self) -> &'static str {
         match self {
             Family::A => "A",
@@ -102,14 +106,21 @@ impl fmt::Display for Family {
 /// Length units a file may be written in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Unit {
+    /// Millimetres.
     Mm,
+    /// Centimetres (10 mm).
     Cm,
+    /// Metres (1000 mm).
     M,
+    /// Inches (25.4 mm).
     In,
+    /// Feet (304.8 mm).
     Ft,
 }
 
 impl Unit {
+    /// Parse a unit as written in a file (`mm`, `cm`, `m`, `in`, `ft`; surrounding
+    /// spaces ignored); None for anything else.
     pub fn parse(name: &str) -> Option<Unit> {
         match name.trim() {
             "mm" => Some(Unit::Mm),
@@ -130,6 +141,7 @@ impl Unit {
             Unit::Ft => 304.8,
         }
     }
+    /// The unit's name as files write it (`mm`, `cm`, `m`, `in`, `ft`).
     pub fn as_str(self) -> &'static str {
         match self {
             Unit::Mm => "mm",
@@ -144,44 +156,71 @@ impl Unit {
 /// A curve as read, before validation, in file units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawCurve {
+    /// The curve's id (unique in a valid network; the design names `A00`, `B00`, `edge00`).
     pub id: String,
+    /// The curve's family.
     pub family: Family,
+    /// Sample points in file units, world frame, in file order.
     pub points: Vec<DVec3>,
+    /// Surface normals at the points (world frame, any length), if the file gives them.
     pub normals: Option<Vec<DVec3>>,
 }
 
 /// A network as read from any format, before validation, in file units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawNetwork {
+    /// The network's name (from the file, else its stem).
     pub name: String,
+    /// The length unit of the points and the tolerance.
     pub unit: Unit,
     /// Node tolerance in file units, if the file gives one.
     pub tolerance: Option<f64>,
+    /// The curves in file order.
     pub curves: Vec<RawCurve>,
 }
 
-/// One validated curve, in millimetres.
+/// One validated curve, in millimetres, world frame (see [`Network`] for
+/// what validation guarantees).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Curve {
+    /// The curve's id, unique and non-empty.
     pub id: String,
+    /// The curve's family.
     pub family: Family,
+    /// Sample points, world frame, mm: at least 2, no two consecutive closer than
+    /// [`DUPLICATE_POINT_MM`], in file order.
     pub points_world_mm: Vec<DVec3>,
     /// Unit surface normals, one per point, if the file gave them.
     pub normals_world: Option<Vec<DVec3>>,
 }
 
-/// A validated network, in millimetres.
+/// A validated network, in millimetres, world frame.
+///
+/// Guarantees after [`Network::new`]: every coordinate finite, in mm and
+/// within ±[`MAX_COORDINATE_MM`]; the bounding box at most [`MAX_EXTENT_MM`]
+/// along each axis, each curve at most [`MAX_CURVE_LENGTH_MM`] long, all
+/// curves together at most [`MAX_TOTAL_LENGTH_MM`]; node tolerance in
+/// (0, [`MAX_TOLERANCE_MM`]] mm; ids unique and non-empty; every curve has at
+/// least 2 distinct points (consecutive duplicates dropped) and a positive
+/// length; normals, where present, one per point, unit length, one
+/// orientation along the curve; no curve turns more than [`MAX_TURN_DEG`]
+/// between consecutive chords; at least one A and one B curve; curves keep
+/// file order and direction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Network {
+    /// The network's name (from the file, else its stem).
     pub name: String,
     /// The file it was read from (for messages).
     pub source: PathBuf,
     /// The unit the file was written in (lengths here are already mm).
     pub file_unit: Unit,
+    /// Node tolerance: the largest gap between two curves that is a node, mm, in
+    /// (0, [`MAX_TOLERANCE_MM`]].
     pub tolerance_mm: f64,
     /// The grid the file's coordinates are rounded to, mm (0: unrounded).
     /// Curves are smoothed to it (see `curve`).
     pub precision_mm: f64,
+    /// The curves in file order (the index is the curve's index everywhere else).
     pub curves: Vec<Curve>,
 }
 
@@ -414,6 +453,7 @@ impl Network {
         })
     }
 
+    /// Index of the curve with this id, if any.
     pub fn curve_index(&self, id: &str) -> Option<usize> {
         self.curves.iter().position(|c| c.id == id)
     }
