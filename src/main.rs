@@ -70,6 +70,22 @@ enum Command {
         #[command(flatten)]
         read: ReadArgs,
     },
+    /// Turn every A/B strip into flat parts for a profile: lamellas with
+    /// swept slots or node holes, shear blocks, splice plates; write
+    /// DIR/plan.json with everything `check` writes plus `parts`, and print
+    /// a parts summary.
+    Parts {
+        /// The network file (.yaml, .yml, .json, .obj, .dxf).
+        network: PathBuf,
+        /// The material profile (profiles/*.yaml).
+        #[arg(long)]
+        profile: PathBuf,
+        /// Directory for plan.json (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
 }
 
 #[derive(clap::Args, Clone)]
@@ -178,7 +194,52 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             top,
             read,
         } => check(&network, &profile, out.as_deref(), suggest, top, &read),
+        Command::Parts {
+            network,
+            profile,
+            out,
+            read,
+        } => parts(&network, &profile, &out, &read),
     }
+}
+
+fn parts(
+    path: &Path,
+    profile_path: &Path,
+    out: &Path,
+    read: &ReadArgs,
+) -> lamella::Result<ExitCode> {
+    let target = out.join("plan.json");
+    refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
+    let profile = Profile::load(profile_path)?;
+    let net = io::read_network(path, read.options())?;
+    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
+    let kit = lamella::fabricate::fabricate(&net, &an, &profile)?;
+    let report = lamella::check::check(&an, &profile);
+    let model = Model::checked(&net, &an, profile.clone(), report, None);
+    let mut plan = plan::build(&net, &an, &model);
+    plan::add_parts(&mut plan, &kit);
+    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+    for w in an.warnings() {
+        eprintln!("warning: {w}");
+    }
+    let s = &kit.summary;
+    println!(
+        "{} on {}: {} parts to make",
+        profile.name,
+        net.name,
+        s.kinds.iter().map(|k| k.2).sum::<u64>()
+    );
+    for (kind, distinct, count) in &s.kinds {
+        println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
+    }
+    println!(
+        "lamellas: {:.1} m of strip; mass {:.1} kg",
+        s.lamella_length_mm / 1000.0,
+        s.mass_kg
+    );
+    println!("wrote {}", target.display());
+    Ok(ExitCode::SUCCESS)
 }
 
 fn check(

@@ -153,7 +153,7 @@ pub fn strip_parts(
         let mut lo: f64 = 0.0;
         let mut hi: f64 = 0.0;
         for per_lamella in &slots {
-            for s in &per_lamella[ci].1 {
+            for s in per_lamella.get(ci).map_or(&[][..], |x| &x.1[..]) {
                 lo = lo.min(s.lo_mm);
                 hi = hi.max(s.hi_mm);
             }
@@ -177,18 +177,105 @@ pub fn strip_parts(
         })
         .collect();
 
+    // Splices first (where a lamella is longer than the stock), clear of
+    // the node zones; then the shear blocks around them.
+    let usable = profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm;
+    let total = strip.length_mm + 2.0 * allowance;
+    let mut cuts: Vec<f64> = Vec::new();
+    if total > usable {
+        let Some(sp) = &profile.splice else {
+            return Err(fail(
+                None,
+                format!(
+                    "a {total:.0} mm lamella is longer than the stock's usable {usable:.0} mm and the \
+                     profile has no splice"
+                ),
+            ));
+        };
+        // Distance from a candidate cut to the nearest thing on the strip.
+        let busy: Vec<(f64, f64)> = zones.clone();
+        let clearance = |c: f64| {
+            busy.iter()
+                .map(|&(lo, hi)| {
+                    if c < lo {
+                        lo - c
+                    } else if c > hi {
+                        c - hi
+                    } else {
+                        0.0
+                    }
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let need = 0.5 * sp.plate_length_mm + profile.joint.slot_clearance_mm;
+        // The fewest pieces whose cuts all find room; a few more pieces
+        // widen the windows the cuts may move in.
+        let fewest = (total / usable).ceil() as usize;
+        let mut last_err = String::new();
+        let mut found = false;
+        for n in fewest..fewest + 4 {
+            cuts.clear();
+            let mut prev = -allowance;
+            let mut ok = true;
+            for k in 1..n {
+                // Each cut within ±δ of its even position keeps every piece
+                // within the usable length; cuts lie on the line (not in
+                // the end allowances).
+                let slack = 0.5 * (n as f64 * usable - total) / n as f64;
+                let even = -allowance + total * k as f64 / n as f64;
+                let lo = (even - slack).max(prev + 1.0).max(need);
+                let hi = (even + slack).min(strip.length_mm - need);
+                let steps = (hi - lo).ceil().max(1.0) as usize;
+                let best = (0..=steps)
+                    .map(|j| lo + (hi - lo) * j as f64 / steps as f64)
+                    .max_by(|a, b| clearance(*a).total_cmp(&clearance(*b)))
+                    .unwrap_or(lo);
+                if clearance(best) < need {
+                    ok = false;
+                    last_err = format!(
+                        "no room for a {:.0} mm splice plate: the best cut near {best:.0} mm is {:.1} mm \
+                         from a node",
+                        sp.plate_length_mm,
+                        clearance(best)
+                    );
+                    break;
+                }
+                cuts.push(best);
+                prev = best;
+            }
+            if ok {
+                found = true;
+                break;
+            }
+        }
+        if !found {
+            return Err(fail(None, last_err));
+        }
+    }
+    let block = profile.shear_block.as_ref().filter(|_| sec.per_strip == 2);
     // Shear blocks, on the centre line.
     let mut block_stations: Vec<f64> = Vec::new();
-    let block = profile.shear_block.as_ref().filter(|_| sec.per_strip == 2);
     if let Some(b) = block {
-        let spacing = blocks::max_spacing_mm(b.max_spacing_mm, b.slenderness_limit, t);
+        // The limit holds along every lamella: a line at |dy| from the
+        // centre is longer by at most 1 + |dy|·max|kg| per unit of centre.
+        let stretch = 1.0
+            + offsets.iter().map(|o| o.dy_mm.abs()).fold(0.0, f64::max) * strip.max_abs_kg_per_mm;
+        let spacing = blocks::max_spacing_mm(b.max_spacing_mm, b.slenderness_limit, t) / stretch;
         let half = 0.5 * b.length_mm + b.clearance_mm;
-        // Supports: the line's ends and every crossing.
+        // Supports: the line's ends, every crossing, and every splice (its
+        // plate couples the pieces; blocks keep clear of it).
         let mut supports: Vec<(f64, f64, f64, Option<usize>)> = vec![(0.0, 0.0, 0.0, None)];
         for (ci, c) in crossings.iter().enumerate() {
             let s = strip.nodes[c.k].station_mm;
             supports.push((s, zones[ci].0, zones[ci].1, Some(c.node_id)));
         }
+        if let Some(sp) = &profile.splice {
+            for &c in &cuts {
+                let half = 0.5 * sp.plate_length_mm;
+                supports.push((c, c - half, c + half, None));
+            }
+        }
+        supports.sort_by(|x, y| x.0.total_cmp(&y.0));
         supports.push((strip.length_mm, strip.length_mm, strip.length_mm, None));
         for w in supports.windows(2) {
             let (a, b2) = (w[0], w[1]);
@@ -204,75 +291,6 @@ pub fn strip_parts(
         }
     }
 
-    // Splices: where a lamella is longer than the stock.
-    let usable = profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm;
-    let total = strip.length_mm + 2.0 * allowance;
-    let mut cuts: Vec<f64> = Vec::new();
-    if total > usable {
-        let Some(sp) = &profile.splice else {
-            return Err(fail(
-                None,
-                format!(
-                    "a {total:.0} mm lamella is longer than the stock's usable {usable:.0} mm and the \
-                     profile has no splice"
-                ),
-            ));
-        };
-        let n = (total / usable).ceil() as usize;
-        // Distance from a candidate cut to the nearest thing on the strip.
-        let mut busy: Vec<(f64, f64)> = zones.clone();
-        if let Some(b) = block {
-            busy.extend(
-                block_stations
-                    .iter()
-                    .map(|&s| (s - 0.5 * b.length_mm, s + 0.5 * b.length_mm)),
-            );
-        }
-        let clearance = |c: f64| {
-            busy.iter()
-                .map(|&(lo, hi)| {
-                    if c < lo {
-                        lo - c
-                    } else if c > hi {
-                        c - hi
-                    } else {
-                        0.0
-                    }
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
-        let mut prev = -allowance;
-        for k in 1..n {
-            let remaining = n - k;
-            let lo = (strip.length_mm + allowance - remaining as f64 * usable).max(prev + 1.0);
-            let hi = (prev + usable).min(strip.length_mm + allowance - 1.0);
-            if lo > hi {
-                return Err(fail(
-                    None,
-                    "cannot split the lamella into stock lengths".into(),
-                ));
-            }
-            let steps = ((hi - lo) / 1.0).ceil().max(1.0) as usize;
-            let best = (0..=steps)
-                .map(|j| lo + (hi - lo) * j as f64 / steps as f64)
-                .max_by(|a, b| clearance(*a).total_cmp(&clearance(*b)))
-                .unwrap_or(lo);
-            let need = 0.5 * sp.plate_length_mm + profile.joint.slot_clearance_mm;
-            if clearance(best) < need {
-                return Err(fail(
-                    None,
-                    format!(
-                        "no room for a {:.0} mm splice plate: the best cut near {best:.0} mm is {:.1} mm \
-                         from a node or block",
-                        sp.plate_length_mm,
-                        clearance(best)
-                    ),
-                ));
-            }
-            cuts.push(best);
-            prev = best;
-        }
-    }
     // Splice bolt holes, on the centre line.
     let splice_holes: Vec<f64> = profile.splice.as_ref().map_or(Vec::new(), |sp| {
         let n = sp.bolts_per_side.max(1) as usize;

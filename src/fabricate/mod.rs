@@ -1,7 +1,183 @@
 //! Fabrication: every strip turned into the flat parts a laser or waterjet
-//! cuts (fabrication.md).
+//! cuts, for a material profile (fabrication.md): lamellas with swept slots
+//! or node holes, shear blocks, splice plates (and, as the stage grows,
+//! washers, studs, edge strips and labels).
+//!
+//! Plain data in (`Network`, `Analysis`, `Profile`), plain data out
+//! ([`Kit`]); a profile that cannot build the network is an
+//! [`Error::Fabrication`](crate::Error::Fabrication) naming strip and node.
 
 pub mod blocks;
 pub mod lamella;
 pub mod part;
 pub mod slots;
+
+use crate::analysis::Analysis;
+use crate::error::Result;
+use crate::network::Network;
+use crate::profile::Profile;
+use kurbo::Point;
+use part::{
+    circle_cw, signed_area_mm2, Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM,
+};
+use rayon::prelude::*;
+
+/// Every part of a network for one profile.
+#[derive(Debug, Clone)]
+pub struct Kit {
+    /// Lamellas by strip (in strip order) and lamella, then the shared
+    /// parts (shear blocks, splice plates, …) once each with their counts.
+    pub parts: Vec<Part>,
+    /// Counts, lengths and mass.
+    pub summary: KitSummary,
+}
+
+/// How many of each kind, and what they weigh.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KitSummary {
+    /// Per kind (in [`PartKind`] order): distinct parts and pieces to make.
+    pub kinds: Vec<(PartKind, usize, u64)>,
+    /// Total length of lamella parts (allowances included), mm.
+    pub lamella_length_mm: f64,
+    /// Mass of everything cut or sawn, kg.
+    pub mass_kg: f64,
+}
+
+/// Make every part of the network's A/B strips for `profile`.
+pub fn fabricate(net: &Network, an: &Analysis, profile: &Profile) -> Result<Kit> {
+    let per_strip: Vec<lamella::StripParts> = an
+        .lamella_strips()
+        .collect::<Vec<_>>()
+        .par_iter()
+        .map(|s| lamella::strip_parts(net, an, profile, s.curve))
+        .collect::<Result<Vec<_>>>()?;
+    let mut parts: Vec<Part> = Vec::new();
+    let (mut blocks, mut plates) = (0usize, 0usize);
+    for sp in per_strip {
+        blocks += sp.blocks;
+        plates += sp.splice_plates;
+        parts.extend(sp.lamellas);
+    }
+    let h = profile.section.height_mm;
+    if let (Some(b), true) = (&profile.shear_block, blocks > 0) {
+        let d = b.bolt_diameter_mm + lamella::BOLT_HOLE_CLEARANCE_MM;
+        parts.push(rectangle_part(
+            "SB",
+            PartKind::ShearBlock,
+            blocks as u32,
+            b.length_mm,
+            0.5 * h,
+            &[(
+                Point::new(0.5 * b.length_mm, 0.25 * h),
+                d,
+                HoleUse::ShearBlock,
+            )],
+        ));
+    }
+    if let (Some(sp), true) = (&profile.splice, plates > 0) {
+        let d = sp.bolt_diameter_mm + lamella::BOLT_HOLE_CLEARANCE_MM;
+        let n = sp.bolts_per_side.max(1) as usize;
+        let half = 0.5 * sp.plate_length_mm;
+        let holes: Vec<(Point, f64, HoleUse)> = (0..n)
+            .flat_map(|j| {
+                let off = half * (j as f64 + 0.5) / n as f64;
+                [half - off, half + off]
+            })
+            .map(|x| (Point::new(x, 0.25 * h), d, HoleUse::Splice))
+            .collect();
+        parts.push(rectangle_part(
+            "SP",
+            PartKind::SplicePlate,
+            plates as u32,
+            sp.plate_length_mm,
+            0.5 * h,
+            &holes,
+        ));
+    }
+    let summary = summarise(&parts, profile);
+    Ok(Kit { parts, summary })
+}
+
+/// A rectangular part with round holes (features and polylines).
+fn rectangle_part(
+    id: &str,
+    kind: PartKind,
+    count: u32,
+    length_mm: f64,
+    height_mm: f64,
+    holes: &[(Point, f64, HoleUse)],
+) -> Part {
+    Part {
+        id: id.to_string(),
+        kind,
+        strip: None,
+        lamella: None,
+        count,
+        length_mm,
+        height_mm,
+        station_start_mm: None,
+        outline_part_mm: vec![
+            Point::new(0.0, 0.0),
+            Point::new(length_mm, 0.0),
+            Point::new(length_mm, height_mm),
+            Point::new(0.0, height_mm),
+        ],
+        holes_part_mm: holes
+            .iter()
+            .map(|&(c, d, _)| circle_cw(c, 0.5 * d, ARC_TOLERANCE_MM))
+            .collect(),
+        engraving_part_mm: Vec::new(),
+        features: holes
+            .iter()
+            .map(|&(c, d, u)| Feature {
+                kind: FeatureKind::Hole,
+                hole_use: Some(u),
+                node: None,
+                crossing: None,
+                center_part_mm: c,
+                width_mm: d,
+                depth_mm: 0.0,
+                edge: None,
+                angle_range_deg: None,
+                station_mm: None,
+            })
+            .collect(),
+    }
+}
+
+/// Net area of a part (outline less holes), mm².
+pub fn net_area_mm2(p: &Part) -> f64 {
+    signed_area_mm2(&p.outline_part_mm)
+        - p.holes_part_mm
+            .iter()
+            .map(|h| signed_area_mm2(h).abs())
+            .sum::<f64>()
+}
+
+/// Count by kind, lamella length, mass (plates at the lamella thickness,
+/// shear blocks at the gap's thickness).
+fn summarise(parts: &[Part], profile: &Profile) -> KitSummary {
+    let mut s = KitSummary::default();
+    let density_kg_per_mm3 = profile.material.density_kg_per_m3 * 1e-9;
+    for p in parts {
+        match s.kinds.iter_mut().find(|k| k.0 == p.kind) {
+            Some(k) => {
+                k.1 += 1;
+                k.2 += u64::from(p.count);
+            }
+            None => s.kinds.push((p.kind, 1, u64::from(p.count))),
+        }
+        if p.kind == PartKind::Lamella {
+            s.lamella_length_mm += p.length_mm * f64::from(p.count);
+        }
+        let thickness = match p.kind {
+            PartKind::ShearBlock => profile.section.gap_mm,
+            PartKind::Washer => profile.washer.as_ref().map_or(0.0, |w| w.thickness_mm),
+            PartKind::Stud => profile.section.gap_mm,
+            _ => profile.section.thickness_mm,
+        };
+        s.mass_kg += net_area_mm2(p) * thickness * density_kg_per_mm3 * f64::from(p.count);
+    }
+    s.kinds.sort_by_key(|k| k.0);
+    s
+}

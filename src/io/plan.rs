@@ -43,6 +43,90 @@ pub struct Plan {
     /// The elastic check's verdict (added by `check`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub check: Option<PlanCheckSummary>,
+    /// Every part to cut (added by `parts`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parts: Option<Vec<PlanPart>>,
+    /// Counts by kind, lamella length and mass (added by `parts`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parts_summary: Option<PlanKitSummary>,
+}
+
+/// One part in plan.json: part-local mm, outline counter-clockwise, holes
+/// clockwise, engraving open polylines.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanPart {
+    /// Unique part id (also engraved).
+    pub id: String,
+    /// `lamella`, `shear_block`, `washer`, `stud`, `splice_plate` or `edge_strip`.
+    pub kind: String,
+    /// The strip it belongs to, if any.
+    pub strip: Option<String>,
+    /// Lamella number within the strip, if any.
+    pub lamella: Option<u32>,
+    /// How many identical parts.
+    pub count: u32,
+    /// Extent along the part's x, mm.
+    pub length_mm: f64,
+    /// Extent along the part's y, mm.
+    pub height_mm: f64,
+    /// Station on the part's own line at x = 0, mm (lamellas, edge strips).
+    pub station_start_mm: Option<f64>,
+    /// Closed outline, counter-clockwise, [x, y] mm.
+    pub outline: Vec<[f64; 2]>,
+    /// Closed holes, clockwise, [x, y] mm.
+    pub holes: Vec<Vec<[f64; 2]>>,
+    /// Open single-stroke engraving polylines, [x, y] mm.
+    pub engraving: Vec<Vec<[f64; 2]>>,
+    /// Slots and holes, by x.
+    pub features: Vec<PlanFeature>,
+}
+
+/// A slot or hole of a part.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFeature {
+    /// `slot` or `hole`.
+    pub kind: String,
+    /// For holes: `node`, `shear_block`, `splice` or `edge_node`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hole_use: Option<String>,
+    /// The node id it belongs to, if any.
+    pub node: Option<usize>,
+    /// The crossing strip's id, if any.
+    pub crossing: Option<String>,
+    /// Centre in the part frame, [x, y] mm.
+    pub center_mm: [f64; 2],
+    /// Along x: slot width or hole diameter, mm.
+    pub width_mm: f64,
+    /// Slot depth from its edge, mm (0 for holes).
+    pub depth_mm: f64,
+    /// `top` or `bottom` for slots.
+    pub edge: Option<String>,
+    /// Crossing angles a slot was swept over, degrees.
+    pub angle_range_deg: Option<[f64; 2]>,
+    /// Station on the part's own line, mm, where it has one.
+    pub station_mm: Option<f64>,
+}
+
+/// Counts by kind, lamella length and mass.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanKitSummary {
+    /// Per kind: distinct parts and pieces to make.
+    pub kinds: Vec<PlanKindCount>,
+    /// Total length of lamella parts, allowances included, mm.
+    pub lamella_length_mm: f64,
+    /// Mass of everything cut or sawn, kg.
+    pub mass_kg: f64,
+}
+
+/// How many parts of one kind.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanKindCount {
+    /// The kind.
+    pub kind: String,
+    /// Distinct parts.
+    pub parts: usize,
+    /// Pieces to make (sum of counts).
+    pub count: u64,
 }
 
 /// The profile a network was checked against, as used (`check` only).
@@ -457,7 +541,70 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         warnings,
         profile,
         check,
+        parts: None,
+        parts_summary: None,
     }
+}
+
+/// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).
+pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
+    use crate::fabricate::part::Part;
+    let pt = |p: &kurbo::Point| [round(p.x, MM), round(p.y, MM)];
+    let poly = |v: &[kurbo::Point]| v.iter().map(pt).collect::<Vec<_>>();
+    let part = |p: &Part| PlanPart {
+        id: p.id.clone(),
+        kind: p.kind.as_str().into(),
+        strip: p.strip.clone(),
+        lamella: p.lamella,
+        count: p.count,
+        length_mm: round(p.length_mm, MM),
+        height_mm: round(p.height_mm, MM),
+        station_start_mm: p.station_start_mm.map(|s| round(s, MM)),
+        outline: poly(&p.outline_part_mm),
+        holes: p.holes_part_mm.iter().map(|h| poly(h)).collect(),
+        engraving: p.engraving_part_mm.iter().map(|e| poly(e)).collect(),
+        features: p
+            .features
+            .iter()
+            .map(|f| PlanFeature {
+                kind: f.kind.as_str().into(),
+                hole_use: f.hole_use.map(|u| {
+                    match u {
+                        crate::fabricate::part::HoleUse::Node => "node",
+                        crate::fabricate::part::HoleUse::ShearBlock => "shear_block",
+                        crate::fabricate::part::HoleUse::Splice => "splice",
+                        crate::fabricate::part::HoleUse::EdgeNode => "edge_node",
+                    }
+                    .into()
+                }),
+                node: f.node,
+                crossing: f.crossing.clone(),
+                center_mm: pt(&f.center_part_mm),
+                width_mm: round(f.width_mm, MM),
+                depth_mm: round(f.depth_mm, MM),
+                edge: f.edge.map(|e| e.as_str().into()),
+                angle_range_deg: f
+                    .angle_range_deg
+                    .map(|(a, b)| [round(a, DEG), round(b, DEG)]),
+                station_mm: f.station_mm.map(|s| round(s, MM)),
+            })
+            .collect(),
+    };
+    plan.parts = Some(kit.parts.iter().map(part).collect());
+    plan.parts_summary = Some(PlanKitSummary {
+        kinds: kit
+            .summary
+            .kinds
+            .iter()
+            .map(|&(k, parts, count)| PlanKindCount {
+                kind: k.as_str().into(),
+                parts,
+                count,
+            })
+            .collect(),
+        lamella_length_mm: round(kit.summary.lamella_length_mm, MM),
+        mass_kg: round(kit.summary.mass_kg, 3),
+    });
 }
 
 fn file_name(p: &Path) -> String {
