@@ -177,9 +177,24 @@ pub fn strip_parts(
         })
         .collect();
 
+    // How much longer than the centre line a lamella line can be, per unit:
+    // ds'/ds ≤ √((1 + |dy|·kg + |dz|·kn)² + ((|dy| + |dz|)·tg)²) at the
+    // strip's largest |kg|, |kn|, |tg|. Lengths decided on the centre line
+    // (stock pieces, block spacing) are divided by it so they hold on every
+    // lamella.
+    let (dy_max, dz_max) = offsets.iter().fold((0.0f64, 0.0f64), |(a, b), o| {
+        (a.max(o.dy_mm.abs()), b.max(o.dz_mm.abs()))
+    });
+    let stretch = ((1.0 + dy_max * strip.max_abs_kg_per_mm + dz_max * strip.max_abs_kn_per_mm)
+        .powi(2)
+        + ((dy_max + dz_max) * strip.max_abs_tg_per_mm).powi(2))
+    .sqrt();
+
     // Splices first (where a lamella is longer than the stock), clear of
     // the node zones; then the shear blocks around them.
-    let usable = profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm;
+    let usable = (profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm - 2.0 * allowance)
+        / stretch
+        + 2.0 * allowance;
     let total = strip.length_mm + 2.0 * allowance;
     let mut cuts: Vec<f64> = Vec::new();
     if total > usable {
@@ -256,10 +271,6 @@ pub fn strip_parts(
     // Shear blocks, on the centre line.
     let mut block_stations: Vec<f64> = Vec::new();
     if let Some(b) = block {
-        // The limit holds along every lamella: a line at |dy| from the
-        // centre is longer by at most 1 + |dy|·max|kg| per unit of centre.
-        let stretch = 1.0
-            + offsets.iter().map(|o| o.dy_mm.abs()).fold(0.0, f64::max) * strip.max_abs_kg_per_mm;
         let spacing = blocks::max_spacing_mm(b.max_spacing_mm, b.slenderness_limit, t) / stretch;
         let half = 0.5 * b.length_mm + b.clearance_mm;
         // Supports: the line's ends, every crossing, and every splice (its
