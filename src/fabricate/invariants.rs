@@ -3,7 +3,9 @@
 //! on.
 //!
 //! Each check returns `Ok(())` or an `Err` whose message names the part, the
-//! rule broken and where (edge indices and coordinates, mm). The predicates
+//! rule broken and where (edge indices and coordinates, mm), so a builder
+//! can say `debug_assert_eq!(check_part(&part, clearance_mm), Ok(()))` and a
+//! failure reads as the reason. The predicates
 //! are evaluated in plain `f64` with exact zero tests (no tolerance): two
 //! segments that touch at a point or overlap along a line intersect; a
 //! polygon is a closed ring of points, the last joined to the first.
