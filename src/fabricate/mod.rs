@@ -8,6 +8,9 @@
 //! [`Error::Fabrication`](crate::Error::Fabrication) naming strip and node.
 
 pub mod blocks;
+pub mod font;
+pub mod invariants;
+pub mod label;
 pub mod lamella;
 pub mod part;
 pub mod slots;

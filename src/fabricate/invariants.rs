@@ -1,0 +1,779 @@
+//! Named invariant checks on parts, for tests and `debug_assert!`s
+//! (engineering.md, habit 8), and the plane-geometry predicates they stand
+//! on.
+//!
+//! Each check returns `Ok(())` or an `Err` whose message names the part, the
+//! rule broken and where (edge indices and coordinates, mm), so a builder
+//! can say `debug_assert_eq!(check_part(&part, clearance_mm), Ok(()))` and a
+//! failure reads as the reason. The predicates
+//! are evaluated in plain `f64` with exact zero tests (no tolerance): two
+//! segments that touch at a point or overlap along a line intersect; a
+//! polygon is a closed ring of points, the last joined to the first.
+
+use kurbo::{Point, Rect};
+
+use super::part::{signed_area_mm2, Part};
+
+// ---------------------------------------------------------------------------
+// Predicates
+
+/// Twice the signed area of the triangle a, b, c: positive when c lies to
+/// the left of a→b (counter-clockwise), 0 when collinear, mm².
+pub fn orient(a: Point, b: Point, c: Point) -> f64 {
+    (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
+}
+
+/// Whether `p`, known to be collinear with a–b, lies on the closed segment.
+fn within_box(a: Point, b: Point, p: Point) -> bool {
+    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
+}
+
+/// Whether the closed segments a–b and c–d share at least one point:
+/// proper crossings, an endpoint touching the other segment, and collinear
+/// overlaps (also of a single point) all count. A degenerate segment (a = b)
+/// is the point a.
+pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let d1 = orient(c, d, a);
+    let d2 = orient(c, d, b);
+    let d3 = orient(a, b, c);
+    let d4 = orient(a, b, d);
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    (d1 == 0.0 && within_box(c, d, a))
+        || (d2 == 0.0 && within_box(c, d, b))
+        || (d3 == 0.0 && within_box(a, b, c))
+        || (d4 == 0.0 && within_box(a, b, d))
+}
+
+/// Distance from `p` to the closed segment a–b, mm (to a when a = b).
+pub fn point_segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let len2 = ab.hypot2();
+    if len2 == 0.0 {
+        return p.distance(a);
+    }
+    let t = ((p - a).dot(ab) / len2).clamp(0.0, 1.0);
+    p.distance(a + ab * t)
+}
+
+/// Distance between the closed segments a–b and c–d, mm: 0 when they
+/// intersect, else the smallest of the four endpoint-to-segment distances.
+pub fn segment_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    if segments_intersect(a, b, c, d) {
+        return 0.0;
+    }
+    point_segment_distance(a, c, d)
+        .min(point_segment_distance(b, c, d))
+        .min(point_segment_distance(c, a, b))
+        .min(point_segment_distance(d, a, b))
+}
+
+/// Whether `p` lies inside the closed polygon `poly` (either orientation),
+/// by the crossing rule. Points on the boundary may go either way: callers
+/// that care test the boundary apart ([`on_boundary`]).
+pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if p.x < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Whether `p` lies on an edge of the closed polygon `poly`.
+pub fn on_boundary(p: Point, poly: &[Point]) -> bool {
+    let n = poly.len();
+    (0..n).any(|i| segments_intersect(p, p, poly[i], poly[(i + 1) % n]))
+}
+
+/// Whether the closed segment a–b meets the closed rectangle `r` (an
+/// endpoint inside, or a crossing of its boundary), by Liang–Barsky
+/// clipping.
+pub fn segment_meets_rect(a: Point, b: Point, r: Rect) -> bool {
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, a.x - r.x0),
+        (dx, r.x1 - a.x),
+        (-dy, a.y - r.y0),
+        (dy, r.y1 - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+// ---------------------------------------------------------------------------
+// Edge sets
+
+/// One edge of one ring: ring index (0 the outline, k + 1 hole k), edge
+/// index in the ring, its ends and the ring's length.
+#[derive(Clone, Copy)]
+struct Edge {
+    ring: usize,
+    index: usize,
+    ring_len: usize,
+    a: Point,
+    b: Point,
+}
+
+impl Edge {
+    fn x_range(&self) -> (f64, f64) {
+        (self.a.x.min(self.b.x), self.a.x.max(self.b.x))
+    }
+
+    fn y_range(&self) -> (f64, f64) {
+        (self.a.y.min(self.b.y), self.a.y.max(self.b.y))
+    }
+
+    /// Whether `other` is the next or previous edge of the same ring.
+    fn adjacent(&self, other: &Edge) -> bool {
+        self.ring == other.ring
+            && ((self.index + 1) % self.ring_len == other.index
+                || (other.index + 1) % other.ring_len == self.index)
+    }
+}
+
+fn ring_edges(ring: usize, poly: &[Point]) -> impl Iterator<Item = Edge> + '_ {
+    let n = poly.len();
+    (0..n).map(move |i| Edge {
+        ring,
+        index: i,
+        ring_len: n,
+        a: poly[i],
+        b: poly[(i + 1) % n],
+    })
+}
+
+/// Whether two edges meet where they must not. Adjacent edges of a ring
+/// share their common vertex and nothing else: they conflict when one
+/// folds back over the other (the far end of one lies on the other). Any
+/// other two edges conflict when they share any point.
+fn conflict(e: &Edge, f: &Edge) -> bool {
+    if e.adjacent(f) {
+        if e.ring_len < 3 {
+            return true;
+        }
+        // Order them so e.b is f.a (in a triangle both orders hold; a
+        // fold-back shows in either).
+        let (e, f) = if (e.index + 1) % e.ring_len == f.index {
+            (e, f)
+        } else {
+            (f, e)
+        };
+        let on = |p: Point, a: Point, b: Point| orient(a, b, p) == 0.0 && within_box(a, b, p);
+        return on(f.b, e.a, e.b) || on(e.a, f.a, f.b);
+    }
+    segments_intersect(e.a, e.b, f.a, f.b)
+}
+
+/// The first pair of edges (by the sweep's order) that conflict, among the
+/// pairs `consider` accepts (by ring). Edges are sorted by their lowest x and
+/// each is tested against the following ones whose x range starts before it
+/// ends, after a y-range test: near-linear for outlines of parts, quadratic
+/// only when many edges span the same x.
+fn first_conflict(
+    edges: &mut [Edge],
+    consider: impl Fn(usize, usize) -> bool,
+) -> Option<(Edge, Edge)> {
+    edges.sort_by(|e, f| e.x_range().0.total_cmp(&f.x_range().0));
+    for (i, e) in edges.iter().enumerate() {
+        let (_, ex1) = e.x_range();
+        let (ey0, ey1) = e.y_range();
+        for f in &edges[i + 1..] {
+            if f.x_range().0 > ex1 {
+                break;
+            }
+            let (fy0, fy1) = f.y_range();
+            if fy0 > ey1 || fy1 < ey0 || !consider(e.ring, f.ring) {
+                continue;
+            }
+            if conflict(e, f) {
+                return Some((*e, *f));
+            }
+        }
+    }
+    None
+}
+
+fn ring_name(ring: usize) -> String {
+    if ring == 0 {
+        "outline".to_string()
+    } else {
+        format!("hole {}", ring - 1)
+    }
+}
+
+fn describe(e: &Edge) -> String {
+    format!(
+        "{} edge {} ({:.4}, {:.4})–({:.4}, {:.4})",
+        ring_name(e.ring),
+        e.index,
+        e.a.x,
+        e.a.y,
+        e.b.x,
+        e.b.y
+    )
+}
+
+/// A ring's own rules: at least 3 points, finite, no two consecutive ones
+/// equal (the last and the first included).
+fn ring_points_ok(part: &Part, ring: usize, poly: &[Point]) -> Result<(), String> {
+    let name = ring_name(ring);
+    if poly.len() < 3 {
+        return Err(format!(
+            "part {}: {name} has {} points (< 3)",
+            part.id,
+            poly.len()
+        ));
+    }
+    let n = poly.len();
+    for (i, p) in poly.iter().enumerate() {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return Err(format!("part {}: {name} point {i} is not finite", part.id));
+        }
+        let q = poly[(i + 1) % n];
+        if *p == q {
+            return Err(format!(
+                "part {}: {name} points {i} and {} repeat ({:.4}, {:.4})",
+                part.id,
+                (i + 1) % n,
+                p.x,
+                p.y
+            ));
+        }
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------
+// Checks
+
+/// The outline is a closed simple counter-clockwise polygon: at least 3
+/// points, finite, no two consecutive points equal (nor the last and the
+/// first: the closing point is not repeated), no two non-adjacent edges that
+/// cross or touch, no edge folding back over its neighbour, positive signed
+/// area.
+pub fn outline_is_closed_simple_ccw(part: &Part) -> Result<(), String> {
+    let outline = &part.outline_part_mm;
+    ring_points_ok(part, 0, outline)?;
+    let mut edges: Vec<Edge> = ring_edges(0, outline).collect();
+    if let Some((e, f)) = first_conflict(&mut edges, |_, _| true) {
+        return Err(format!(
+            "part {}: outline is not simple: {} meets {}",
+            part.id,
+            describe(&e),
+            describe(&f)
+        ));
+    }
+    let area = signed_area_mm2(outline);
+    if area <= 0.0 {
+        return Err(format!(
+            "part {}: outline is not counter-clockwise (signed area {area:.4} mm²)",
+            part.id
+        ));
+    }
+    Ok(())
+}
+
+/// Every hole is a closed simple clockwise polygon (at least 3 points, no
+/// repeated consecutive points, no self-contact, negative signed area),
+/// every hole vertex lies strictly inside the outline, no hole edge meets
+/// the outline or another hole, and no hole lies inside another. Assumes
+/// the outline itself is simple ([`outline_is_closed_simple_ccw`]).
+pub fn holes_are_simple_cw_inside(part: &Part) -> Result<(), String> {
+    let outline = &part.outline_part_mm;
+    for (k, hole) in part.holes_part_mm.iter().enumerate() {
+        ring_points_ok(part, k + 1, hole)?;
+        let area = signed_area_mm2(hole);
+        if area >= 0.0 {
+            return Err(format!(
+                "part {}: hole {k} is not clockwise (signed area {area:.4} mm²)",
+                part.id
+            ));
+        }
+        for (i, &p) in hole.iter().enumerate() {
+            if !point_in_polygon(p, outline) || on_boundary(p, outline) {
+                return Err(format!(
+                    "part {}: hole {k} point {i} ({:.4}, {:.4}) is not strictly inside the outline",
+                    part.id, p.x, p.y
+                ));
+            }
+        }
+    }
+    let mut edges: Vec<Edge> = part
+        .holes_part_mm
+        .iter()
+        .enumerate()
+        .flat_map(|(k, h)| ring_edges(k + 1, h))
+        .chain(ring_edges(0, outline))
+        .collect();
+    // Every pair but outline × outline (that is the outline's own check).
+    if let Some((e, f)) = first_conflict(&mut edges, |r, s| r != 0 || s != 0) {
+        let what = if e.ring == f.ring {
+            "is not simple"
+        } else {
+            "crosses"
+        };
+        return Err(format!(
+            "part {}: {} {what}: {} meets {}",
+            part.id,
+            ring_name(e.ring.max(f.ring)),
+            describe(&e),
+            describe(&f)
+        ));
+    }
+    // No edges meet, so a hole is inside another exactly when its first
+    // vertex is.
+    for (k, hole) in part.holes_part_mm.iter().enumerate() {
+        for (j, other) in part.holes_part_mm.iter().enumerate() {
+            if j != k && point_in_polygon(hole[0], other) {
+                return Err(format!("part {}: hole {k} lies inside hole {j}", part.id));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every engraving polyline has at least one point, every vertex is finite,
+/// inside the outline and outside every hole, and every segment (a
+/// one-point polyline: its point) keeps at least `clearance_mm` from every
+/// outline and hole edge (segment-to-segment distance) and crosses none.
+/// Assumes the outline and holes pass their own checks.
+pub fn engraving_inside_and_clear(part: &Part, clearance_mm: f64) -> Result<(), String> {
+    let cuts: Vec<Edge> = ring_edges(0, &part.outline_part_mm)
+        .chain(
+            part.holes_part_mm
+                .iter()
+                .enumerate()
+                .flat_map(|(k, h)| ring_edges(k + 1, h)),
+        )
+        .collect();
+    for (s, line) in part.engraving_part_mm.iter().enumerate() {
+        if line.is_empty() {
+            return Err(format!("part {}: engraving {s} has no points", part.id));
+        }
+        for (i, p) in line.iter().enumerate() {
+            let at = format!("engraving {s} point {i} ({:.4}, {:.4})", p.x, p.y);
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return Err(format!("part {}: {at} is not finite", part.id));
+            }
+            if !point_in_polygon(*p, &part.outline_part_mm) {
+                return Err(format!("part {}: {at} is outside the outline", part.id));
+            }
+            if let Some(k) = part
+                .holes_part_mm
+                .iter()
+                .position(|h| point_in_polygon(*p, h))
+            {
+                return Err(format!("part {}: {at} is inside hole {k}", part.id));
+            }
+        }
+        let segments: Vec<(Point, Point)> = if line.len() == 1 {
+            vec![(line[0], line[0])]
+        } else {
+            line.windows(2).map(|w| (w[0], w[1])).collect()
+        };
+        for (i, &(a, b)) in segments.iter().enumerate() {
+            let (x0, x1) = (a.x.min(b.x) - clearance_mm, a.x.max(b.x) + clearance_mm);
+            let (y0, y1) = (a.y.min(b.y) - clearance_mm, a.y.max(b.y) + clearance_mm);
+            for e in &cuts {
+                let (ex0, ex1) = e.x_range();
+                let (ey0, ey1) = e.y_range();
+                if ex0 > x1 || ex1 < x0 || ey0 > y1 || ey1 < y0 {
+                    continue;
+                }
+                let d = segment_distance(a, b, e.a, e.b);
+                if d == 0.0 || d < clearance_mm {
+                    return Err(format!(
+                        "part {}: engraving {s} segment {i} ({:.4}, {:.4})–({:.4}, {:.4}) is {d:.4} mm from {} (clearance {clearance_mm} mm)",
+                        part.id,
+                        a.x,
+                        a.y,
+                        b.x,
+                        b.y,
+                        describe(e)
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// All three checks: [`outline_is_closed_simple_ccw`],
+/// [`holes_are_simple_cw_inside`], [`engraving_inside_and_clear`] with
+/// `clearance_mm` (kerf and part spacing, mm); the first failure.
+pub fn check_part(part: &Part, clearance_mm: f64) -> Result<(), String> {
+    outline_is_closed_simple_ccw(part)?;
+    holes_are_simple_cw_inside(part)?;
+    engraving_inside_and_clear(part, clearance_mm)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::part::{circle_cw, PartKind, ARC_TOLERANCE_MM};
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    fn part(outline: Vec<Point>, holes: Vec<Vec<Point>>, engraving: Vec<Vec<Point>>) -> Part {
+        Part {
+            id: "T1".into(),
+            kind: PartKind::Lamella,
+            strip: None,
+            lamella: None,
+            count: 1,
+            length_mm: 0.0,
+            height_mm: 0.0,
+            station_start_mm: None,
+            outline_part_mm: outline,
+            holes_part_mm: holes,
+            engraving_part_mm: engraving,
+            features: vec![],
+        }
+    }
+
+    /// 300 × 50 with two 3 × 26 notches from the top at x = 100 and 200.
+    fn notched() -> Vec<Point> {
+        vec![
+            p(0.0, 0.0),
+            p(300.0, 0.0),
+            p(300.0, 50.0),
+            p(201.5, 50.0),
+            p(201.5, 24.0),
+            p(198.5, 24.0),
+            p(198.5, 50.0),
+            p(101.5, 50.0),
+            p(101.5, 24.0),
+            p(98.5, 24.0),
+            p(98.5, 50.0),
+            p(0.0, 50.0),
+        ]
+    }
+
+    #[test]
+    fn intersections_proper_touching_collinear() {
+        let (a, b) = (p(0.0, 0.0), p(2.0, 2.0));
+        // Proper crossing.
+        assert!(segments_intersect(a, b, p(0.0, 2.0), p(2.0, 0.0)));
+        // Disjoint, parallel.
+        assert!(!segments_intersect(a, b, p(1.0, 0.0), p(3.0, 2.0)));
+        // An endpoint touching the other's interior (T).
+        assert!(segments_intersect(a, b, p(1.0, 1.0), p(2.0, 0.0)));
+        assert!(segments_intersect(p(1.0, 1.0), p(2.0, 0.0), a, b));
+        // Sharing an endpoint.
+        assert!(segments_intersect(a, b, b, p(3.0, 0.0)));
+        // Collinear overlapping, collinear touching at one point, collinear
+        // apart.
+        assert!(segments_intersect(a, b, p(1.0, 1.0), p(3.0, 3.0)));
+        assert!(segments_intersect(a, b, p(2.0, 2.0), p(3.0, 3.0)));
+        assert!(!segments_intersect(a, b, p(2.5, 2.5), p(3.0, 3.0)));
+        // Collinear, one containing the other.
+        assert!(segments_intersect(a, b, p(0.5, 0.5), p(1.0, 1.0)));
+        // On the line but beyond the end (the orientation is 0, the box
+        // test must reject it).
+        assert!(!segments_intersect(a, b, p(3.0, 3.0), p(4.0, 0.0)));
+        // Near miss.
+        assert!(!segments_intersect(a, b, p(1.0, 1.0 + 1e-9), p(0.0, 5.0)));
+        // Degenerate: a point on, and off, a segment.
+        assert!(segments_intersect(p(1.0, 1.0), p(1.0, 1.0), a, b));
+        assert!(!segments_intersect(p(1.0, 1.5), p(1.0, 1.5), a, b));
+        // Axis-parallel, the way outlines are.
+        assert!(segments_intersect(
+            p(0.0, 0.0),
+            p(10.0, 0.0),
+            p(5.0, 0.0),
+            p(5.0, 5.0)
+        ));
+        assert!(!segments_intersect(
+            p(0.0, 0.0),
+            p(10.0, 0.0),
+            p(5.0, 1e-12),
+            p(5.0, 5.0)
+        ));
+    }
+
+    #[test]
+    fn distances() {
+        let (a, b) = (p(0.0, 0.0), p(10.0, 0.0));
+        assert_eq!(point_segment_distance(p(5.0, 3.0), a, b), 3.0);
+        assert_eq!(point_segment_distance(p(-3.0, 4.0), a, b), 5.0);
+        assert_eq!(point_segment_distance(p(13.0, -4.0), a, b), 5.0);
+        assert_eq!(point_segment_distance(p(1.0, 1.0), a, a), 2f64.sqrt());
+        // Parallel, overlapping in x.
+        assert_eq!(segment_distance(a, b, p(2.0, 2.0), p(20.0, 2.0)), 2.0);
+        // Collinear, apart.
+        assert_eq!(segment_distance(a, b, p(12.0, 0.0), p(20.0, 0.0)), 2.0);
+        // Crossing, touching.
+        assert_eq!(segment_distance(a, b, p(5.0, -1.0), p(5.0, 1.0)), 0.0);
+        assert_eq!(segment_distance(a, b, p(10.0, 0.0), p(10.0, 1.0)), 0.0);
+        // Skew: the closest points are an endpoint and an interior point.
+        let d = segment_distance(a, b, p(3.0, 1.0), p(6.0, 4.0));
+        assert!((d - 1.0).abs() < 1e-15);
+        // Symmetric.
+        let (c, e) = (p(-1.0, 3.0), p(4.0, 7.0));
+        assert_eq!(segment_distance(a, b, c, e), segment_distance(c, e, b, a));
+    }
+
+    #[test]
+    fn polygon_and_rect_predicates() {
+        let outline = notched();
+        assert!(point_in_polygon(p(50.0, 25.0), &outline));
+        assert!(!point_in_polygon(p(100.0, 40.0), &outline)); // in a notch
+        assert!(point_in_polygon(p(100.0, 10.0), &outline)); // under it
+        assert!(!point_in_polygon(p(-1.0, 10.0), &outline));
+        assert!(on_boundary(p(100.0, 24.0), &outline));
+        assert!(!on_boundary(p(100.0, 23.0), &outline));
+
+        let r = Rect::new(0.0, 0.0, 10.0, 5.0);
+        assert!(segment_meets_rect(p(2.0, 2.0), p(3.0, 3.0), r)); // inside
+        assert!(segment_meets_rect(p(-5.0, 2.0), p(15.0, 2.0), r)); // through
+        assert!(segment_meets_rect(p(-5.0, 5.0), p(0.0, 5.0), r)); // touches a corner
+        assert!(segment_meets_rect(p(10.0, -1.0), p(10.0, 9.0), r)); // along a side
+        assert!(!segment_meets_rect(p(-5.0, 6.0), p(15.0, 6.0), r)); // above
+        assert!(!segment_meets_rect(p(-2.0, 4.0), p(4.0, 10.0), r)); // skims the corner
+        assert!(!segment_meets_rect(p(11.0, 1.0), p(11.0, 1.0), r)); // a point outside
+    }
+
+    #[test]
+    fn a_good_part_passes() {
+        let hole = circle_cw(p(150.0, 25.0), 3.0, ARC_TOLERANCE_MM);
+        let engraving = vec![
+            vec![p(10.0, 10.0), p(40.0, 10.0), p(40.0, 20.0)],
+            vec![p(60.0, 30.0)],
+        ];
+        let part = part(notched(), vec![hole], engraving);
+        assert_eq!(check_part(&part, 0.5), Ok(()));
+    }
+
+    #[test]
+    fn outline_faults_are_named() {
+        let ok = notched();
+        // Clockwise.
+        let mut cw = ok.clone();
+        cw.reverse();
+        let e = outline_is_closed_simple_ccw(&part(cw, vec![], vec![])).unwrap_err();
+        assert!(e.contains("T1") && e.contains("counter-clockwise"), "{e}");
+        // Repeated closing point.
+        let mut closed = ok.clone();
+        closed.push(ok[0]);
+        let e = outline_is_closed_simple_ccw(&part(closed, vec![], vec![])).unwrap_err();
+        assert!(e.contains("repeat"), "{e}");
+        // Too few.
+        let e = outline_is_closed_simple_ccw(&part(ok[..2].to_vec(), vec![], vec![])).unwrap_err();
+        assert!(e.contains("< 3"), "{e}");
+        // A bow tie.
+        let bow = vec![p(0.0, 0.0), p(10.0, 10.0), p(10.0, 0.0), p(0.0, 10.0)];
+        let e = outline_is_closed_simple_ccw(&part(bow, vec![], vec![])).unwrap_err();
+        assert!(e.contains("not simple"), "{e}");
+        // A notch so deep it touches the bottom edge (touching, not crossing).
+        let mut deep = ok.clone();
+        deep[8] = p(101.5, 0.0);
+        deep[9] = p(98.5, 0.0);
+        let e = outline_is_closed_simple_ccw(&part(deep, vec![], vec![])).unwrap_err();
+        assert!(e.contains("not simple"), "{e}");
+        // A spike: an edge folding back over its neighbour.
+        let spike = vec![
+            p(0.0, 0.0),
+            p(10.0, 0.0),
+            p(10.0, 10.0),
+            p(10.0, 5.0),
+            p(0.0, 10.0),
+        ];
+        let e = outline_is_closed_simple_ccw(&part(spike, vec![], vec![])).unwrap_err();
+        assert!(e.contains("not simple"), "{e}");
+        // A vertex touching a non-adjacent edge.
+        let pinch = vec![
+            p(0.0, 0.0),
+            p(10.0, 0.0),
+            p(10.0, 10.0),
+            p(5.0, 0.0),
+            p(0.0, 10.0),
+        ];
+        assert!(outline_is_closed_simple_ccw(&part(pinch, vec![], vec![])).is_err());
+        // A collinear middle point is fine.
+        let mid = vec![
+            p(0.0, 0.0),
+            p(5.0, 0.0),
+            p(10.0, 0.0),
+            p(10.0, 10.0),
+            p(0.0, 10.0),
+        ];
+        assert_eq!(
+            outline_is_closed_simple_ccw(&part(mid, vec![], vec![])),
+            Ok(())
+        );
+        // A triangle, and a degenerate (flat) one.
+        let tri = vec![p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)];
+        assert_eq!(
+            outline_is_closed_simple_ccw(&part(tri, vec![], vec![])),
+            Ok(())
+        );
+        let flat = vec![p(0.0, 0.0), p(1.0, 0.0), p(2.0, 0.0)];
+        assert!(outline_is_closed_simple_ccw(&part(flat, vec![], vec![])).is_err());
+    }
+
+    #[test]
+    fn hole_faults_are_named() {
+        let outline = notched();
+        let c = |x: f64, y: f64, r: f64| circle_cw(p(x, y), r, ARC_TOLERANCE_MM);
+        let check = |holes: Vec<Vec<Point>>| {
+            holes_are_simple_cw_inside(&part(outline.clone(), holes, vec![]))
+        };
+        assert_eq!(check(vec![c(150.0, 25.0, 3.0), c(50.0, 25.0, 3.0)]), Ok(()));
+        // Counter-clockwise.
+        let mut ccw = c(150.0, 25.0, 3.0);
+        ccw.reverse();
+        assert!(check(vec![ccw]).unwrap_err().contains("not clockwise"));
+        // Outside the part, and inside a notch.
+        assert!(check(vec![c(350.0, 25.0, 3.0)])
+            .unwrap_err()
+            .contains("strictly inside"));
+        assert!(check(vec![c(100.0, 40.0, 1.0)])
+            .unwrap_err()
+            .contains("strictly inside"));
+        // Crossing the bottom edge (some vertices still inside).
+        let e = check(vec![c(150.0, 2.0, 3.0)]).unwrap_err();
+        assert!(
+            e.contains("strictly inside") || e.contains("crosses"),
+            "{e}"
+        );
+        // A square hole whose vertices are all inside but whose edge crosses
+        // a notch.
+        // (clockwise: along the top to the right, then down)
+        let sq = vec![p(95.0, 30.0), p(105.0, 30.0), p(105.0, 20.0), p(95.0, 20.0)];
+        assert!(signed_area_mm2(&sq) < 0.0);
+        let outline2 = vec![
+            p(0.0, 0.0),
+            p(300.0, 0.0),
+            p(300.0, 50.0),
+            p(101.0, 50.0),
+            p(101.0, 25.0),
+            p(99.0, 25.0),
+            p(99.0, 50.0),
+            p(0.0, 50.0),
+        ];
+        let e = holes_are_simple_cw_inside(&part(outline2, vec![sq], vec![])).unwrap_err();
+        assert!(e.contains("crosses"), "{e}");
+        // Two overlapping holes, two touching, one inside another.
+        let e = check(vec![c(150.0, 25.0, 3.0), c(154.0, 25.0, 3.0)]).unwrap_err();
+        assert!(e.contains("crosses"), "{e}");
+        let s1 = vec![p(10.0, 10.0), p(10.0, 20.0), p(20.0, 20.0), p(20.0, 10.0)];
+        let s2 = vec![p(20.0, 10.0), p(20.0, 20.0), p(30.0, 20.0), p(30.0, 10.0)];
+        assert!(check(vec![s1.clone(), s2]).unwrap_err().contains("crosses"));
+        let e = check(vec![c(150.0, 25.0, 8.0), c(150.0, 25.0, 3.0)]).unwrap_err();
+        assert!(e.contains("inside hole 0"), "{e}");
+        // A self-intersecting hole (a bow tie with negative area overall).
+        let bow = vec![p(10.0, 10.0), p(20.0, 20.0), p(22.0, 10.0), p(10.0, 20.0)];
+        let e = check(vec![bow]).unwrap_err();
+        assert!(
+            e.contains("not simple") || e.contains("not clockwise"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn engraving_faults_are_named() {
+        let hole = circle_cw(p(150.0, 25.0), 3.0, ARC_TOLERANCE_MM);
+        let check = |eng: Vec<Vec<Point>>, c: f64| {
+            engraving_inside_and_clear(&part(notched(), vec![hole.clone()], eng), c)
+        };
+        assert_eq!(check(vec![vec![p(10.0, 1.0), p(90.0, 1.0)]], 0.9), Ok(()));
+        // Too close to the bottom edge.
+        let e = check(vec![vec![p(10.0, 1.0), p(90.0, 1.0)]], 1.1).unwrap_err();
+        assert!(
+            e.contains("engraving 0 segment 0") && e.contains("outline edge 0"),
+            "{e}"
+        );
+        // Both ends inside, the segment runs under... through a notch.
+        let e = check(vec![vec![p(90.0, 30.0), p(110.0, 30.0)]], 0.0).unwrap_err();
+        assert!(e.contains("0.0000 mm"), "{e}");
+        // A vertex in the notch, outside the outline.
+        let e = check(vec![vec![p(100.0, 30.0)]], 0.0).unwrap_err();
+        assert!(e.contains("outside the outline"), "{e}");
+        // A vertex in the hole; a segment passing near it.
+        let e = check(vec![vec![p(150.0, 25.0), p(160.0, 25.0)]], 0.0).unwrap_err();
+        assert!(e.contains("inside hole 0"), "{e}");
+        let e = check(vec![vec![p(140.0, 28.5), p(160.0, 28.5)]], 1.0).unwrap_err();
+        assert!(e.contains("hole 0 edge"), "{e}");
+        assert_eq!(
+            check(vec![vec![p(140.0, 29.5), p(160.0, 29.5)]], 0.45),
+            Ok(())
+        );
+        // Empty polyline.
+        assert!(check(vec![vec![]], 0.0).unwrap_err().contains("no points"));
+    }
+
+    /// A star-shaped outline of `n` vertices (radius alternating), CCW.
+    fn star(n: usize) -> Vec<Point> {
+        (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                let r = if k % 2 == 0 { 100.0 } else { 90.0 };
+                p(r * a.cos(), r * a.sin())
+            })
+            .collect()
+    }
+
+    /// A lamella-like comb: `slots` notches from the top, CCW.
+    fn comb(slots: usize) -> Vec<Point> {
+        let mut pts = vec![p(0.0, 0.0), p(100.0 * (slots + 1) as f64, 0.0)];
+        for k in (1..=slots).rev() {
+            let x = 100.0 * k as f64;
+            pts.extend([
+                p(x + 1.5, 50.0),
+                p(x + 1.5, 24.0),
+                p(x - 1.5, 24.0),
+                p(x - 1.5, 50.0),
+            ]);
+        }
+        pts.insert(2, p(100.0 * (slots + 1) as f64, 50.0));
+        pts.push(p(0.0, 50.0));
+        pts
+    }
+
+    #[test]
+    fn large_outlines_are_fast() {
+        for (name, outline) in [("star", star(2000)), ("comb", comb(500))] {
+            assert!(outline.len() >= 2000);
+            let part = part(outline, vec![], vec![]);
+            let t = std::time::Instant::now();
+            assert_eq!(outline_is_closed_simple_ccw(&part), Ok(()), "{name}");
+            let dt = t.elapsed();
+            // Under 1 ms here (2,000 edges); the bound leaves room for a
+            // loaded machine.
+            assert!(dt.as_millis() < 50, "{name}: {dt:?}");
+        }
+        // And the sweep still finds a fault near the end.
+        let mut bad = comb(500);
+        let n = bad.len();
+        bad[n - 3].y = -1.0; // the last notch cuts through the bottom edge
+        assert!(outline_is_closed_simple_ccw(&part(bad, vec![], vec![])).is_err());
+    }
+}
