@@ -1,6 +1,7 @@
 //! Fabrication: every strip turned into the flat parts a laser or waterjet
 //! cuts (fabrication.md).
 
+pub mod edge_strip;
 pub mod part;
 pub mod slots;
 pub mod stud;
