@@ -740,6 +740,117 @@ mod tests {
         assert_eq!(part.holes_part_mm.len(), 1);
     }
 
+    /// A flat grid (z = 0): A lines along x, B lines at 60°, and an arc
+    /// edge of radius 700 mm that both cross; file normals +z.
+    fn planar_analysis() -> Analysis {
+        use crate::network::{Network, RawCurve, RawNetwork, Unit};
+        use glam::DVec3;
+        let line = |id: String, family, p0: DVec3, d: DVec3, len: f64| {
+            let n = (len / 10.0) as usize;
+            let points: Vec<DVec3> = (0..=n)
+                .map(|i| p0 + d * (len * i as f64 / n as f64))
+                .collect();
+            RawCurve {
+                id,
+                family,
+                normals: Some(vec![DVec3::Z; points.len()]),
+                points,
+            }
+        };
+        let mut curves = Vec::new();
+        for (i, y) in [0.0, 100.0, 200.0].into_iter().enumerate() {
+            curves.push(line(
+                format!("A{i:02}"),
+                Family::A,
+                DVec3::new(-100.0, y, 0.0),
+                DVec3::X,
+                500.0,
+            ));
+        }
+        let d = DVec3::new(0.5, 0.75f64.sqrt(), 0.0);
+        for (i, x) in [0.0, 115.0, 230.0].into_iter().enumerate() {
+            curves.push(line(
+                format!("B{i:02}"),
+                Family::B,
+                DVec3::new(x, 0.0, 0.0) - d * 150.0,
+                d,
+                500.0,
+            ));
+        }
+        let (c, r) = (DVec3::new(-400.0, 100.0, 0.0), 700.0);
+        let points: Vec<DVec3> = (0..=300)
+            .map(|i| {
+                let a = -0.35 + 0.7 * i as f64 / 300.0;
+                c + DVec3::new(a.cos(), a.sin(), 0.0) * r
+            })
+            .collect();
+        curves.push(RawCurve {
+            id: "edge00".into(),
+            family: Family::Edge,
+            normals: Some(vec![DVec3::Z; points.len()]),
+            points,
+        });
+        let raw = RawNetwork {
+            name: "flat".into(),
+            unit: Unit::Mm,
+            tolerance: None,
+            curves,
+        };
+        let net = Network::new(raw, Path::new("flat.yaml")).expect("network");
+        crate::analysis::analyze(&net, crate::analysis::AnalysisOptions::for_network(&net))
+            .expect("analysis")
+    }
+
+    #[test]
+    fn a_flat_edge_unrolls_onto_itself() {
+        let an = planar_analysis();
+        // The A×B nodes of the grid, all at 60°.
+        let grid = crate::fabricate::washer::grid_nodes(&an);
+        assert_eq!(grid.len(), 9);
+        assert!(grid.iter().all(|n| (n.angle_deg - 60.0).abs() < 1e-6));
+        let w = crate::fabricate::washer::washers(&steel(), &grid).expect("washers");
+        assert_eq!((w.len(), w[0].id.as_str(), w[0].count), (1, "W60", 18));
+        // The edge crosses the three A strips, B01 and B02.
+        let edges = edge_curves(&an);
+        assert_eq!(edges.len(), 1);
+        let e = &edges[0];
+        assert_eq!(e.nodes.len(), 5);
+        assert!((e.length_mm - 700.0 * 0.7).abs() < 0.01);
+        let parts = edge_strips(&steel(), &an).expect("bands");
+        assert_eq!(parts.len(), 1);
+        let part = &parts[0];
+        assert_eq!(part.id, "E-edge00");
+        // On a plane the unrolled band is congruent to the curve: hole
+        // centres as far apart as the nodes.
+        let world = |f: &Feature| {
+            an.topology
+                .nodes
+                .iter()
+                .find(|n| Some(n.id) == f.node)
+                .map(|n| n.position_world_mm)
+                .expect("node")
+        };
+        for f in &part.features {
+            let crossing = f.crossing.as_deref().unwrap_or_default();
+            assert!(crossing.starts_with('A') || crossing.starts_with('B'));
+            for g in &part.features {
+                let want = world(f).distance(world(g));
+                let got = f.center_part_mm.distance(g.center_part_mm);
+                assert!((got - want).abs() < 0.01, "{got} vs {want}");
+            }
+        }
+        // Not mirrored: seen from the normal (+z), the part frame turns
+        // like the world's x, y.
+        let f = &part.features;
+        let (a, b, c) = (&f[0], &f[2], &f[4]);
+        let turn_part =
+            (b.center_part_mm - a.center_part_mm).cross(c.center_part_mm - a.center_part_mm);
+        let turn_world = (world(b) - world(a)).cross(world(c) - world(a)).z;
+        assert!(turn_world.abs() > 1.0 && turn_part * turn_world > 0.0);
+        assert!(is_simple(&part.outline_part_mm));
+        assert!(signed_area_mm2(&part.outline_part_mm) > 0.0);
+    }
+
     #[test]
     fn errors_name_the_edge() {
         let p = steel();
