@@ -8,12 +8,15 @@
 //! [`Error::Fabrication`](crate::Error::Fabrication) naming strip and node.
 
 pub mod blocks;
+pub mod edge_strip;
 pub mod font;
 pub mod invariants;
 pub mod label;
 pub mod lamella;
 pub mod part;
 pub mod slots;
+pub mod stud;
+pub mod washer;
 
 use crate::analysis::Analysis;
 use crate::error::Result;
