@@ -223,6 +223,9 @@ fn parts(
     for w in an.warnings() {
         eprintln!("warning: {w}");
     }
+    for w in &kit.warnings {
+        eprintln!("warning: {w}");
+    }
     let s = &kit.summary;
     println!(
         "{} on {}: {} parts to make",
@@ -238,6 +241,9 @@ fn parts(
         s.lamella_length_mm / 1000.0,
         s.mass_kg
     );
+    if s.stud_bars > 0 {
+        println!("studs: {} bars of stud stock", s.stud_bars);
+    }
     println!("wrote {}", target.display());
     Ok(ExitCode::SUCCESS)
 }

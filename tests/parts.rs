@@ -310,6 +310,19 @@ fn every_profile_builds_every_sample_or_says_why() {
             match fabricate(&net, &an, &p) {
                 Ok(kit) => {
                     assert!(lamellas(&kit).count() >= an.lamella_strips().count());
+                    // Every outline closed, simple, counter-clockwise; holes
+                    // clockwise inside it; every label inside and clear of
+                    // the cuts by kerf + spacing; nothing left unlabelled.
+                    let clearance = p.cutting.kerf_mm + p.cutting.part_spacing_mm;
+                    for part in &kit.parts {
+                        assert_eq!(
+                            lamella::fabricate::invariants::check_part(part, clearance),
+                            Ok(()),
+                            "{profile} on {sample}"
+                        );
+                        assert!(!part.engraving_part_mm.is_empty(), "{} unlabelled", part.id);
+                    }
+                    assert!(kit.warnings.is_empty(), "{:?}", kit.warnings);
                     // Every lamella part within the stock's usable length.
                     let usable = p.stock.length_mm - 2.0 * p.cutting.edge_margin_mm;
                     for part in lamellas(&kit) {

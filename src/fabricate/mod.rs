@@ -9,6 +9,7 @@
 
 pub mod blocks;
 pub mod edge_strip;
+pub mod engrave;
 pub mod font;
 pub mod invariants;
 pub mod label;
@@ -36,6 +37,9 @@ pub struct Kit {
     pub parts: Vec<Part>,
     /// Counts, lengths and mass.
     pub summary: KitSummary,
+    /// What could not be engraved, one line each (the parts are still
+    /// right; a label is missing).
+    pub warnings: Vec<String>,
 }
 
 /// How many of each kind, and what they weigh.
@@ -47,6 +51,8 @@ pub struct KitSummary {
     pub lamella_length_mm: f64,
     /// Mass of everything cut or sawn, kg.
     pub mass_kg: f64,
+    /// Bars of stud stock to saw the studs from (two-level grids).
+    pub stud_bars: u32,
 }
 
 /// Make every part of the network's A/B strips for `profile`.
@@ -100,8 +106,29 @@ pub fn fabricate(net: &Network, an: &Analysis, profile: &Profile) -> Result<Kit>
             &holes,
         ));
     }
-    let summary = summarise(&parts, profile);
-    Ok(Kit { parts, summary })
+    let grid = washer::grid_nodes(an);
+    parts.extend(washer::washers(profile, &grid)?);
+    let stud_cut = stud::studs(profile, grid.len())?;
+    let stud_bars = stud_cut.as_ref().map_or(0, |s| s.bars);
+    parts.extend(stud_cut.map(|s| s.part));
+    parts.extend(edge_strip::edge_strips(profile, an)?);
+    let clearance = profile.cutting.kerf_mm + profile.cutting.part_spacing_mm;
+    let warnings = engrave::engrave_all(&mut parts, clearance);
+    for p in &parts {
+        debug_assert_eq!(
+            invariants::check_part(p, clearance),
+            Ok(()),
+            "part {}",
+            p.id
+        );
+    }
+    let mut summary = summarise(&parts, profile);
+    summary.stud_bars = stud_bars;
+    Ok(Kit {
+        parts,
+        summary,
+        warnings,
+    })
 }
 
 /// A rectangular part with round holes (features and polylines).

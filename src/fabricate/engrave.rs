@@ -1,0 +1,251 @@
+//! Engraving the parts: every part its id; every lamella the crossing
+//! strip's id beside each slot or node hole and an orientation mark (an
+//! arrow from the start end toward the end, its tick toward the top edge).
+//! Every engraving lies inside its part and keeps at least `clearance_mm`
+//! (kerf plus part spacing) from every cut.
+//!
+//! Lamellas are rectangles notched from one edge, so their labels go into
+//! the band the slots leave whole (y from the clearance to the slots' roots
+//! less the clearance) and are placed along x as intervals: linear in the
+//! number of features however long the lamella. Other parts use the general
+//! [`label::Placer`].
+
+use super::font;
+use super::label::{self, LabelSize, Placer};
+use super::part::{FeatureKind, Part, PartKind, SlotEdge};
+use kurbo::Point;
+
+/// The largest cap height of a lamella's id, mm.
+const ID_HEIGHT_MM: f64 = 8.0;
+/// The largest cap height of a crossing strip's id beside a slot, mm.
+const CROSSING_HEIGHT_MM: f64 = 5.0;
+/// The smallest cap height engraved, mm (below it a laser's line blurs).
+pub const MIN_HEIGHT_MM: f64 = 1.0;
+/// How far a crossing label may move from its slot, in text widths.
+const CROSSING_SEARCH_WIDTHS: f64 = 3.0;
+
+/// Engrave every part; returns what could not be engraved (one line each).
+pub fn engrave_all(parts: &mut [Part], clearance_mm: f64) -> Vec<String> {
+    let mut missing = Vec::new();
+    for p in parts.iter_mut() {
+        if p.kind == PartKind::Lamella {
+            missing.extend(engrave_lamella(p, clearance_mm));
+        } else if let Some(m) = engrave_other(p, clearance_mm) {
+            missing.push(m);
+        }
+    }
+    missing
+}
+
+/// Free x-intervals search: the position nearest `want` (a box centre) for a
+/// box `width` wide that overlaps none of `blocked` (sorted or not), within
+/// `reach` of `want`.
+fn nearest_free(want: f64, width: f64, blocked: &[(f64, f64)], reach: f64) -> Option<f64> {
+    let half = 0.5 * width;
+    // Touching is fine; rounding must not make it a collision.
+    let eps = 1e-9;
+    let fits = |c: f64| {
+        blocked
+            .iter()
+            .all(|&(a, b)| c + half <= a + eps || c - half >= b - eps)
+    };
+    if fits(want) {
+        return Some(want);
+    }
+    // Candidates: just beside each blocked interval.
+    let mut best: Option<f64> = None;
+    for &(a, b) in blocked {
+        for c in [a - half, b + half] {
+            if (c - want).abs() <= reach
+                && fits(c)
+                && best.is_none_or(|x: f64| (c - want).abs() < (x - want).abs())
+            {
+                best = Some(c);
+            }
+        }
+    }
+    best
+}
+
+/// Lamella labels in the band the slots leave whole.
+fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
+    let (len, h) = (p.length_mm, p.height_mm);
+    let slots: Vec<_> = p
+        .features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Slot)
+        .collect();
+    let depth = slots.iter().map(|f| f.depth_mm).fold(0.0, f64::max);
+    let (band_lo, band_hi) = match slots.first().and_then(|f| f.edge) {
+        Some(SlotEdge::Top) => (c, h - depth - c),
+        Some(SlotEdge::Bottom) => (depth + c, h - c),
+        None => (c, h - c),
+    };
+    let band = band_hi - band_lo;
+    let mut missing = Vec::new();
+    if band < MIN_HEIGHT_MM {
+        missing.push(format!(
+            "{}: no room to engrave (the slots leave {band:.2} mm)",
+            p.id
+        ));
+        return missing;
+    }
+    // What blocks a box of this height in the band: the ends, the holes
+    // whose clearance zone reaches the box's rows, and placed labels.
+    let holes: Vec<(f64, f64, f64)> = p
+        .features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Hole)
+        .map(|f| (f.center_part_mm.x, f.center_part_mm.y, 0.5 * f.width_mm))
+        .collect();
+    let mut taken: Vec<(f64, f64)> = vec![(f64::NEG_INFINITY, c), (len - c, f64::INFINITY)];
+    let blocked_for = |y0: f64, th: f64, taken: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        let mut b: Vec<(f64, f64)> = taken.to_vec();
+        for &(hx, hy, r) in &holes {
+            if hy + r + c > y0 && hy - r - c < y0 + th {
+                b.push((hx - r - c, hx + r + c));
+            }
+        }
+        b
+    };
+    let mut strokes: Vec<Vec<Point>> = Vec::new();
+    let put = |text_strokes: Vec<Vec<Point>>, x0: f64, y0: f64, strokes: &mut Vec<Vec<Point>>| {
+        strokes.extend(text_strokes.into_iter().map(|s| {
+            s.into_iter()
+                .map(|q| Point::new(q.x + x0, q.y + y0))
+                .collect()
+        }));
+    };
+    // Place a box of `width(th)` at heights from `max_h` down; returns
+    // (centre x, cap height, bottom y).
+    let place = |width: &dyn Fn(f64) -> f64,
+                 want: f64,
+                 reach: &dyn Fn(f64) -> f64,
+                 max_h: f64,
+                 taken: &[(f64, f64)]|
+     -> Option<(f64, f64, f64)> {
+        let mut th = max_h.min(band);
+        while th >= MIN_HEIGHT_MM - 1e-12 {
+            let y0 = band_lo + 0.5 * (band - th);
+            let w = width(th);
+            let blocked = blocked_for(y0, th, taken);
+            if let Some(x) = nearest_free(want, w + 2.0 * c, &blocked, reach(w)) {
+                return Some((x, th, y0));
+            }
+            th *= 0.85;
+        }
+        None
+    };
+    // Crossing ids beside slots and node holes, in x order.
+    let mut marks: Vec<(f64, String, Option<usize>)> = p
+        .features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Slot || f.hole_use == Some(super::part::HoleUse::Node))
+        .filter_map(|f| {
+            f.crossing
+                .clone()
+                .map(|id| (f.center_part_mm.x, id, f.node))
+        })
+        .collect();
+    marks.sort_by(|a, b| a.0.total_cmp(&b.0));
+    marks.dedup_by(|a, b| a.1 == b.1 && a.2 == b.2);
+    for (x, id, node) in marks {
+        let width = |th: f64| font::text_width_mm(&id, th);
+        let reach = |w: f64| CROSSING_SEARCH_WIDTHS * w + 10.0;
+        match place(&width, x, &reach, CROSSING_HEIGHT_MM, &taken) {
+            Some((cx, th, y0)) => {
+                let w = width(th);
+                put(font::text_strokes(&id, th), cx - 0.5 * w, y0, &mut strokes);
+                taken.push((cx - 0.5 * w - c, cx + 0.5 * w + c));
+            }
+            None => missing.push(format!(
+                "{}: no room to engrave the crossing strip {id} beside node {}",
+                p.id,
+                node.map_or_else(|| "?".into(), |n| n.to_string())
+            )),
+        }
+    }
+    // The part id near the start, then the orientation mark after it.
+    let id = p.id.clone();
+    let width = |th: f64| font::text_width_mm(&id, th);
+    let far = |_: f64| len;
+    match place(
+        &width,
+        c + 0.5 * width(ID_HEIGHT_MM.min(band)) + c,
+        &far,
+        ID_HEIGHT_MM,
+        &taken,
+    ) {
+        Some((cx, th, y0)) => {
+            let w = width(th);
+            put(font::text_strokes(&id, th), cx - 0.5 * w, y0, &mut strokes);
+            taken.push((cx - 0.5 * w - c, cx + 0.5 * w + c));
+            let mark_w = |mh: f64| label::ORIENTATION_MARK_LENGTH * mh;
+            match place(&mark_w, cx + 0.5 * w + c + mark_w(th), &far, th, &taken) {
+                Some((mx, mh, my)) => {
+                    put(
+                        label::orientation_mark_strokes(mh),
+                        mx - 0.5 * mark_w(mh),
+                        my,
+                        &mut strokes,
+                    );
+                }
+                None => missing.push(format!("{}: no room for the orientation mark", p.id)),
+            }
+        }
+        None => missing.push(format!("{}: no room to engrave its id", p.id)),
+    }
+    p.engraving_part_mm = strokes;
+    missing
+}
+
+/// Any other part: its id where it fits, tried at anchors over its extent.
+fn engrave_other(p: &mut Part, c: f64) -> Option<String> {
+    let (x0, x1, y0, y1) = p.outline_part_mm.iter().fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, cc, d), q| (a.min(q.x), b.max(q.x), cc.min(q.y), d.max(q.y)),
+    );
+    let size = LabelSize {
+        max_height_mm: ID_HEIGHT_MM.min(0.5 * (y1 - y0)),
+        min_height_mm: MIN_HEIGHT_MM,
+        search_mm: 0.5 * (x1 - x0),
+    };
+    let outline = p.outline_part_mm.clone();
+    let holes = p.holes_part_mm.clone();
+    let mut placer = Placer::new(&outline, &holes, c);
+    // Anchors: the centre line of the extent first, then a grid.
+    let mut anchors = Vec::new();
+    for fy in [0.5, 0.25, 0.75, 0.1, 0.9] {
+        for fx in [0.5, 0.25, 0.75, 0.1, 0.9] {
+            anchors.push(Point::new(x0 + fx * (x1 - x0), y0 + fy * (y1 - y0)));
+        }
+    }
+    for a in anchors {
+        if let Some(l) = placer.text(&p.id, a, &size) {
+            p.engraving_part_mm = l.strokes_part_mm;
+            return None;
+        }
+    }
+    Some(format!("{}: no room to engrave its id", p.id))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_free_steps_beside_what_is_taken() {
+        let blocked = [(10.0, 20.0), (30.0, 40.0)];
+        assert_eq!(nearest_free(5.0, 4.0, &blocked, 50.0), Some(5.0));
+        assert_eq!(nearest_free(15.0, 4.0, &blocked, 50.0), Some(8.0));
+        assert_eq!(nearest_free(19.0, 4.0, &blocked, 50.0), Some(22.0));
+        // A gap too narrow for the box is skipped.
+        assert_eq!(nearest_free(25.0, 12.0, &blocked, 50.0), Some(4.0));
+        assert_eq!(nearest_free(25.0, 12.0, &blocked, 5.0), None);
+    }
+}
