@@ -16,7 +16,7 @@ use crate::profile::{LamellaOffset, Profile};
 use rayon::prelude::*;
 
 /// Largest integration step (mm) along a lamella line.
-pub const LINE_STEP_MM: f64 = 25.0;
+pub const LINE_STEP_MM: f64 = 100.0;
 
 /// A node seen from one lamella: its station on the lamella's own line.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,39 +54,77 @@ impl LamellaLine {
         offset: LamellaOffset,
         curve_stations_mm: &[f64],
     ) -> (LamellaLine, Vec<f64>) {
+        LamellaLine::with_stations_many(strip, smooth, &[offset], curve_stations_mm)
+            .pop()
+            .unwrap_or_else(|| {
+                (
+                    LamellaLine {
+                        offset,
+                        length_mm: 0.0,
+                        nodes: Vec::new(),
+                    },
+                    Vec::new(),
+                )
+            })
+    }
+
+    /// [`LamellaLine::with_stations`] for several lamellas of one strip at
+    /// once: the frames along the strip are evaluated once for all of them.
+    pub fn with_stations_many(
+        strip: &StripGeometry,
+        smooth: &SmoothCurve,
+        offsets: &[LamellaOffset],
+        curve_stations_mm: &[f64],
+    ) -> Vec<(LamellaLine, Vec<f64>)> {
         // Curve stations wanted: the nodes', the extra ones, the end.
         let mut wanted: Vec<f64> = strip.nodes.iter().map(|n| n.station_mm).collect();
         wanted.extend_from_slice(curve_stations_mm);
         wanted.push(strip.length_mm);
-        let on_line: Vec<f64> = if offset.dy_mm == 0.0 && offset.dz_mm == 0.0 {
-            wanted.clone()
+        let mut order: Vec<usize> = (0..wanted.len()).collect();
+        order.sort_by(|&a, &b| wanted[a].total_cmp(&wanted[b]));
+        let sorted: Vec<f64> = order.iter().map(|&i| wanted[i]).collect();
+        let off: Vec<(f64, f64)> = offsets
+            .iter()
+            .filter(|o| o.dy_mm != 0.0 || o.dz_mm != 0.0)
+            .map(|o| (o.dy_mm, o.dz_mm))
+            .collect();
+        let mut integrated = if off.is_empty() {
+            Vec::new()
         } else {
-            let mut order: Vec<usize> = (0..wanted.len()).collect();
-            order.sort_by(|&a, &b| wanted[a].total_cmp(&wanted[b]));
-            let sorted: Vec<f64> = order.iter().map(|&i| wanted[i]).collect();
-            let got =
-                strip.offset_stations(smooth, offset.dy_mm, offset.dz_mm, &sorted, LINE_STEP_MM);
-            let mut out = vec![0.0; wanted.len()];
-            for (k, &i) in order.iter().enumerate() {
-                out[i] = got[k];
-            }
-            out
-        };
+            strip.offset_stations_many(smooth, &off, &sorted, LINE_STEP_MM)
+        }
+        .into_iter();
         let n = strip.nodes.len();
-        let line = LamellaLine {
-            offset,
-            length_mm: on_line[on_line.len() - 1],
-            nodes: strip
-                .nodes
-                .iter()
-                .zip(&on_line)
-                .map(|(cn, &s)| LamellaNode {
-                    node: cn.node,
-                    station_mm: s,
-                })
-                .collect(),
-        };
-        (line, on_line[n..on_line.len() - 1].to_vec())
+        offsets
+            .iter()
+            .map(|&offset| {
+                let on_line: Vec<f64> = if offset.dy_mm == 0.0 && offset.dz_mm == 0.0 {
+                    wanted.clone()
+                } else {
+                    let got = integrated.next().unwrap_or_default();
+                    let mut out = vec![0.0; wanted.len()];
+                    for (k, &i) in order.iter().enumerate() {
+                        out[i] = got[k];
+                    }
+                    out
+                };
+                let line = LamellaLine {
+                    offset,
+                    length_mm: on_line[on_line.len() - 1],
+                    nodes: strip
+                        .nodes
+                        .iter()
+                        .zip(&on_line)
+                        .map(|(cn, &s)| LamellaNode {
+                            node: cn.node,
+                            station_mm: s,
+                        })
+                        .collect(),
+                };
+                let extra = on_line[n..on_line.len() - 1].to_vec();
+                (line, extra)
+            })
+            .collect()
     }
 
     /// Lengths between consecutive nodes on this line, mm.

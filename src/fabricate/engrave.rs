@@ -92,16 +92,36 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
     }
     // What blocks a box of this height in the band: the ends, the holes
     // whose clearance zone reaches the box's rows, and placed labels.
-    let holes: Vec<(f64, f64, f64)> = p
+    let mut holes: Vec<(f64, f64, f64)> = p
         .features
         .iter()
         .filter(|f| f.kind == FeatureKind::Hole)
         .map(|f| (f.center_part_mm.x, f.center_part_mm.y, 0.5 * f.width_mm))
         .collect();
-    let mut taken: Vec<(f64, f64)> = vec![(f64::NEG_INFINITY, c), (len - c, f64::INFINITY)];
-    let blocked_for = |y0: f64, th: f64, taken: &[(f64, f64)]| -> Vec<(f64, f64)> {
-        let mut b: Vec<(f64, f64)> = taken.to_vec();
-        for &(hx, hy, r) in &holes {
+    holes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let widest_hole = holes.iter().map(|h| 2.0 * (h.2 + c)).fold(0.0, f64::max);
+    // Placed labels (with their clearance), kept sorted by start; the ends
+    // of the part as two more blocked intervals.
+    let mut taken: Vec<(f64, f64)> = Vec::new();
+    let mut widest_taken: f64 = 0.0;
+    // Only what lies within [lo, hi] can block a box there: found by
+    // binary search, so placing n labels costs O(n log n).
+    let blocked_for = |y0: f64, th: f64, lo: f64, hi: f64, taken: &[(f64, f64)], widest: f64| {
+        let mut b: Vec<(f64, f64)> = Vec::new();
+        let first = taken.partition_point(|t| t.0 < lo - widest);
+        for &t in &taken[first..] {
+            if t.0 > hi {
+                break;
+            }
+            b.push(t);
+        }
+        b.push((f64::NEG_INFINITY, c));
+        b.push((len - c, f64::INFINITY));
+        let first = holes.partition_point(|h| h.0 < lo - widest_hole);
+        for &(hx, hy, r) in &holes[first..] {
+            if hx - r - c > hi {
+                break;
+            }
             if hy + r + c > y0 && hy - r - c < y0 + th {
                 b.push((hx - r - c, hx + r + c));
             }
@@ -122,19 +142,27 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
                  want: f64,
                  reach: &dyn Fn(f64) -> f64,
                  max_h: f64,
-                 taken: &[(f64, f64)]|
+                 taken: &[(f64, f64)],
+                 widest: f64|
      -> Option<(f64, f64, f64)> {
         let mut th = max_h.min(band);
         while th >= MIN_HEIGHT_MM - 1e-12 {
             let y0 = band_lo + 0.5 * (band - th);
             let w = width(th);
-            let blocked = blocked_for(y0, th, taken);
-            if let Some(x) = nearest_free(want, w + 2.0 * c, &blocked, reach(w)) {
+            let r = reach(w);
+            let blocked = blocked_for(y0, th, want - r - w, want + r + w, taken, widest);
+            if let Some(x) = nearest_free(want, w + 2.0 * c, &blocked, r) {
                 return Some((x, th, y0));
             }
             th *= 0.85;
         }
         None
+    };
+    let mut take = |t: (f64, f64), taken: &mut Vec<(f64, f64)>| {
+        let at = taken.partition_point(|x| x.0 < t.0);
+        taken.insert(at, t);
+        widest_taken = widest_taken.max(t.1 - t.0);
+        widest_taken
     };
     // Crossing ids beside slots and node holes, in x order.
     let mut marks: Vec<(f64, String, Option<usize>)> = p
@@ -149,14 +177,15 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         .collect();
     marks.sort_by(|a, b| a.0.total_cmp(&b.0));
     marks.dedup_by(|a, b| a.1 == b.1 && a.2 == b.2);
+    let mut widest = 0.0;
     for (x, id, node) in marks {
         let width = |th: f64| font::text_width_mm(&id, th);
         let reach = |w: f64| CROSSING_SEARCH_WIDTHS * w + 10.0;
-        match place(&width, x, &reach, CROSSING_HEIGHT_MM, &taken) {
+        match place(&width, x, &reach, CROSSING_HEIGHT_MM, &taken, widest) {
             Some((cx, th, y0)) => {
                 let w = width(th);
                 put(font::text_strokes(&id, th), cx - 0.5 * w, y0, &mut strokes);
-                taken.push((cx - 0.5 * w - c, cx + 0.5 * w + c));
+                widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
             }
             None => missing.push(format!(
                 "{}: no room to engrave the crossing strip {id} beside node {}",
@@ -169,19 +198,15 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
     let id = p.id.clone();
     let width = |th: f64| font::text_width_mm(&id, th);
     let far = |_: f64| len;
-    match place(
-        &width,
-        c + 0.5 * width(ID_HEIGHT_MM.min(band)) + c,
-        &far,
-        ID_HEIGHT_MM,
-        &taken,
-    ) {
+    let want = c + 0.5 * width(ID_HEIGHT_MM.min(band)) + c;
+    match place(&width, want, &far, ID_HEIGHT_MM, &taken, widest) {
         Some((cx, th, y0)) => {
             let w = width(th);
             put(font::text_strokes(&id, th), cx - 0.5 * w, y0, &mut strokes);
-            taken.push((cx - 0.5 * w - c, cx + 0.5 * w + c));
+            widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
             let mark_w = |mh: f64| label::ORIENTATION_MARK_LENGTH * mh;
-            match place(&mark_w, cx + 0.5 * w + c + mark_w(th), &far, th, &taken) {
+            let at = cx + 0.5 * w + c + mark_w(th);
+            match place(&mark_w, at, &far, th, &taken, widest) {
                 Some((mx, mh, my)) => {
                     put(
                         label::orientation_mark_strokes(mh),

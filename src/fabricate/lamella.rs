@@ -26,6 +26,9 @@ use kurbo::Point;
 /// names none.
 pub const BOLT_HOLE_CLEARANCE_MM: f64 = 1.0;
 
+/// Spacing of candidate splice cuts along long stretches between nodes, mm.
+const CANDIDATE_STEP_MM: f64 = 50.0;
+
 /// What fabricating one strip made.
 #[derive(Debug, Clone, Default)]
 pub struct StripParts {
@@ -207,64 +210,94 @@ pub fn strip_parts(
                 ),
             ));
         };
-        // Distance from a candidate cut to the nearest thing on the strip.
-        let busy: Vec<(f64, f64)> = zones.clone();
-        let clearance = |c: f64| {
-            busy.iter()
-                .map(|&(lo, hi)| {
-                    if c < lo {
-                        lo - c
-                    } else if c > hi {
-                        c - hi
-                    } else {
-                        0.0
-                    }
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
+        // Candidate cuts: the middle of every stretch between node zones
+        // that leaves room for the plate (`need` each side), and along long
+        // stretches every `CANDIDATE_STEP_MM` where that room is kept.
         let need = 0.5 * sp.plate_length_mm + profile.joint.slot_clearance_mm;
-        // The fewest pieces whose cuts all find room; a few more pieces
-        // widen the windows the cuts may move in.
-        let fewest = (total / usable).ceil() as usize;
-        let mut last_err = String::new();
-        let mut found = false;
-        for n in fewest..fewest + 4 {
-            cuts.clear();
-            let mut prev = -allowance;
-            let mut ok = true;
-            for k in 1..n {
-                // Each cut within ±δ of its even position keeps every piece
-                // within the usable length; cuts lie on the line (not in
-                // the end allowances).
-                let slack = 0.5 * (n as f64 * usable - total) / n as f64;
-                let even = -allowance + total * k as f64 / n as f64;
-                let lo = (even - slack).max(prev + 1.0).max(need);
-                let hi = (even + slack).min(strip.length_mm - need);
-                let steps = (hi - lo).ceil().max(1.0) as usize;
-                let best = (0..=steps)
-                    .map(|j| lo + (hi - lo) * j as f64 / steps as f64)
-                    .max_by(|a, b| clearance(*a).total_cmp(&clearance(*b)))
-                    .unwrap_or(lo);
-                if clearance(best) < need {
-                    ok = false;
-                    last_err = format!(
-                        "no room for a {:.0} mm splice plate: the best cut near {best:.0} mm is {:.1} mm \
-                         from a node",
-                        sp.plate_length_mm,
-                        clearance(best)
-                    );
-                    break;
-                }
-                cuts.push(best);
-                prev = best;
+        let mut busy: Vec<(f64, f64)> = zones.clone();
+        busy.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut free: Vec<(f64, f64)> = Vec::new();
+        let mut from = 0.0f64;
+        for &(lo, hi) in &busy {
+            if lo > from {
+                free.push((from, lo));
             }
-            if ok {
-                found = true;
-                break;
+            from = from.max(hi);
+        }
+        if strip.length_mm > from {
+            free.push((from, strip.length_mm));
+        }
+        let mut candidates: Vec<f64> = Vec::new();
+        for (lo, hi) in free {
+            let (a, b) = (lo + need, hi - need);
+            if a > b {
+                continue;
+            }
+            let steps = ((b - a) / CANDIDATE_STEP_MM).ceil() as usize;
+            candidates.push(0.5 * (a + b));
+            for j in 0..=steps {
+                candidates.push(a + (b - a) * j as f64 / steps.max(1) as f64);
             }
         }
-        if !found {
-            return Err(fail(None, last_err));
+        candidates.sort_by(f64::total_cmp);
+        candidates.dedup();
+        // Greedy forward: each piece as long as the stock allows, cut at the
+        // farthest candidate within reach: the fewest pieces, and for each
+        // cut the latest place it can be. Greedy backward from the end gives
+        // the earliest. Each cut then goes to the candidate nearest the
+        // middle of that range, so the pieces come out of even length (no
+        // stub at the end) with every plate clear of the nodes.
+        let no_room = |at: f64| {
+            fail(
+                None,
+                format!(
+                    "no room for a {:.0} mm splice plate within {usable:.0} mm of {:.0} mm: the node \
+                     zones leave no stretch of {:.0} mm",
+                    sp.plate_length_mm,
+                    at.max(0.0),
+                    2.0 * need
+                ),
+            )
+        };
+        let mut latest: Vec<f64> = Vec::new();
+        let mut prev = -allowance;
+        while strip.length_mm + allowance - prev > usable {
+            let reach = prev + usable;
+            let Some(i) = candidates
+                .iter()
+                .rposition(|&c| c <= reach && c > prev + 1.0)
+            else {
+                return Err(no_room(prev));
+            };
+            latest.push(candidates[i]);
+            prev = candidates[i];
+        }
+        let mut earliest: Vec<f64> = Vec::new();
+        let mut next = strip.length_mm + allowance;
+        for _ in 0..latest.len() {
+            let reach = next - usable;
+            let Some(i) = candidates
+                .iter()
+                .position(|&c| c >= reach && c < next - 1.0)
+            else {
+                return Err(no_room(next - usable));
+            };
+            earliest.push(candidates[i]);
+            next = candidates[i];
+        }
+        earliest.reverse();
+        let mut prev = -allowance;
+        for (k, (&lo, &hi)) in earliest.iter().zip(&latest).enumerate() {
+            let hi = hi.min(prev + usable);
+            let mid = 0.5 * (lo + hi);
+            let best = candidates
+                .iter()
+                .copied()
+                .filter(|&c| c >= lo.min(hi) && c <= hi && c > prev + 1.0)
+                .min_by(|a, b| (a - mid).abs().total_cmp(&(b - mid).abs()))
+                .unwrap_or(latest[k]);
+            cuts.push(best);
+            prev = best;
         }
     }
     let block = profile.shear_block.as_ref().filter(|_| sec.per_strip == 2);
@@ -326,8 +359,8 @@ pub fn strip_parts(
     wanted.extend(&block_stations);
     wanted.extend(&cuts);
     wanted.extend(&splice_holes);
-    for (j, o) in offsets.iter().enumerate() {
-        let (line, on_line) = LamellaLine::with_stations(strip, smooth, *o, &wanted);
+    let lines = LamellaLine::with_stations_many(strip, smooth, &offsets, &wanted);
+    for (j, (o, (line, on_line))) in offsets.iter().zip(lines).enumerate() {
         let (b_line, rest) = on_line.split_at(block_stations.len());
         let (cut_line, hole_line) = rest.split_at(cuts.len());
         let mut features: Vec<Feature> = Vec::new();

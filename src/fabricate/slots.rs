@@ -28,8 +28,13 @@
 /// overlap grows without bound (w ∝ 1/sin φ).
 pub const MIN_SWEEP_ANGLE_DEG: f64 = 15.0;
 
-/// Samples of the angle range in a sweep (then refined at the extremes).
-const SWEEP_SAMPLES: usize = 240;
+/// Samples of the angle range in a sweep (then refined at the extremes by
+/// golden section): the overlap and centre are smooth in φ with at most one
+/// interior extremum each, so a coarse grid brackets it.
+const SWEEP_SAMPLES: usize = 24;
+/// Golden-section refinement stops when the bracket is this narrow, rad:
+/// the functions change by under 1e-6 mm over it.
+const SWEEP_ANGLE_TOLERANCE_RAD: f64 = 1e-8;
 
 /// One crossing plate seen from this lamella.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,6 +92,16 @@ fn minimise(f: impl Fn(f64) -> f64, (a, b): (f64, f64)) -> f64 {
             best_i = i;
         }
     }
+    // At an end of the range, with the function rising into the range
+    // (checked a millionth of the range in), the end is the minimum of that
+    // sample interval: no refinement needed.
+    let probe = 1e-6 * (b - a);
+    if best_i == 0 && f(a + probe) >= best {
+        return best;
+    }
+    if best_i == n && f(b - probe) >= best {
+        return best;
+    }
     let (mut lo, mut hi) = (x(best_i.saturating_sub(1)), x((best_i + 1).min(n)));
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut c, mut d) = (hi - g * (hi - lo), lo + g * (hi - lo));
@@ -105,7 +120,7 @@ fn minimise(f: impl Fn(f64) -> f64, (a, b): (f64, f64)) -> f64 {
             d = lo + g * (hi - lo);
             fd = f(d);
         }
-        if hi - lo < 1e-13 {
+        if hi - lo < SWEEP_ANGLE_TOLERANCE_RAD {
             break;
         }
     }

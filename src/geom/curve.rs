@@ -687,6 +687,60 @@ impl SmoothCurve {
         (k, u)
     }
 
+    /// 8-point Gauss–Legendre quadrature over segment k from local u0 to
+    /// u1 in arc length: for each node its local u, its station (mm) and its
+    /// weight (mm), so Σ w·f(u) ≈ ∫ f ds over that piece of the curve. The
+    /// nodes' stations are interpolated linearly in u between the piece's
+    /// exact end stations: the parameter is the chord length, so |c′| is
+    /// nearly constant and the error is below (Δs)²·max|d|c′|/du|/8, far
+    /// under 1e-6 mm on sampled curves.
+    pub fn gauss_nodes(&self, k: usize, u0: f64, u1: f64) -> [(f64, f64, f64); 8] {
+        let a = self.h.coefficients(k);
+        let du = u1 - u0;
+        let s0 = self.s[k] + integrate_speed(&a, u0);
+        let mut speeds = [0.0; 8];
+        let mut total = 0.0;
+        for (i, (x, w)) in GL_NODES.iter().zip(GL_WEIGHTS.iter()).enumerate() {
+            speeds[i] = Hermite5::speed_u(&a, u0 + x * du);
+            total += w * speeds[i] * du;
+        }
+        let mut out = [(0.0, 0.0, 0.0); 8];
+        for (i, (x, w)) in GL_NODES.iter().zip(GL_WEIGHTS.iter()).enumerate() {
+            out[i] = (u0 + x * du, s0 + x * total, w * speeds[i] * du);
+        }
+        out
+    }
+
+    /// As [`SmoothCurve::gauss_nodes`] with 4 points (exact for degree 7).
+    pub fn gauss_nodes4(&self, k: usize, u0: f64, u1: f64) -> [(f64, f64, f64); 4] {
+        const X: [f64; 4] = [
+            0.069_431_844_202_973_71,
+            0.330_009_478_207_571_87,
+            0.669_990_521_792_428_1,
+            0.930_568_155_797_026_3,
+        ];
+        const W: [f64; 4] = [
+            0.173_927_422_568_726_93,
+            0.326_072_577_431_273_07,
+            0.326_072_577_431_273_07,
+            0.173_927_422_568_726_93,
+        ];
+        let a = self.h.coefficients(k);
+        let du = u1 - u0;
+        let s0 = self.s[k] + integrate_speed(&a, u0);
+        let mut speeds = [0.0; 4];
+        let mut total = 0.0;
+        for i in 0..4 {
+            speeds[i] = Hermite5::speed_u(&a, u0 + X[i] * du);
+            total += W[i] * speeds[i] * du;
+        }
+        let mut out = [(0.0, 0.0, 0.0); 4];
+        for i in 0..4 {
+            out[i] = (u0 + X[i] * du, s0 + X[i] * total, W[i] * speeds[i] * du);
+        }
+        out
+    }
+
     /// Station of segment k at local u.
     pub fn station_at(&self, k: usize, u: f64) -> f64 {
         let a = self.h.coefficients(k);

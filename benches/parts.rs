@@ -1,0 +1,119 @@
+//! Benchmark of the parts stage on generated Enneper networks of n × n
+//! curves with the prototype's cell size (n = 100, 200, 400; the largest has
+//! 160,000 nodes): read, analyse,
+//! then fabricate every part for the steel prototype's profile (doubled
+//! lamellas with swept slots, shear blocks, splices, star washers, edge-less
+//! grid) including the engraving. Each size runs in a fresh child process so
+//! its peak memory (VmHWM) is its own.
+//!
+//!     cargo bench --bench parts            # all sizes
+//!     cargo bench --bench parts -- 400     # one size
+
+#[path = "../tests/common/synth.rs"]
+#[allow(dead_code)]
+mod synth;
+
+use lamella::fabricate::fabricate;
+use lamella::io::{self, ReadOptions};
+use lamella::profile::Profile;
+use lamella::{analyze, AnalysisOptions};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
+
+fn main() {
+    if let Ok(path) = std::env::var(CHILD_ENV) {
+        measure(Path::new(&path));
+        return;
+    }
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![100, 200, 400]
+    } else {
+        sizes
+    };
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-networks");
+    std::fs::create_dir_all(&dir).expect("bench dir");
+    println!(
+        "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>10}",
+        "n",
+        "nodes",
+        "parts",
+        "pieces",
+        "analyse s",
+        "fabricate s",
+        "total s",
+        "lamellas",
+        "peak MiB"
+    );
+    for n in sizes {
+        let path = dir.join(format!("enneper-parts-{n}.json"));
+        if !path.exists() {
+            // Cells like the 4 m prototype's (~260 mm between nodes, so the
+            // steel profile's washers, blocks and splice plates fit), sampled
+            // every 100 mm: at n = 400 a 100 m grid, curves up to ~150 m long.
+            let scale_mm = 4400.0 * (n - 1) as f64 / 12.0;
+            let raw = synth::enneper_grid(n, scale_mm, 100.0);
+            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
+        }
+        let out = Command::new(std::env::current_exe().expect("exe"))
+            .env(CHILD_ENV, &path)
+            .output()
+            .expect("child");
+        print!("{}", String::from_utf8_lossy(&out.stdout));
+        if !out.status.success() {
+            eprint!("{}", String::from_utf8_lossy(&out.stderr));
+            std::process::exit(1);
+        }
+    }
+}
+
+fn measure(path: &Path) {
+    let profile =
+        Profile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"))
+            .expect("profile");
+    let t0 = Instant::now();
+    let net = io::read_network(path, ReadOptions::default()).expect("read");
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analyze");
+    let t1 = Instant::now();
+    let kit = fabricate(&net, &an, &profile).expect("fabricate");
+    let t2 = Instant::now();
+    let pieces: u64 = kit.parts.iter().map(|p| u64::from(p.count)).sum();
+    let lamellas = kit
+        .parts
+        .iter()
+        .filter(|p| p.kind == lamella::fabricate::part::PartKind::Lamella)
+        .count();
+    std::hint::black_box(&kit);
+    println!(
+        "{:>5} {:>8} {:>9} {:>9} {:>9.3} {:>10.3} {:>9.3} {:>9} {:>10.0}",
+        net.curves.len() / 2,
+        an.topology.nodes.len(),
+        kit.parts.len(),
+        pieces,
+        (t1 - t0).as_secs_f64(),
+        (t2 - t1).as_secs_f64(),
+        (t2 - t0).as_secs_f64(),
+        lamellas,
+        peak_mib()
+    );
+}
+
+/// Peak resident memory of this process (VmHWM), MiB.
+fn peak_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|k| k.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
