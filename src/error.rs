@@ -68,12 +68,12 @@ pub enum Error {
     },
     /// A profile cannot build a part of this network: names the profile,
     /// the strip and, where there is one, the node.
-    #[error("{}: strip {strip}{}: {what}", profile.display(), node.map(|n| format!(", node {n}")).unwrap_or_default())]
+    #[error("{}: {at}{}: {what}", profile.display(), node.map(|n| format!(", node {n}")).unwrap_or_default())]
     Fabrication {
         /// The profile file.
         profile: PathBuf,
-        /// The strip (curve id), or the part class for shared parts.
-        strip: String,
+        /// Where: `strip A05`, or `part ST` for a shared part.
+        at: String,
         /// The node (its plan.json id), if the problem is at one.
         node: Option<usize>,
         /// What is wrong, one line.
@@ -113,8 +113,17 @@ impl Error {
     ) -> Self {
         Error::Fabrication {
             profile: profile.to_path_buf(),
-            strip: strip.to_string(),
+            at: format!("strip {strip}"),
             node,
+            what: one_line(&what.into()),
+        }
+    }
+    /// A fabrication error at a shared part (studs, washers of a class).
+    pub fn fabrication_part(profile: &Path, part: &str, what: impl Into<String>) -> Self {
+        Error::Fabrication {
+            profile: profile.to_path_buf(),
+            at: format!("part {part}"),
+            node: None,
             what: one_line(&what.into()),
         }
     }

@@ -218,6 +218,49 @@ fn slots_off_90_degrees() {
     assert!(check_slots("hypar-small", "steel-1.5") > 40);
 }
 
+/// Two-level grids: no slots; a fastener hole through each lamella at its
+/// node's station on its own line (0.01 mm), at mid-height, one per A×B
+/// node, each naming the crossing strip.
+#[test]
+fn two_level_node_holes_sit_at_the_nodes() {
+    let (net, an, p) = load("catenoid", "poplar-ply-4");
+    let kit = fabricate(&net, &an, &p).unwrap();
+    let stations = line_stations(&an, &p);
+    let mut holes = 0;
+    for part in lamellas(&kit) {
+        assert!(part.features.iter().all(|f| f.kind != FeatureKind::Slot));
+        let key = (part.strip.clone().unwrap(), part.lamella.unwrap());
+        let start = part.station_start_mm.unwrap();
+        for f in &part.features {
+            if f.hole_use != Some(HoleUse::Node) {
+                continue;
+            }
+            holes += 1;
+            let want = stations[&key][&f.node.unwrap()];
+            assert!(
+                (f.center_part_mm.x + start - want).abs() < 0.01,
+                "{}: hole at {} vs node at {want}",
+                part.id,
+                f.center_part_mm.x + start
+            );
+            assert!((f.center_part_mm.y - p.section.height_mm / 2.0).abs() < 1e-9);
+            assert!(f.crossing.is_some());
+            let d = p.stud.as_ref().unwrap().fastener_diameter_mm;
+            assert!((f.width_mm - (d + 1.0)).abs() < 1e-9);
+        }
+    }
+    // Every A×B node: one hole in each of the 2 lamellas of both strips.
+    let ab = an
+        .topology
+        .nodes
+        .iter()
+        .filter(|n| net.curves[n.b].family == Family::B)
+        .count();
+    assert_eq!(holes, 4 * ab);
+    let studs = kit.parts.iter().find(|p| p.kind == PartKind::Stud).unwrap();
+    assert_eq!(studs.count as usize, ab);
+}
+
 #[test]
 fn shear_blocks_keep_both_limits_and_clear_the_nodes() {
     for (sample, profile) in [
@@ -413,6 +456,41 @@ fn impossible_combinations_are_one_line_errors() {
     )
     .unwrap();
     let r = run_parts(&net, &path, &dir.join("out-wide"));
+    let err_wide = String::from_utf8_lossy(&r.stderr).to_string();
+    assert_eq!(r.status.code(), Some(1), "{err_wide}");
+    assert!(
+        err_wide.contains("node ") && err_wide.contains("material between"),
+        "{err_wide}"
+    );
+    // A washer whose arms do not fit the gap between the lamellas; a stud
+    // fastener that would cut the stud in two.
+    for (profile, from, to, says) in [
+        (
+            "steel-1.5",
+            "arm_width_mm: 9.6",
+            "arm_width_mm: 12.0",
+            "strip A00, node 0: washer arms",
+        ),
+        (
+            "poplar-ply-4",
+            "fastener_diameter_mm: 4.0",
+            "fastener_diameter_mm: 24.0",
+            "part ST:",
+        ),
+    ] {
+        let text =
+            std::fs::read_to_string(root().join(format!("profiles/{profile}.yaml"))).unwrap();
+        assert!(text.contains(from));
+        let path = dir.join(format!("{profile}-bad.yaml"));
+        std::fs::write(&path, text.replace(from, to)).unwrap();
+        let out = dir.join(format!("out-{profile}"));
+        let r = run_parts(&root().join("samples/catenoid.yaml"), &path, &out);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains(says), "{err}");
+        assert!(!out.join("plan.json").exists());
+    }
     let err = String::from_utf8_lossy(&r.stderr);
     assert_eq!(r.status.code(), Some(1), "{err}");
     assert!(

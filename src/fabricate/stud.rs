@@ -75,7 +75,7 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
     if profile.joint.system != JointSystem::TwoLevel || nodes == 0 {
         return Ok(None);
     }
-    let fail = |what: String| Err(Error::fabrication(&profile.source, STUD_ID, None, what));
+    let fail = |what: String| Err(Error::fabrication_part(&profile.source, STUD_ID, what));
     let side = profile.section.gap_mm;
     let h = profile.section.height_mm;
     let o = profile.joint.level_offset_mm;
@@ -222,7 +222,7 @@ mod tests {
         }
         let m = msg(&wide);
         assert!(
-            m.starts_with("poplar.yaml: strip ST: ") && m.contains("cuts the stud"),
+            m.starts_with("poplar.yaml: part ST: ") && m.contains("cuts the stud"),
             "{m}"
         );
         let mut short = poplar();
