@@ -9,6 +9,7 @@
 //!     cargo bench --bench parts            # all sizes
 //!     cargo bench --bench parts -- 400     # one size
 
+mod support;
 #[path = "../tests/common/synth.rs"]
 #[allow(dead_code)]
 mod synth;
@@ -17,28 +18,16 @@ use lamella::fabricate::fabricate;
 use lamella::io::{self, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 use std::time::Instant;
 
-const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
-
 fn main() {
-    if let Ok(path) = std::env::var(CHILD_ENV) {
-        measure(Path::new(&path));
+    if let Some(path) = support::child_network() {
+        measure(&path);
         return;
     }
-    let sizes: Vec<usize> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect();
-    let sizes = if sizes.is_empty() {
-        vec![100, 200, 400]
-    } else {
-        sizes
-    };
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-networks");
-    std::fs::create_dir_all(&dir).expect("bench dir");
+    let sizes = support::sizes();
+    let dir = support::network_dir();
     println!(
         "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>10}",
         "n",
@@ -61,15 +50,7 @@ fn main() {
             let raw = synth::enneper_grid(n, scale_mm, 100.0);
             std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
         }
-        let out = Command::new(std::env::current_exe().expect("exe"))
-            .env(CHILD_ENV, &path)
-            .output()
-            .expect("child");
-        print!("{}", String::from_utf8_lossy(&out.stdout));
-        if !out.status.success() {
-            eprint!("{}", String::from_utf8_lossy(&out.stderr));
-            std::process::exit(1);
-        }
+        support::run_child(&path);
     }
 }
 
@@ -100,20 +81,6 @@ fn measure(path: &Path) {
         (t2 - t1).as_secs_f64(),
         (t2 - t0).as_secs_f64(),
         lamellas,
-        peak_mib()
+        support::peak_mib()
     );
-}
-
-/// Peak resident memory of this process (VmHWM), MiB.
-fn peak_mib() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|k| k.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kb| kb / 1024.0)
 }

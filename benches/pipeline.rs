@@ -6,6 +6,7 @@
 //!     cargo bench --bench pipeline            # all sizes
 //!     cargo bench --bench pipeline -- 400     # one size
 
+mod support;
 #[path = "../tests/common/synth.rs"]
 #[allow(dead_code)]
 mod synth;
@@ -13,28 +14,16 @@ mod synth;
 use lamella::io::{self, plan, ReadOptions};
 use lamella::{analyze, AnalysisOptions};
 use rayon::prelude::*;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 use std::time::Instant;
 
-const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
-
 fn main() {
-    if let Ok(path) = std::env::var(CHILD_ENV) {
-        measure(Path::new(&path));
+    if let Some(path) = support::child_network() {
+        measure(&path);
         return;
     }
-    let sizes: Vec<usize> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect::<Vec<_>>();
-    let sizes = if sizes.is_empty() {
-        vec![100, 200, 400]
-    } else {
-        sizes
-    };
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-networks");
-    std::fs::create_dir_all(&dir).expect("bench dir");
+    let sizes = support::sizes();
+    let dir = support::network_dir();
     println!(
         "{:>5} {:>8} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10}",
         "n", "nodes", "points", "MB", "read s", "nodes s", "plan s", "total s", "peak MiB"
@@ -48,15 +37,7 @@ fn main() {
             let raw = synth::enneper_grid(n, scale_mm, 26.0);
             std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
         }
-        let out = Command::new(std::env::current_exe().expect("exe"))
-            .env(CHILD_ENV, &path)
-            .output()
-            .expect("child");
-        print!("{}", String::from_utf8_lossy(&out.stdout));
-        if !out.status.success() {
-            eprint!("{}", String::from_utf8_lossy(&out.stderr));
-            std::process::exit(1);
-        }
+        support::run_child(&path);
     }
 }
 
@@ -133,20 +114,6 @@ fn measure(path: &Path) {
         (t2 - t1).as_secs_f64(),
         (t3 - t2).as_secs_f64(),
         (t3 - t0).as_secs_f64(),
-        peak_mib()
+        support::peak_mib()
     );
-}
-
-/// Peak resident memory of this process (VmHWM), MiB.
-fn peak_mib() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|k| k.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kb| kb / 1024.0)
 }

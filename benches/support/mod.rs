@@ -1,0 +1,61 @@
+//! What the benchmark binaries share: sizes from the command line, one
+//! child process per size (so each size's peak memory is its own), and the
+//! peak resident memory of the process.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Set in a child: the network file it measures.
+pub const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
+
+/// The network this process is to measure, when it is a child.
+pub fn child_network() -> Option<PathBuf> {
+    std::env::var(CHILD_ENV).ok().map(PathBuf::from)
+}
+
+/// The sizes named on the command line, else 100, 200 and 400.
+pub fn sizes() -> Vec<usize> {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    if sizes.is_empty() {
+        vec![100, 200, 400]
+    } else {
+        sizes
+    }
+}
+
+/// Where generated networks are kept between runs.
+pub fn network_dir() -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-networks");
+    std::fs::create_dir_all(&dir).expect("bench dir");
+    dir
+}
+
+/// Measure `network` in a fresh child process; print its line, stop on failure.
+pub fn run_child(network: &Path) {
+    let out = Command::new(std::env::current_exe().expect("exe"))
+        .env(CHILD_ENV, network)
+        .output()
+        .expect("child");
+    print!("{}", String::from_utf8_lossy(&out.stdout));
+    if !out.status.success() {
+        eprint!("{}", String::from_utf8_lossy(&out.stderr));
+        std::process::exit(1);
+    }
+}
+
+/// Peak resident memory of this process (VmHWM), MiB.
+pub fn peak_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|k| k.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
