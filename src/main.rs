@@ -70,6 +70,22 @@ enum Command {
         #[command(flatten)]
         read: ReadArgs,
     },
+    /// Nest every part onto the profile's stock: lamellas in lanes, small
+    /// parts in the lane tails and shelves; write DIR/plan.json with
+    /// everything `parts` writes plus `sheets` and `nesting`, and print the
+    /// sheets used against the lower bound.
+    Nest {
+        /// The network file (.yaml, .yml, .json, .obj, .dxf).
+        network: PathBuf,
+        /// The material profile (profiles/*.yaml).
+        #[arg(long)]
+        profile: PathBuf,
+        /// Directory for plan.json (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
     /// Turn every A/B strip into flat parts for a profile: lamellas with
     /// swept slots or node holes, shear blocks, splice plates; write
     /// DIR/plan.json with everything `check` writes plus `parts`, and print
@@ -199,7 +215,13 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             profile,
             out,
             read,
-        } => parts(&network, &profile, &out, &read),
+        } => parts(&network, &profile, &out, &read, false),
+        Command::Nest {
+            network,
+            profile,
+            out,
+            read,
+        } => parts(&network, &profile, &out, &read, true),
     }
 }
 
@@ -208,6 +230,7 @@ fn parts(
     profile_path: &Path,
     out: &Path,
     read: &ReadArgs,
+    nest: bool,
 ) -> lamella::Result<ExitCode> {
     let target = out.join("plan.json");
     refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
@@ -219,6 +242,13 @@ fn parts(
     let model = Model::checked(&net, &an, profile.clone(), report, None);
     let mut plan = plan::build(&net, &an, &model);
     plan::add_parts(&mut plan, &kit);
+    let nested = if nest {
+        let n = lamella::nest::nest(&kit, &profile)?;
+        plan::add_nest(&mut plan, &kit, &n);
+        Some(n)
+    } else {
+        None
+    };
     plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     for w in an.warnings() {
         eprintln!("warning: {w}");
@@ -243,6 +273,20 @@ fn parts(
     );
     if s.stud_bars > 0 {
         println!("studs: {} bars of stud stock", s.stud_bars);
+    }
+    if let Some(n) = nested {
+        let ns = &n.summary;
+        println!(
+            "nest: {} sheets of {} × {} mm (lower bound {}: area {}, lanes {}); utilisation {:.1} %; {:.3} s",
+            ns.sheets_used,
+            profile.stock.length_mm,
+            profile.stock.width_mm,
+            ns.lower_bound_sheets,
+            ns.area_bound_sheets,
+            ns.lane_bound_sheets,
+            100.0 * ns.utilization,
+            ns.seconds
+        );
     }
     println!("wrote {}", target.display());
     Ok(ExitCode::SUCCESS)

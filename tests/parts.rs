@@ -366,10 +366,29 @@ fn every_profile_builds_every_sample_or_says_why() {
                         assert!(!part.engraving_part_mm.is_empty(), "{} unlabelled", part.id);
                     }
                     assert!(kit.warnings.is_empty(), "{:?}", kit.warnings);
-                    // Every lamella part within the stock's usable length.
+                    // Every lamella part within the stock's usable length;
+                    // every part (edge bands split where needed) fits the
+                    // usable sheet in an allowed rotation.
                     let usable = p.stock.length_mm - 2.0 * p.cutting.edge_margin_mm;
+                    let width = p.stock.width_mm - 2.0 * p.cutting.edge_margin_mm;
+                    let quarter = p
+                        .cutting
+                        .allowed_rotations_deg
+                        .iter()
+                        .any(|r| r % 180 == 90);
                     for part in lamellas(&kit) {
                         assert!(part.length_mm <= usable + 1e-6, "{}", part.id);
+                    }
+                    for part in &kit.parts {
+                        let along = part.length_mm <= usable && part.height_mm <= width;
+                        let across = quarter && part.height_mm <= usable && part.length_mm <= width;
+                        assert!(
+                            along || across,
+                            "{} {}×{}",
+                            part.id,
+                            part.length_mm,
+                            part.height_mm
+                        );
                     }
                 }
                 Err(e) => {

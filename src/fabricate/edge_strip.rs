@@ -241,12 +241,31 @@ pub fn edge_hole_diameter_mm(profile: &Profile) -> f64 {
 /// of two nodes that overlap without coinciding, and a band that overlaps
 /// itself once unrolled.
 pub fn edge_strip(profile: &Profile, edge: &EdgeCurve) -> Result<Part> {
+    let allowance = profile.section.end_allowance_mm;
+    edge_piece(
+        profile,
+        edge,
+        -allowance,
+        edge.length_mm + allowance,
+        edge_strip_id(&edge.id),
+    )
+}
+
+/// The flat band of the piece of one edge between two stations (the ends
+/// of the edge extended straight by the end allowance), with the holes of
+/// the nodes inside it.
+fn edge_piece(
+    profile: &Profile,
+    edge: &EdgeCurve,
+    from_mm: f64,
+    to_mm: f64,
+    id: String,
+) -> Result<Part> {
     let fail = |node: Option<usize>, what: String| {
         Error::fabrication(&profile.source, &edge.id, node, what)
     };
     let h = profile.section.height_mm;
     let half = 0.5 * h;
-    let allowance = profile.section.end_allowance_mm;
     let length = edge.length_mm;
     let max_kg = edge
         .samples
@@ -278,19 +297,17 @@ pub fn edge_strip(profile: &Profile, edge: &EdgeCurve) -> Result<Part> {
     } else {
         EDGE_STEP_MM
     };
-    let stations: Vec<f64> = edge.nodes.iter().map(|n| n.station_mm).collect();
-    let line = unroll_centre_line(
-        &edge.samples,
-        length,
-        -allowance,
-        length + allowance,
-        &stations,
-        step,
-    );
+    let nodes: Vec<&EdgeNode> = edge
+        .nodes
+        .iter()
+        .filter(|n| n.station_mm > from_mm && n.station_mm < to_mm)
+        .collect();
+    let stations: Vec<f64> = nodes.iter().map(|n| n.station_mm).collect();
+    let line = unroll_centre_line(&edge.samples, length, from_mm, to_mm, &stations, step);
     // Turn the chord onto +x.
     let (first, last) = (line[0].point, line[line.len() - 1].point);
     let chord = last - first;
-    let turn = if chord.hypot() > 1e-9 * (length + 2.0 * allowance) {
+    let turn = if chord.hypot() > 1e-9 * (to_mm - from_mm) {
         -chord.y.atan2(chord.x)
     } else {
         0.0
@@ -333,8 +350,7 @@ pub fn edge_strip(profile: &Profile, edge: &EdgeCurve) -> Result<Part> {
             .min(line.len() - 1);
         place(line[i].point) + shift
     };
-    let mut features: Vec<Feature> = edge
-        .nodes
+    let mut features: Vec<Feature> = nodes
         .iter()
         .map(|n| Feature {
             kind: FeatureKind::Hole,
@@ -357,14 +373,14 @@ pub fn edge_strip(profile: &Profile, edge: &EdgeCurve) -> Result<Part> {
     });
     let holes = hole_polylines(&profile.source, &edge.id, &features, diameter)?;
     Ok(Part {
-        id: edge_strip_id(&edge.id),
+        id,
         kind: PartKind::EdgeStrip,
         strip: Some(edge.id.clone()),
         lamella: None,
         count: 1,
         length_mm: max_x - min_x,
         height_mm: max_y - min_y,
-        station_start_mm: Some(-allowance),
+        station_start_mm: Some(from_mm),
         outline_part_mm: outline,
         holes_part_mm: holes,
         engraving_part_mm: Vec::new(),
@@ -491,12 +507,105 @@ fn segments_touch((a, b): (Point, Point), (c, d): (Point, Point), adjacent: bool
         || (d4 == 0.0 && on(a, b, d))
 }
 
-/// The edge strips of an analysis, one part per edge curve, in strip order.
+/// The most pieces an edge is split into before giving up.
+const MAX_EDGE_PIECES: usize = 500;
+
+/// The edge strips of an analysis, in strip order: each edge as one band,
+/// or, where that band does not fit the stock's usable area in an allowed
+/// rotation (too long, or too bowed), split into the fewest pieces of equal
+/// length that do, each cut at least a hole diameter from every hole
+/// (`E-edge00.1`, `E-edge00.2`, …; end allowances only at the edge's ends).
 pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> {
-    edge_curves(analysis)
-        .iter()
-        .map(|e| edge_strip(profile, e))
-        .collect()
+    let c = &profile.cutting;
+    let (lu, wu) = (
+        profile.stock.length_mm - 2.0 * c.edge_margin_mm,
+        profile.stock.width_mm - 2.0 * c.edge_margin_mm,
+    );
+    let quarter = c.allowed_rotations_deg.iter().any(|r| r % 180 == 90);
+    let fits = |p: &Part| {
+        (p.length_mm <= lu && p.height_mm <= wu)
+            || (quarter && p.height_mm <= lu && p.length_mm <= wu)
+    };
+    let allowance = profile.section.end_allowance_mm;
+    let diameter = edge_hole_diameter_mm(profile);
+    let mut out = Vec::new();
+    for e in edge_curves(analysis) {
+        let whole = edge_strip(profile, &e)?;
+        if fits(&whole) {
+            out.push(whole);
+            continue;
+        }
+        let (start, end) = (-allowance, e.length_mm + allowance);
+        let mut done = false;
+        for n in 2..=MAX_EDGE_PIECES {
+            // Even cuts, each moved off any hole it would cut (to the middle
+            // between the neighbouring holes).
+            let mut cuts: Vec<f64> = (1..n)
+                .map(|k| start + (end - start) * k as f64 / n as f64)
+                .collect();
+            for c in cuts.iter_mut() {
+                if let Some(h) = e
+                    .nodes
+                    .iter()
+                    .find(|h| (h.station_mm - *c).abs() < diameter)
+                {
+                    let before = e
+                        .nodes
+                        .iter()
+                        .map(|x| x.station_mm)
+                        .filter(|&s| s < h.station_mm)
+                        .fold(start, f64::max);
+                    let after = e
+                        .nodes
+                        .iter()
+                        .map(|x| x.station_mm)
+                        .filter(|&s| s > h.station_mm)
+                        .fold(end, f64::min);
+                    *c = if *c < h.station_mm {
+                        0.5 * (before + h.station_mm)
+                    } else {
+                        0.5 * (h.station_mm + after)
+                    };
+                }
+            }
+            let mut bounds = vec![start];
+            bounds.extend(cuts);
+            bounds.push(end);
+            if bounds.windows(2).any(|w| w[1] - w[0] < diameter) {
+                continue;
+            }
+            let pieces: Vec<Part> = bounds
+                .windows(2)
+                .enumerate()
+                .map(|(k, w)| {
+                    edge_piece(
+                        profile,
+                        &e,
+                        w[0],
+                        w[1],
+                        format!("{}.{}", edge_strip_id(&e.id), k + 1),
+                    )
+                })
+                .collect::<Result<_>>()?;
+            if pieces.iter().all(fits) {
+                out.extend(pieces);
+                done = true;
+                break;
+            }
+        }
+        if !done {
+            return Err(Error::fabrication(
+                &profile.source,
+                &e.id,
+                None,
+                format!(
+                    "the edge band does not fit the {lu:.0} × {wu:.0} mm usable sheet even in \
+                     {MAX_EDGE_PIECES} pieces"
+                ),
+            ));
+        }
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -49,6 +49,65 @@ pub struct Plan {
     /// Counts by kind, lamella length and mass (added by `parts`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parts_summary: Option<PlanKitSummary>,
+    /// The sheets the parts are nested on (added by `nest`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sheets: Option<Vec<PlanSheet>>,
+    /// The nest's figures (added by `nest`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nesting: Option<PlanNesting>,
+}
+
+/// One sheet of stock with its placements.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanSheet {
+    /// `S01`, `S02`, …
+    pub id: String,
+    /// Sheet width (its y), mm.
+    pub width_mm: f64,
+    /// Sheet length (its x), mm.
+    pub length_mm: f64,
+    /// Net part area over the sheet's area.
+    pub utilization: f64,
+    /// Every part cut from it: part-local (x, y) turned by `rotation_deg`
+    /// counter-clockwise about the origin, then moved by (x_mm, y_mm).
+    pub placements: Vec<PlanPlacement>,
+}
+
+/// One copy of a part on a sheet.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanPlacement {
+    /// Part id.
+    pub part: String,
+    /// Which copy, from 0.
+    pub copy: u32,
+    /// Translation, mm.
+    pub x_mm: f64,
+    /// Translation, mm.
+    pub y_mm: f64,
+    /// Rotation, degrees counter-clockwise.
+    pub rotation_deg: u32,
+}
+
+/// The nest's figures (the time is printed, not written: plan.json stays
+/// byte-stable).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanNesting {
+    /// Sheets with parts on them.
+    pub sheets_used: usize,
+    /// The larger of the two bounds below.
+    pub lower_bound_sheets: usize,
+    /// ⌈Σ part area / usable sheet area⌉.
+    pub area_bound_sheets: usize,
+    /// ⌈Martello–Toth L2 of the lamella lanes / lanes per sheet⌉.
+    pub lane_bound_sheets: usize,
+    /// Lanes across one sheet.
+    pub lanes_per_sheet: usize,
+    /// Lanes the lamellas fill, and L2's bound on them.
+    pub lanes_used: usize,
+    /// Martello–Toth L2 on the lanes.
+    pub lane_bound_lanes: usize,
+    /// Part area over the area of the sheets used.
+    pub utilization: f64,
 }
 
 /// One part in plan.json: part-local mm, outline counter-clockwise, holes
@@ -543,7 +602,46 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         check,
         parts: None,
         parts_summary: None,
+        sheets: None,
+        nesting: None,
     }
+}
+
+/// Add a nest to a plan (formatting only).
+pub fn add_nest(plan: &mut Plan, kit: &crate::fabricate::Kit, nest: &crate::nest::Nest) {
+    plan.sheets = Some(
+        nest.sheets
+            .iter()
+            .map(|s| PlanSheet {
+                id: s.id.clone(),
+                width_mm: round(s.width_mm, MM),
+                length_mm: round(s.length_mm, MM),
+                utilization: round(s.utilization(), 6),
+                placements: s
+                    .placements
+                    .iter()
+                    .map(|p| PlanPlacement {
+                        part: kit.parts[p.part].id.clone(),
+                        copy: p.copy,
+                        x_mm: round(p.x_mm, MM),
+                        y_mm: round(p.y_mm, MM),
+                        rotation_deg: p.rotation_deg,
+                    })
+                    .collect(),
+            })
+            .collect(),
+    );
+    let n = &nest.summary;
+    plan.nesting = Some(PlanNesting {
+        sheets_used: n.sheets_used,
+        lower_bound_sheets: n.lower_bound_sheets,
+        area_bound_sheets: n.area_bound_sheets,
+        lane_bound_sheets: n.lane_bound_sheets,
+        lanes_per_sheet: n.lanes_per_sheet,
+        lanes_used: n.lanes_used,
+        lane_bound_lanes: n.lane_bound_lanes,
+        utilization: round(n.utilization, 6),
+    });
 }
 
 /// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).

@@ -1,0 +1,103 @@
+//! Nesting (issue 9, first version): every part of every buildable sample ×
+//! profile placed exactly its count of times, inside the margins, in allowed
+//! rotations, kerf + spacing apart (the named invariant `check_nest`, and an
+//! independent pairwise check here); never fewer sheets than the lower
+//! bound; deterministic; a part too large for the stock is a one-line error.
+
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
+use lamella::fabricate::fabricate;
+use lamella::io::{read_network, ReadOptions};
+use lamella::nest::{check_nest, nest, placed_bbox};
+use lamella::profile::Profile;
+use lamella::{analyze, AnalysisOptions};
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn every_buildable_kit_nests_within_the_rules() {
+    let mut nested = 0;
+    for sample in [
+        "enneper-4m",
+        "catenoid",
+        "scherk",
+        "schwarz-d-patch",
+        "hypar-small",
+        "schwarz-d-pavilion",
+    ] {
+        let net = read_network(
+            &root().join(format!("samples/{sample}.yaml")),
+            ReadOptions::default(),
+        )
+        .unwrap();
+        let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+        for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
+            let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+            let kit = fabricate(&net, &an, &p).unwrap();
+            let n = nest(&kit, &p).unwrap();
+            assert_eq!(check_nest(&kit, &n, &p), Ok(()), "{sample} {profile}");
+            let s = &n.summary;
+            assert!(s.sheets_used >= s.lower_bound_sheets, "{sample} {profile}");
+            assert!(s.utilization > 0.0 && s.utilization <= 1.0);
+            // Independently: boxes on a sheet pairwise at least the gap apart.
+            let g = p.cutting.kerf_mm + p.cutting.part_spacing_mm;
+            for sheet in &n.sheets {
+                let boxes: Vec<_> = sheet
+                    .placements
+                    .iter()
+                    .map(|pl| placed_bbox(&kit.parts[pl.part], pl))
+                    .collect();
+                if boxes.len() > 2000 {
+                    continue; // the sweep in check_nest covers the large ones
+                }
+                for i in 0..boxes.len() {
+                    for j in i + 1..boxes.len() {
+                        let (a, b) = (boxes[i], boxes[j]);
+                        let apart = a.2 + g <= b.0 + 1e-6
+                            || b.2 + g <= a.0 + 1e-6
+                            || a.3 + g <= b.1 + 1e-6
+                            || b.3 + g <= a.1 + 1e-6;
+                        assert!(apart, "{sample} {profile} {}: {a:?} {b:?}", sheet.id);
+                    }
+                }
+            }
+            // Deterministic.
+            assert_eq!(nest(&kit, &p).unwrap().sheets, n.sheets);
+            nested += 1;
+        }
+    }
+    assert_eq!(nested, 18);
+}
+
+#[test]
+fn a_part_larger_than_the_stock_is_a_one_line_error() {
+    let net = read_network(
+        &root().join("samples/catenoid.yaml"),
+        ReadOptions::default(),
+    )
+    .unwrap();
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+    let mut p = Profile::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
+    // Stock narrower than a lamella is high, grain forbids turning it.
+    p.stock.width_mm = 20.0;
+    // Edge bands are split to fit the stock when the parts are made; when
+    // no split can, that stage says so; lamellas are caught by the nest.
+    let e = fabricate(&net, &an, &p)
+        .and_then(|kit| nest(&kit, &p).map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("does not fit"), "{e}");
+    assert!(e.contains("strip edge") || e.contains("part "), "{e}");
+    assert!(!e.contains('\n'));
+    // Without edges in the way: the lamellas themselves.
+    let mut wide = p.clone();
+    wide.stock.width_mm = 300.0;
+    let kit = fabricate(&net, &an, &wide).unwrap();
+    let mut narrow = wide.clone();
+    narrow.stock.width_mm = 20.0;
+    let e = nest(&kit, &narrow).unwrap_err().to_string();
+    assert!(e.contains("part ") && e.contains("does not fit"), "{e}");
+}
