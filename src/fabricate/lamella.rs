@@ -26,6 +26,10 @@ use kurbo::Point;
 /// names none.
 pub const BOLT_HOLE_CLEARANCE_MM: f64 = 1.0;
 
+/// A last splice piece shorter than this fraction of the stock's usable
+/// length is a stub: the cuts are evened out instead.
+const MIN_LAST_PIECE_FRACTION: f64 = 0.2;
+
 /// Spacing of candidate splice cuts along long stretches between nodes, mm.
 const CANDIDATE_STEP_MM: f64 = 50.0;
 
@@ -243,10 +247,11 @@ pub fn strip_parts(
         candidates.dedup();
         // Greedy forward: each piece as long as the stock allows, cut at the
         // farthest candidate within reach: the fewest pieces, and for each
-        // cut the latest place it can be. Greedy backward from the end gives
-        // the earliest. Each cut then goes to the candidate nearest the
-        // middle of that range, so the pieces come out of even length (no
-        // stub at the end) with every plate clear of the nodes.
+        // cut the latest place it can be. Those cuts are kept (full stock
+        // lengths nest best) unless the last piece is a stub; then greedy
+        // backward from the end gives the earliest place of each cut, and
+        // each goes to the candidate nearest the middle of its range, so the
+        // pieces come out even. Every plate stays clear of the nodes.
         let no_room = |at: f64| {
             fail(
                 None,
@@ -286,8 +291,19 @@ pub fn strip_parts(
             next = candidates[i];
         }
         earliest.reverse();
+        // Full stock lengths nest best (the short rests pair up in lanes):
+        // keep the latest cuts unless the last piece would be a stub, then
+        // even the pieces out.
+        let last_piece = strip.length_mm + allowance - latest.last().copied().unwrap_or(-allowance);
+        let keep_latest = last_piece >= MIN_LAST_PIECE_FRACTION * usable;
+        if keep_latest {
+            cuts = latest.clone();
+        }
         let mut prev = -allowance;
         for (k, (&lo, &hi)) in earliest.iter().zip(&latest).enumerate() {
+            if keep_latest {
+                break;
+            }
             let hi = hi.min(prev + usable);
             let mid = 0.5 * (lo + hi);
             let best = candidates
