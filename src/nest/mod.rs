@@ -159,6 +159,75 @@ fn place_at(part: usize, p: &Part, copy: u32, rot: u32, x: f64, y: f64) -> Place
     }
 }
 
+/// Free space of one sheet as a skyline over its width: piecewise-constant
+/// levels (the first free x) on [y_lo, y_hi).
+#[derive(Debug, Clone)]
+struct Skyline {
+    /// (start y, level x), by y; each segment runs to the next's start.
+    segs: Vec<(f64, f64)>,
+    y_hi: f64,
+}
+
+impl Skyline {
+    fn new(y_lo: f64, y_hi: f64, level: f64) -> Skyline {
+        Skyline {
+            segs: vec![(y_lo, level)],
+            y_hi,
+        }
+    }
+
+    /// Level of the skyline over [y0, y1): the largest x there.
+    fn level(&self, y0: f64, y1: f64) -> f64 {
+        let mut x = f64::NEG_INFINITY;
+        for (k, &(s, l)) in self.segs.iter().enumerate() {
+            let e = self.segs.get(k + 1).map_or(self.y_hi, |n| n.0);
+            if e > y0 + 1e-9 && s < y1 - 1e-9 {
+                x = x.max(l);
+            }
+        }
+        x
+    }
+
+    /// Raise [y0, y1) to at least `x`.
+    fn raise(&mut self, y0: f64, y1: f64, x: f64) {
+        let y1 = y1.min(self.y_hi);
+        let mut out: Vec<(f64, f64)> = Vec::with_capacity(self.segs.len() + 2);
+        for (k, &(s, l)) in self.segs.iter().enumerate() {
+            let e = self.segs.get(k + 1).map_or(self.y_hi, |n| n.0);
+            // Up to three pieces: below y0, inside, above y1.
+            if s < y0 {
+                out.push((s, l));
+            }
+            let (a, b) = (s.max(y0), e.min(y1));
+            if a < b {
+                out.push((a, l.max(x)));
+            }
+            if e > y1 && s.max(y1) < e {
+                out.push((s.max(y1), l));
+            }
+        }
+        // Merge equal neighbours.
+        out.dedup_by(|b, a| (a.1 - b.1).abs() < 1e-12);
+        self.segs = out;
+    }
+
+    /// Lowest place (x, y) for a box w × ht with `gap` above it, within
+    /// x ≤ x_max and y + ht ≤ y_max: candidates at segment starts.
+    fn fit(&self, w: f64, ht: f64, gap: f64, x_max: f64, y_max: f64) -> Option<(f64, f64)> {
+        let mut best: Option<(f64, f64)> = None;
+        for &(s, _) in &self.segs {
+            if s + ht > y_max + 1e-9 {
+                break;
+            }
+            let x = self.level(s, (s + ht + gap).min(self.y_hi));
+            if x + w <= x_max + 1e-9 && best.is_none_or(|b| x < b.0 - 1e-9) {
+                best = Some((x, s));
+            }
+        }
+        best
+    }
+}
+
 /// Nest every part of the kit onto the profile's stock.
 pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     let t0 = std::time::Instant::now();
@@ -243,8 +312,24 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
         tails.push((sheet, x, y));
     }
 
-    // Other parts, tallest first, each turned to lie long along x where
-    // allowed (shelves) but short enough for a lane tail where it can.
+    // Other parts by their bounding boxes, largest first, into the free
+    // space of the sheets: a skyline over the sheet's width whose level is
+    // the first free x (the lanes' tails, then the bare sheet below them);
+    // each part at the lowest level it fits (then the lowest y), in the
+    // allowed rotation that gets it lowest, on the first sheet with room
+    // (first fit per part, in sheet order), else on a new sheet.
+    let mut skylines: Vec<Skyline> = (0..sheets.len())
+        .map(|k| {
+            let mut sky = Skyline::new(m, m + wu, m);
+            for (j, t) in tails.iter().enumerate() {
+                if t.0 == k {
+                    let y0 = m + (j % lanes_per_sheet) as f64 * (h + g);
+                    sky.raise(y0, y0 + h + g, t.1);
+                }
+            }
+            sky
+        })
+        .collect();
     let mut others: Vec<usize> = (0..kit.parts.len())
         .filter(|&i| kit.parts[i].kind != PartKind::Lamella)
         .collect();
@@ -256,87 +341,46 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
             (x1 - x0, y1 - y0)
         }
     };
-    // For lane tails: an allowed rotation no taller than a lane, the shorter
-    // along x; for shelves: the rotation with the longer side along x.
-    let tail_rot = |i: usize| -> Option<u32> {
-        rotations
-            .iter()
-            .copied()
-            .filter(|&r| dims(i, r).1 <= h + 1e-9)
-            .min_by(|&a, &b| dims(i, a).0.total_cmp(&dims(i, b).0).then(a.cmp(&b)))
-    };
-    let shelf_rot = |i: usize| -> u32 {
-        rotations
-            .iter()
-            .copied()
-            .filter(|&r| {
-                let (w, ht) = dims(i, r);
-                w <= lu && ht <= wu
-            })
-            .max_by(|&a, &b| dims(i, a).0.total_cmp(&dims(i, b).0).then(b.cmp(&a)))
-            .unwrap_or(0)
-    };
     others.sort_by(|&a, &b| {
-        let ha = dims(a, shelf_rot(a)).1;
-        let hb = dims(b, shelf_rot(b)).1;
-        hb.total_cmp(&ha).then(a.cmp(&b))
+        let (wa, ha) = dims(a, 0);
+        let (wb, hb) = dims(b, 0);
+        (wb * hb).total_cmp(&(wa * ha)).then(a.cmp(&b))
     });
-    let mut next_copy: Vec<u32> = vec![0; kit.parts.len()];
-    for tail in tails.iter_mut() {
-        for &i in &others {
-            let Some(rot) = tail_rot(i) else {
-                continue;
-            };
-            let p = &kit.parts[i];
-            let w = dims(i, rot).0;
-            while next_copy[i] < p.count && tail.1 + w <= m + lu + 1e-9 {
-                let pl = place_at(i, p, next_copy[i], rot, tail.1, tail.2);
-                sheets[tail.0].placements.push(pl);
-                next_copy[i] += 1;
-                tail.1 += w + g;
-            }
-        }
-    }
-    // Shelves over the free width: below the lanes of the last sheet, then
-    // on new sheets.
-    let mut sheet = sheets.len().saturating_sub(1);
-    let mut y = match sheets.last() {
-        Some(_) => {
-            let lanes_on_last = lanes.len() - sheet * lanes_per_sheet;
-            m + lanes_on_last as f64 * (h + g)
-        }
-        None => {
-            sheets.push(new_sheet(0));
-            m
-        }
-    };
-    let mut x = m;
-    let mut shelf_h: f64 = 0.0;
     for &i in &others {
         let p = &kit.parts[i];
-        let rot = shelf_rot(i);
-        let (w, ht) = dims(i, rot);
-        while next_copy[i] < p.count {
-            if x + w > m + lu + 1e-9 {
-                // Next shelf.
-                y += shelf_h + g;
-                x = m;
-                shelf_h = 0.0;
+        let mut first_sheet = 0;
+        for copy in 0..p.count {
+            let mut placed = false;
+            let mut k = first_sheet;
+            while !placed {
+                if k == skylines.len() {
+                    sheets.push(new_sheet(sheets.len()));
+                    skylines.push(Skyline::new(m, m + wu, m));
+                }
+                // The best rotation on this sheet: lowest x, then lowest y.
+                let best = rotations
+                    .iter()
+                    .filter_map(|&r| {
+                        let (w, ht) = dims(i, r);
+                        skylines[k]
+                            .fit(w, ht, g, m + lu, m + wu)
+                            .map(|(x, y)| (x, y, r, w, ht))
+                    })
+                    .min_by(|a, b| {
+                        a.0.total_cmp(&b.0)
+                            .then(a.1.total_cmp(&b.1))
+                            .then(a.2.cmp(&b.2))
+                    });
+                match best {
+                    Some((x, y, r, w, ht)) => {
+                        sheets[k].placements.push(place_at(i, p, copy, r, x, y));
+                        skylines[k].raise(y, y + ht + g, x + w + g);
+                        placed = true;
+                        first_sheet = k;
+                    }
+                    None => k += 1,
+                }
             }
-            if y + ht > m + wu + 1e-9 {
-                // Next sheet.
-                sheets.push(new_sheet(sheets.len()));
-                sheet = sheets.len() - 1;
-                y = m;
-                x = m;
-                shelf_h = 0.0;
-            }
-            sheets[sheet]
-                .placements
-                .push(place_at(i, p, next_copy[i], rot, x, y));
-            next_copy[i] += 1;
-            x += w + g;
-            shelf_h = shelf_h.max(ht);
         }
     }
     sheets.retain(|s| !s.placements.is_empty());
