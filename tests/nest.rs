@@ -101,3 +101,23 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     let e = nest(&kit, &narrow).unwrap_err().to_string();
     assert!(e.contains("part ") && e.contains("does not fit"), "{e}");
 }
+
+/// Only rotations that turn lamellas across the sheet: an error naming the
+/// part, never an endless search for a sheet that fits.
+#[test]
+fn rotations_that_fit_nothing_are_an_error_not_a_hang() {
+    let net = read_network(
+        &root().join("samples/catenoid.yaml"),
+        ReadOptions::default(),
+    )
+    .unwrap();
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+    let mut p = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let kit = fabricate(&net, &an, &p).unwrap();
+    p.cutting.allowed_rotations_deg = vec![90];
+    let e = nest(&kit, &p).unwrap_err().to_string();
+    assert!(e.contains("part ") && !e.contains('\n'), "{e}");
+    p.cutting.allowed_rotations_deg = vec![180];
+    let n = nest(&kit, &p).unwrap();
+    assert_eq!(check_nest(&kit, &n, &p), Ok(()));
+}

@@ -101,12 +101,14 @@ impl AngleSpline {
         let lambda = smoothing * total_weight / intervals as f64;
         // Third differences; with fewer than three distinct stations (whose
         // quadratic would be free) also vanishing second and first ones.
+        let mut stations: Vec<f64> = obs.iter().map(|o| o.station_mm).collect();
+        stations.sort_by(f64::total_cmp);
         let mut distinct = 0;
         let mut last = f64::NEG_INFINITY;
-        for o in obs {
-            if (o.station_mm - last).abs() > 1e-6 {
+        for s in stations {
+            if (s - last).abs() > 1e-6 {
                 distinct += 1;
-                last = o.station_mm;
+                last = s;
             }
         }
         let low = if distinct < 3 { lambda * 1e-6 } else { 0.0 };
@@ -435,7 +437,7 @@ fn unwrap_near(theta: f64, target: f64, period: f64) -> f64 {
 }
 
 /// Knot spacing of the angle spline: about twice the smoothing window (the
-/// binormals' noise is correlated over it), within 10…100 mm.
+/// binormals' noise is correlated over it), within 10…400 mm.
 fn knot_step_mm(smooth: &SmoothCurve) -> f64 {
     let n = smooth.sample_stations_mm().len();
     let h = smooth.length_mm() / (n - 1).max(1) as f64;

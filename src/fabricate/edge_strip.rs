@@ -530,10 +530,16 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
     let diameter = edge_hole_diameter_mm(profile);
     let mut out = Vec::new();
     for e in edge_curves(analysis) {
-        let whole = edge_strip(profile, &e)?;
-        if fits(&whole) {
-            out.push(whole);
-            continue;
+        // A whole band that folds or overlaps itself may still be cut into
+        // pieces that do not: only a curvature too tight for the band (which
+        // no split cures) stops here.
+        match edge_strip(profile, &e) {
+            Ok(whole) if fits(&whole) => {
+                out.push(whole);
+                continue;
+            }
+            Err(err) if err.to_string().contains("folds over") => return Err(err),
+            _ => {}
         }
         let (start, end) = (-allowance, e.length_mm + allowance);
         let mut done = false;
@@ -568,13 +574,20 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
                     };
                 }
             }
+            // Every cut at least a hole diameter from every hole.
+            if cuts
+                .iter()
+                .any(|c| e.nodes.iter().any(|h| (h.station_mm - c).abs() < diameter))
+            {
+                continue;
+            }
             let mut bounds = vec![start];
             bounds.extend(cuts);
             bounds.push(end);
             if bounds.windows(2).any(|w| w[1] - w[0] < diameter) {
                 continue;
             }
-            let pieces: Vec<Part> = bounds
+            let pieces = bounds
                 .windows(2)
                 .enumerate()
                 .map(|(k, w)| {
@@ -586,7 +599,11 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
                         format!("{}.{}", edge_strip_id(&e.id), k + 1),
                     )
                 })
-                .collect::<Result<_>>()?;
+                .collect::<Result<Vec<Part>>>();
+            // A piece that still overlaps itself: try more pieces.
+            let Ok(pieces) = pieces else {
+                continue;
+            };
             if pieces.iter().all(fits) {
                 out.extend(pieces);
                 done = true;

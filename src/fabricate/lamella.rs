@@ -199,9 +199,10 @@ pub fn strip_parts(
 
     // Splices first (where a lamella is longer than the stock), clear of
     // the node zones; then the shear blocks around them.
-    let usable = (profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm - 2.0 * allowance)
-        / stretch
-        + 2.0 * allowance;
+    // On the centre line: a middle piece stretches to at most
+    // stretch × its length, an end piece's allowance does not stretch, so
+    // (stock − margins)/stretch bounds every piece on every lamella line.
+    let usable = (profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm) / stretch;
     let total = strip.length_mm + 2.0 * allowance;
     let mut cuts: Vec<f64> = Vec::new();
     if total > usable {
@@ -351,6 +352,23 @@ pub fn strip_parts(
         }
     }
 
+    // Splice bolt holes, on the centre line; the innermost must keep clear
+    // of the cut.
+    if let (Some(sp), false) = (&profile.splice, cuts.is_empty()) {
+        let n = sp.bolts_per_side.max(1) as f64;
+        let inner = 0.5 * sp.plate_length_mm * 0.5 / n;
+        let radius = 0.5 * (sp.bolt_diameter_mm + BOLT_HOLE_CLEARANCE_MM);
+        if inner <= radius + 1.0 {
+            return Err(fail(
+                None,
+                format!(
+                    "a {} mm splice plate with {} bolts a side puts its inner holes {inner:.1} mm from \
+                     the cut: they would cross it",
+                    sp.plate_length_mm, sp.bolts_per_side
+                ),
+            ));
+        }
+    }
     // Splice bolt holes, on the centre line.
     let splice_holes: Vec<f64> = profile.splice.as_ref().map_or(Vec::new(), |sp| {
         let n = sp.bolts_per_side.max(1) as usize;
@@ -496,7 +514,7 @@ pub fn strip_parts(
 
 /// One lamella piece: the rectangle length × h with its slots notched from
 /// their edges and its holes; features sorted by x. Err (node, what) when a
-/// slot runs past an end or two slots leave less than a lamella thickness of
+/// slot runs past an end or two slots leave less than 1 mm of
 /// material between them.
 fn lamella_part(
     id: String,
@@ -508,7 +526,8 @@ fn lamella_part(
     mut features: Vec<Feature>,
 ) -> std::result::Result<Part, (Option<usize>, String)> {
     features.sort_by(|a, b| a.center_part_mm.x.total_cmp(&b.center_part_mm.x));
-    // Minimum material between two notches on one edge, mm.
+    // Minimum material between two notches on one edge, mm (a laser keeps
+    // a 1 mm web whole; thinner ones burn through).
     let min_web = 1.0;
     let mut outline = vec![Point::new(0.0, 0.0)];
     let notches = |edge: SlotEdge| -> Vec<&Feature> {

@@ -176,16 +176,9 @@ impl Skyline {
         }
     }
 
-    /// Level of the skyline over [y0, y1): the largest x there.
-    fn level(&self, y0: f64, y1: f64) -> f64 {
-        let mut x = f64::NEG_INFINITY;
-        for (k, &(s, l)) in self.segs.iter().enumerate() {
-            let e = self.segs.get(k + 1).map_or(self.y_hi, |n| n.0);
-            if e > y0 + 1e-9 && s < y1 - 1e-9 {
-                x = x.max(l);
-            }
-        }
-        x
+    /// Nothing placed yet: one segment at the sheet's margin.
+    fn is_bare(&self, margin: f64) -> bool {
+        self.segs.len() == 1 && (self.segs[0].1 - margin).abs() < 1e-9
     }
 
     /// Raise [y0, y1) to at least `x`.
@@ -215,11 +208,22 @@ impl Skyline {
     /// x ≤ x_max and y + ht ≤ y_max: candidates at segment starts.
     fn fit(&self, w: f64, ht: f64, gap: f64, x_max: f64, y_max: f64) -> Option<(f64, f64)> {
         let mut best: Option<(f64, f64)> = None;
-        for &(s, _) in &self.segs {
+        let n = self.segs.len();
+        for i in 0..n {
+            let s = self.segs[i].0;
             if s + ht > y_max + 1e-9 {
                 break;
             }
-            let x = self.level(s, (s + ht + gap).min(self.y_hi));
+            // The level over [s, s + ht + gap): the segments from i on that
+            // start inside it (a window, not the whole skyline).
+            let top = (s + ht + gap).min(self.y_hi);
+            let mut x = f64::NEG_INFINITY;
+            for &(start, level) in &self.segs[i..] {
+                if start >= top - 1e-9 {
+                    break;
+                }
+                x = x.max(level);
+            }
             if x + w <= x_max + 1e-9 && best.is_none_or(|b| x < b.0 - 1e-9) {
                 best = Some((x, s));
             }
@@ -242,22 +246,24 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
 
     // Every part must fit a sheet in some allowed rotation.
+    let along_ok = rotations.iter().any(|r| r % 180 == 0);
     for p in &kit.parts {
         let (x0, y0, x1, y1) = bbox(p);
         let (w, ht) = (x1 - x0, y1 - y0);
-        let fits_along = w <= lu && ht <= wu;
+        let fits_along = along_ok && w <= lu && ht <= wu;
         let fits_across = quarter && ht <= lu && w <= wu;
         if !fits_along && !fits_across {
             return Err(fail(
                 &p.id,
                 format!(
                     "{w:.0} × {ht:.0} mm does not fit the {lu:.0} × {wu:.0} mm usable sheet in any \
-                     allowed rotation"
+                     allowed rotation ({rotations:?}°)"
                 ),
             ));
         }
     }
-
+    // Lamellas lie along the sheet: 0° if allowed, else 180°.
+    let lamella_rot: u32 = if rotations.contains(&0) { 0 } else { 180 };
     // Lamellas into lanes.
     let lanes_per_sheet = ((wu + g) / (h + g)).floor().max(0.0) as usize;
     let mut lamella_items: Vec<(usize, u32)> = Vec::new();
@@ -276,6 +282,12 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     let (lanes, lane_bound_lanes) = if lamella_items.is_empty() {
         (Vec::new(), 0)
     } else {
+        if !along_ok {
+            return Err(fail(
+                &kit.parts[lamella_items[0].0].id,
+                "lamellas lie along the sheet, but the profile allows neither 0° nor 180°".into(),
+            ));
+        }
         if lanes_per_sheet == 0 {
             return Err(fail(
                 &kit.parts[lamella_items[0].0].id,
@@ -306,7 +318,9 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
         for &item in lane {
             let (i, copy) = lamella_items[item];
             let p = &kit.parts[i];
-            sheets[sheet].placements.push(place_at(i, p, copy, 0, x, y));
+            sheets[sheet]
+                .placements
+                .push(place_at(i, p, copy, lamella_rot, x, y));
             x += p.length_mm + g;
         }
         tails.push((sheet, x, y));
@@ -377,6 +391,12 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
                         skylines[k].raise(y, y + ht + g, x + w + g);
                         placed = true;
                         first_sheet = k;
+                    }
+                    None if skylines[k].is_bare(m) => {
+                        return Err(fail(
+                            &p.id,
+                            "does not fit an empty sheet in any allowed rotation".into(),
+                        ));
                     }
                     None => k += 1,
                 }
