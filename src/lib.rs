@@ -21,6 +21,7 @@ pub mod error;
 pub mod fabricate;
 pub mod geom;
 pub mod io;
+pub mod nest;
 pub mod network;
 pub mod profile;
 
