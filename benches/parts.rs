@@ -3,7 +3,7 @@
 //! 160,000 nodes): read, analyse,
 //! then fabricate every part for the steel prototype's profile (doubled
 //! lamellas with swept slots, shear blocks, splices, star washers, edge-less
-//! grid) including the engraving. Each size runs in a fresh child process so
+//! grid) including the engraving, then nest them onto its sheets. Each size runs in a fresh child process so
 //! its peak memory (VmHWM) is its own.
 //!
 //!     cargo bench --bench parts            # all sizes
@@ -29,15 +29,17 @@ fn main() {
     let sizes = support::sizes();
     let dir = support::network_dir();
     println!(
-        "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>10}",
+        "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>8} {:>7} {:>7} {:>6} {:>10}",
         "n",
         "nodes",
         "parts",
         "pieces",
         "analyse s",
         "fabricate s",
-        "total s",
-        "lamellas",
+        "nest s",
+        "sheets",
+        "bound",
+        "util",
         "peak MiB"
     );
     for n in sizes {
@@ -64,23 +66,22 @@ fn measure(path: &Path) {
     let t1 = Instant::now();
     let kit = fabricate(&net, &an, &profile).expect("fabricate");
     let t2 = Instant::now();
+    let nested = lamella::nest::nest(&kit, &profile).expect("nest");
+    let t3 = Instant::now();
     let pieces: u64 = kit.parts.iter().map(|p| u64::from(p.count)).sum();
-    let lamellas = kit
-        .parts
-        .iter()
-        .filter(|p| p.kind == lamella::fabricate::part::PartKind::Lamella)
-        .count();
     std::hint::black_box(&kit);
     println!(
-        "{:>5} {:>8} {:>9} {:>9} {:>9.3} {:>10.3} {:>9.3} {:>9} {:>10.0}",
+        "{:>5} {:>8} {:>9} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>7} {:>7} {:>6.3} {:>10.0}",
         net.curves.len() / 2,
         an.topology.nodes.len(),
         kit.parts.len(),
         pieces,
         (t1 - t0).as_secs_f64(),
         (t2 - t1).as_secs_f64(),
-        (t2 - t0).as_secs_f64(),
-        lamellas,
+        (t3 - t2).as_secs_f64(),
+        nested.summary.sheets_used,
+        nested.summary.lower_bound_sheets,
+        nested.summary.utilization,
         support::peak_mib()
     );
 }
