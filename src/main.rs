@@ -83,6 +83,10 @@ enum Command {
         /// Directory for plan.json (created if missing).
         #[arg(long)]
         out: PathBuf,
+        /// Also write the part set as a sparrow strip-packing instance
+        /// (jagua-rs 0.7 JSON; parts grown by half the kerf plus spacing).
+        #[arg(long, value_name = "FILE")]
+        export_instance: Option<PathBuf>,
         #[command(flatten)]
         read: ReadArgs,
     },
@@ -215,13 +219,14 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             profile,
             out,
             read,
-        } => parts(&network, &profile, &out, &read, false),
+        } => parts(&network, &profile, &out, &read, None),
         Command::Nest {
             network,
             profile,
             out,
+            export_instance,
             read,
-        } => parts(&network, &profile, &out, &read, true),
+        } => parts(&network, &profile, &out, &read, Some(export_instance)),
     }
 }
 
@@ -230,10 +235,13 @@ fn parts(
     profile_path: &Path,
     out: &Path,
     read: &ReadArgs,
-    nest: bool,
+    nest: Option<Option<PathBuf>>,
 ) -> lamella::Result<ExitCode> {
     let target = out.join("plan.json");
     refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
+    if let Some(Some(instance)) = &nest {
+        refuse_overwriting_input(instance, &[("network", path), ("profile", profile_path)])?;
+    }
     let profile = Profile::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
@@ -242,14 +250,28 @@ fn parts(
     let model = Model::checked(&net, &an, profile.clone(), report, None);
     let mut plan = plan::build(&net, &an, &model);
     plan::add_parts(&mut plan, &kit);
-    let nested = if nest {
-        let n = lamella::nest::nest(&kit, &profile)?;
-        plan::add_nest(&mut plan, &kit, &n);
-        Some(n)
-    } else {
-        None
+    // Everything is computed before anything is written.
+    let mut instance_text: Option<(PathBuf, String)> = None;
+    let nested = match &nest {
+        Some(instance) => {
+            let n = lamella::nest::nest(&kit, &profile)?;
+            plan::add_nest(&mut plan, &kit, &n);
+            if let Some(file) = instance {
+                let inst = lamella::nest::export::instance(&net.name, &kit, &profile);
+                let text = serde_json::to_string_pretty(&inst).map_err(|e| {
+                    lamella::Error::input(file, lamella::error::Location::File, e.to_string())
+                })?;
+                instance_text = Some((file.clone(), text));
+            }
+            Some(n)
+        }
+        None => None,
     };
     plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+    if let Some((file, text)) = &instance_text {
+        plan::write_atomic(file, text.as_bytes())?;
+        println!("wrote {}", file.display());
+    }
     for w in an.warnings() {
         eprintln!("warning: {w}");
     }

@@ -190,3 +190,60 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
     // How often the nest is a sheet over the bound (reported, not held).
     eprintln!("random lane-only kits: {over} of 60 one sheet over the bound");
 }
+
+/// `nest --export-instance`: a sparrow strip-packing instance with every
+/// part once, its count as demand, the profile's rotations, and an outline
+/// grown by half the kerf plus spacing (so larger than the part's).
+#[test]
+fn the_sparrow_instance_holds_every_part_grown() {
+    let dir = std::env::temp_dir().join(format!("lamella-nest-instance-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let inst = dir.join("instance.json");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args([
+            "nest",
+            "samples/catenoid.yaml",
+            "--profile",
+            "profiles/steel-1.5.yaml",
+            "--out",
+        ])
+        .arg(&dir)
+        .arg("--export-instance")
+        .arg(&inst)
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&inst).unwrap()).unwrap();
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("plan.json")).unwrap()).unwrap();
+    let parts = plan["parts"].as_array().unwrap();
+    let items = v["items"].as_array().unwrap();
+    assert_eq!(items.len(), parts.len());
+    assert_eq!(v["strip_height"].as_f64().unwrap(), 1480.0);
+    let area = |pts: &[serde_json::Value]| {
+        let p: Vec<(f64, f64)> = pts
+            .iter()
+            .map(|q| (q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+            .collect();
+        (0..p.len())
+            .map(|i| {
+                let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                a.0 * b.1 - b.0 * a.1
+            })
+            .sum::<f64>()
+            / 2.0
+    };
+    for (item, part) in items.iter().zip(parts) {
+        assert_eq!(item["demand"], part["count"]);
+        assert_eq!(item["shape"]["type"], "simple_polygon");
+        assert_eq!(item["allowed_orientations"].as_array().unwrap().len(), 4);
+        let grown = area(item["shape"]["data"].as_array().unwrap());
+        let own = area(part["outline"].as_array().unwrap());
+        assert!(grown > own, "{}: {grown} vs {own}", part["id"]);
+    }
+}

@@ -23,6 +23,7 @@
 //! sheet's x runs along its length.
 
 pub mod binpack;
+pub mod export;
 
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Part, PartKind};
