@@ -309,10 +309,7 @@ impl StripGeometry {
         let j = smooth.jet_at(k, u);
         let speed = j.d1.length();
         let x = j.d1 / speed;
-        let kvec = {
-            let v2 = j.d1.length_squared();
-            (j.d2 - x * j.d2.dot(x)) / v2
-        };
+        let kvec = curvature_of(&j);
         let (z, y, kn_per_mm, tg_per_mm) = match &self.normals {
             Normals::File(h) => {
                 let nj = h.jet_at(k, u);
@@ -428,7 +425,12 @@ impl StripGeometry {
 
 /// Curvature vector κN (1/mm) at segment k, local u.
 fn curvature_vector(smooth: &SmoothCurve, k: usize, u: f64) -> DVec3 {
-    let j = smooth.jet_at(k, u);
+    curvature_of(&smooth.jet_at(k, u))
+}
+
+/// Curvature vector κN (1/mm) of a jet: the second derivative's part
+/// normal to the tangent, over the squared speed.
+fn curvature_of(j: &crate::geom::curve::Jet) -> DVec3 {
     let v2 = j.d1.length_squared();
     let x = j.d1 / v2.sqrt();
     (j.d2 - x * j.d2.dot(x)) / v2

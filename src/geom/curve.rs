@@ -687,31 +687,13 @@ impl SmoothCurve {
         (k, u)
     }
 
-    /// 8-point Gauss–Legendre quadrature over segment k from local u0 to
-    /// u1 in arc length: for each node its local u, its station (mm) and its
-    /// weight (mm), so Σ w·f(u) ≈ ∫ f ds over that piece of the curve. The
-    /// nodes' stations are interpolated linearly in u between the piece's
-    /// exact end stations: the parameter is the chord length, so |c′| is
-    /// nearly constant and the error is below (Δs)²·max|d|c′|/du|/8, far
-    /// under 1e-6 mm on sampled curves.
-    pub fn gauss_nodes(&self, k: usize, u0: f64, u1: f64) -> [(f64, f64, f64); 8] {
-        let a = self.h.coefficients(k);
-        let du = u1 - u0;
-        let s0 = self.s[k] + integrate_speed(&a, u0);
-        let mut speeds = [0.0; 8];
-        let mut total = 0.0;
-        for (i, (x, w)) in GL_NODES.iter().zip(GL_WEIGHTS.iter()).enumerate() {
-            speeds[i] = Hermite5::speed_u(&a, u0 + x * du);
-            total += w * speeds[i] * du;
-        }
-        let mut out = [(0.0, 0.0, 0.0); 8];
-        for (i, (x, w)) in GL_NODES.iter().zip(GL_WEIGHTS.iter()).enumerate() {
-            out[i] = (u0 + x * du, s0 + x * total, w * speeds[i] * du);
-        }
-        out
-    }
-
-    /// As [`SmoothCurve::gauss_nodes`] with 4 points (exact for degree 7).
+    /// 4-point Gauss–Legendre quadrature (exact for degree 7) over segment
+    /// k from local u0 to u1 in arc length: for each node its local u, its
+    /// station (mm) and its weight (mm), so Σ w·f(u) ≈ ∫ f ds over that
+    /// piece of the curve. The nodes' stations are interpolated linearly in
+    /// u between the piece's exact end stations: the parameter is the chord
+    /// length, so |c′| is nearly constant and the error is below
+    /// (Δs)²·max|d|c′|/du|/8, far under 1e-6 mm on sampled curves.
     pub fn gauss_nodes4(&self, k: usize, u0: f64, u1: f64) -> [(f64, f64, f64); 4] {
         const X: [f64; 4] = [
             0.069_431_844_202_973_71,
