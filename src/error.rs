@@ -79,6 +79,15 @@ pub enum Error {
         /// What is wrong, one line.
         what: String,
     },
+    /// An output cannot be made or written as asked: names the file or
+    /// directory and why (a foreign file in the way, an inconsistent plan).
+    #[error("{}: {what}", path.display())]
+    Output {
+        /// The output file or directory.
+        path: PathBuf,
+        /// What is wrong, one line.
+        what: String,
+    },
 }
 
 fn located(at: &Location) -> String {
@@ -124,6 +133,13 @@ impl Error {
             profile: profile.to_path_buf(),
             at: format!("part {part}"),
             node: None,
+            what: one_line(&what.into()),
+        }
+    }
+    /// An output at `path` that cannot be made or written; `what` is collapsed to one line.
+    pub fn output(path: &Path, what: impl Into<String>) -> Self {
+        Error::Output {
+            path: path.to_path_buf(),
             what: one_line(&what.into()),
         }
     }

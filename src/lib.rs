@@ -10,13 +10,16 @@
 //! * [`analysis`]: nodes ([`analysis::topology`]), Darboux frames and
 //!   curvatures ([`analysis::strip`], [`analysis::normal_field`]), lamella
 //!   lines and the finished model ([`analysis::model`]);
-//! * [`check`]: the elastic check of every lamella against a [`profile`].
+//! * [`check`]: the elastic check of every lamella against a [`profile`];
+//! * [`fabricate`]: flat parts per profile; [`nest`]: parts onto stock;
+//! * [`emit`]: cutting files, takeoff, safe output; `lamella build`.
 
 #![warn(missing_docs)]
 
 pub mod analysis;
 pub mod check;
 pub mod design;
+pub mod emit;
 pub mod error;
 pub mod fabricate;
 pub mod geom;

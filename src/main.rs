@@ -26,6 +26,34 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The whole kit in one command: nodes, elastic check, parts, nest, then
+    /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet,
+    /// DIR/takeoff.csv and DIR/takeoff.json. Output is staged beside DIR and
+    /// moved into place only when complete. Exit status 3 (nothing written)
+    /// when a strip is overstressed, unless --allow-overstress.
+    Build {
+        /// The network file (.yaml, .yml, .json, .obj, .dxf).
+        network: PathBuf,
+        /// The material profile (profiles/*.yaml).
+        #[arg(long)]
+        profile: PathBuf,
+        /// Output directory. Created if missing; lamella's files from an
+        /// earlier build are replaced, other files are left alone.
+        #[arg(long)]
+        out: PathBuf,
+        /// Offset outer contours out and inner contours in by half the
+        /// profile's kerf (for controllers that do not compensate).
+        #[arg(long)]
+        kerf_compensation: bool,
+        /// Write the kit even when a strip is overstressed.
+        #[arg(long)]
+        allow_overstress: bool,
+        /// No progress bar and no summary (errors and warnings still print).
+        #[arg(long, short)]
+        quiet: bool,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
     /// Find the nodes of a network and compute node-to-node lengths, curvature
     /// and twist of every strip; write DIR/plan.json and print a summary.
     Nodes {
@@ -204,6 +232,25 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> lamella::Result<ExitCode> {
     match cli.command {
+        Command::Build {
+            network,
+            profile,
+            out,
+            kerf_compensation,
+            allow_overstress,
+            quiet,
+            read,
+        } => build(
+            &network,
+            &profile,
+            &out,
+            &lamella::emit::build::BuildOptions {
+                read: read.options(),
+                kerf_compensation,
+                allow_overstress,
+            },
+            quiet,
+        ),
         Command::Nodes { network, out, read } => nodes(&network, &out, &read),
         Command::Trace { spec, out } => trace(&spec, &out),
         Command::Check {
@@ -228,6 +275,88 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             read,
         } => parts(&network, &profile, &out, &read, Some(export_instance)),
     }
+}
+
+fn build(
+    network: &Path,
+    profile: &Path,
+    out: &Path,
+    opts: &lamella::emit::build::BuildOptions,
+    quiet: bool,
+) -> lamella::Result<ExitCode> {
+    // Hidden when stderr is not a terminal (indicatif's default target).
+    let pb = if quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new_spinner()
+    };
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} {bar:30} {pos}/{len} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    pb.enable_steady_tick(std::time::Duration::from_millis(120));
+    let r = lamella::emit::build::build(network, profile, out, opts, &pb);
+    pb.finish_and_clear();
+    let r = r?;
+    for w in &r.warnings {
+        eprintln!("warning: {w}");
+    }
+    if r.files.is_empty() {
+        if let Some(g) = &r.governing {
+            eprintln!(
+                "error: {} of {} strips overstressed (worst {} lamella {} at {:.2} × the design strength, {} governs): nothing written; see `lamella check`, or pass --allow-overstress",
+                r.overstressed, r.strips, g.strip, g.lamella, g.utilization, g.governs
+            );
+        }
+        return Ok(ExitCode::from(3));
+    }
+    if !quiet {
+        print_build_summary(&r);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn print_build_summary(r: &lamella::emit::build::BuildReport) {
+    let t = &r.takeoff;
+    println!(
+        "{} with {}: {} strips, {} edge strips, {} nodes",
+        r.network, r.profile, r.strips, r.edges, r.nodes
+    );
+    for (kind, distinct, count) in &r.kinds {
+        println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
+    }
+    println!(
+        "sheets: {} (lower bound {}), utilisation {:.1} %",
+        r.sheets_used,
+        r.lower_bound_sheets,
+        100.0 * r.utilization
+    );
+    println!(
+        "lamellas: {:.1} m of strip; mass {:.1} kg",
+        t.totals.lamella_length_m, t.totals.mass_kg
+    );
+    if let (Some(cost), Some(cur)) = (t.totals.stock_cost, &t.currency) {
+        println!("stock cost: {cost:.2} {cur}");
+    }
+    for h in t.hardware.iter().filter(|h| !h.made) {
+        println!("  {:<17} {:>8}  {}", h.item, h.count, h.designation);
+    }
+    match &r.governing {
+        Some(g) if r.passes() => println!(
+            "elastic check: PASS, highest utilisation {:.2} ({} lamella {}, {} governs)",
+            g.utilization, g.strip, g.lamella, g.governs
+        ),
+        Some(g) => println!(
+            "elastic check: FAIL (--allow-overstress): {} strips overstressed, worst {} lamella {} at {:.2}",
+            r.overstressed, g.strip, g.lamella, g.utilization
+        ),
+        None => println!("elastic check: no strips"),
+    }
+    println!(
+        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, sheets/)",
+        r.files.len(),
+        r.out.display()
+    );
 }
 
 fn parts(

@@ -11,6 +11,7 @@ pub mod blocks;
 pub mod edge_strip;
 pub mod engrave;
 pub mod font;
+pub mod hardware;
 pub mod invariants;
 pub mod label;
 pub mod lamella;
@@ -53,6 +54,8 @@ pub struct KitSummary {
     pub mass_kg: f64,
     /// Bars of stud stock to saw the studs from (two-level grids).
     pub stud_bars: u32,
+    /// Bolts, nuts, washers and studs, counted.
+    pub hardware: Vec<hardware::Hardware>,
 }
 
 /// Make every part of the network's A/B strips for `profile`.
@@ -124,6 +127,23 @@ pub fn fabricate(net: &Network, an: &Analysis, profile: &Profile) -> Result<Kit>
     }
     let mut summary = summarise(&parts, profile);
     summary.stud_bars = stud_bars;
+    let pieces = |kind| {
+        parts
+            .iter()
+            .filter(|p| p.kind == kind)
+            .map(|p| u64::from(p.count))
+            .sum::<u64>()
+    };
+    summary.hardware = hardware::hardware(
+        profile,
+        hardware::Counts {
+            grid_nodes: grid.len() as u64,
+            shear_blocks: blocks as u64,
+            splice_plates: plates as u64,
+            washers: pieces(PartKind::Washer),
+            studs: pieces(PartKind::Stud),
+        },
+    );
     Ok(Kit {
         parts,
         summary,
@@ -187,11 +207,26 @@ pub fn net_area_mm2(p: &Part) -> f64 {
             .sum::<f64>()
 }
 
+/// Thickness a part is made in, mm: shear blocks and studs as thick as the
+/// gap they fill, washers at the washer thickness, the rest at the lamella
+/// thickness.
+pub fn part_thickness_mm(kind: PartKind, profile: &Profile) -> f64 {
+    match kind {
+        PartKind::ShearBlock | PartKind::Stud => profile.section.gap_mm,
+        PartKind::Washer => profile.washer.as_ref().map_or(0.0, |w| w.thickness_mm),
+        _ => profile.section.thickness_mm,
+    }
+}
+
+/// Mass of one piece of a part, kg.
+pub fn part_mass_kg(p: &Part, profile: &Profile) -> f64 {
+    net_area_mm2(p) * part_thickness_mm(p.kind, profile) * profile.material.density_kg_per_m3 * 1e-9
+}
+
 /// Count by kind, lamella length, mass (plates at the lamella thickness,
 /// shear blocks at the gap's thickness).
 fn summarise(parts: &[Part], profile: &Profile) -> KitSummary {
     let mut s = KitSummary::default();
-    let density_kg_per_mm3 = profile.material.density_kg_per_m3 * 1e-9;
     for p in parts {
         match s.kinds.iter_mut().find(|k| k.0 == p.kind) {
             Some(k) => {
@@ -203,13 +238,7 @@ fn summarise(parts: &[Part], profile: &Profile) -> KitSummary {
         if p.kind == PartKind::Lamella {
             s.lamella_length_mm += p.length_mm * f64::from(p.count);
         }
-        let thickness = match p.kind {
-            PartKind::ShearBlock => profile.section.gap_mm,
-            PartKind::Washer => profile.washer.as_ref().map_or(0.0, |w| w.thickness_mm),
-            PartKind::Stud => profile.section.gap_mm,
-            _ => profile.section.thickness_mm,
-        };
-        s.mass_kg += net_area_mm2(p) * thickness * density_kg_per_mm3 * f64::from(p.count);
+        s.mass_kg += part_mass_kg(p, profile) * f64::from(p.count);
     }
     s.kinds.sort_by_key(|k| k.0);
     s

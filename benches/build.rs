@@ -1,0 +1,74 @@
+//! Benchmark of `lamella build` on generated Enneper networks of n × n
+//! curves with the prototype's cell size (n = 100, 200, 400; the largest is
+//! a 100 m grid with 160,000 nodes) and the steel prototype's profile: every
+//! stage from reading the network to the files moved into place (plan.json,
+//! takeoff, a DXF and an SVG per sheet). Each size runs in a fresh child
+//! process so its peak memory (VmHWM) is its own.
+//!
+//!     cargo bench --bench build            # all sizes
+//!     cargo bench --bench build -- 400     # one size
+
+mod support;
+#[path = "../tests/common/synth.rs"]
+#[allow(dead_code)]
+mod synth;
+
+use lamella::emit::build::{build, BuildOptions};
+use lamella::io;
+use std::path::Path;
+use std::time::Instant;
+
+fn main() {
+    if let Some(path) = support::child_network() {
+        measure(&path);
+        return;
+    }
+    let dir = support::network_dir();
+    println!(
+        "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10} {:>9} {:>10}",
+        "n", "nodes", "pieces", "sheets", "files", "files MiB", "build s", "peak MiB"
+    );
+    for n in support::sizes() {
+        let path = dir.join(format!("enneper-parts-{n}.json"));
+        if !path.exists() {
+            // The same networks as the parts bench.
+            let scale_mm = 4400.0 * (n - 1) as f64 / 12.0;
+            let raw = synth::enneper_grid(n, scale_mm, 100.0);
+            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
+        }
+        support::run_child(&path);
+    }
+}
+
+fn measure(path: &Path) {
+    let profile = Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
+    let out = path.with_extension("build");
+    let _ = std::fs::remove_dir_all(&out);
+    let t0 = Instant::now();
+    let r = build(
+        path,
+        &profile,
+        &out,
+        &BuildOptions::default(),
+        &indicatif::ProgressBar::hidden(),
+    )
+    .expect("build");
+    let secs = t0.elapsed().as_secs_f64();
+    let bytes: u64 = r
+        .files
+        .iter()
+        .map(|f| std::fs::metadata(out.join(f)).map_or(0, |m| m.len()))
+        .sum();
+    println!(
+        "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10.0} {:>9.2} {:>10.0}",
+        r.strips / 2,
+        r.nodes,
+        r.takeoff.totals.pieces,
+        r.sheets_used,
+        r.files.len(),
+        bytes as f64 / (1024.0 * 1024.0),
+        secs,
+        support::peak_mib()
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

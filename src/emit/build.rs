@@ -1,0 +1,263 @@
+//! `lamella build`: every stage from a network and a profile to the files a
+//! workshop needs — nodes, the elastic check, parts, nest, then
+//! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
+//! `DIR/takeoff.csv` and `DIR/takeoff.json` — staged beside DIR and moved
+//! into place only once complete ([`super::outdir`]).
+//!
+//! Everything is computed before anything is written; an overstressed
+//! strip stops the build before the first file (unless allowed).
+
+use super::drawing::Drawer;
+use super::outdir::Staging;
+use super::{dxf_out, svg_out, takeoff};
+use crate::analysis::model::Model;
+use crate::check::CheckReport;
+use crate::error::{Error, Result};
+use crate::fabricate::part::PartKind;
+use crate::io::{self, plan, ReadOptions};
+use crate::profile::Profile;
+use crate::{analyze, AnalysisOptions};
+use indicatif::ProgressBar;
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// What `build` is asked to do beyond reading.
+#[derive(Debug, Clone, Default)]
+pub struct BuildOptions {
+    /// Units, tolerance and precision of the network file.
+    pub read: ReadOptions,
+    /// Offset outer contours out and inner contours in by half the kerf.
+    pub kerf_compensation: bool,
+    /// Write the files even when a strip is overstressed.
+    pub allow_overstress: bool,
+}
+
+/// The governing strip of the elastic check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Governing {
+    /// Strip id.
+    pub strip: String,
+    /// Lamella number.
+    pub lamella: u32,
+    /// Its utilisation.
+    pub utilization: f64,
+    /// What governs (`bending`, `torsion`, …).
+    pub governs: &'static str,
+}
+
+/// What a build made, for the summary it prints.
+#[derive(Debug, Clone)]
+pub struct BuildReport {
+    /// Network name.
+    pub network: String,
+    /// Profile name.
+    pub profile: String,
+    /// A and B strips.
+    pub strips: usize,
+    /// Edge strips.
+    pub edges: usize,
+    /// Nodes.
+    pub nodes: usize,
+    /// Per kind: distinct parts and pieces.
+    pub kinds: Vec<(PartKind, usize, u64)>,
+    /// The takeoff (totals, stock, hardware), also written.
+    pub takeoff: takeoff::Takeoff,
+    /// Sheets used and the lower bound.
+    pub sheets_used: usize,
+    /// The nest's lower bound on sheets.
+    pub lower_bound_sheets: usize,
+    /// Part area over used sheet area.
+    pub utilization: f64,
+    /// Strips overstressed (0 when every strip passes).
+    pub overstressed: usize,
+    /// The highest-utilised lamella, if any.
+    pub governing: Option<Governing>,
+    /// Warnings of the analysis and the kit, one line each.
+    pub warnings: Vec<String>,
+    /// Files written, relative to DIR (empty when the build stopped at the check).
+    pub files: Vec<String>,
+    /// Where they were written.
+    pub out: PathBuf,
+}
+
+impl BuildReport {
+    /// Whether every strip passed the elastic check.
+    pub fn passes(&self) -> bool {
+        self.overstressed == 0
+    }
+}
+
+/// The files every build writes besides the sheets.
+pub const FIXED_FILES: [&str; 3] = ["plan.json", "takeoff.csv", "takeoff.json"];
+
+/// Run every stage and write the kit into `out`. Returns the report; when
+/// a strip is overstressed and `allow_overstress` is off, nothing is
+/// written and `report.files` is empty. `progress` shows the stage and the
+/// sheets written (pass `ProgressBar::hidden()` for none).
+pub fn build(
+    network: &Path,
+    profile_path: &Path,
+    out: &Path,
+    opts: &BuildOptions,
+    progress: &ProgressBar,
+) -> Result<BuildReport> {
+    for name in FIXED_FILES {
+        let target = out.join(name);
+        for (what, input) in [("network", network), ("profile", profile_path)] {
+            if target.exists() && io::same_file(&target, input) {
+                return Err(Error::output(
+                    &target,
+                    format!(
+                        "is the {what} ({}): refusing to overwrite an input; choose another output",
+                        input.display()
+                    ),
+                ));
+            }
+        }
+    }
+    progress.set_message("reading");
+    let profile = Profile::load(profile_path)?;
+    let net = io::read_network(network, opts.read)?;
+    progress.set_message("finding nodes, frames and curvatures");
+    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
+    progress.set_message("checking");
+    let report = crate::check::check(&an, &profile);
+    let mut warnings: Vec<String> = an.warnings().iter().map(|w| w.to_string()).collect();
+    let governing = governing(&report);
+    let overstressed = report.overstressed();
+    let strips = an.lamella_strips().count();
+    let edges = net.curves.len() - strips;
+    if overstressed > 0 && !opts.allow_overstress {
+        return Ok(BuildReport {
+            network: net.name.clone(),
+            profile: profile.name.clone(),
+            strips,
+            edges,
+            nodes: an.topology.nodes.len(),
+            kinds: Vec::new(),
+            takeoff: takeoff::Takeoff {
+                project: net.name.clone(),
+                profile: profile.name.clone(),
+                currency: None,
+                parts: Vec::new(),
+                stock: Vec::new(),
+                hardware: Vec::new(),
+                totals: takeoff::Totals {
+                    pieces: 0,
+                    lamella_length_m: 0.0,
+                    mass_kg: 0.0,
+                    sheets: 0,
+                    stock_cost: None,
+                },
+            },
+            sheets_used: 0,
+            lower_bound_sheets: 0,
+            utilization: 0.0,
+            overstressed,
+            governing,
+            warnings,
+            files: Vec::new(),
+            out: out.to_path_buf(),
+        });
+    }
+    // Refuse a foreign plan.json or takeoff before the long work.
+    let staging = Staging::begin(out, &FIXED_FILES)?;
+    progress.set_message("making parts");
+    let kit = crate::fabricate::fabricate(&net, &an, &profile)?;
+    warnings.extend(kit.warnings.iter().cloned());
+    progress.set_message("nesting");
+    let nest = crate::nest::nest(&kit, &profile)?;
+    let takeoff = takeoff::takeoff(&net.name, &kit, &nest, &profile);
+    let model = Model::checked(&net, &an, profile.clone(), report, None);
+    let mut the_plan = plan::build(&net, &an, &model);
+    plan::add_parts(&mut the_plan, &kit);
+    plan::add_nest(&mut the_plan, &kit, &nest);
+    let plan_target = out.join("plan.json");
+    if let Some(field) = io::finite::first_non_finite(&the_plan) {
+        return Err(Error::output(
+            &plan_target,
+            format!("not written: {field} is not a finite number"),
+        ));
+    }
+    let kinds = kit.summary.kinds.clone();
+    let (sheets_used, lower_bound_sheets, utilization) = (
+        nest.summary.sheets_used,
+        nest.summary.lower_bound_sheets,
+        nest.summary.utilization,
+    );
+    drop(nest);
+    drop(kit);
+    progress.set_message("writing plan and takeoff");
+    staging.write("plan.json", plan::to_json(&the_plan).as_bytes())?;
+    let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
+    staging.write("takeoff.csv", &csv)?;
+    staging.write("takeoff.json", takeoff::to_json(&takeoff).as_bytes())?;
+    let kerf = opts.kerf_compensation.then_some(profile.cutting.kerf_mm);
+    let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
+    progress.set_message("writing sheets");
+    progress.set_length(drawer.len() as u64);
+    progress.set_position(0);
+    (0..drawer.len())
+        .into_par_iter()
+        .try_for_each(|i| -> Result<()> {
+            let sheet = drawer.sheet(i)?;
+            let stem = sheet.file_stem();
+            let dxf = dxf_out::to_dxf(&sheet)
+                .map_err(|e| Error::output(&out.join(format!("sheets/{stem}.dxf")), e))?;
+            staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
+            let title = format!(
+                "{} — {}: sheet {} of {} ({}), {} × {} mm",
+                net.name,
+                profile.name,
+                sheet.number,
+                drawer.len(),
+                sheet.id,
+                sheet.length_mm,
+                sheet.width_mm
+            );
+            staging.write(
+                &format!("sheets/{stem}.svg"),
+                svg_out::to_svg(&sheet, &title).as_bytes(),
+            )?;
+            progress.inc(1);
+            Ok(())
+        })?;
+    let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
+    for i in 1..=drawer.len() {
+        files.push(format!("sheets/sheet-{i:03}.dxf"));
+        files.push(format!("sheets/sheet-{i:03}.svg"));
+    }
+    progress.set_message("moving into place");
+    staging.commit()?;
+    Ok(BuildReport {
+        network: net.name.clone(),
+        profile: profile.name.clone(),
+        strips,
+        edges,
+        nodes: an.topology.nodes.len(),
+        kinds,
+        takeoff,
+        sheets_used,
+        lower_bound_sheets,
+        utilization,
+        overstressed,
+        governing,
+        warnings,
+        files,
+        out: out.to_path_buf(),
+    })
+}
+
+fn governing(report: &CheckReport) -> Option<Governing> {
+    let ranking = report.ranking();
+    ranking.first().map(|&i| {
+        let s = &report.strips[i];
+        let l = s.worst();
+        Governing {
+            strip: s.id.clone(),
+            lamella: l.line.offset.number,
+            utilization: l.utilization,
+            governs: l.governs.as_str(),
+        }
+    })
+}

@@ -1,0 +1,514 @@
+//! Sheet drawings: every placed part of a nest in sheet coordinates, sorted
+//! by operation. Plain data in (a [`Plan`] with `parts` and `sheets`), plain
+//! data out ([`SheetDrawing`]); the DXF and SVG writers only format it.
+//!
+//! The drawing is made from plan.json's own (rounded) numbers, so a reader
+//! can hold every cutting file to plan.json exactly: a part's outline, holes
+//! and engraving are turned by the placement's quarter turn about the part
+//! origin (exact: coordinates are swapped and negated, no cosines), then
+//! moved by its translation.
+//!
+//! Per part, in cutting order: inner contours (round holes as circles, other
+//! holes as closed polylines), then the outer contour, then the engraving
+//! (open polylines). Consecutive points closer than [`MERGE_MM`] are merged
+//! so no segment has zero length. With kerf compensation, outer contours are
+//! offset out and inner contours in by half the kerf (cavalier_contours,
+//! round joins: convex corners become arcs, written as bulges).
+
+use crate::error::{Error, Result};
+use crate::io::plan::{Plan, PlanPart, PlanPlacement, PlanSheet};
+use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Points of a contour closer than this are one point, mm.
+pub const MERGE_MM: f64 = 1e-6;
+
+/// A hole polyline whose vertices all lie within this of a hole feature's
+/// circle is written as that circle, mm (plan.json rounds to 1e-4 mm).
+const CIRCLE_MATCH_MM: f64 = 1e-3;
+
+/// The operation a shape belongs to: a DXF layer, an SVG group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Layer {
+    /// The stock sheet's outline: not cut.
+    Sheet,
+    /// Holes and other inner contours: cut first.
+    CutInner,
+    /// Part outlines: cut last, once the part's inner contours are done.
+    CutOuter,
+    /// Single-stroke labels and marks: engraved, not cut through.
+    Engrave,
+}
+
+impl Layer {
+    /// Every layer, in drawing order.
+    pub const ALL: [Layer; 4] = [
+        Layer::Sheet,
+        Layer::CutInner,
+        Layer::CutOuter,
+        Layer::Engrave,
+    ];
+
+    /// The DXF layer name and SVG group id.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layer::Sheet => "SHEET",
+            Layer::CutInner => "CUT-INNER",
+            Layer::CutOuter => "CUT-OUTER",
+            Layer::Engrave => "ENGRAVE",
+        }
+    }
+
+    /// AutoCAD colour index: red outer cuts, green inner cuts, blue
+    /// engraving, grey sheet (the colours laser software maps to operations).
+    pub fn aci(self) -> u8 {
+        match self {
+            Layer::Sheet => 8,
+            Layer::CutInner => 3,
+            Layer::CutOuter => 1,
+            Layer::Engrave => 5,
+        }
+    }
+
+    /// The same colour as SVG writes it.
+    pub fn rgb(self) -> &'static str {
+        match self {
+            Layer::Sheet => "#808080",
+            Layer::CutInner => "#00ff00",
+            Layer::CutOuter => "#ff0000",
+            Layer::Engrave => "#0000ff",
+        }
+    }
+}
+
+/// A polyline vertex, sheet frame, mm; `bulge` = tan(¼ of the arc's
+/// included angle) of the segment to the next vertex (0: straight,
+/// positive: counter-clockwise), as DXF's LWPOLYLINE stores it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vertex {
+    /// x along the sheet's length, mm.
+    pub x_mm: f64,
+    /// y across the sheet's width, mm.
+    pub y_mm: f64,
+    /// Bulge of the segment that starts here.
+    pub bulge: f64,
+}
+
+/// One contour or mark.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A polyline; closed ones do not repeat their first vertex.
+    Polyline {
+        /// Its operation.
+        layer: Layer,
+        /// Closed contour (cut) or open stroke (engraving).
+        closed: bool,
+        /// At least two vertices (three when closed).
+        vertices: Vec<Vertex>,
+    },
+    /// A round hole.
+    Circle {
+        /// Its operation.
+        layer: Layer,
+        /// Centre, sheet frame, mm.
+        center_mm: [f64; 2],
+        /// Radius, mm.
+        radius_mm: f64,
+    },
+}
+
+/// One placed copy of a part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartOnSheet {
+    /// Part id.
+    pub part: String,
+    /// Which copy, from 0.
+    pub copy: u32,
+    /// The outline's bounding box on the sheet: [min x, min y, max x, max y], mm.
+    pub bbox_mm: [f64; 4],
+    /// Inner contours, the outer contour, then engraving.
+    pub shapes: Vec<Shape>,
+}
+
+/// One stock sheet with everything cut from it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SheetDrawing {
+    /// The plan's sheet id (`S01`, …).
+    pub id: String,
+    /// 1-based position in the nest (file names: `sheet-001`).
+    pub number: usize,
+    /// Along the sheet's x, mm.
+    pub length_mm: f64,
+    /// Along the sheet's y, mm.
+    pub width_mm: f64,
+    /// Placed parts, in the nest's order.
+    pub parts: Vec<PartOnSheet>,
+}
+
+impl SheetDrawing {
+    /// The sheet's outline (layer `SHEET`), counter-clockwise from the origin.
+    pub fn outline(&self) -> Shape {
+        let v = |x_mm, y_mm| Vertex {
+            x_mm,
+            y_mm,
+            bulge: 0.0,
+        };
+        Shape::Polyline {
+            layer: Layer::Sheet,
+            closed: true,
+            vertices: vec![
+                v(0.0, 0.0),
+                v(self.length_mm, 0.0),
+                v(self.length_mm, self.width_mm),
+                v(0.0, self.width_mm),
+            ],
+        }
+    }
+
+    /// The file stem: `sheet-001`.
+    pub fn file_stem(&self) -> String {
+        format!("sheet-{:03}", self.number)
+    }
+}
+
+/// Part-local (x, y) turned by a quarter-turn multiple counter-clockwise
+/// about the origin, then moved by (tx, ty): the placement's map, exact.
+pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2] {
+    let [x, y] = p;
+    let (rx, ry) = match rotation_deg % 360 {
+        90 => (-y, x),
+        180 => (-x, -y),
+        270 => (y, -x),
+        _ => (x, y),
+    };
+    [rx + tx_mm, ry + ty_mm]
+}
+
+/// Draws the sheets of a plan one at a time (a big kit's drawings need not
+/// all be in memory at once).
+#[derive(Debug)]
+pub struct Drawer<'a> {
+    sheets: &'a [PlanSheet],
+    by_id: HashMap<&'a str, &'a PlanPart>,
+    half_kerf_mm: Option<f64>,
+    plan_path: &'a Path,
+}
+
+impl<'a> Drawer<'a> {
+    /// A drawer for `plan`'s sheets. `kerf_compensation_mm`: offset outer
+    /// contours out and inner contours in by half of it. `plan_path` names
+    /// the plan in errors.
+    pub fn new(
+        plan: &'a Plan,
+        kerf_compensation_mm: Option<f64>,
+        plan_path: &'a Path,
+    ) -> Result<Drawer<'a>> {
+        let (Some(parts), Some(sheets)) = (&plan.parts, &plan.sheets) else {
+            return Err(Error::output(
+                plan_path,
+                "the plan has no parts or no sheets: run the parts and nest stages first",
+            ));
+        };
+        Ok(Drawer {
+            sheets,
+            by_id: parts.iter().map(|p| (p.id.as_str(), p)).collect(),
+            half_kerf_mm: kerf_compensation_mm.map(|k| 0.5 * k),
+            plan_path,
+        })
+    }
+
+    /// How many sheets.
+    pub fn len(&self) -> usize {
+        self.sheets.len()
+    }
+
+    /// Whether there are no sheets.
+    pub fn is_empty(&self) -> bool {
+        self.sheets.is_empty()
+    }
+
+    /// The drawing of sheet `i` (0-based).
+    pub fn sheet(&self, i: usize) -> Result<SheetDrawing> {
+        let s = &self.sheets[i];
+        let placed = s
+            .placements
+            .iter()
+            .map(|pl| {
+                let part = self.by_id.get(pl.part.as_str()).ok_or_else(|| {
+                    Error::output(
+                        self.plan_path,
+                        format!(
+                            "sheet {}: part {} is not in the plan's parts",
+                            s.id, pl.part
+                        ),
+                    )
+                })?;
+                part_on_sheet(part, pl, self.half_kerf_mm).map_err(|what| {
+                    Error::output(
+                        self.plan_path,
+                        format!("sheet {}: part {} copy {}: {what}", s.id, pl.part, pl.copy),
+                    )
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(SheetDrawing {
+            id: s.id.clone(),
+            number: i + 1,
+            length_mm: s.length_mm,
+            width_mm: s.width_mm,
+            parts: placed,
+        })
+    }
+}
+
+/// Every sheet of `plan` as a drawing (see [`Drawer::new`]).
+pub fn sheet_drawings(
+    plan: &Plan,
+    kerf_compensation_mm: Option<f64>,
+    plan_path: &Path,
+) -> Result<Vec<SheetDrawing>> {
+    let d = Drawer::new(plan, kerf_compensation_mm, plan_path)?;
+    (0..d.len()).map(|i| d.sheet(i)).collect()
+}
+
+/// One placed part's shapes; the error is what is wrong with it.
+fn part_on_sheet(
+    part: &PlanPart,
+    pl: &PlanPlacement,
+    half_kerf_mm: Option<f64>,
+) -> std::result::Result<PartOnSheet, String> {
+    if !matches!(pl.rotation_deg, 0 | 90 | 180 | 270) {
+        return Err(format!(
+            "rotation {}° is not a quarter turn",
+            pl.rotation_deg
+        ));
+    }
+    let map = |p: &[f64; 2]| place(*p, pl.rotation_deg, pl.x_mm, pl.y_mm);
+    let mut shapes = Vec::with_capacity(part.holes.len() + 1 + part.engraving.len());
+    let hole_features: Vec<([f64; 2], f64)> = part
+        .features
+        .iter()
+        .filter(|f| f.kind == "hole")
+        .map(|f| (f.center_mm, 0.5 * f.width_mm))
+        .collect();
+    for hole in &part.holes {
+        let circle = hole_features.iter().find(|(c, r)| {
+            hole.iter()
+                .all(|p| ((p[0] - c[0]).hypot(p[1] - c[1]) - r).abs() <= CIRCLE_MATCH_MM)
+        });
+        match circle {
+            Some(&(c, r)) => {
+                let radius_mm = r - half_kerf_mm.unwrap_or(0.0);
+                if radius_mm <= MERGE_MM {
+                    return Err(format!(
+                        "a {:.3} mm hole closes up under kerf compensation",
+                        2.0 * r
+                    ));
+                }
+                shapes.push(Shape::Circle {
+                    layer: Layer::CutInner,
+                    center_mm: map(&c),
+                    radius_mm,
+                });
+            }
+            None => shapes.push(contour(
+                Layer::CutInner,
+                hole.iter().map(map).collect(),
+                half_kerf_mm,
+            )?),
+        }
+    }
+    let outline: Vec<[f64; 2]> = part.outline.iter().map(map).collect();
+    let mut bbox_mm = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for p in &outline {
+        bbox_mm = [
+            bbox_mm[0].min(p[0]),
+            bbox_mm[1].min(p[1]),
+            bbox_mm[2].max(p[0]),
+            bbox_mm[3].max(p[1]),
+        ];
+    }
+    shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm)?);
+    for stroke in &part.engraving {
+        let vertices = merged(stroke.iter().map(map).collect(), false);
+        if vertices.len() >= 2 {
+            shapes.push(Shape::Polyline {
+                layer: Layer::Engrave,
+                closed: false,
+                vertices: straight(&vertices),
+            });
+        }
+    }
+    Ok(PartOnSheet {
+        part: part.id.clone(),
+        copy: pl.copy,
+        bbox_mm,
+        shapes,
+    })
+}
+
+/// A closed cut contour, offset outward (outline, counter-clockwise) or
+/// inward into its hole (holes, clockwise) by half the kerf when asked: both
+/// are to the right of the direction of travel.
+fn contour(
+    layer: Layer,
+    points: Vec<[f64; 2]>,
+    half_kerf_mm: Option<f64>,
+) -> std::result::Result<Shape, String> {
+    let points = merged(points, true);
+    if points.len() < 3 {
+        return Err(format!(
+            "a {} contour has fewer than three distinct points",
+            layer.name()
+        ));
+    }
+    let vertices = match half_kerf_mm {
+        None | Some(0.0) => straight(&points),
+        Some(d) => offset_right(&points, d).ok_or_else(|| {
+            format!(
+                "its {} contour does not survive kerf compensation by {:.3} mm",
+                layer.name(),
+                d
+            )
+        })?,
+    };
+    Ok(Shape::Polyline {
+        layer,
+        closed: true,
+        vertices,
+    })
+}
+
+/// Straight-segment vertices.
+fn straight(points: &[[f64; 2]]) -> Vec<Vertex> {
+    points
+        .iter()
+        .map(|p| Vertex {
+            x_mm: p[0],
+            y_mm: p[1],
+            bulge: 0.0,
+        })
+        .collect()
+}
+
+/// Drop points within [`MERGE_MM`] of the previous one (and, when closed,
+/// a last point on the first).
+fn merged(points: Vec<[f64; 2]>, closed: bool) -> Vec<[f64; 2]> {
+    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]) <= MERGE_MM;
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(points.len());
+    for p in points {
+        if out.last().is_none_or(|&q| !close(p, q)) {
+            out.push(p);
+        }
+    }
+    while closed && out.len() > 1 && close(out[0], out[out.len() - 1]) {
+        out.pop();
+    }
+    out
+}
+
+/// The closed polyline offset by `d_mm` to the right of its direction
+/// (round joins), or `None` when it vanishes or splits.
+fn offset_right(points: &[[f64; 2]], d_mm: f64) -> Option<Vec<Vertex>> {
+    let mut pl: Polyline<f64> = Polyline::with_capacity(points.len(), true);
+    for p in points {
+        pl.add(p[0], p[1], 0.0);
+    }
+    let mut out = pl.parallel_offset(-d_mm);
+    if out.len() != 1 {
+        return None;
+    }
+    let off = out.pop()?;
+    let mut v: Vec<Vertex> = off
+        .iter_vertexes()
+        .map(|q| Vertex {
+            x_mm: q.x,
+            y_mm: q.y,
+            bulge: q.bulge,
+        })
+        .collect();
+    // A vertex on the next one starts a zero-length segment: drop it (the
+    // segment into it keeps its bulge and now ends on the same point).
+    let close = |a: &Vertex, b: &Vertex| (a.x_mm - b.x_mm).hypot(a.y_mm - b.y_mm) <= MERGE_MM;
+    let mut i = 0;
+    while v.len() > 2 && i < v.len() {
+        let j = (i + 1) % v.len();
+        if close(&v[i], &v[j]) {
+            v.remove(i);
+        } else {
+            i += 1;
+        }
+    }
+    (v.len() >= 2).then_some(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quarter_turns_are_exact() {
+        assert_eq!(place([3.0, 1.0], 0, 10.0, 20.0), [13.0, 21.0]);
+        assert_eq!(place([3.0, 1.0], 90, 10.0, 20.0), [9.0, 23.0]);
+        assert_eq!(place([3.0, 1.0], 180, 10.0, 20.0), [7.0, 19.0]);
+        assert_eq!(place([3.0, 1.0], 270, 10.0, 20.0), [11.0, 17.0]);
+    }
+
+    #[test]
+    fn merging_removes_zero_length_segments() {
+        let p = merged(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 0.0]],
+            true,
+        );
+        assert_eq!(p, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
+    }
+
+    /// Offsetting a 100 × 20 rectangle out by 1 mm: straight sides 1 mm
+    /// out and four quarter-circle corners of radius 1 (bulge tan(π/8)),
+    /// area 100·20 + 2·(100 + 20)·1 + π·1².
+    #[test]
+    fn outer_offset_rounds_convex_corners() {
+        let rect = [[0.0, 0.0], [100.0, 0.0], [100.0, 20.0], [0.0, 20.0]];
+        let v = offset_right(&rect, 1.0).expect("offset");
+        assert_eq!(v.len(), 8);
+        let quarter = (std::f64::consts::PI / 8.0).tan();
+        let arcs = v
+            .iter()
+            .filter(|q| (q.bulge - quarter).abs() < 1e-9)
+            .count();
+        assert_eq!(arcs, 4);
+        let area = bulge_area(&v);
+        let expected = 2000.0 + 240.0 + std::f64::consts::PI;
+        assert!((area - expected).abs() < 1e-9, "{area} vs {expected}");
+        // A clockwise hole shrinks: its area (negative) loses the ring.
+        let hole: Vec<[f64; 2]> = rect.iter().rev().copied().collect();
+        let h = offset_right(&hole, 1.0).expect("offset");
+        assert!((bulge_area(&h) + 98.0 * 18.0).abs() < 1e-9);
+    }
+
+    /// Signed area of a polyline with bulges: the polygon of its vertices
+    /// plus each arc's circular segment.
+    fn bulge_area(v: &[Vertex]) -> f64 {
+        let n = v.len();
+        (0..n)
+            .map(|i| {
+                let (a, b) = (v[i], v[(i + 1) % n]);
+                let chord = (b.x_mm - a.x_mm).hypot(b.y_mm - a.y_mm);
+                let theta = 4.0 * a.bulge.atan();
+                let seg = if a.bulge == 0.0 {
+                    0.0
+                } else {
+                    let r = chord / (2.0 * (0.5 * theta).sin().abs());
+                    0.5 * r * r * (theta.abs() - theta.abs().sin()) * theta.signum()
+                };
+                0.5 * (a.x_mm * b.y_mm - b.x_mm * a.y_mm) + seg
+            })
+            .sum()
+    }
+}

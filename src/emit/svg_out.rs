@@ -1,0 +1,196 @@
+//! A sheet drawing as SVG: `width`/`height` in mm with a matching `viewBox`
+//! (one user unit = 1 mm), the sheet's y up (SVG's y = width − y), one group
+//! per operation with its colour (the DXF layer's), hairline strokes
+//! ([`STROKE_MM`]), no fills; the same geometry as the DXF (bulges as
+//! elliptical arcs, round holes as circles). A last group, `LABELS`, holds
+//! each part's id as screen text over the part, a third of its short side high (not to be cut: the engraved
+//! labels are in `ENGRAVE`). Written by hand with fixed decimals, so equal
+//! sheets give equal bytes.
+
+use super::drawing::{Layer, Shape, SheetDrawing, Vertex};
+use std::fmt::Write;
+
+/// Stroke width of every contour, mm.
+pub const STROKE_MM: f64 = 0.1;
+
+/// Decimals of every coordinate (0.1 µm).
+const DECIMALS: usize = 4;
+
+/// Screen label height: at most this, mm.
+const LABEL_MAX_MM: f64 = 40.0;
+
+/// The SVG text of one sheet; `title` names the project and sheet.
+pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
+    let (l, w) = (sheet.length_mm, sheet.width_mm);
+    let mut s = String::with_capacity(4096 + 400 * sheet.parts.len());
+    let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}mm" height="{}mm" viewBox="0 0 {} {}">"#,
+        num(l),
+        num(w),
+        num(l),
+        num(w)
+    );
+    let _ = writeln!(s, "<title>{}</title>", escape(title));
+    for layer in Layer::ALL {
+        let _ = writeln!(
+            s,
+            r#"<g id="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round">"#,
+            layer.name(),
+            layer.rgb(),
+            num(STROKE_MM)
+        );
+        if layer == Layer::Sheet {
+            shape(&mut s, &sheet.outline(), w);
+        }
+        for part in &sheet.parts {
+            for sh in part.shapes.iter().filter(|sh| shape_layer(sh) == layer) {
+                shape(&mut s, sh, w);
+            }
+        }
+        let _ = writeln!(s, "</g>");
+    }
+    let _ = writeln!(
+        s,
+        r##"<g id="LABELS" fill="#808080" fill-opacity="0.6" stroke="none" font-family="sans-serif" text-anchor="middle">"##
+    );
+    for part in &sheet.parts {
+        let [x0, y0, x1, y1] = part.bbox_mm;
+        let text = &part.part;
+        // A third of the part's short side, and no wider than the part (a
+        // glyph ≈ 0.7 of the height wide).
+        let size = (0.3 * (y1 - y0).min(x1 - x0))
+            .min((x1 - x0) / (0.7 * text.chars().count().max(1) as f64))
+            .min(LABEL_MAX_MM);
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="{}" font-size="{}">{}</text>"#,
+            num(cx),
+            num(w - cy + 0.35 * size),
+            num(size),
+            escape(text)
+        );
+    }
+    let _ = writeln!(s, "</g>");
+    let _ = writeln!(s, "</svg>");
+    s
+}
+
+fn shape_layer(sh: &Shape) -> Layer {
+    match sh {
+        Shape::Polyline { layer, .. } | Shape::Circle { layer, .. } => *layer,
+    }
+}
+
+fn shape(s: &mut String, sh: &Shape, w: f64) {
+    match sh {
+        Shape::Circle {
+            center_mm,
+            radius_mm,
+            ..
+        } => {
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{}" cy="{}" r="{}"/>"#,
+                num(center_mm[0]),
+                num(w - center_mm[1]),
+                num(*radius_mm)
+            );
+        }
+        Shape::Polyline {
+            closed, vertices, ..
+        } => {
+            s.push_str(r#"<path d=""#);
+            let n = vertices.len();
+            let _ = write!(
+                s,
+                "M{} {}",
+                num(vertices[0].x_mm),
+                num(w - vertices[0].y_mm)
+            );
+            let segments = if *closed { n } else { n - 1 };
+            for i in 0..segments {
+                let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                if *closed && i + 1 == n && a.bulge == 0.0 {
+                    break; // `Z` draws the closing straight segment
+                }
+                segment(s, a, b, w);
+            }
+            if *closed {
+                s.push('Z');
+            }
+            s.push_str("\"/>\n");
+        }
+    }
+}
+
+/// The segment from `a` to `b`: a line, or the arc of `a`'s bulge.
+fn segment(s: &mut String, a: Vertex, b: Vertex, w: f64) {
+    let (bx, by) = (num(b.x_mm), num(w - b.y_mm));
+    if a.bulge == 0.0 {
+        let _ = write!(s, " L{bx} {by}");
+        return;
+    }
+    let chord = (b.x_mm - a.x_mm).hypot(b.y_mm - a.y_mm);
+    // Bulge b = tan(θ/4): radius = chord·(1 + b²)/(4|b|); more than a half
+    // turn when |b| > 1; counter-clockwise (b > 0) with y up is clockwise on
+    // screen, SVG's positive sweep.
+    let r = chord * (1.0 + a.bulge * a.bulge) / (4.0 * a.bulge.abs());
+    let large = u8::from(a.bulge.abs() > 1.0);
+    let sweep = u8::from(a.bulge > 0.0);
+    let _ = write!(s, " A{} {} 0 {large} {sweep} {bx} {by}", num(r), num(r));
+}
+
+/// A number with at most [`DECIMALS`] decimals, trailing zeros dropped,
+/// never `-0`.
+fn num(x: f64) -> String {
+    let mut t = format!("{x:.DECIMALS$}");
+    if t.contains('.') {
+        while t.ends_with('0') {
+            t.pop();
+        }
+        if t.ends_with('.') {
+            t.pop();
+        }
+    }
+    if t == "-0" {
+        t = "0".into();
+    }
+    t
+}
+
+fn escape(t: &str) -> String {
+    t.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short_and_fixed() {
+        assert_eq!(num(3000.0), "3000");
+        assert_eq!(num(0.1), "0.1");
+        assert_eq!(num(-0.00001), "0");
+        assert_eq!(num(12.345678), "12.3457");
+    }
+
+    /// A half circle of radius 5 from (0, 0) to (10, 0) counter-clockwise
+    /// (bulge 1): radius 5, small arc flag 0, positive sweep.
+    #[test]
+    fn bulges_become_arcs() {
+        let mut s = String::new();
+        let v = |x_mm, bulge| Vertex {
+            x_mm,
+            y_mm: 0.0,
+            bulge,
+        };
+        segment(&mut s, v(0.0, 1.0), v(10.0, 0.0), 100.0);
+        assert_eq!(s, " A5 5 0 0 1 10 100");
+    }
+}

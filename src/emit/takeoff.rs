@@ -1,0 +1,306 @@
+//! The material takeoff: per part kind, count, length, area and mass; the
+//! stock sheets (and stud bars) with utilisation and cost; the hardware;
+//! totals. Plain data in ([`Kit`], [`Nest`], [`Profile`]), plain data out
+//! ([`Takeoff`]), written as JSON for tools and as CSV (one header row,
+//! units in the column names, one `section` column) for spreadsheets.
+//! Numbers are rounded to fixed decimals so equal kits give equal bytes.
+
+use crate::fabricate::part::PartKind;
+use crate::fabricate::{net_area_mm2, part_mass_kg, Kit};
+use crate::io::plan::round;
+use crate::nest::Nest;
+use crate::profile::Profile;
+use serde::Serialize;
+
+/// The whole takeoff.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Takeoff {
+    /// Network name.
+    pub project: String,
+    /// Profile name.
+    pub profile: String,
+    /// Currency of every price and cost, when the profile prices its stock.
+    pub currency: Option<String>,
+    /// One line per part kind.
+    pub parts: Vec<PartLine>,
+    /// One line per stock size (and the stud bars).
+    pub stock: Vec<StockLine>,
+    /// Bolts, nuts, washers, studs.
+    pub hardware: Vec<HardwareLine>,
+    /// Sums.
+    pub totals: Totals,
+}
+
+/// Parts of one kind.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct PartLine {
+    /// `lamella`, `shear_block`, …
+    pub kind: String,
+    /// The material's name.
+    pub material: String,
+    /// Thickness it is cut from, mm.
+    pub thickness_mm: f64,
+    /// Distinct parts.
+    pub distinct: usize,
+    /// Pieces.
+    pub count: u64,
+    /// Sum of every piece's length (its extent along x), mm.
+    pub length_mm: f64,
+    /// Net area (outline less holes) of every piece, m².
+    pub area_m2: f64,
+    /// Mass of every piece, kg.
+    pub mass_kg: f64,
+}
+
+/// Stock of one size.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct StockLine {
+    /// `sheet 3000 × 1500 mm`, `stud bar 10 × 10 × 2000 mm`.
+    pub item: String,
+    /// How many.
+    pub count: u64,
+    /// Net part area over the stock area (sheets only).
+    pub utilization: Option<f64>,
+    /// Price of one, when the profile gives it.
+    pub unit_price: Option<f64>,
+    /// count × unit price.
+    pub cost: Option<f64>,
+}
+
+/// One hardware line.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct HardwareLine {
+    /// `node bolt`, `shear-block bolt`, …
+    pub item: String,
+    /// Size and standard.
+    pub designation: String,
+    /// Clamped thickness for bolts, mm.
+    pub grip_mm: Option<f64>,
+    /// How many.
+    pub count: u64,
+    /// Cut or sawn by the workshop (also in `parts`) rather than bought.
+    pub made: bool,
+}
+
+/// Sums over the takeoff.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Totals {
+    /// Pieces to cut or saw.
+    pub pieces: u64,
+    /// Total lamella length, m.
+    pub lamella_length_m: f64,
+    /// Mass of every part, kg.
+    pub mass_kg: f64,
+    /// Stock sheets.
+    pub sheets: u64,
+    /// Cost of the stock, where priced.
+    pub stock_cost: Option<f64>,
+}
+
+/// The takeoff of a kit and its nest.
+pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Takeoff {
+    let mut parts: Vec<PartLine> = Vec::new();
+    for p in &kit.parts {
+        let n = f64::from(p.count);
+        let line = match parts.iter_mut().find(|l| l.kind == p.kind.as_str()) {
+            Some(l) => l,
+            None => {
+                parts.push(PartLine {
+                    kind: p.kind.as_str().into(),
+                    material: profile.material.name.clone(),
+                    thickness_mm: crate::fabricate::part_thickness_mm(p.kind, profile),
+                    distinct: 0,
+                    count: 0,
+                    length_mm: 0.0,
+                    area_m2: 0.0,
+                    mass_kg: 0.0,
+                });
+                parts.last_mut().expect("just pushed")
+            }
+        };
+        line.distinct += 1;
+        line.count += u64::from(p.count);
+        line.length_mm += p.length_mm * n;
+        line.area_m2 += net_area_mm2(p) * n * 1e-6;
+        line.mass_kg += part_mass_kg(p, profile) * n;
+    }
+    for l in &mut parts {
+        l.length_mm = round(l.length_mm, 1);
+        l.area_m2 = round(l.area_m2, 4);
+        l.mass_kg = round(l.mass_kg, 3);
+    }
+    // Stock sheets by size, in the nest's order of first use.
+    let price = profile.stock.price_per_unit;
+    let mut stock: Vec<StockLine> = Vec::new();
+    let mut sizes: Vec<((f64, f64), u64, f64)> = Vec::new();
+    for s in &nest.sheets {
+        let key = (s.length_mm, s.width_mm);
+        match sizes.iter_mut().find(|z| z.0 == key) {
+            Some(z) => {
+                z.1 += 1;
+                z.2 += s.part_area_mm2;
+            }
+            None => sizes.push((key, 1, s.part_area_mm2)),
+        }
+    }
+    for ((l, w), count, area) in sizes {
+        stock.push(StockLine {
+            item: format!("sheet {} × {} mm", fmt(l), fmt(w)),
+            count,
+            utilization: Some(round(area / (l * w * count as f64), 4)),
+            unit_price: price,
+            cost: price.map(|p| round(p * count as f64, 2)),
+        });
+    }
+    if let (Some(stud), true) = (&profile.stud, kit.summary.stud_bars > 0) {
+        let g = profile.section.gap_mm;
+        stock.push(StockLine {
+            item: format!(
+                "stud bar {} × {} × {} mm",
+                fmt(g),
+                fmt(g),
+                fmt(stud.bar_length_mm)
+            ),
+            count: u64::from(kit.summary.stud_bars),
+            utilization: None,
+            unit_price: None,
+            cost: None,
+        });
+    }
+    let hardware = kit
+        .summary
+        .hardware
+        .iter()
+        .map(|h| HardwareLine {
+            item: h.item.into(),
+            designation: h.designation.clone(),
+            grip_mm: h.grip_mm.map(|g| round(g, 3)),
+            count: h.count,
+            made: h.made,
+        })
+        .collect();
+    let sheets = nest.sheets.len() as u64;
+    let stock_cost = stock
+        .iter()
+        .filter_map(|s| s.cost)
+        .reduce(|a, b| a + b)
+        .map(|c| round(c, 2));
+    Takeoff {
+        project: project.into(),
+        profile: profile.name.clone(),
+        currency: price.and(profile.stock.currency.clone()),
+        totals: Totals {
+            pieces: parts.iter().map(|l| l.count).sum(),
+            lamella_length_m: round(
+                parts
+                    .iter()
+                    .filter(|l| l.kind == PartKind::Lamella.as_str())
+                    .map(|l| l.length_mm)
+                    .sum::<f64>()
+                    / 1000.0,
+                3,
+            ),
+            mass_kg: round(parts.iter().map(|l| l.mass_kg).sum(), 3),
+            sheets,
+            stock_cost,
+        },
+        parts,
+        stock,
+        hardware,
+    }
+}
+
+/// The takeoff as pretty JSON.
+pub fn to_json(t: &Takeoff) -> String {
+    let mut s = serde_json::to_string_pretty(t).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+/// One CSV row; every section fills the columns that apply.
+#[derive(Serialize, Default)]
+struct Row<'a> {
+    section: &'a str,
+    item: &'a str,
+    designation: &'a str,
+    material: &'a str,
+    thickness_mm: Option<f64>,
+    distinct: Option<usize>,
+    count: Option<u64>,
+    length_mm: Option<f64>,
+    area_m2: Option<f64>,
+    mass_kg: Option<f64>,
+    grip_mm: Option<f64>,
+    utilization: Option<f64>,
+    unit_price: Option<f64>,
+    cost: Option<f64>,
+    currency: &'a str,
+}
+
+/// The takeoff as CSV: one header row, then parts, stock, hardware and a
+/// total row.
+pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let cur = t.currency.as_deref().unwrap_or("");
+    let mut rows: Vec<Row> = Vec::new();
+    for p in &t.parts {
+        rows.push(Row {
+            section: "part",
+            item: &p.kind,
+            material: &p.material,
+            thickness_mm: Some(p.thickness_mm),
+            distinct: Some(p.distinct),
+            count: Some(p.count),
+            length_mm: Some(p.length_mm),
+            area_m2: Some(p.area_m2),
+            mass_kg: Some(p.mass_kg),
+            ..Default::default()
+        });
+    }
+    for s in &t.stock {
+        rows.push(Row {
+            section: "stock",
+            item: &s.item,
+            count: Some(s.count),
+            utilization: s.utilization,
+            unit_price: s.unit_price,
+            cost: s.cost,
+            currency: if s.cost.is_some() { cur } else { "" },
+            ..Default::default()
+        });
+    }
+    for h in &t.hardware {
+        rows.push(Row {
+            section: "hardware",
+            item: &h.item,
+            designation: &h.designation,
+            count: Some(h.count),
+            grip_mm: h.grip_mm,
+            ..Default::default()
+        });
+    }
+    rows.push(Row {
+        section: "total",
+        item: "all parts",
+        count: Some(t.totals.pieces),
+        length_mm: Some(round(t.totals.lamella_length_m * 1000.0, 1)),
+        mass_kg: Some(t.totals.mass_kg),
+        cost: t.totals.stock_cost,
+        currency: if t.totals.stock_cost.is_some() {
+            cur
+        } else {
+            ""
+        },
+        ..Default::default()
+    });
+    for r in rows {
+        w.serialize(r).map_err(|e| e.to_string())?;
+    }
+    w.into_inner().map_err(|e| e.to_string())
+}
+
+/// A length without trailing zeros.
+fn fmt(x: f64) -> String {
+    let s = format!("{x:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
