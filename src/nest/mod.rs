@@ -335,7 +335,7 @@ struct Ctx<'a> {
 type Placed = (Vec<SheetNest>, usize);
 
 /// Rounds of tail improvement at most.
-const TAIL_ROUNDS: usize = 4;
+const TAIL_ROUNDS: usize = 8;
 /// The tail improvement replaces at most this many sheets of one size.
 const TAIL_SHEETS: usize = 2;
 
@@ -542,6 +542,11 @@ impl<'a> Ctx<'a> {
                 })
                 .unwrap_or_else(|_| short.iter().map(|&i| vec![i]).collect())
         };
+        // Fullest lanes first: the last sheet takes the emptiest, and those
+        // are what goes on to other sizes past a count limit.
+        let lane_load = |l: &Vec<usize>| -> f64 { l.iter().map(|&i| self.item_len[i]).sum() };
+        let mut lanes = lanes;
+        lanes.sort_by(|a, b| lane_load(b).total_cmp(&lane_load(a)));
         let mut lanes = lanes.into_iter();
         for sh in sheets.iter_mut() {
             while sh.lanes.len() < self.sizes[sh.size].lanes {
@@ -569,37 +574,36 @@ impl<'a> Ctx<'a> {
     }
 
     /// Variants of a lane plan whose lamellas cost less: the `t` ≤
-    /// [`TAIL_SHEETS`] least-filled sheets of one size repacked onto
-    /// sheets of another size that holds them all, within its count limit.
+    /// [`TAIL_SHEETS`] least-filled sheets of one size and every sheet of
+    /// another size, repacked onto sheets of that other size (which must
+    /// hold them all, within its count limit).
     fn tail_variants(&self, plan: &[SheetPlan]) -> Vec<Vec<SheetPlan>> {
         let mut out = Vec::new();
-        let mut used = vec![0usize; self.sizes.len()];
-        for s in plan {
-            used[s.size] += 1;
-        }
+        let load = |j: usize| -> f64 {
+            plan[j]
+                .lanes
+                .iter()
+                .flatten()
+                .map(|&i| self.item_len[i])
+                .sum()
+        };
         for s in 0..self.sizes.len() {
             let mut mine: Vec<usize> = (0..plan.len()).filter(|&j| plan[j].size == s).collect();
-            let load = |j: usize| -> f64 {
-                plan[j]
-                    .lanes
-                    .iter()
-                    .flatten()
-                    .map(|&i| self.item_len[i])
-                    .sum()
-            };
             mine.sort_by(|&a, &b| load(a).total_cmp(&load(b)).then(b.cmp(&a)));
             for t in 1..=TAIL_SHEETS.min(mine.len()) {
-                let gone = &mine[..t];
-                let items: Vec<usize> = gone
-                    .iter()
-                    .flat_map(|&j| plan[j].lanes.iter().flatten().copied())
-                    .collect();
                 for q in 0..self.sizes.len() {
                     let z = &self.sizes[q];
-                    if q == s
-                        || z.lanes == 0
-                        || items.iter().any(|&i| !fits(self.item_len[i], z.cap))
-                    {
+                    if q == s || z.lanes == 0 {
+                        continue;
+                    }
+                    let gone: Vec<usize> = (0..plan.len())
+                        .filter(|&j| mine[..t].contains(&j) || plan[j].size == q)
+                        .collect();
+                    let items: Vec<usize> = gone
+                        .iter()
+                        .flat_map(|&j| plan[j].lanes.iter().flatten().copied())
+                        .collect();
+                    if items.iter().any(|&i| !fits(self.item_len[i], z.cap)) {
                         continue;
                     }
                     let sizes: Vec<f64> = items.iter().map(|&i| self.item_len[i]).collect();
@@ -607,9 +611,8 @@ impl<'a> Ctx<'a> {
                         continue;
                     };
                     let n = pk.bins.len().div_ceil(z.lanes);
-                    if used[q] + n > z.limit
-                        || n as f64 * z.cost >= t as f64 * self.sizes[s].cost * (1.0 - 1e-12)
-                    {
+                    let was: f64 = gone.iter().map(|&j| self.sizes[plan[j].size].cost).sum();
+                    if n > z.limit || n as f64 * z.cost >= was * (1.0 - 1e-12) {
                         continue;
                     }
                     let mut v: Vec<SheetPlan> = (0..plan.len())
