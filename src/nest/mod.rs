@@ -6,15 +6,22 @@
 //! (all one height h) lie along the sheet in lanes h apart plus the gap;
 //! which lamella goes into which lane is one-dimensional bin packing
 //! ([`binpack`]: item = length + gap, capacity = usable length + gap), and
-//! lanes fill the sheets in order. Other parts (shear blocks, splice plates,
-//! washers, studs, edge strips) go by their bounding boxes, in an allowed
-//! rotation, first into the lane tails (the free ends of the lanes, when
-//! they are no taller than a lane), then in shelves over the free width of
-//! the last sheet and new sheets.
+//! lanes fill the sheets in order, fullest first. Other parts (shear
+//! blocks, splice plates, washers, studs, edge strips) go by their bounding
+//! boxes, in an allowed rotation, onto a skyline of each sheet's free
+//! space (the lane tails first), first sheet with room, else a new sheet.
+//!
+//! Several sheet sizes: the cheapest nest (by price, else by stock area)
+//! over the sizes as first choice, each improved by repacking the
+//! least-filled sheets onto another size (`Ctx::sheets`); count limits
+//! hold throughout, and a kit they cannot hold is a one-line error. A coil
+//! is one long sheet whose lanes are balanced (MULTIFIT), cut to the
+//! length used.
 //!
 //! Lower bounds: the area bound ⌈Σ part area / usable sheet area⌉ and the
 //! lane bound ⌈L2(lamellas) / lanes per sheet⌉ (Martello–Toth L2 on the lane
-//! problem); the nest reports both and the gap to the larger.
+//! problem), with several sizes at the largest area and longest lane; a
+//! bound on the cost; for a coil a bound on the length.
 //!
 //! Plain data in (`Kit`, `Profile`), plain data out ([`Nest`]);
 //! deterministic (no threads, ties broken by index). A placement maps
