@@ -426,21 +426,59 @@ fn parts(
         println!("studs: {} bars of stud stock", s.stud_bars);
     }
     if let Some(n) = nested {
-        let ns = &n.summary;
-        println!(
-            "nest: {} sheets of {} × {} mm (lower bound {}: area {}, lanes {}); utilisation {:.1} %; {:.3} s",
-            ns.sheets_used,
-            profile.stock.length_mm,
-            profile.stock.width_mm,
-            ns.lower_bound_sheets,
-            ns.area_bound_sheets,
-            ns.lane_bound_sheets,
-            100.0 * ns.utilization,
-            ns.seconds
-        );
+        println!("nest: {}", nest_line(&profile, &n));
     }
     println!("wrote {}", target.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// The nest's line: sheets (or coil length) per stock size, the bounds,
+/// utilisation, cost where priced, time.
+fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
+    let ns = &n.summary;
+    let stock = &profile.stock;
+    let size = |u: &lamella::nest::StockUse| {
+        if stock.sizes[u.size].name.is_some() {
+            u.stock.clone()
+        } else {
+            format!("{} mm", u.stock)
+        }
+    };
+    let mut line = if let (true, Some(used), Some(bound)) =
+        (stock.is_coil(), ns.length_used_mm, ns.length_bound_mm)
+    {
+        format!(
+            "{:.3} m of {} mm coil in {} piece(s) (lower bound {:.3} m)",
+            used / 1000.0,
+            stock.sizes[0].width_mm,
+            ns.sheets_used,
+            bound / 1000.0
+        )
+    } else {
+        let sizes: Vec<String> = n
+            .stock_used
+            .iter()
+            .map(|u| format!("{} of {}", u.sheets, size(u)))
+            .collect();
+        let what = if n.stock_used.len() == 1 {
+            format!("{} sheets of {}", ns.sheets_used, size(&n.stock_used[0]))
+        } else {
+            format!("{} sheets ({})", ns.sheets_used, sizes.join(" + "))
+        };
+        format!(
+            "{what} (lower bound {}: area {}, lanes {})",
+            ns.lower_bound_sheets, ns.area_bound_sheets, ns.lane_bound_sheets
+        )
+    };
+    line += &format!("; utilisation {:.1} %", 100.0 * ns.utilization);
+    if let Some(cost) = ns.cost {
+        let currency = n.currency.as_deref().unwrap_or("");
+        line += &format!(
+            "; cost {cost:.2} {currency} (lower bound {:.2})",
+            ns.cost_bound.unwrap_or(0.0)
+        );
+    }
+    line + &format!("; {:.3} s", ns.seconds)
 }
 
 fn check(

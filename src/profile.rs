@@ -8,8 +8,8 @@
 
 use crate::error::{one_line, Error, Location, Result};
 use crate::io::profile_file::{
-    self, Bolt, Cutting, Grain, JointSystem, ProfileFile, ShearBlock, Splice, Stock, Stud, Washer,
-    CURRENT_VERSION,
+    self, Bolt, Cutting, Grain, JointSystem, ProfileFile, ShearBlock, Splice, StockKind, Stud,
+    Washer, CURRENT_VERSION,
 };
 use crate::network::Family;
 use std::path::{Path, PathBuf};
@@ -96,6 +96,190 @@ pub struct Joint {
     pub level_offset_mm: f64,
 }
 
+/// What parts are cut from: one or several sheet sizes, or a coil (the
+/// working form of the file's `stock:`, whichever way it was written).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stock {
+    /// Sheets or coil.
+    pub kind: StockKind,
+    /// The sizes, in file order; at least one. A coil has exactly one: its
+    /// width, and the longest piece if the file gives one.
+    pub sizes: Vec<StockSize>,
+    /// The file lists the sizes under `sizes:` (else one size inline).
+    pub listed: bool,
+    /// Currency of the prices, if given.
+    pub currency: Option<String>,
+    /// Coil: price per metre cut, if given.
+    pub price_per_m: Option<f64>,
+    /// Coil: lengths are cut in multiples of this, mm (as in the file;
+    /// [`Stock::length_step`] gives the default).
+    pub length_step_mm: Option<f64>,
+}
+
+/// One stock size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StockSize {
+    /// The file's name for it, if any ([`StockSize::label`] gives the default).
+    pub name: Option<String>,
+    /// Length, mm; `None` only for a coil cut to any length.
+    pub length_mm: Option<f64>,
+    /// Width, mm.
+    pub width_mm: f64,
+    /// Price of one sheet (coil: of one piece), if given.
+    pub price_per_unit: Option<f64>,
+    /// How many there are at most, if limited.
+    pub max_count: Option<u32>,
+}
+
+impl StockSize {
+    /// The size's name, else `length × width` in mm (`3000 × 1500`; a coil
+    /// cut to any length: `coil 1500`).
+    pub fn label(&self) -> String {
+        match (&self.name, self.length_mm) {
+            (Some(n), _) => n.clone(),
+            (None, Some(l)) => format!("{l} × {}", self.width_mm),
+            (None, None) => format!("coil {}", self.width_mm),
+        }
+    }
+    /// Length less the edge margin at both ends, mm (infinite for a coil
+    /// cut to any length).
+    pub fn usable_length_mm(&self, margin_mm: f64) -> f64 {
+        self.length_mm
+            .map_or(f64::INFINITY, |l| l - 2.0 * margin_mm)
+    }
+    /// Width less the edge margin on both sides, mm.
+    pub fn usable_width_mm(&self, margin_mm: f64) -> f64 {
+        self.width_mm - 2.0 * margin_mm
+    }
+    /// Whether a `length` × `height` box fits the usable area along the
+    /// size (`along`) or turned a quarter (`across`).
+    pub fn holds(
+        &self,
+        length: f64,
+        height: f64,
+        margin_mm: f64,
+        along: bool,
+        across: bool,
+    ) -> bool {
+        let (lu, wu) = (
+            self.usable_length_mm(margin_mm),
+            self.usable_width_mm(margin_mm),
+        );
+        (along && length <= lu && height <= wu) || (across && height <= lu && length <= wu)
+    }
+}
+
+impl Stock {
+    /// A coil, cut to length.
+    pub fn is_coil(&self) -> bool {
+        self.kind == StockKind::Coil
+    }
+    /// The coil's length step, mm (1 mm unless the file says).
+    pub fn length_step(&self) -> f64 {
+        self.length_step_mm.unwrap_or(1.0)
+    }
+    /// Whether every size has a price (a coil: per metre or per piece).
+    pub fn priced(&self) -> bool {
+        self.price_per_m.is_some() || self.sizes.iter().all(|s| s.price_per_unit.is_some())
+    }
+    /// The longest usable length of any size wide enough for a part
+    /// `height` high (lamellas, splices): what a lamella piece may be at
+    /// most. Infinite for a coil cut to any length; when no size is wide
+    /// enough, the longest of any (the nest then says the part fits no size).
+    pub fn longest_usable_mm(&self, margin_mm: f64, height: f64) -> f64 {
+        let longest = |wide: bool| {
+            self.sizes
+                .iter()
+                .filter(|s| !wide || s.usable_width_mm(margin_mm) >= height)
+                .map(|s| s.usable_length_mm(margin_mm))
+                .fold(0.0, f64::max)
+        };
+        match longest(true) {
+            0.0 => longest(false),
+            l => l,
+        }
+    }
+    /// The widest usable width of any size, mm.
+    pub fn widest_usable_mm(&self, margin_mm: f64) -> f64 {
+        self.sizes
+            .iter()
+            .map(|s| s.usable_width_mm(margin_mm))
+            .fold(0.0, f64::max)
+    }
+    /// Whether some size holds a `length` × `height` box in one of
+    /// `rotations_deg` (quarter turns).
+    pub fn holds(&self, length: f64, height: f64, margin_mm: f64, rotations_deg: &[u32]) -> bool {
+        let along = rotations_deg.iter().any(|r| r % 180 == 0);
+        let across = rotations_deg.iter().any(|r| r % 180 == 90);
+        self.sizes
+            .iter()
+            .any(|s| s.holds(length, height, margin_mm, along, across))
+    }
+}
+
+impl From<profile_file::Stock> for Stock {
+    /// The working form of a file's stock (validated first: see `validate`).
+    fn from(f: profile_file::Stock) -> Stock {
+        let listed = f.sizes.is_some();
+        let sizes = match f.sizes {
+            Some(list) => list
+                .into_iter()
+                .map(|s| StockSize {
+                    name: s.name,
+                    length_mm: Some(s.length_mm),
+                    width_mm: s.width_mm,
+                    price_per_unit: s.price_per_unit,
+                    max_count: s.max_count,
+                })
+                .collect(),
+            None => vec![StockSize {
+                name: None,
+                length_mm: f.length_mm,
+                width_mm: f.width_mm.unwrap_or(0.0),
+                price_per_unit: f.price_per_unit,
+                max_count: f.max_count,
+            }],
+        };
+        Stock {
+            kind: f.kind,
+            sizes,
+            listed,
+            currency: f.currency,
+            price_per_m: f.price_per_m,
+            length_step_mm: f.length_step_mm,
+        }
+    }
+}
+
+impl From<&Stock> for profile_file::Stock {
+    /// The stock as the file wrote it.
+    fn from(s: &Stock) -> profile_file::Stock {
+        let one = s.sizes.first().filter(|_| !s.listed);
+        profile_file::Stock {
+            kind: s.kind,
+            length_mm: one.and_then(|z| z.length_mm),
+            width_mm: one.map(|z| z.width_mm),
+            price_per_unit: one.and_then(|z| z.price_per_unit),
+            currency: s.currency.clone(),
+            max_count: one.and_then(|z| z.max_count),
+            sizes: s.listed.then(|| {
+                s.sizes
+                    .iter()
+                    .map(|z| profile_file::StockSize {
+                        name: z.name.clone(),
+                        length_mm: z.length_mm.unwrap_or(0.0),
+                        width_mm: z.width_mm,
+                        price_per_unit: z.price_per_unit,
+                        max_count: z.max_count,
+                    })
+                    .collect()
+            }),
+            price_per_m: s.price_per_m,
+            length_step_mm: s.length_step_mm,
+        }
+    }
+}
+
 /// What is wrong with a profile: the dotted field name and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FieldError {
@@ -166,7 +350,7 @@ impl TryFrom<ProfileFile> for Profile {
             shear_block: f.shear_block,
             stud: f.stud,
             splice: f.splice,
-            stock: f.stock,
+            stock: Stock::from(f.stock),
             cutting: f.cutting,
         })
     }
@@ -209,7 +393,7 @@ impl From<&Profile> for ProfileFile {
             shear_block: p.shear_block.clone(),
             stud: p.stud.clone(),
             splice: p.splice.clone(),
-            stock: p.stock.clone(),
+            stock: profile_file::Stock::from(&p.stock),
             cutting: p.cutting.clone(),
         }
     }
@@ -441,21 +625,7 @@ fn validate(f: &ProfileFile) -> std::result::Result<(), FieldError> {
             return err("splice.bolts_per_side", "must be at least 1".into());
         }
     }
-    let st = &f.stock;
-    positive("stock.length_mm", st.length_mm)?;
-    positive("stock.width_mm", st.width_mm)?;
-    if let Some(p) = st.price_per_unit {
-        non_negative("stock.price_per_unit", p)?;
-    }
-    if st.width_mm < l.height_mm {
-        return err(
-            "stock.width_mm",
-            format!(
-                "{} is narrower than a lamella ({} mm)",
-                st.width_mm, l.height_mm
-            ),
-        );
-    }
+    validate_stock(&f.stock, l.height_mm, &positive, &non_negative)?;
     let c = &f.cutting;
     non_negative("cutting.kerf_mm", c.kerf_mm)?;
     non_negative("cutting.part_spacing_mm", c.part_spacing_mm)?;
@@ -489,6 +659,186 @@ fn validate(f: &ProfileFile) -> std::result::Result<(), FieldError> {
         }
     }
     Ok(())
+}
+
+/// A number check of `validate` (the field's dotted name, its value).
+type NumberCheck<'a> = &'a dyn Fn(&str, f64) -> std::result::Result<(), FieldError>;
+
+/// Check the `stock:` section: which fields each form (one sheet size,
+/// several sizes, coil) needs and allows, and their values.
+fn validate_stock(
+    st: &profile_file::Stock,
+    height_mm: f64,
+    positive: NumberCheck,
+    non_negative: NumberCheck,
+) -> std::result::Result<(), FieldError> {
+    let err = |field: &str, what: &str| {
+        Err(FieldError {
+            field: field.into(),
+            message: what.into(),
+        })
+    };
+    let wide_enough = |field: &str, w: f64| {
+        if w < height_mm {
+            err(
+                field,
+                &format!("{w} is narrower than a lamella ({height_mm} mm)"),
+            )
+        } else {
+            Ok(())
+        }
+    };
+    let count = |field: &str, n: Option<u32>| {
+        if n == Some(0) {
+            err(field, "must be at least 1")
+        } else {
+            Ok(())
+        }
+    };
+    if let Some(p) = st.price_per_unit {
+        non_negative("stock.price_per_unit", p)?;
+    }
+    if let Some(p) = st.price_per_m {
+        non_negative("stock.price_per_m", p)?;
+    }
+    if let Some(x) = st.length_step_mm {
+        positive("stock.length_step_mm", x)?;
+    }
+    count("stock.max_count", st.max_count)?;
+    if st.currency.as_deref().is_some_and(|c| c.trim().is_empty()) {
+        return err("stock.currency", "must not be empty");
+    }
+    match st.kind {
+        StockKind::Sheet => {
+            if st.price_per_m.is_some() {
+                return err(
+                    "stock.price_per_m",
+                    "is for a coil (kind: coil); a sheet has price_per_unit",
+                );
+            }
+            if st.length_step_mm.is_some() {
+                return err(
+                    "stock.length_step_mm",
+                    "is for a coil (kind: coil); a sheet is not cut to length",
+                );
+            }
+            let Some(list) = &st.sizes else {
+                let Some(l) = st.length_mm else {
+                    return err(
+                        "stock.length_mm",
+                        "missing: a sheet needs length_mm and width_mm, or a list of sizes",
+                    );
+                };
+                let Some(w) = st.width_mm else {
+                    return err(
+                        "stock.width_mm",
+                        "missing: a sheet needs length_mm and width_mm, or a list of sizes",
+                    );
+                };
+                positive("stock.length_mm", l)?;
+                positive("stock.width_mm", w)?;
+                return wide_enough("stock.width_mm", w);
+            };
+            for (field, present) in [
+                ("stock.length_mm", st.length_mm.is_some()),
+                ("stock.width_mm", st.width_mm.is_some()),
+                ("stock.price_per_unit", st.price_per_unit.is_some()),
+                ("stock.max_count", st.max_count.is_some()),
+            ] {
+                if present {
+                    return err(field, "give it per size in stock.sizes, not beside them");
+                }
+            }
+            if list.is_empty() {
+                return err("stock.sizes", "must list at least one size");
+            }
+            let mut labels: Vec<String> = Vec::with_capacity(list.len());
+            for (i, z) in list.iter().enumerate() {
+                let f = |name: &str| format!("stock.sizes[{i}].{name}");
+                if z.name.as_deref().is_some_and(|n| n.trim().is_empty()) {
+                    return err(&f("name"), "must not be empty");
+                }
+                positive(&f("length_mm"), z.length_mm)?;
+                positive(&f("width_mm"), z.width_mm)?;
+                wide_enough(&f("width_mm"), z.width_mm)?;
+                if let Some(p) = z.price_per_unit {
+                    non_negative(&f("price_per_unit"), p)?;
+                }
+                count(&f("max_count"), z.max_count)?;
+                if z.price_per_unit.is_some() != list[0].price_per_unit.is_some() {
+                    return err(
+                        &f("price_per_unit"),
+                        "give a price for every size or for none (costs compare only between priced sizes)",
+                    );
+                }
+                let label = StockSize {
+                    name: z.name.clone(),
+                    length_mm: Some(z.length_mm),
+                    width_mm: z.width_mm,
+                    price_per_unit: None,
+                    max_count: None,
+                }
+                .label();
+                if let Some(j) = labels.iter().position(|x| *x == label) {
+                    return err(
+                        &f(if z.name.is_some() {
+                            "name"
+                        } else {
+                            "length_mm"
+                        }),
+                        &format!("`{label}` is stock.sizes[{j}] again: give each size once"),
+                    );
+                }
+                labels.push(label);
+            }
+            Ok(())
+        }
+        StockKind::Coil => {
+            if st.sizes.is_some() {
+                return err(
+                    "stock.sizes",
+                    "a coil has one width: give width_mm (and length_mm for the longest piece)",
+                );
+            }
+            let Some(w) = st.width_mm else {
+                return err("stock.width_mm", "missing: a coil needs its width");
+            };
+            positive("stock.width_mm", w)?;
+            wide_enough("stock.width_mm", w)?;
+            match st.length_mm {
+                Some(l) => {
+                    positive("stock.length_mm", l)?;
+                    if st.length_step_mm.is_some_and(|x| x > l) {
+                        return err(
+                            "stock.length_step_mm",
+                            "is longer than a piece (stock.length_mm)",
+                        );
+                    }
+                }
+                None => {
+                    if st.price_per_unit.is_some() {
+                        return err(
+                            "stock.price_per_unit",
+                            "is per piece: give the piece length (length_mm), or price_per_m",
+                        );
+                    }
+                    if st.max_count.is_some() {
+                        return err(
+                            "stock.max_count",
+                            "counts pieces: give the piece length (length_mm)",
+                        );
+                    }
+                }
+            }
+            if st.price_per_unit.is_some() && st.price_per_m.is_some() {
+                return err(
+                    "stock.price_per_m",
+                    "give price_per_m or price_per_unit, not both",
+                );
+            }
+            Ok(())
+        }
+    }
 }
 
 impl Profile {

@@ -82,7 +82,7 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
     let mut p = Profile::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
     // Stock narrower than a lamella is high, grain forbids turning it.
-    p.stock.width_mm = 20.0;
+    p.stock.sizes[0].width_mm = 20.0;
     // Edge bands are split to fit the stock when the parts are made; when
     // no split can, that stage says so; lamellas are caught by the nest.
     let e = fabricate(&net, &an, &p)
@@ -94,10 +94,10 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     assert!(!e.contains('\n'));
     // Without edges in the way: the lamellas themselves.
     let mut wide = p.clone();
-    wide.stock.width_mm = 300.0;
+    wide.stock.sizes[0].width_mm = 300.0;
     let kit = fabricate(&net, &an, &wide).unwrap();
     let mut narrow = wide.clone();
-    narrow.stock.width_mm = 20.0;
+    narrow.stock.sizes[0].width_mm = 20.0;
     let e = nest(&kit, &narrow).unwrap_err().to_string();
     assert!(e.contains("part ") && e.contains("does not fit"), "{e}");
 }
@@ -141,7 +141,7 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
         (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
     };
     let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
-    let usable = steel.stock.length_mm - 2.0 * steel.cutting.edge_margin_mm;
+    let usable = steel.stock.sizes[0].usable_length_mm(steel.cutting.edge_margin_mm);
     let h = steel.section.height_mm;
     let mut over = 0;
     for case in 0..60 {

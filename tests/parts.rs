@@ -369,8 +369,8 @@ fn every_profile_builds_every_sample_or_says_why() {
                     // Every lamella part within the stock's usable length;
                     // every part (edge bands split where needed) fits the
                     // usable sheet in an allowed rotation.
-                    let usable = p.stock.length_mm - 2.0 * p.cutting.edge_margin_mm;
-                    let width = p.stock.width_mm - 2.0 * p.cutting.edge_margin_mm;
+                    let usable = p.stock.sizes[0].usable_length_mm(p.cutting.edge_margin_mm);
+                    let width = p.stock.sizes[0].usable_width_mm(p.cutting.edge_margin_mm);
                     let quarter = p
                         .cutting
                         .allowed_rotations_deg

@@ -511,20 +511,20 @@ fn segments_touch((a, b): (Point, Point), (c, d): (Point, Point), adjacent: bool
 const MAX_EDGE_PIECES: usize = 500;
 
 /// The edge strips of an analysis, in strip order: each edge as one band,
-/// or, where that band does not fit the stock's usable area in an allowed
+/// or, where that band fits no stock size's usable area in an allowed
 /// rotation (too long, or too bowed), split into the fewest pieces of equal
 /// length that do, each cut at least a hole diameter from every hole
 /// (`E-edge00.1`, `E-edge00.2`, …; end allowances only at the edge's ends).
 pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> {
     let c = &profile.cutting;
-    let (lu, wu) = (
-        profile.stock.length_mm - 2.0 * c.edge_margin_mm,
-        profile.stock.width_mm - 2.0 * c.edge_margin_mm,
-    );
-    let quarter = c.allowed_rotations_deg.iter().any(|r| r % 180 == 90);
+    // Some size must hold the band (the nest picks which).
     let fits = |p: &Part| {
-        (p.length_mm <= lu && p.height_mm <= wu)
-            || (quarter && p.height_mm <= lu && p.length_mm <= wu)
+        profile.stock.holds(
+            p.length_mm,
+            p.height_mm,
+            c.edge_margin_mm,
+            &c.allowed_rotations_deg,
+        )
     };
     let allowance = profile.section.end_allowance_mm;
     let diameter = edge_hole_diameter_mm(profile);
@@ -616,8 +616,10 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
                 &e.id,
                 None,
                 format!(
-                    "the edge band does not fit the {lu:.0} × {wu:.0} mm usable sheet even in \
-                     {MAX_EDGE_PIECES} pieces"
+                    "the edge band does not fit the usable area of any stock size (the longest \
+                     usable {:.0} mm, the widest {:.0} mm) even in {MAX_EDGE_PIECES} pieces",
+                    profile.stock.longest_usable_mm(c.edge_margin_mm, 0.0),
+                    profile.stock.widest_usable_mm(c.edge_margin_mm)
                 ),
             ));
         }

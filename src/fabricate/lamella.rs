@@ -202,7 +202,12 @@ pub fn strip_parts(
     // On the centre line: a middle piece stretches to at most
     // stretch × its length, an end piece's allowance does not stretch, so
     // (stock − margins)/stretch bounds every piece on every lamella line.
-    let usable = (profile.stock.length_mm - 2.0 * profile.cutting.edge_margin_mm) / stretch;
+    // The stock is the longest usable length of any size (a lamella needs
+    // only one size it fits); a coil cut to any length never splices.
+    let usable = profile
+        .stock
+        .longest_usable_mm(profile.cutting.edge_margin_mm, sec.height_mm)
+        / stretch;
     let total = strip.length_mm + 2.0 * allowance;
     let mut cuts: Vec<f64> = Vec::new();
     if total > usable {

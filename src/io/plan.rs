@@ -64,10 +64,14 @@ pub struct PlanSheet {
     pub id: String,
     /// Sheet width (its y), mm.
     pub width_mm: f64,
-    /// Sheet length (its x), mm.
+    /// Sheet length (its x), mm (a coil piece: the length cut).
     pub length_mm: f64,
     /// Net part area over the sheet's area.
     pub utilization: f64,
+    /// The stock size: its name, else `length × width` (`3000 × 1500`).
+    pub stock: String,
+    /// What the sheet costs, if priced (a coil per metre: the length cut).
+    pub price_per_unit: Option<f64>,
     /// Every part cut from it: part-local (x, y) turned by `rotation_deg`
     /// counter-clockwise about the origin, then moved by (x_mm, y_mm).
     pub placements: Vec<PlanPlacement>,
@@ -108,6 +112,37 @@ pub struct PlanNesting {
     pub lane_bound_lanes: usize,
     /// Part area over the area of the sheets used.
     pub utilization: f64,
+    /// Sheets per stock size used, in the profile's order.
+    pub stock_used: Vec<PlanStockUse>,
+    /// Σ of the sheets' prices, when every size is priced.
+    pub total_cost: Option<f64>,
+    /// A lower bound on that cost (README, *Nesting*).
+    pub cost_bound: Option<f64>,
+    /// Currency of the prices.
+    pub currency: Option<String>,
+    /// A coil: the length cut from it, mm, in whole length steps.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coil_length_mm: Option<f64>,
+    /// A coil: a lower bound on that length, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coil_length_bound_mm: Option<f64>,
+}
+
+/// The sheets of one stock size in a nest.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanStockUse {
+    /// The size's name, else `length × width`.
+    pub stock: String,
+    /// Sheets (coil: pieces) of it.
+    pub sheets: usize,
+    /// Their width, mm.
+    pub width_mm: f64,
+    /// Σ of their lengths, mm.
+    pub length_mm: f64,
+    /// Price of one sheet, if priced.
+    pub price_per_unit: Option<f64>,
+    /// What they cost, if priced.
+    pub cost: Option<f64>,
 }
 
 /// One part in plan.json: part-local mm, outline counter-clockwise, holes
@@ -617,6 +652,8 @@ pub fn add_nest(plan: &mut Plan, kit: &crate::fabricate::Kit, nest: &crate::nest
                 width_mm: round(s.width_mm, MM),
                 length_mm: round(s.length_mm, MM),
                 utilization: round(s.utilization(), 6),
+                stock: s.stock.clone(),
+                price_per_unit: s.price_per_unit.map(money),
                 placements: s
                     .placements
                     .iter()
@@ -641,7 +678,29 @@ pub fn add_nest(plan: &mut Plan, kit: &crate::fabricate::Kit, nest: &crate::nest
         lanes_used: n.lanes_used,
         lane_bound_lanes: n.lane_bound_lanes,
         utilization: round(n.utilization, 6),
+        stock_used: nest
+            .stock_used
+            .iter()
+            .map(|u| PlanStockUse {
+                stock: u.stock.clone(),
+                sheets: u.sheets,
+                width_mm: round(u.width_mm, MM),
+                length_mm: round(u.length_mm, MM),
+                price_per_unit: u.price_per_unit.map(money),
+                cost: u.cost.map(money),
+            })
+            .collect(),
+        total_cost: n.cost.map(money),
+        cost_bound: n.cost_bound.map(money),
+        currency: nest.currency.clone(),
+        coil_length_mm: n.length_used_mm.map(|x| round(x, MM)),
+        coil_length_bound_mm: n.length_bound_mm.map(|x| round(x, MM)),
     });
+}
+
+/// A price rounded to 1e-4 of its unit (cents and below stay exact).
+fn money(x: f64) -> f64 {
+    round(x, 4)
 }
 
 /// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).

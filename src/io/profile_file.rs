@@ -181,31 +181,81 @@ pub struct Splice {
     pub bolt_diameter_mm: f64,
 }
 
-/// `stock:` the material the parts are cut from.
+/// `stock:` the material the parts are cut from, in one of three forms:
+///
+/// * one sheet size: `kind: sheet`, `length_mm`, `width_mm`, optional
+///   `price_per_unit` and `max_count` (the form every version-1 profile has);
+/// * several sheet sizes: `kind: sheet` and `sizes:` a list of
+///   [`StockSize`] (then no `length_mm`, `width_mm`, `price_per_unit` or
+///   `max_count` beside it);
+/// * coil (or strip cut to length): `kind: coil`, `width_mm`, optional
+///   `length_mm` (the longest piece cut from it, e.g. a coil's length or
+///   the cutting bed's), `length_step_mm` (lengths are cut and sold in
+///   multiples of it), and a price: `price_per_m` (per metre cut) or
+///   `price_per_unit` (per piece, with `length_mm`).
+///
+/// [`Profile`](crate::profile::Profile)'s validation says which field of
+/// which form is missing or misplaced.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Stock {
     /// `sheet` or `coil`.
     pub kind: StockKind,
-    /// Sheet length (or coil length), mm.
-    pub length_mm: f64,
-    /// Sheet (or coil) width, mm.
-    pub width_mm: f64,
-    /// Price of one sheet or coil, in `currency`; optional.
+    /// One sheet size: its length; coil: the longest piece (optional), mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_mm: Option<f64>,
+    /// One sheet size: its width; coil: its width, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width_mm: Option<f64>,
+    /// Price of one sheet (or coil piece), in `currency`; optional.
     #[serde(default)]
     pub price_per_unit: Option<f64>,
-    /// Currency of `price_per_unit` (e.g. `EUR`); optional.
+    /// Currency of the prices (e.g. `EUR`); optional.
     #[serde(default)]
     pub currency: Option<String>,
+    /// One sheet size (or coil pieces): how many there are at most; optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_count: Option<u32>,
+    /// Several sheet sizes, instead of `length_mm` and `width_mm`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sizes: Option<Vec<StockSize>>,
+    /// Coil: price per metre cut, in `currency`; optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub price_per_m: Option<f64>,
+    /// Coil: lengths are cut (and sold) in multiples of this, mm; default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_step_mm: Option<f64>,
+}
+
+/// `stock.sizes[]:` one sheet size of several.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct StockSize {
+    /// A name for the size (plan.json and the CLI show it); default
+    /// `length × width` (`3000 × 1500`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Sheet length, mm.
+    pub length_mm: f64,
+    /// Sheet width, mm.
+    pub width_mm: f64,
+    /// Price of one sheet, in the stock's `currency`; give it for every
+    /// size or for none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub price_per_unit: Option<f64>,
+    /// How many sheets of this size there are at most; optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_count: Option<u32>,
 }
 
 /// `stock.kind:` the form of the stock.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum StockKind {
-    /// Flat sheets of `length_mm` × `width_mm`.
+    /// Flat sheets of `length_mm` × `width_mm`, or of several `sizes`
+    /// (flat bars of a fixed length are sheets too).
     Sheet,
-    /// A coil `width_mm` wide, cut to length.
+    /// A coil `width_mm` wide, cut to the length needed.
     Coil,
 }
 

@@ -110,14 +110,15 @@ pub fn grown_outline(p: &Part, d: f64) -> Vec<Point> {
         .collect()
 }
 
-/// The instance of a kit for a profile's stock.
+/// The instance of a kit for a profile's stock (with several sizes, the
+/// strip is as high as the widest size's usable width).
 pub fn instance(name: &str, kit: &Kit, profile: &Profile) -> Instance {
     let c = &profile.cutting;
     let d = 0.5 * (c.kerf_mm + c.part_spacing_mm);
     let round = |x: f64| (x * 1e4).round() / 1e4 + 0.0;
     Instance {
         name: name.to_string(),
-        strip_height: round(profile.stock.width_mm - 2.0 * c.edge_margin_mm),
+        strip_height: round(profile.stock.widest_usable_mm(c.edge_margin_mm)),
         items: kit
             .parts
             .iter()

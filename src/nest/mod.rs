@@ -6,15 +6,22 @@
 //! (all one height h) lie along the sheet in lanes h apart plus the gap;
 //! which lamella goes into which lane is one-dimensional bin packing
 //! ([`binpack`]: item = length + gap, capacity = usable length + gap), and
-//! lanes fill the sheets in order. Other parts (shear blocks, splice plates,
-//! washers, studs, edge strips) go by their bounding boxes, in an allowed
-//! rotation, first into the lane tails (the free ends of the lanes, when
-//! they are no taller than a lane), then in shelves over the free width of
-//! the last sheet and new sheets.
+//! lanes fill the sheets in order, fullest first. Other parts (shear
+//! blocks, splice plates, washers, studs, edge strips) go by their bounding
+//! boxes, in an allowed rotation, onto a skyline of each sheet's free
+//! space (the lane tails first), first sheet with room, else a new sheet.
+//!
+//! Several sheet sizes: the cheapest nest (by price, else by stock area)
+//! over the sizes as first choice, each improved by repacking the
+//! least-filled sheets onto another size (`Ctx::sheets`); count limits
+//! hold throughout, and a kit they cannot hold is a one-line error. A coil
+//! is one long sheet whose lanes are balanced (MULTIFIT), cut to the
+//! length used.
 //!
 //! Lower bounds: the area bound ⌈Σ part area / usable sheet area⌉ and the
 //! lane bound ⌈L2(lamellas) / lanes per sheet⌉ (Martello–Toth L2 on the lane
-//! problem); the nest reports both and the gap to the larger.
+//! problem), with several sizes at the largest area and longest lane; a
+//! bound on the cost; for a coil a bound on the length.
 //!
 //! Plain data in (`Kit`, `Profile`), plain data out ([`Nest`]);
 //! deterministic (no threads, ties broken by index). A placement maps
@@ -47,15 +54,24 @@ pub struct Placement {
     pub rotation_deg: u32,
 }
 
-/// One sheet of stock and what is cut from it.
+/// One sheet of stock (a coil: one piece cut from it) and what is cut
+/// from it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SheetNest {
     /// `S01`, `S02`, …
     pub id: String,
+    /// Index of its size in the profile's `stock.sizes`.
+    pub size: usize,
+    /// The size's label: its name, else `length × width` (`3000 × 1500`;
+    /// a coil cut to any length: `coil 1500`).
+    pub stock: String,
     /// Along the sheet's y, mm.
     pub width_mm: f64,
-    /// Along the sheet's x, mm.
+    /// Along the sheet's x, mm (a coil piece: the length cut).
     pub length_mm: f64,
+    /// What this sheet costs, if priced: the size's price (a coil priced
+    /// per metre: the price of the length cut).
+    pub price_per_unit: Option<f64>,
     /// Everything cut from it.
     pub placements: Vec<Placement>,
     /// Net area of those parts (outline less holes), mm².
@@ -76,30 +92,69 @@ pub struct NestSummary {
     pub sheets_used: usize,
     /// The larger of the area and lane bounds.
     pub lower_bound_sheets: usize,
-    /// ⌈Σ part area / usable sheet area⌉.
+    /// ⌈Σ part area / usable sheet area⌉ (several sizes: of the size with
+    /// the largest usable area).
     pub area_bound_sheets: usize,
-    /// ⌈L2(lamella lanes) / lanes per sheet⌉.
+    /// ⌈L2(lamella lanes) / lanes per sheet⌉ (several sizes: L2 at the
+    /// longest lane, over the most lanes any size has).
     pub lane_bound_sheets: usize,
-    /// Lanes that fit across one sheet.
+    /// Lanes that fit across one sheet (several sizes: the most of any).
     pub lanes_per_sheet: usize,
     /// Lanes the lamellas fill.
     pub lanes_used: usize,
-    /// Martello–Toth L2 on the lanes.
+    /// Martello–Toth L2 on the lanes (several sizes: at the longest lane).
     pub lane_bound_lanes: usize,
     /// Part area over the area of the sheets used.
     pub utilization: f64,
+    /// Area of the stock used (bought), mm².
+    pub stock_area_mm2: f64,
+    /// What the sheets cost, when every size is priced.
+    pub cost: Option<f64>,
+    /// A lower bound on the cost, when priced: the larger of Σ part area
+    /// at the lowest price per usable area and Σ lane length at the lowest
+    /// price per lane length (coil: the price of `length_bound_mm`).
+    pub cost_bound: Option<f64>,
+    /// A coil: the length cut from it, Σ over its pieces, mm.
+    pub length_used_mm: Option<f64>,
+    /// A coil: a lower bound on that length (the mean lane, the longest
+    /// lamella and the parts' area over the usable width, plus the
+    /// margins), mm.
+    pub length_bound_mm: Option<f64>,
     /// Wall-clock time of the nest, s (not part of any output that must be
     /// byte-stable).
     pub seconds: f64,
 }
 
+/// The sheets of one stock size the nest uses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StockUse {
+    /// Index of the size in the profile's `stock.sizes`.
+    pub size: usize,
+    /// The size's label (as [`SheetNest::stock`]).
+    pub stock: String,
+    /// Sheets (coil: pieces) of it.
+    pub sheets: usize,
+    /// Σ of their lengths, mm.
+    pub length_mm: f64,
+    /// Their width, mm.
+    pub width_mm: f64,
+    /// The price of one sheet, if priced (a coil per metre: of the first piece).
+    pub price_per_unit: Option<f64>,
+    /// What they cost, if priced.
+    pub cost: Option<f64>,
+}
+
 /// The nest of a kit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nest {
-    /// Sheets in order.
+    /// Sheets in order (by stock size, then as filled).
     pub sheets: Vec<SheetNest>,
-    /// Counts, bounds, utilisation.
+    /// Counts, bounds, utilisation, cost.
     pub summary: NestSummary,
+    /// Sheets per stock size, in size order.
+    pub stock_used: Vec<StockUse>,
+    /// Currency of the prices, if the profile names one.
+    pub currency: Option<String>,
 }
 
 /// Bounding box of a part's outline in its own frame.
@@ -233,178 +288,710 @@ impl Skyline {
     }
 }
 
-/// Nest every part of the kit onto the profile's stock.
-pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
-    let t0 = std::time::Instant::now();
-    let c = &profile.cutting;
-    let (sheet_l, sheet_w) = (profile.stock.length_mm, profile.stock.width_mm);
-    let m = c.edge_margin_mm;
-    let g = c.kerf_mm + c.part_spacing_mm;
-    let (lu, wu) = (sheet_l - 2.0 * m, sheet_w - 2.0 * m);
-    let rotations: Vec<u32> = c.allowed_rotations_deg.clone();
-    let quarter = rotations.iter().any(|r| r % 180 == 90);
-    let h = profile.section.height_mm;
-    let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
+/// One stock size as the nest sees it.
+#[derive(Debug, Clone)]
+struct Size {
+    /// Full length (infinite for a coil cut to any length) and width, mm.
+    length: f64,
+    width: f64,
+    /// Usable length and width (less the margins), mm.
+    lu: f64,
+    wu: f64,
+    /// Lamella lanes across it.
+    lanes: usize,
+    /// Lane capacity for the bin packing: usable length + one gap.
+    cap: f64,
+    /// What a sheet costs: its price, else its area (mm²).
+    cost: f64,
+    /// The profile's price of one, if any.
+    price: Option<f64>,
+    /// Sheets of it at most.
+    limit: usize,
+    label: String,
+}
 
-    // Every part must fit a sheet in some allowed rotation.
-    let along_ok = rotations.iter().any(|r| r % 180 == 0);
-    for p in &kit.parts {
-        let (x0, y0, x1, y1) = bbox(p);
-        let (w, ht) = (x1 - x0, y1 - y0);
-        let fits_along = along_ok && w <= lu && ht <= wu;
-        let fits_across = quarter && ht <= lu && w <= wu;
-        if !fits_along && !fits_across {
-            return Err(fail(
-                &p.id,
-                format!(
-                    "{w:.0} × {ht:.0} mm does not fit the {lu:.0} × {wu:.0} mm usable sheet in any \
-                     allowed rotation ({rotations:?}°)"
-                ),
-            ));
-        }
-    }
-    // Lamellas lie along the sheet: 0° if allowed, else 180°.
-    let lamella_rot: u32 = if rotations.contains(&0) { 0 } else { 180 };
-    // Lamellas into lanes.
-    let lanes_per_sheet = ((wu + g) / (h + g)).floor().max(0.0) as usize;
-    let mut lamella_items: Vec<(usize, u32)> = Vec::new();
-    for (i, p) in kit.parts.iter().enumerate() {
-        if p.kind == PartKind::Lamella {
-            for copy in 0..p.count {
-                lamella_items.push((i, copy));
+/// Lanes of lamellas assigned to one sheet of a size.
+#[derive(Debug, Clone)]
+struct SheetPlan {
+    size: usize,
+    /// Indices into the lamella items, one list per lane.
+    lanes: Vec<Vec<usize>>,
+}
+
+/// What one nest needs to know, built once.
+struct Ctx<'a> {
+    kit: &'a Kit,
+    profile: &'a Profile,
+    margin: f64,
+    gap: f64,
+    height: f64,
+    rotations: Vec<u32>,
+    lamella_rot: u32,
+    sizes: Vec<Size>,
+    /// Sizes by cost per usable area, ties by index.
+    by_value: Vec<usize>,
+    /// (part, copy) of every lamella copy.
+    items: Vec<(usize, u32)>,
+    /// Item sizes for the lanes: length + gap.
+    item_len: Vec<f64>,
+    /// Other parts, largest bounding box first.
+    others: Vec<usize>,
+}
+
+/// Sheets and the number of lamella lanes on them.
+type Placed = (Vec<SheetNest>, usize);
+
+/// Rounds of tail improvement at most.
+const TAIL_ROUNDS: usize = 8;
+/// The tail improvement replaces at most this many sheets of one size.
+const TAIL_SHEETS: usize = 2;
+
+impl<'a> Ctx<'a> {
+    fn new(kit: &'a Kit, profile: &'a Profile) -> Result<Ctx<'a>> {
+        let c = &profile.cutting;
+        let m = c.edge_margin_mm;
+        let g = c.kerf_mm + c.part_spacing_mm;
+        let h = profile.section.height_mm;
+        let st = &profile.stock;
+        let sizes: Vec<Size> = st
+            .sizes
+            .iter()
+            .map(|z| {
+                let (lu, wu) = (z.usable_length_mm(m), z.usable_width_mm(m));
+                let length = z.length_mm.unwrap_or(f64::INFINITY);
+                Size {
+                    length,
+                    width: z.width_mm,
+                    lu,
+                    wu,
+                    lanes: ((wu + g) / (h + g)).floor().max(0.0) as usize,
+                    cap: lu + g,
+                    cost: z.price_per_unit.unwrap_or(length * z.width_mm),
+                    price: z.price_per_unit,
+                    limit: z.max_count.map_or(usize::MAX, |n| n as usize),
+                    label: z.label(),
+                }
+            })
+            .collect();
+        let mut by_value: Vec<usize> = (0..sizes.len()).collect();
+        by_value.sort_by(|&a, &b| {
+            let v = |s: &Size| s.cost / (s.lu * s.wu);
+            v(&sizes[a]).total_cmp(&v(&sizes[b])).then(a.cmp(&b))
+        });
+        let rotations = c.allowed_rotations_deg.clone();
+        let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
+        // Every part must fit some size in an allowed rotation.
+        for p in &kit.parts {
+            let (x0, y0, x1, y1) = bbox(p);
+            let (w, ht) = (x1 - x0, y1 - y0);
+            if !st.holds(w, ht, m, &rotations) {
+                let usable = if sizes.len() == 1 {
+                    format!(
+                        "the {:.0} × {:.0} mm usable sheet",
+                        sizes[0].lu, sizes[0].wu
+                    )
+                } else {
+                    let list: Vec<String> = sizes
+                        .iter()
+                        .map(|s| format!("{}: {:.0} × {:.0} mm", s.label, s.lu, s.wu))
+                        .collect();
+                    format!("the usable area of any stock size ({})", list.join(", "))
+                };
+                return Err(fail(
+                    &p.id,
+                    format!(
+                        "{w:.0} × {ht:.0} mm does not fit {usable} in any allowed rotation \
+                         ({rotations:?}°)"
+                    ),
+                ));
             }
         }
-    }
-    let sizes: Vec<f64> = lamella_items
-        .iter()
-        .map(|&(i, _)| kit.parts[i].length_mm + g)
-        .collect();
-    let capacity = lu + g;
-    let (lanes, lane_bound_lanes) = if lamella_items.is_empty() {
-        (Vec::new(), 0)
-    } else {
-        if !along_ok {
-            return Err(fail(
-                &kit.parts[lamella_items[0].0].id,
-                "lamellas lie along the sheet, but the profile allows neither 0° nor 180°".into(),
-            ));
-        }
-        if lanes_per_sheet == 0 {
-            return Err(fail(
-                &kit.parts[lamella_items[0].0].id,
-                format!("a {h} mm lamella does not fit across the {wu:.0} mm usable sheet"),
-            ));
-        }
-        let packing = binpack::pack(&sizes, capacity)
-            .map_err(|e| fail(&kit.parts[lamella_items[0].0].id, e))?;
-        (packing.bins, binpack::lower_bound_l2(&sizes, capacity))
-    };
-    let mut sheets: Vec<SheetNest> = Vec::new();
-    let new_sheet = |k: usize| SheetNest {
-        id: format!("S{:02}", k + 1),
-        width_mm: sheet_w,
-        length_mm: sheet_l,
-        placements: Vec::new(),
-        part_area_mm2: 0.0,
-    };
-    // Lane tails: (sheet, x where free space starts, lane bottom y).
-    let mut tails: Vec<(usize, f64, f64)> = Vec::new();
-    for (j, lane) in lanes.iter().enumerate() {
-        let sheet = j / lanes_per_sheet;
-        while sheets.len() <= sheet {
-            sheets.push(new_sheet(sheets.len()));
-        }
-        let y = m + (j % lanes_per_sheet) as f64 * (h + g);
-        let mut x = m;
-        for &item in lane {
-            let (i, copy) = lamella_items[item];
-            let p = &kit.parts[i];
-            sheets[sheet]
-                .placements
-                .push(place_at(i, p, copy, lamella_rot, x, y));
-            x += p.length_mm + g;
-        }
-        tails.push((sheet, x, y));
-    }
-
-    // Other parts by their bounding boxes, largest first, into the free
-    // space of the sheets: a skyline over the sheet's width whose level is
-    // the first free x (the lanes' tails, then the bare sheet below them);
-    // each part at the lowest level it fits (then the lowest y), in the
-    // allowed rotation that gets it lowest, on the first sheet with room
-    // (first fit per part, in sheet order), else on a new sheet.
-    let mut skylines: Vec<Skyline> = (0..sheets.len())
-        .map(|k| {
-            let mut sky = Skyline::new(m, m + wu, m);
-            for (j, t) in tails.iter().enumerate() {
-                if t.0 == k {
-                    let y0 = m + (j % lanes_per_sheet) as f64 * (h + g);
-                    sky.raise(y0, y0 + h + g, t.1);
+        let mut items: Vec<(usize, u32)> = Vec::new();
+        for (i, p) in kit.parts.iter().enumerate() {
+            if p.kind == PartKind::Lamella {
+                for copy in 0..p.count {
+                    items.push((i, copy));
                 }
             }
-            sky
+        }
+        let item_len: Vec<f64> = items
+            .iter()
+            .map(|&(i, _)| kit.parts[i].length_mm + g)
+            .collect();
+        if let Some(&(first, _)) = items.first() {
+            let id = &kit.parts[first].id;
+            if !rotations.iter().any(|r| r % 180 == 0) {
+                return Err(fail(
+                    id,
+                    "lamellas lie along the sheet, but the profile allows neither 0° nor 180°"
+                        .into(),
+                ));
+            }
+            if sizes.iter().all(|s| s.lanes == 0) {
+                let wu = sizes.iter().map(|s| s.wu).fold(0.0, f64::max);
+                return Err(fail(
+                    id,
+                    format!("a {h} mm lamella does not fit across the {wu:.0} mm usable sheet"),
+                ));
+            }
+            // Each lamella into the lanes of some size.
+            for (k, &(i, _)) in items.iter().enumerate() {
+                if !sizes
+                    .iter()
+                    .any(|s| s.lanes > 0 && fits(item_len[k], s.cap))
+                {
+                    return Err(fail(
+                        &kit.parts[i].id,
+                        format!(
+                            "a {:.0} mm lamella fits the lanes of no stock size",
+                            kit.parts[i].length_mm
+                        ),
+                    ));
+                }
+            }
+        }
+        let mut others: Vec<usize> = (0..kit.parts.len())
+            .filter(|&i| kit.parts[i].kind != PartKind::Lamella)
+            .collect();
+        let area = |i: usize| {
+            let (x0, y0, x1, y1) = bbox(&kit.parts[i]);
+            (x1 - x0) * (y1 - y0)
+        };
+        others.sort_by(|&a, &b| area(b).total_cmp(&area(a)).then(a.cmp(&b)));
+        Ok(Ctx {
+            kit,
+            profile,
+            margin: m,
+            gap: g,
+            height: h,
+            lamella_rot: if rotations.contains(&0) { 0 } else { 180 },
+            rotations,
+            sizes,
+            by_value,
+            items,
+            item_len,
+            others,
         })
-        .collect();
-    let mut others: Vec<usize> = (0..kit.parts.len())
-        .filter(|&i| kit.parts[i].kind != PartKind::Lamella)
-        .collect();
-    let dims = |i: usize, rot: u32| {
-        let (x0, y0, x1, y1) = bbox(&kit.parts[i]);
+    }
+
+    fn fail_stock(&self, what: String) -> Error {
+        Error::Fabrication {
+            profile: self.profile.source.clone(),
+            at: "stock".into(),
+            node: None,
+            what: crate::error::one_line(&what),
+        }
+    }
+
+    /// A part's bounding box size turned by `rot`.
+    fn dims(&self, i: usize, rot: u32) -> (f64, f64) {
+        let (x0, y0, x1, y1) = bbox(&self.kit.parts[i]);
         if rot % 180 == 90 {
             (y1 - y0, x1 - x0)
         } else {
             (x1 - x0, y1 - y0)
         }
-    };
-    others.sort_by(|&a, &b| {
-        let (wa, ha) = dims(a, 0);
-        let (wb, hb) = dims(b, 0);
-        (wb * hb).total_cmp(&(wa * ha)).then(a.cmp(&b))
-    });
-    for &i in &others {
-        let p = &kit.parts[i];
-        let mut first_sheet = 0;
-        for copy in 0..p.count {
-            let mut placed = false;
-            let mut k = first_sheet;
-            while !placed {
-                if k == skylines.len() {
-                    sheets.push(new_sheet(sheets.len()));
-                    skylines.push(Skyline::new(m, m + wu, m));
-                }
-                // The best rotation on this sheet: lowest x, then lowest y.
-                let best = rotations
-                    .iter()
-                    .filter_map(|&r| {
-                        let (w, ht) = dims(i, r);
-                        skylines[k]
-                            .fit(w, ht, g, m + lu, m + wu)
-                            .map(|(x, y)| (x, y, r, w, ht))
-                    })
-                    .min_by(|a, b| {
-                        a.0.total_cmp(&b.0)
-                            .then(a.1.total_cmp(&b.1))
-                            .then(a.2.cmp(&b.2))
-                    });
-                match best {
-                    Some((x, y, r, w, ht)) => {
-                        sheets[k].placements.push(place_at(i, p, copy, r, x, y));
-                        skylines[k].raise(y, y + ht + g, x + w + g);
-                        placed = true;
-                        first_sheet = k;
-                    }
-                    None if skylines[k].is_bare(m) => {
-                        return Err(fail(
-                            &p.id,
-                            "does not fit an empty sheet in any allowed rotation".into(),
-                        ));
-                    }
-                    None => k += 1,
+    }
+
+    fn cost(&self, sheets: &[SheetPlan]) -> f64 {
+        sheets.iter().map(|s| self.sizes[s.size].cost).sum()
+    }
+
+    /// Lamella `items` into lanes and sheets: the first size of `order`
+    /// with sheets left takes the items that fit its lanes (packed by
+    /// [`binpack::pack`]); items too long for it go first to the longer
+    /// sizes after it in `order`, whose free lanes then take its lanes
+    /// first; lanes beyond its count limit go on to the next sizes. `Err`
+    /// holds the items no sheet is left for.
+    fn assign(
+        &self,
+        items: Vec<usize>,
+        order: &[usize],
+        left: &mut [usize],
+    ) -> std::result::Result<Vec<SheetPlan>, Vec<usize>> {
+        if items.is_empty() {
+            return Ok(Vec::new());
+        }
+        let Some(pos) = order
+            .iter()
+            .position(|&s| left[s] > 0 && self.sizes[s].lanes > 0)
+        else {
+            return Err(items);
+        };
+        let p = order[pos];
+        let rest = &order[pos + 1..];
+        let (cap, k) = (self.sizes[p].cap, self.sizes[p].lanes);
+        let (short, long): (Vec<usize>, Vec<usize>) = items
+            .into_iter()
+            .partition(|&i| fits(self.item_len[i], cap));
+        let mut sheets = Vec::new();
+        if !long.is_empty() {
+            let longer: Vec<usize> = rest
+                .iter()
+                .copied()
+                .filter(|&s| self.sizes[s].cap > cap)
+                .collect();
+            sheets = self.assign(long, &longer, left).map_err(|mut u| {
+                u.extend(&short);
+                u
+            })?;
+        }
+        let lanes: Vec<Vec<usize>> = if short.is_empty() {
+            Vec::new()
+        } else {
+            let sizes: Vec<f64> = short.iter().map(|&i| self.item_len[i]).collect();
+            binpack::pack(&sizes, cap)
+                .map(|pk| {
+                    pk.bins
+                        .into_iter()
+                        .map(|b| b.into_iter().map(|j| short[j]).collect())
+                        .collect()
+                })
+                .unwrap_or_else(|_| short.iter().map(|&i| vec![i]).collect())
+        };
+        // Fullest lanes first: the last sheet takes the emptiest, and those
+        // are what goes on to other sizes past a count limit.
+        let lane_load = |l: &Vec<usize>| -> f64 { l.iter().map(|&i| self.item_len[i]).sum() };
+        let mut lanes = lanes;
+        lanes.sort_by(|a, b| lane_load(b).total_cmp(&lane_load(a)));
+        let mut lanes = lanes.into_iter();
+        for sh in sheets.iter_mut() {
+            while sh.lanes.len() < self.sizes[sh.size].lanes {
+                match lanes.next() {
+                    Some(l) => sh.lanes.push(l),
+                    None => break,
                 }
             }
         }
+        let lanes: Vec<Vec<usize>> = lanes.collect();
+        let take = lanes.len().div_ceil(k).min(left[p]);
+        left[p] -= take;
+        let mut lanes = lanes.into_iter();
+        for _ in 0..take {
+            sheets.push(SheetPlan {
+                size: p,
+                lanes: lanes.by_ref().take(k).collect(),
+            });
+        }
+        let overflow: Vec<usize> = lanes.flatten().collect();
+        if !overflow.is_empty() {
+            sheets.extend(self.assign(overflow, rest, left)?);
+        }
+        Ok(sheets)
     }
+
+    /// Variants of a lane plan whose lamellas cost less: the `t` ≤
+    /// [`TAIL_SHEETS`] least-filled sheets of one size and every sheet of
+    /// another size, repacked onto sheets of that other size (which must
+    /// hold them all, within its count limit).
+    fn tail_variants(&self, plan: &[SheetPlan]) -> Vec<Vec<SheetPlan>> {
+        let mut out = Vec::new();
+        let load = |j: usize| -> f64 {
+            plan[j]
+                .lanes
+                .iter()
+                .flatten()
+                .map(|&i| self.item_len[i])
+                .sum()
+        };
+        for s in 0..self.sizes.len() {
+            let mut mine: Vec<usize> = (0..plan.len()).filter(|&j| plan[j].size == s).collect();
+            mine.sort_by(|&a, &b| load(a).total_cmp(&load(b)).then(b.cmp(&a)));
+            for t in 1..=TAIL_SHEETS.min(mine.len()) {
+                for q in 0..self.sizes.len() {
+                    let z = &self.sizes[q];
+                    if q == s || z.lanes == 0 {
+                        continue;
+                    }
+                    let gone: Vec<usize> = (0..plan.len())
+                        .filter(|&j| mine[..t].contains(&j) || plan[j].size == q)
+                        .collect();
+                    let items: Vec<usize> = gone
+                        .iter()
+                        .flat_map(|&j| plan[j].lanes.iter().flatten().copied())
+                        .collect();
+                    if items.iter().any(|&i| !fits(self.item_len[i], z.cap)) {
+                        continue;
+                    }
+                    let sizes: Vec<f64> = items.iter().map(|&i| self.item_len[i]).collect();
+                    let Ok(pk) = binpack::pack(&sizes, z.cap) else {
+                        continue;
+                    };
+                    let n = pk.bins.len().div_ceil(z.lanes);
+                    let was: f64 = gone.iter().map(|&j| self.sizes[plan[j].size].cost).sum();
+                    if n > z.limit || n as f64 * z.cost >= was * (1.0 - 1e-12) {
+                        continue;
+                    }
+                    let mut v: Vec<SheetPlan> = (0..plan.len())
+                        .filter(|j| !gone.contains(j))
+                        .map(|j| plan[j].clone())
+                        .collect();
+                    let mut bins = pk.bins.into_iter();
+                    for _ in 0..n {
+                        v.push(SheetPlan {
+                            size: q,
+                            lanes: bins
+                                .by_ref()
+                                .take(z.lanes)
+                                .map(|b| b.into_iter().map(|j| items[j]).collect())
+                                .collect(),
+                        });
+                    }
+                    out.push(v);
+                }
+            }
+        }
+        out
+    }
+
+    /// The sheets of a lane plan with the lamellas in their lanes, then
+    /// every other part by its bounding box onto the skylines (new sheets
+    /// of the best-value size with sheets left that holds the part), then
+    /// sheets holding no lamella moved to a cheaper size where all their
+    /// parts fit it.
+    fn place(&self, plan: &[SheetPlan]) -> Result<Placed> {
+        let (m, g, h) = (self.margin, self.gap, self.height);
+        let mut left: Vec<usize> = self.sizes.iter().map(|s| s.limit).collect();
+        let mut sheets: Vec<SheetNest> = Vec::new();
+        let mut skylines: Vec<Skyline> = Vec::new();
+        for sp in plan {
+            left[sp.size] -= 1;
+            let mut sheet = self.new_sheet(sp.size);
+            let z = &self.sizes[sp.size];
+            let mut sky = Skyline::new(m, m + z.wu, m);
+            for (j, lane) in sp.lanes.iter().enumerate() {
+                let y = m + j as f64 * (h + g);
+                let mut x = m;
+                for &item in lane {
+                    let (i, copy) = self.items[item];
+                    let p = &self.kit.parts[i];
+                    sheet
+                        .placements
+                        .push(place_at(i, p, copy, self.lamella_rot, x, y));
+                    x += p.length_mm + g;
+                }
+                sky.raise(y, y + h + g, x);
+            }
+            sheets.push(sheet);
+            skylines.push(sky);
+        }
+        let lamella_sheets = sheets.len();
+        // Other parts, largest first: each copy at the lowest level (then
+        // the lowest y) it fits, in the allowed rotation that gets it
+        // lowest, on the first sheet with room from where the part's
+        // previous copy went, else on a new sheet.
+        for &i in &self.others {
+            let p = &self.kit.parts[i];
+            let mut first_sheet = 0;
+            for copy in 0..p.count {
+                let mut k = first_sheet;
+                loop {
+                    if k == skylines.len() {
+                        let Some(s) = self.new_size_for(i, &left) else {
+                            return Err(self.shortfall_others(i, copy, &sheets));
+                        };
+                        left[s] -= 1;
+                        sheets.push(self.new_sheet(s));
+                        let z = &self.sizes[s];
+                        skylines.push(Skyline::new(m, m + z.wu, m));
+                    }
+                    let z = &self.sizes[sheets[k].size];
+                    if let Some(pl) = self.put(&mut skylines[k], i, copy, z) {
+                        sheets[k].placements.push(pl);
+                        first_sheet = k;
+                        break;
+                    }
+                    if skylines[k].is_bare(m) && k + 1 == skylines.len() {
+                        return Err(Error::fabrication_part(
+                            &self.profile.source,
+                            &p.id,
+                            "does not fit an empty sheet in any allowed rotation",
+                        ));
+                    }
+                    k += 1;
+                }
+            }
+        }
+        // Sheets of other parts only: a cheaper size that holds them all.
+        for k in lamella_sheets..sheets.len() {
+            let s = sheets[k].size;
+            left[s] += 1;
+            for &q in &self.by_value {
+                let z = &self.sizes[q];
+                if q == s || left[q] == 0 || z.cost >= self.sizes[s].cost {
+                    continue;
+                }
+                let mut sky = Skyline::new(m, m + z.wu, m);
+                let moved: Option<Vec<Placement>> = sheets[k]
+                    .placements
+                    .iter()
+                    .map(|pl| self.put(&mut sky, pl.part, pl.copy, z))
+                    .collect();
+                if let Some(pls) = moved {
+                    let mut sheet = self.new_sheet(q);
+                    sheet.placements = pls;
+                    sheets[k] = sheet;
+                    break;
+                }
+            }
+            left[sheets[k].size] -= 1;
+        }
+        let lanes = plan.iter().map(|s| s.lanes.len()).sum();
+        Ok((sheets, lanes))
+    }
+
+    /// Copy `copy` of part `i` onto a skyline of size `z`, in the rotation
+    /// that puts it lowest; the placement, or `None` where it does not fit.
+    fn put(&self, sky: &mut Skyline, i: usize, copy: u32, z: &Size) -> Option<Placement> {
+        let (m, g) = (self.margin, self.gap);
+        let (x, y, r, w, ht) = self
+            .rotations
+            .iter()
+            .filter_map(|&r| {
+                let (w, ht) = self.dims(i, r);
+                sky.fit(w, ht, g, m + z.lu, m + z.wu)
+                    .map(|(x, y)| (x, y, r, w, ht))
+            })
+            .min_by(|a, b| {
+                a.0.total_cmp(&b.0)
+                    .then(a.1.total_cmp(&b.1))
+                    .then(a.2.cmp(&b.2))
+            })?;
+        sky.raise(y, y + ht + g, x + w + g);
+        Some(place_at(i, &self.kit.parts[i], copy, r, x, y))
+    }
+
+    /// The best-value size with sheets left whose bare sheet holds part `i`.
+    fn new_size_for(&self, i: usize, left: &[usize]) -> Option<usize> {
+        self.by_value.iter().copied().find(|&s| {
+            let z = &self.sizes[s];
+            left[s] > 0
+                && self.rotations.iter().any(|&r| {
+                    let (w, ht) = self.dims(i, r);
+                    w <= z.lu + 1e-9 && ht <= z.wu + 1e-9
+                })
+        })
+    }
+
+    fn new_sheet(&self, size: usize) -> SheetNest {
+        let z = &self.sizes[size];
+        SheetNest {
+            id: String::new(),
+            size,
+            stock: z.label.clone(),
+            width_mm: z.width,
+            length_mm: z.length,
+            price_per_unit: z.price,
+            placements: Vec::new(),
+            part_area_mm2: 0.0,
+        }
+    }
+
+    /// The count limits' one-line error for lamellas left without a sheet.
+    fn shortfall_lamellas(&self, unplaced: &[usize]) -> Error {
+        let length: f64 = unplaced
+            .iter()
+            .map(|&i| self.kit.parts[self.items[i].0].length_mm)
+            .sum();
+        // How many more sheets of the best-value size that holds them.
+        let more = self
+            .by_value
+            .iter()
+            .map(|&s| &self.sizes[s])
+            .find(|z| z.lanes > 0 && unplaced.iter().all(|&i| fits(self.item_len[i], z.cap)))
+            .map(|z| {
+                let sizes: Vec<f64> = unplaced.iter().map(|&i| self.item_len[i]).collect();
+                let lanes = binpack::pack(&sizes, z.cap).map_or(sizes.len(), |p| p.bins.len());
+                format!(
+                    "; about {} more sheet(s) of {}",
+                    lanes.div_ceil(z.lanes),
+                    z.label
+                )
+            })
+            .unwrap_or_default();
+        self.fail_stock(format!(
+            "the count limits ({}) do not hold the kit: {} lamella(s), {:.1} m, have no sheet left{more}",
+            self.limits(),
+            unplaced.len(),
+            length / 1000.0
+        ))
+    }
+
+    /// The count limits' one-line error for other parts left without a sheet.
+    fn shortfall_others(&self, part: usize, copy: u32, sheets: &[SheetNest]) -> Error {
+        let pos = self.others.iter().position(|&i| i == part).unwrap_or(0);
+        let mut copies = u64::from(self.kit.parts[part].count - copy);
+        let mut area = copies as f64 * net_area_mm2(&self.kit.parts[part]);
+        for &i in &self.others[pos + 1..] {
+            copies += u64::from(self.kit.parts[i].count);
+            area += f64::from(self.kit.parts[i].count) * net_area_mm2(&self.kit.parts[i]);
+        }
+        self.fail_stock(format!(
+            "the count limits ({}) do not hold the kit: after {} sheet(s), {copies} part \
+             cop(ies) of {:.2} m² (from {}) have no sheet left",
+            self.limits(),
+            sheets.len(),
+            area / 1e6,
+            self.kit.parts[part].id
+        ))
+    }
+
+    /// `max_count 3 of 3000 × 1500, …` for the sizes with a limit.
+    fn limits(&self) -> String {
+        let list: Vec<String> = self
+            .sizes
+            .iter()
+            .filter(|z| z.limit < usize::MAX)
+            .map(|z| format!("{} of {}", z.limit, z.label))
+            .collect();
+        format!("max_count {}", list.join(", "))
+    }
+
+    /// The cheapest full nest over the sheet sizes: for each size as the
+    /// first choice (best value first), the lane plan of [`Ctx::assign`],
+    /// improved by [`Ctx::tail_variants`] while the whole nest gets
+    /// cheaper; ties go to fewer sheets, then the earlier candidate.
+    fn sheets(&self) -> Result<Placed> {
+        let all: Vec<usize> = (0..self.items.len()).collect();
+        let total =
+            |sheets: &[SheetNest]| -> f64 { sheets.iter().map(|s| self.sizes[s.size].cost).sum() };
+        let better = |a: &Placed, b: &Placed| {
+            let (ca, cb) = (total(&a.0), total(&b.0));
+            ca < cb * (1.0 - 1e-12) || (ca <= cb * (1.0 + 1e-12) && a.0.len() < b.0.len())
+        };
+        let mut best: Option<Placed> = None;
+        let mut first_err: Option<Error> = None;
+        let firsts: Vec<usize> = if self.sizes.len() == 1 {
+            vec![0]
+        } else {
+            self.by_value.clone()
+        };
+        for &p in &firsts {
+            let mut order = vec![p];
+            order.extend(self.by_value.iter().copied().filter(|&s| s != p));
+            let mut left: Vec<usize> = self.sizes.iter().map(|s| s.limit).collect();
+            let mut plan = match self.assign(all.clone(), &order, &mut left) {
+                Ok(plan) => plan,
+                Err(unplaced) => {
+                    first_err.get_or_insert(self.shortfall_lamellas(&unplaced));
+                    continue;
+                }
+            };
+            let mut nest = match self.place(&plan) {
+                Ok(n) => n,
+                Err(e) => {
+                    first_err.get_or_insert(e);
+                    continue;
+                }
+            };
+            for _ in 0..TAIL_ROUNDS {
+                let mut improved = false;
+                let base = self.cost(&plan);
+                let mut variants = self.tail_variants(&plan);
+                variants.sort_by(|a, b| self.cost(a).total_cmp(&self.cost(b)));
+                for v in variants {
+                    if self.cost(&v) >= base {
+                        continue;
+                    }
+                    if let Ok(n) = self.place(&v) {
+                        if better(&n, &nest) {
+                            (plan, nest, improved) = (v, n, true);
+                            break;
+                        }
+                    }
+                }
+                if !improved {
+                    break;
+                }
+            }
+            if best.as_ref().is_none_or(|b| better(&nest, b)) {
+                best = Some(nest);
+            }
+        }
+        match (best, first_err) {
+            (Some(b), _) => Ok(b),
+            (None, Some(e)) => Err(e),
+            (None, None) => Ok((Vec::new(), 0)),
+        }
+    }
+
+    /// A coil cut to any length: one sheet of the coil's width, the
+    /// lamellas balanced over its lanes (MULTIFIT: the shortest lane
+    /// length at which [`binpack::pack`] needs no more lanes than fit
+    /// across, by bisection from the longest-first greedy), the other parts
+    /// after them; its length is what is used.
+    fn coil(&self) -> Result<Placed> {
+        let lanes = balance(&self.item_len, self.sizes[0].lanes);
+        self.place(&[SheetPlan { size: 0, lanes }])
+    }
+}
+
+/// Whether an item fits a lane of capacity `cap` (to the bin packing's
+/// tolerance).
+fn fits(item: f64, cap: f64) -> bool {
+    item <= cap * (1.0 + binpack::FIT_TOLERANCE)
+}
+
+/// Items of `sizes` over `k` lanes of any length, the longest lane as short
+/// as MULTIFIT finds it (Coffman, Garey & Johnson 1978): the longest-first
+/// greedy (each item onto the shortest lane) bounds it from above, the
+/// larger of the longest item and the mean from below; bisection to 0.5 mm
+/// on the capacity at which [`binpack::pack`] needs at most `k` bins.
+fn balance(sizes: &[f64], k: usize) -> Vec<Vec<usize>> {
+    if sizes.is_empty() || k == 0 {
+        return Vec::new();
+    }
+    let mut order: Vec<usize> = (0..sizes.len()).collect();
+    order.sort_by(|&a, &b| sizes[b].total_cmp(&sizes[a]).then(a.cmp(&b)));
+    let mut lanes: Vec<Vec<usize>> = vec![Vec::new(); k];
+    let mut loads = vec![0.0f64; k];
+    for &i in &order {
+        let j = (0..k)
+            .min_by(|&a, &b| loads[a].total_cmp(&loads[b]).then(a.cmp(&b)))
+            .unwrap_or(0);
+        lanes[j].push(i);
+        loads[j] += sizes[i];
+    }
+    let mut hi = loads.iter().copied().fold(0.0, f64::max);
+    let total: f64 = sizes.iter().sum();
+    let mut lo = sizes.iter().copied().fold(total / k as f64, f64::max);
+    let mut best = lanes;
+    for _ in 0..40 {
+        if hi - lo <= 0.5 {
+            break;
+        }
+        let mid = 0.5 * (lo + hi);
+        match binpack::pack(sizes, mid) {
+            Ok(p) if p.bins.len() <= k => {
+                hi = p
+                    .bins
+                    .iter()
+                    .map(|b| b.iter().map(|&i| sizes[i]).sum::<f64>())
+                    .fold(0.0, f64::max)
+                    .min(mid);
+                best = p.bins;
+            }
+            _ => lo = mid,
+        }
+    }
+    best.retain(|l| !l.is_empty());
+    best
+}
+
+/// Nest every part of the kit onto the profile's stock.
+pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
+    let t0 = std::time::Instant::now();
+    let ctx = Ctx::new(kit, profile)?;
+    let st = &profile.stock;
+    let coil = st.is_coil();
+    let (mut sheets, lanes_used) = if coil && st.sizes[0].length_mm.is_none() {
+        ctx.coil()?
+    } else {
+        ctx.sheets()?
+    };
     sheets.retain(|s| !s.placements.is_empty());
+    sheets.sort_by_key(|s| s.size);
+    let m = ctx.margin;
     for (k, s) in sheets.iter_mut().enumerate() {
         s.id = format!("S{:02}", k + 1);
         s.part_area_mm2 = s
@@ -412,38 +999,152 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
             .iter()
             .map(|pl| net_area_mm2(&kit.parts[pl.part]))
             .sum();
+        if coil {
+            // Cut to the length used, in whole steps.
+            let used = s
+                .placements
+                .iter()
+                .map(|pl| placed_bbox(&kit.parts[pl.part], pl).2)
+                .fold(m, f64::max)
+                + m;
+            let step = st.length_step();
+            s.length_mm = s.length_mm.min((used / step * (1.0 - 1e-12)).ceil() * step);
+            if let Some(per_m) = st.price_per_m {
+                s.price_per_unit = Some(per_m * s.length_mm / 1000.0);
+            }
+        }
     }
+    let summary = summarize(&ctx, &sheets, lanes_used, t0);
+    let mut stock_used: Vec<StockUse> = Vec::new();
+    for s in &sheets {
+        match stock_used.last_mut() {
+            Some(u) if u.size == s.size => {
+                u.sheets += 1;
+                u.length_mm += s.length_mm;
+                u.cost = u.cost.zip(s.price_per_unit).map(|(a, b)| a + b);
+            }
+            _ => stock_used.push(StockUse {
+                size: s.size,
+                stock: s.stock.clone(),
+                sheets: 1,
+                length_mm: s.length_mm,
+                width_mm: s.width_mm,
+                price_per_unit: s.price_per_unit,
+                cost: s.price_per_unit,
+            }),
+        }
+    }
+    let nest = Nest {
+        sheets,
+        summary,
+        stock_used,
+        currency: st.currency.clone(),
+    };
+    debug_assert_eq!(check_nest(kit, &nest, profile), Ok(()));
+    Ok(nest)
+}
 
+/// The nest's figures and bounds.
+fn summarize(
+    ctx: &Ctx,
+    sheets: &[SheetNest],
+    lanes_used: usize,
+    t0: std::time::Instant,
+) -> NestSummary {
+    let kit = ctx.kit;
+    let st = &ctx.profile.stock;
     let total_area: f64 = kit
         .parts
         .iter()
         .map(|p| net_area_mm2(p) * f64::from(p.count))
         .sum();
-    let area_bound_sheets = (total_area / (lu * wu) * (1.0 - 1e-12)).ceil() as usize;
+    let lane_sizes: Vec<&Size> = ctx.sizes.iter().filter(|z| z.lanes > 0).collect();
+    let max_area = ctx.sizes.iter().map(|z| z.lu * z.wu).fold(0.0, f64::max);
+    let area_bound_sheets = (total_area / max_area * (1.0 - 1e-12)).ceil() as usize;
+    let lanes_per_sheet = lane_sizes.iter().map(|z| z.lanes).max().unwrap_or(0);
+    let cap = lane_sizes.iter().map(|z| z.cap).fold(0.0, f64::max);
+    let lane_bound_lanes = if ctx.items.is_empty() {
+        0
+    } else if cap.is_infinite() {
+        // A coil cut to any length: its lanes are as long as needed.
+        ctx.items.len().min(lanes_per_sheet)
+    } else {
+        binpack::lower_bound_l2(&ctx.item_len, cap)
+    };
     let lane_bound_sheets = if lanes_per_sheet > 0 {
         lane_bound_lanes.div_ceil(lanes_per_sheet)
     } else {
         0
     };
-    let used_area = sheets.len() as f64 * sheet_l * sheet_w;
-    let summary = NestSummary {
+    let used_area: f64 = sheets.iter().map(|s| s.length_mm * s.width_mm).sum();
+    let lane_total: f64 = ctx.item_len.iter().sum();
+    // Costs: any sheet of size s holds at most its usable area of parts
+    // and k_s lanes of capacity C_s, at its cost c_s.
+    // A coil: the longest lane is at least the mean lane and the longest
+    // lamella; the parts' area needs its length of the usable width.
+    let length_bound = st.is_coil().then(|| {
+        let z = &ctx.sizes[0];
+        let longest = ctx.item_len.iter().copied().fold(0.0, f64::max);
+        let lanes = if z.lanes > 0 && !ctx.items.is_empty() {
+            (lane_total / z.lanes as f64).max(longest) - ctx.gap
+        } else {
+            0.0
+        };
+        (total_area / z.wu).max(lanes) + 2.0 * ctx.margin
+    });
+    let cost_bound = if let Some(length) = length_bound {
+        let z = &ctx.sizes[0];
+        st.price_per_m
+            .map(|per_m| per_m * length / 1000.0)
+            .or_else(|| {
+                z.price
+                    .map(|p| p * (length / z.length * (1.0 - 1e-12)).ceil())
+            })
+    } else if st.priced() {
+        let per_area = ctx
+            .sizes
+            .iter()
+            .map(|z| z.cost / (z.lu * z.wu))
+            .fold(f64::INFINITY, f64::min);
+        let per_lane = lane_sizes
+            .iter()
+            .map(|z| z.cost / (z.lanes as f64 * z.cap))
+            .fold(f64::INFINITY, f64::min);
+        Some((total_area * per_area).max(if ctx.items.is_empty() {
+            0.0
+        } else {
+            lane_total * per_lane
+        }))
+    } else {
+        None
+    };
+    let cost = sheets
+        .iter()
+        .map(|s| s.price_per_unit)
+        .sum::<Option<f64>>()
+        .filter(|_| st.priced());
+    NestSummary {
         sheets_used: sheets.len(),
         lower_bound_sheets: area_bound_sheets.max(lane_bound_sheets),
         area_bound_sheets,
         lane_bound_sheets,
         lanes_per_sheet,
-        lanes_used: lanes.len(),
+        lanes_used,
         lane_bound_lanes,
         utilization: if used_area > 0.0 {
             total_area / used_area
         } else {
             0.0
         },
+        stock_area_mm2: used_area,
+        length_used_mm: st
+            .is_coil()
+            .then(|| sheets.iter().map(|s| s.length_mm).sum()),
+        length_bound_mm: length_bound,
+        cost,
+        cost_bound,
         seconds: t0.elapsed().as_secs_f64(),
-    };
-    let nest = Nest { sheets, summary };
-    debug_assert_eq!(check_nest(kit, &nest, profile), Ok(()));
-    Ok(nest)
+    }
 }
 
 /// Named invariant: every part inside its sheet's margins, in an allowed
