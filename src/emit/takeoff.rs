@@ -129,27 +129,48 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
         l.area_m2 = round(l.area_m2, 4);
         l.mass_kg = round(l.mass_kg, 3);
     }
-    // Stock sheets by size, in the nest's order of first use.
-    let price = profile.stock.price_per_unit;
+    // Stock by size, in the nest's order of first use; a coil's pieces are
+    // priced by the length cut, so their unit price is given only when
+    // every piece costs the same.
+    let form = match profile.stock.kind {
+        crate::io::profile_file::StockKind::Sheet => "sheet",
+        crate::io::profile_file::StockKind::Coil => "coil",
+    };
     let mut stock: Vec<StockLine> = Vec::new();
-    let mut sizes: Vec<((f64, f64), u64, f64)> = Vec::new();
+    let mut sizes: Vec<(&str, u64, f64, f64, Vec<Option<f64>>)> = Vec::new();
     for s in &nest.sheets {
-        let key = (s.length_mm, s.width_mm);
-        match sizes.iter_mut().find(|z| z.0 == key) {
+        match sizes.iter_mut().find(|z| z.0 == s.stock) {
             Some(z) => {
                 z.1 += 1;
                 z.2 += s.part_area_mm2;
+                z.3 += s.length_mm * s.width_mm;
+                z.4.push(s.price_per_unit);
             }
-            None => sizes.push((key, 1, s.part_area_mm2)),
+            None => sizes.push((
+                &s.stock,
+                1,
+                s.part_area_mm2,
+                s.length_mm * s.width_mm,
+                vec![s.price_per_unit],
+            )),
         }
     }
-    for ((l, w), count, area) in sizes {
+    for (label, count, part_area, stock_area, prices) in sizes {
+        let cost = prices
+            .iter()
+            .copied()
+            .collect::<Option<Vec<f64>>>()
+            .map(|p| round(p.iter().sum(), 2));
+        let unit_price = match prices.first() {
+            Some(&Some(p)) if prices.iter().all(|q| *q == Some(p)) => Some(p),
+            _ => None,
+        };
         stock.push(StockLine {
-            item: format!("sheet {} × {} mm", fmt(l), fmt(w)),
+            item: format!("{form} {label} mm"),
             count,
-            utilization: Some(round(area / (l * w * count as f64), 4)),
-            unit_price: price,
-            cost: price.map(|p| round(p * count as f64, 2)),
+            utilization: Some(round(part_area / stock_area, 4)),
+            unit_price,
+            cost,
         });
     }
     if let (Some(stud), true) = (&profile.stud, kit.summary.stud_bars > 0) {
@@ -188,7 +209,7 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
     Takeoff {
         project: project.into(),
         profile: profile.name.clone(),
-        currency: price.and(profile.stock.currency.clone()),
+        currency: stock_cost.and(profile.stock.currency.clone()),
         totals: Totals {
             pieces: parts.iter().map(|l| l.count).sum(),
             lamella_length_m: round(
