@@ -188,7 +188,7 @@ pub fn build(
     drop(nest);
     drop(kit);
     progress.set_message("writing plan and takeoff");
-    staging.write("plan.json", plan::to_json(&the_plan).as_bytes())?;
+    staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))?;
     let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff::to_json(&takeoff).as_bytes())?;

@@ -3,17 +3,52 @@
 //! millimetres (`$INSUNITS` = 4, `$MEASUREMENT` = 1), one layer per
 //! operation with its colour (the `SHEET` layer not plotted), closed
 //! LWPOLYLINEs per contour with arcs as bulges, round holes as CIRCLEs,
-//! engraving as open LWPOLYLINEs, no blocks or splines. The header's dates
-//! and GUIDs are fixed so the same sheet gives the same bytes.
+//! engraving as open LWPOLYLINEs, no blocks or splines.
+//!
+//! The document's structure (header, classes, tables with the layers,
+//! blocks, objects) comes from the dxf crate, made once per process with
+//! fixed dates and GUIDs so the same sheet gives the same bytes. The
+//! entities are streamed into its ENTITIES section here, in the same group
+//! codes the crate writes, with handles after the structure's and
+//! `$HANDSEED` past the last: the crate builds every group code in memory
+//! and prints each number through exact 12-decimal formatting, which made
+//! it four times slower than the rest of a big build together.
+//! Coordinates have 6 decimals (1 nm), bulges 10.
 
 use super::drawing::{Layer, Shape, SheetDrawing};
-use dxf::entities::{Circle, Entity, EntityType, LwPolyline};
 use dxf::enums::{AcadVersion, DrawingUnits, Units};
 use dxf::tables::Layer as DxfLayer;
-use dxf::{Color, Drawing, LwPolylineVertex, Point};
+use dxf::{Color, Drawing};
+use std::fmt::Write;
+use std::sync::OnceLock;
 
-/// The DXF text of one sheet.
-pub fn to_dxf(sheet: &SheetDrawing) -> std::result::Result<Vec<u8>, String> {
+/// Decimals of coordinates and radii.
+const COORD_DECIMALS: u32 = 6;
+
+/// Decimals of bulges.
+const BULGE_DECIMALS: u32 = 9;
+
+/// The document around the entities, split where they go.
+struct Skeleton {
+    /// Up to the `$HANDSEED` value.
+    before_seed: String,
+    /// From after the `$HANDSEED` value to the ENTITIES section's first entity.
+    before_entities: String,
+    /// From the ENTITIES section's end to the end of the file.
+    after_entities: String,
+    /// The first handle free for entities.
+    first_handle: u64,
+}
+
+fn skeleton() -> Result<&'static Skeleton, String> {
+    static SKELETON: OnceLock<Result<Skeleton, String>> = OnceLock::new();
+    SKELETON
+        .get_or_init(make_skeleton)
+        .as_ref()
+        .map_err(Clone::clone)
+}
+
+fn make_skeleton() -> Result<Skeleton, String> {
     let mut d = Drawing::new();
     let h = &mut d.header;
     h.version = AcadVersion::R2000;
@@ -44,53 +79,98 @@ pub fn to_dxf(sheet: &SheetDrawing) -> std::result::Result<Vec<u8>, String> {
             ..Default::default()
         });
     }
-    add_shape(&mut d, &sheet.outline());
-    for part in &sheet.parts {
-        for shape in &part.shapes {
-            add_shape(&mut d, shape);
-        }
-    }
     let mut bytes = Vec::new();
     d.save(&mut bytes).map_err(|e| e.to_string())?;
-    Ok(bytes)
+    let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
+    // The crate ends lines with CRLF; the entities below do too.
+    let seed_key = "$HANDSEED\r\n  5\r\n";
+    let seed_at = text.find(seed_key).ok_or("no $HANDSEED")? + seed_key.len();
+    let seed_end = seed_at + text[seed_at..].find("\r\n").ok_or("no $HANDSEED value")?;
+    let first_handle =
+        u64::from_str_radix(text[seed_at..seed_end].trim(), 16).map_err(|e| e.to_string())?;
+    let marker = "\r\nENTITIES\r\n";
+    let ent_at = text.find(marker).ok_or("no ENTITIES section")? + marker.len();
+    if !text[ent_at..].starts_with("  0\r\nENDSEC\r\n") {
+        return Err("the ENTITIES section is not empty".into());
+    }
+    Ok(Skeleton {
+        before_seed: text[..seed_at].to_string(),
+        before_entities: text[seed_end..ent_at].to_string(),
+        after_entities: text[ent_at..].to_string(),
+        first_handle,
+    })
 }
 
-fn add_shape(d: &mut Drawing, shape: &Shape) {
-    let (layer, specific) = match shape {
+/// The DXF text of one sheet.
+pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
+    let sk = skeleton()?;
+    let shapes: usize = sheet.parts.iter().map(|p| p.shapes.len()).sum();
+    let mut body = String::with_capacity(200 * shapes + 1024);
+    let mut handle = sk.first_handle;
+    entity(&mut body, &sheet.outline(), &mut handle);
+    for part in &sheet.parts {
+        for shape in &part.shapes {
+            entity(&mut body, shape, &mut handle);
+        }
+    }
+    let mut out = String::with_capacity(
+        sk.before_seed.len() + sk.before_entities.len() + body.len() + sk.after_entities.len() + 16,
+    );
+    out.push_str(&sk.before_seed);
+    let _ = write!(out, "{handle:X}");
+    out.push_str(&sk.before_entities);
+    out.push_str(&body);
+    out.push_str(&sk.after_entities);
+    Ok(out.into_bytes())
+}
+
+/// One entity with its handle, in the group codes the dxf crate writes.
+fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
+    match shape {
         Shape::Polyline {
             layer,
             closed,
             vertices,
         } => {
-            let mut pl = LwPolyline {
-                vertices: vertices
-                    .iter()
-                    .map(|v| LwPolylineVertex {
-                        x: v.x_mm,
-                        y: v.y_mm,
-                        bulge: v.bulge,
-                        ..Default::default()
-                    })
-                    .collect(),
-                ..Default::default()
-            };
-            pl.set_is_closed(*closed);
-            (*layer, EntityType::LwPolyline(pl))
+            let _ = write!(
+                s,
+                "  0\r\nLWPOLYLINE\r\n  5\r\n{:X}\r\n100\r\nAcDbEntity\r\n  8\r\n{}\r\n100\r\nAcDbPolyline\r\n 90\r\n{:>9}\r\n 70\r\n{:>6}\r\n",
+                *handle,
+                layer.name(),
+                vertices.len(),
+                u8::from(*closed)
+            );
+            for v in vertices {
+                s.push_str(" 10\r\n");
+                super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
+                s.push_str("\r\n 20\r\n");
+                super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
+                s.push_str("\r\n");
+                if v.bulge != 0.0 {
+                    s.push_str(" 42\r\n");
+                    super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
+                    s.push_str("\r\n");
+                }
+            }
         }
         Shape::Circle {
             layer,
             center_mm,
             radius_mm,
-        } => (
-            *layer,
-            EntityType::Circle(Circle::new(
-                Point::new(center_mm[0], center_mm[1], 0.0),
-                *radius_mm,
-            )),
-        ),
-    };
-    let mut e = Entity::new(specific);
-    e.common.layer = layer.name().to_string();
-    e.common.color = Color::by_layer();
-    d.add_entity(e);
+        } => {
+            let _ = write!(
+                s,
+                "  0\r\nCIRCLE\r\n  5\r\n{:X}\r\n100\r\nAcDbEntity\r\n  8\r\n{}\r\n100\r\nAcDbCircle\r\n 10\r\n",
+                *handle,
+                layer.name()
+            );
+            super::push_decimal(s, center_mm[0], COORD_DECIMALS, true);
+            s.push_str("\r\n 20\r\n");
+            super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
+            s.push_str("\r\n 30\r\n0.0\r\n 40\r\n");
+            super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
+            s.push_str("\r\n");
+        }
+    }
+    *handle += 1;
 }

@@ -104,6 +104,28 @@ impl Staging {
         Ok(())
     }
 
+    /// Stage `rel` with what `write` streams into it (buffered).
+    pub fn write_with(
+        &self,
+        rel: &str,
+        write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+    ) -> Result<()> {
+        let path = self.tmp.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
+        }
+        let file = std::fs::File::create(&path).map_err(|e| Error::io(&self.dir.join(rel), e))?;
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+        write(&mut w)
+            .and_then(|()| std::io::Write::flush(&mut w))
+            .map_err(|e| Error::io(&self.dir.join(rel), e))?;
+        self.files
+            .lock()
+            .map_err(|_| Error::output(&self.dir, "a writer thread failed"))?
+            .insert(rel.to_string());
+        Ok(())
+    }
+
     /// Move the staged files into DIR (see the module doc).
     pub fn commit(mut self) -> Result<()> {
         if let Some(ms) = std::env::var(PAUSE_ENV)

@@ -14,7 +14,7 @@ use std::fmt::Write;
 pub const STROKE_MM: f64 = 0.1;
 
 /// Decimals of every coordinate (0.1 µm).
-const DECIMALS: usize = 4;
+const DECIMALS: u32 = 4;
 
 /// Screen label height: at most this, mm.
 const LABEL_MAX_MM: f64 = 40.0;
@@ -146,18 +146,8 @@ fn segment(s: &mut String, a: Vertex, b: Vertex, w: f64) {
 /// A number with at most [`DECIMALS`] decimals, trailing zeros dropped,
 /// never `-0`.
 fn num(x: f64) -> String {
-    let mut t = format!("{x:.DECIMALS$}");
-    if t.contains('.') {
-        while t.ends_with('0') {
-            t.pop();
-        }
-        if t.ends_with('.') {
-            t.pop();
-        }
-    }
-    if t == "-0" {
-        t = "0".into();
-    }
+    let mut t = String::with_capacity(16);
+    super::push_decimal(&mut t, x, DECIMALS, false);
     t
 }
 

@@ -4,6 +4,7 @@
 
 pub mod dxf_in;
 pub mod finite;
+pub mod json_format;
 pub mod network_file;
 pub mod obj;
 pub mod plan;

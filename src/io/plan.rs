@@ -828,10 +828,16 @@ fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanChec
 
 /// Serialise a plan (pretty JSON, trailing newline).
 pub fn to_json(plan: &Plan) -> String {
-    let mut s =
-        serde_json::to_string_pretty(plan).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"));
-    s.push('\n');
-    s
+    let mut out = Vec::new();
+    if let Err(e) = write_json(plan, &mut out) {
+        return format!("{{\"error\":\"{e}\"}}\n");
+    }
+    String::from_utf8(out).unwrap_or_default()
+}
+
+/// Stream the plan as JSON into `w` (the layout of [`to_json`]).
+pub fn write_json<W: std::io::Write + ?Sized>(plan: &Plan, w: &mut W) -> std::io::Result<()> {
+    crate::io::json_format::write(plan, w)
 }
 
 /// Write `contents` to `path` atomically: a temporary file beside it, then a
