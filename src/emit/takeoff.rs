@@ -137,25 +137,42 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
         crate::io::profile_file::StockKind::Coil => "coil",
     };
     let mut stock: Vec<StockLine> = Vec::new();
-    let mut sizes: Vec<(&str, u64, f64, f64, Vec<Option<f64>>)> = Vec::new();
-    for s in &nest.sheets {
-        match sizes.iter_mut().find(|z| z.0 == s.stock) {
-            Some(z) => {
-                z.1 += 1;
-                z.2 += s.part_area_mm2;
-                z.3 += s.length_mm * s.width_mm;
-                z.4.push(s.price_per_unit);
-            }
-            None => sizes.push((
-                &s.stock,
-                1,
-                s.part_area_mm2,
-                s.length_mm * s.width_mm,
-                vec![s.price_per_unit],
-            )),
-        }
+    struct Size<'a> {
+        label: &'a str,
+        count: u64,
+        part_area: f64,
+        stock_area: f64,
+        prices: Vec<Option<f64>>,
     }
-    for (label, count, part_area, stock_area, prices) in sizes {
+    let mut sizes: Vec<Size> = Vec::new();
+    for s in &nest.sheets {
+        let i = match sizes.iter().position(|z| z.label == s.stock) {
+            Some(i) => i,
+            None => {
+                sizes.push(Size {
+                    label: &s.stock,
+                    count: 0,
+                    part_area: 0.0,
+                    stock_area: 0.0,
+                    prices: Vec::new(),
+                });
+                sizes.len() - 1
+            }
+        };
+        let z = &mut sizes[i];
+        z.count += 1;
+        z.part_area += s.part_area_mm2;
+        z.stock_area += s.length_mm * s.width_mm;
+        z.prices.push(s.price_per_unit);
+    }
+    for Size {
+        label,
+        count,
+        part_area,
+        stock_area,
+        prices,
+    } in sizes
+    {
         let cost = prices
             .iter()
             .copied()
