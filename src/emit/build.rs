@@ -162,16 +162,22 @@ pub fn build(
     }
     // Refuse a foreign plan.json or takeoff before the long work.
     let staging = Staging::begin(out, &FIXED_FILES)?;
+    // The plan's strips and nodes first, so the analysis can go once the
+    // parts are made (a big network's analysis and kit need not both stay).
+    let model = Model::checked(&net, &an, profile.clone(), report, None);
+    let mut the_plan = plan::build(&net, &an, &model);
+    drop(model);
     progress.set_message("making parts");
-    let kit = crate::fabricate::fabricate(&net, &an, &profile)?;
+    let mut kit = crate::fabricate::fabricate(&net, &an, &profile)?;
+    let nodes = an.topology.nodes.len();
+    drop(an);
     warnings.extend(kit.warnings.iter().cloned());
     progress.set_message("nesting");
     let nest = crate::nest::nest(&kit, &profile)?;
     let takeoff = takeoff::takeoff(&net.name, &kit, &nest, &profile);
-    let model = Model::checked(&net, &an, profile.clone(), report, None);
-    let mut the_plan = plan::build(&net, &an, &model);
-    plan::add_parts(&mut the_plan, &kit);
     plan::add_nest(&mut the_plan, &kit, &nest);
+    let kinds = kit.summary.kinds.clone();
+    plan::add_parts_taking(&mut the_plan, &mut kit);
     let plan_target = out.join("plan.json");
     if let Some(field) = io::finite::first_non_finite(&the_plan) {
         return Err(Error::output(
@@ -179,7 +185,6 @@ pub fn build(
             format!("not written: {field} is not a finite number"),
         ));
     }
-    let kinds = kit.summary.kinds.clone();
     let (sheets_used, lower_bound_sheets, utilization) = (
         nest.summary.sheets_used,
         nest.summary.lower_bound_sheets,
@@ -187,41 +192,47 @@ pub fn build(
     );
     drop(nest);
     drop(kit);
-    progress.set_message("writing plan and takeoff");
-    staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))?;
+    progress.set_message("writing plan, takeoff and sheets");
     let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff::to_json(&takeoff).as_bytes())?;
     let kerf = opts.kerf_compensation.then_some(profile.cutting.kerf_mm);
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
-    progress.set_message("writing sheets");
     progress.set_length(drawer.len() as u64);
     progress.set_position(0);
-    (0..drawer.len())
-        .into_par_iter()
-        .try_for_each(|i| -> Result<()> {
-            let sheet = drawer.sheet(i)?;
-            let stem = sheet.file_stem();
-            let dxf = dxf_out::to_dxf(&sheet)
-                .map_err(|e| Error::output(&out.join(format!("sheets/{stem}.dxf")), e))?;
-            staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
-            let title = format!(
-                "{} — {}: sheet {} of {} ({}), {} × {} mm",
-                net.name,
-                profile.name,
-                sheet.number,
-                drawer.len(),
-                sheet.id,
-                sheet.length_mm,
-                sheet.width_mm
-            );
-            staging.write(
-                &format!("sheets/{stem}.svg"),
-                svg_out::to_svg(&sheet, &title).as_bytes(),
-            )?;
-            progress.inc(1);
-            Ok(())
-        })?;
+    // plan.json streams out beside the sheets.
+    let (plan_written, sheets_written) = rayon::join(
+        || staging.write_with("plan.json", |w| plan::write_json(&the_plan, w)),
+        || {
+            (0..drawer.len())
+                .into_par_iter()
+                .try_for_each(|i| -> Result<()> {
+                    let sheet = drawer.sheet(i)?;
+                    let stem = sheet.file_stem();
+                    let dxf = dxf_out::to_dxf(&sheet)
+                        .map_err(|e| Error::output(&out.join(format!("sheets/{stem}.dxf")), e))?;
+                    staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
+                    let title = format!(
+                        "{} — {}: sheet {} of {} ({}), {} × {} mm",
+                        net.name,
+                        profile.name,
+                        sheet.number,
+                        drawer.len(),
+                        sheet.id,
+                        sheet.length_mm,
+                        sheet.width_mm
+                    );
+                    staging.write(
+                        &format!("sheets/{stem}.svg"),
+                        svg_out::to_svg(&sheet, &title).as_bytes(),
+                    )?;
+                    progress.inc(1);
+                    Ok(())
+                })
+        },
+    );
+    plan_written?;
+    sheets_written?;
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=drawer.len() {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
@@ -234,7 +245,7 @@ pub fn build(
         profile: profile.name.clone(),
         strips,
         edges,
-        nodes: an.topology.nodes.len(),
+        nodes,
         kinds,
         takeoff,
         sheets_used,

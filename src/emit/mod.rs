@@ -22,26 +22,40 @@ pub mod takeoff;
 /// formatting dominated writing big kits. Coordinates are bounded by the
 /// network's ±10 km, far inside i64 at 9 decimals.
 pub(crate) fn push_decimal(out: &mut String, x: f64, decimals: u32, keep_point: bool) {
-    use std::fmt::Write;
-    let scale = 10u64.pow(decimals.min(9));
+    let decimals = decimals.min(9);
+    let scale = 10u64.pow(decimals);
     let scaled = (x.abs() * scale as f64).round() as u64;
     let (int, mut frac) = (scaled / scale, scaled % scale);
     if x < 0.0 && scaled != 0 {
         out.push('-');
     }
-    let _ = write!(out, "{int}");
+    push_digits(out, int, 1);
     if frac == 0 {
         if keep_point {
             out.push_str(".0");
         }
         return;
     }
-    let mut width = decimals.min(9) as usize;
+    let mut width = decimals as usize;
     while frac % 10 == 0 {
         frac /= 10;
         width -= 1;
     }
-    let _ = write!(out, ".{frac:0width$}");
+    out.push('.');
+    push_digits(out, frac, width);
+}
+
+/// Append `n` in decimal, zero-padded to at least `width` digits.
+fn push_digits(out: &mut String, mut n: u64, width: usize) {
+    let mut buf = [b'0'; 20];
+    let mut i = buf.len();
+    while n > 0 || buf.len() - i < width {
+        i -= 1;
+        buf[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+    }
+    // ASCII digits only.
+    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
 }
 
 #[cfg(test)]

@@ -128,11 +128,14 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
 
 /// The segment from `a` to `b`: a line, or the arc of `a`'s bulge.
 fn segment(s: &mut String, a: Vertex, b: Vertex, w: f64) {
-    let (bx, by) = (num(b.x_mm), num(w - b.y_mm));
     if a.bulge == 0.0 {
-        let _ = write!(s, " L{bx} {by}");
+        s.push_str(" L");
+        super::push_decimal(s, b.x_mm, DECIMALS, false);
+        s.push(' ');
+        super::push_decimal(s, w - b.y_mm, DECIMALS, false);
         return;
     }
+    let (bx, by) = (num(b.x_mm), num(w - b.y_mm));
     let chord = (b.x_mm - a.x_mm).hypot(b.y_mm - a.y_mm);
     // Bulge b = tan(θ/4): radius = chord·(1 + b²)/(4|b|); more than a half
     // turn when |b| > 1; counter-clockwise (b > 0) with y up is clockwise on

@@ -705,10 +705,24 @@ fn money(x: f64) -> f64 {
 
 /// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).
 pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
-    use crate::fabricate::part::Part;
+    plan.parts = Some(kit.parts.iter().map(plan_part).collect());
+    add_kit_summary(plan, kit);
+}
+
+/// [`add_parts`], taking the kit's parts: each is freed once converted, so
+/// a big kit and its plan copy are not both held whole. Call [`add_nest`]
+/// first (it names parts by the kit).
+pub fn add_parts_taking(plan: &mut Plan, kit: &mut crate::fabricate::Kit) {
+    let parts = std::mem::take(&mut kit.parts);
+    plan.parts = Some(parts.into_iter().map(|p| plan_part(&p)).collect());
+    add_kit_summary(plan, kit);
+}
+
+/// One part as plan.json writes it (rounded).
+fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
     let pt = |p: &kurbo::Point| [round(p.x, MM), round(p.y, MM)];
     let poly = |v: &[kurbo::Point]| v.iter().map(pt).collect::<Vec<_>>();
-    let part = |p: &Part| PlanPart {
+    PlanPart {
         id: p.id.clone(),
         kind: p.kind.as_str().into(),
         strip: p.strip.clone(),
@@ -746,8 +760,10 @@ pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
                 station_mm: f.station_mm.map(|s| round(s, MM)),
             })
             .collect(),
-    };
-    plan.parts = Some(kit.parts.iter().map(part).collect());
+    }
+}
+
+fn add_kit_summary(plan: &mut Plan, kit: &crate::fabricate::Kit) {
     plan.parts_summary = Some(PlanKitSummary {
         kinds: kit
             .summary
