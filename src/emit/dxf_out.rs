@@ -82,15 +82,17 @@ fn make_skeleton() -> Result<Skeleton, String> {
     let mut bytes = Vec::new();
     d.save(&mut bytes).map_err(|e| e.to_string())?;
     let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
-    // The crate ends lines with CRLF; the entities below do too.
-    let seed_key = "$HANDSEED\r\n  5\r\n";
+    // The crate ends lines with CRLF; the file gets LF throughout (a
+    // tenth smaller, read alike by every DXF reader).
+    let text = text.replace("\r\n", "\n");
+    let seed_key = "$HANDSEED\n  5\n";
     let seed_at = text.find(seed_key).ok_or("no $HANDSEED")? + seed_key.len();
-    let seed_end = seed_at + text[seed_at..].find("\r\n").ok_or("no $HANDSEED value")?;
+    let seed_end = seed_at + text[seed_at..].find('\n').ok_or("no $HANDSEED value")?;
     let first_handle =
         u64::from_str_radix(text[seed_at..seed_end].trim(), 16).map_err(|e| e.to_string())?;
-    let marker = "\r\nENTITIES\r\n";
+    let marker = "\nENTITIES\n";
     let ent_at = text.find(marker).ok_or("no ENTITIES section")? + marker.len();
-    if !text[ent_at..].starts_with("  0\r\nENDSEC\r\n") {
+    if !text[ent_at..].starts_with("  0\nENDSEC\n") {
         return Err("the ENTITIES section is not empty".into());
     }
     Ok(Skeleton {
@@ -124,7 +126,8 @@ pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
     Ok(out.into_bytes())
 }
 
-/// One entity with its handle, in the group codes the dxf crate writes.
+/// One entity with its handle, in the group codes the dxf crate writes
+/// (integers without its padding).
 fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
     match shape {
         Shape::Polyline {
@@ -134,22 +137,22 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
         } => {
             let _ = write!(
                 s,
-                "  0\r\nLWPOLYLINE\r\n  5\r\n{:X}\r\n100\r\nAcDbEntity\r\n  8\r\n{}\r\n100\r\nAcDbPolyline\r\n 90\r\n{:>9}\r\n 70\r\n{:>6}\r\n",
+                "  0\nLWPOLYLINE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbPolyline\n 90\n{}\n 70\n{}\n",
                 *handle,
                 layer.name(),
                 vertices.len(),
                 u8::from(*closed)
             );
             for v in vertices {
-                s.push_str(" 10\r\n");
+                s.push_str(" 10\n");
                 super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
-                s.push_str("\r\n 20\r\n");
+                s.push_str("\n 20\n");
                 super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
-                s.push_str("\r\n");
+                s.push_str("\n");
                 if v.bulge != 0.0 {
-                    s.push_str(" 42\r\n");
+                    s.push_str(" 42\n");
                     super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
-                    s.push_str("\r\n");
+                    s.push_str("\n");
                 }
             }
         }
@@ -160,16 +163,16 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
         } => {
             let _ = write!(
                 s,
-                "  0\r\nCIRCLE\r\n  5\r\n{:X}\r\n100\r\nAcDbEntity\r\n  8\r\n{}\r\n100\r\nAcDbCircle\r\n 10\r\n",
+                "  0\nCIRCLE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbCircle\n 10\n",
                 *handle,
                 layer.name()
             );
             super::push_decimal(s, center_mm[0], COORD_DECIMALS, true);
-            s.push_str("\r\n 20\r\n");
+            s.push_str("\n 20\n");
             super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
-            s.push_str("\r\n 30\r\n0.0\r\n 40\r\n");
+            s.push_str("\n 30\n0.0\n 40\n");
             super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
-            s.push_str("\r\n");
+            s.push_str("\n");
         }
     }
     *handle += 1;

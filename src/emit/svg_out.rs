@@ -45,6 +45,10 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
             shape(&mut s, &sheet.outline(), w);
         }
         for part in &sheet.parts {
+            if layer == Layer::Engrave {
+                engraving(&mut s, &part.shapes, w);
+                continue;
+            }
             for sh in part.shapes.iter().filter(|sh| shape_layer(sh) == layer) {
                 shape(&mut s, sh, w);
             }
@@ -123,6 +127,31 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
             }
             s.push_str("\"/>\n");
         }
+    }
+}
+
+/// A part's engraving strokes as one path of open subpaths.
+fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
+    let mut any = false;
+    for sh in shapes {
+        if let Shape::Polyline {
+            layer: Layer::Engrave,
+            vertices,
+            ..
+        } = sh
+        {
+            s.push_str(if any { " M" } else { r#"<path d="M"# });
+            any = true;
+            super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
+            s.push(' ');
+            super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
+            for pair in vertices.windows(2) {
+                segment(s, pair[0], pair[1], w);
+            }
+        }
+    }
+    if any {
+        s.push_str("\"/>\n");
     }
 }
 
