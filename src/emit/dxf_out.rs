@@ -148,11 +148,11 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
                 super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
                 s.push_str("\n 20\n");
                 super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
-                s.push_str("\n");
+                s.push('\n');
                 if v.bulge != 0.0 {
                     s.push_str(" 42\n");
                     super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
-                    s.push_str("\n");
+                    s.push('\n');
                 }
             }
         }
@@ -172,7 +172,7 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
             super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
             s.push_str("\n 30\n0.0\n 40\n");
             super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
-            s.push_str("\n");
+            s.push('\n');
         }
     }
     *handle += 1;
