@@ -22,6 +22,7 @@ pub mod design;
 pub mod emit;
 pub mod error;
 pub mod fabricate;
+pub mod flat;
 pub mod geom;
 pub mod io;
 pub mod nest;

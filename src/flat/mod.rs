@@ -1,0 +1,738 @@
+//! The flat state of an interlocking grid (issue 12): the planar layout the
+//! grid is assembled in before it is eased into its spatial shape.
+//!
+//! Model: every A/B strip an inextensible elastic strip standing upright on
+//! the floor, bending only in the floor plane (about its weak axis),
+//! untwisted; its node-to-node lengths are the erected ones; joints are pins
+//! about the vertical. Unknowns: the grid nodes' floor positions p_i. A
+//! strip through nodes p_0 … p_k has segments d_j = p_{j+1} − p_j and, at an
+//! interior node, the turning angle φ_j = angle(d_{j−1}, d_j); its bending
+//! energy is discretised per node interval as
+//!
+//! ```text
+//! E = Σ EI φ_j² / ℓ_j,   ℓ_j = (L_{j−1} + L_j) / 2,   κ_j = φ_j / ℓ_j
+//! ```
+//!
+//! (EI of all the strip's lamellas about their weak axes, n·h·t³/12). The
+//! flat state minimises E subject to |d_j| = L_j. A grid of m × n cells keeps
+//! m + n − 3 zero-energy mechanisms besides the rigid motions; they are
+//! taken by a weak pull of each node's crossing angle towards its erected
+//! angle (weight [`ANGLE_WEIGHT`]) and of every node towards its start
+//! (weight [`ANCHOR_WEIGHT`], the rigid motions).
+//!
+//! Solver: Levenberg–Marquardt on the residuals (energy terms √(ℓ̄/ℓ_j)·φ_j,
+//! lengths as a penalty (|d_j| − L_j)·[`LENGTH_WEIGHT`]/ℓ̄, the two weak
+//! pulls), each step a sparse Cholesky solve (faer, fill-reducing ordering)
+//! of JᵀJ + λ·diag(JᵀJ); then Gauss–Newton projection onto the length
+//! constraints (minimum-norm steps through J_L J_Lᵀ) until every length
+//! holds to [`LENGTH_TOLERANCE`] relative. Stationarity is reported as the
+//! norm of the objective's gradient projected onto the constraints' tangent
+//! space, relative to the gradient's own norm at the start.
+//!
+//! Start: the erected nodes projected onto their best-fit plane, seen from
+//! the side the surface normals point to (so angles keep their sense).
+
+use crate::analysis::Analysis;
+use crate::error::{Error, Result};
+use crate::io::profile_file::JointSystem;
+use crate::network::Family;
+use crate::profile::Profile;
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Weight of the pull towards the erected crossing angles (per radian,
+/// against bending residuals of order φ).
+pub const ANGLE_WEIGHT: f64 = 1e-3;
+/// Weight of the pull of each node towards its start (per mean interval).
+pub const ANCHOR_WEIGHT: f64 = 1e-6;
+/// Penalty weight of the lengths while minimising (per mean interval).
+pub const LENGTH_WEIGHT: f64 = 1e3;
+/// Every node-to-node length of the result holds to this, relative.
+pub const LENGTH_TOLERANCE: f64 = 1e-9;
+/// Iteration limit of the minimisation.
+pub const MAX_ITERATIONS: usize = 200;
+
+/// One grid node of the problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatNodeIn {
+    /// Its plan.json id.
+    pub id: usize,
+    /// Erected position, mm.
+    pub position_world_mm: DVec3,
+    /// Surface normal there.
+    pub normal_world: DVec3,
+    /// Oriented angle from A's tangent line to B's about the normal,
+    /// degrees in [0, 180).
+    pub erected_angle_deg: f64,
+    /// Index of its A strip in [`FlatProblem::strips`].
+    pub strip_a: usize,
+    /// Index of its B strip.
+    pub strip_b: usize,
+}
+
+/// One strip: its grid nodes in order and the lengths between them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatStripIn {
+    /// Strip id.
+    pub id: String,
+    /// A or B.
+    pub family: Family,
+    /// Indices into [`FlatProblem::nodes`], by station.
+    pub nodes: Vec<usize>,
+    /// Erected node-to-node lengths along the strip, mm (one fewer).
+    pub lengths_mm: Vec<f64>,
+}
+
+/// What the flat state is solved for: plain data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatProblem {
+    /// The A×B nodes.
+    pub nodes: Vec<FlatNodeIn>,
+    /// The A and B strips with at least one node.
+    pub strips: Vec<FlatStripIn>,
+    /// Weak-axis bending stiffness of a whole strip, N·mm².
+    pub ei_nmm2: f64,
+    /// Young's modulus, MPa.
+    pub youngs_modulus_mpa: f64,
+    /// Lamella thickness, mm.
+    pub thickness_mm: f64,
+    /// Design strength, MPa.
+    pub design_strength_mpa: f64,
+}
+
+/// The problem of an analysed network for a profile. Two-level grids have
+/// no flat state (their studs fix the angles): an error saying so.
+pub fn problem(an: &Analysis, profile: &Profile) -> Result<FlatProblem> {
+    if profile.joint.system == JointSystem::TwoLevel {
+        return Err(Error::fabrication_part(
+            &profile.source,
+            "joint",
+            "a two-level grid cannot be assembled flat: its studs fix every crossing at 90°, so there is no flat state to erect from",
+        ));
+    }
+    let mut index: HashMap<usize, usize> = HashMap::new();
+    let mut nodes = Vec::new();
+    let strip_index: HashMap<usize, usize> = an
+        .lamella_strips()
+        .enumerate()
+        .map(|(i, s)| (s.curve, i))
+        .collect();
+    for n in &an.topology.nodes {
+        let (fa, fb) = (an.strips[n.a].family, an.strips[n.b].family);
+        if fa != Family::A || fb != Family::B {
+            continue;
+        }
+        index.insert(n.id, nodes.len());
+        nodes.push(FlatNodeIn {
+            id: n.id,
+            position_world_mm: n.position_world_mm,
+            normal_world: n.normal_world,
+            erected_angle_deg: n.oriented_angle_deg,
+            strip_a: strip_index[&n.a],
+            strip_b: strip_index[&n.b],
+        });
+    }
+    let strips = an
+        .lamella_strips()
+        .map(|s| {
+            let on: Vec<(usize, f64)> = s
+                .nodes
+                .iter()
+                .filter_map(|cn| {
+                    let id = an.topology.nodes[cn.node].id;
+                    index.get(&id).map(|&i| (i, cn.station_mm))
+                })
+                .collect();
+            FlatStripIn {
+                id: s.id.clone(),
+                family: s.family,
+                nodes: on.iter().map(|p| p.0).collect(),
+                lengths_mm: on.windows(2).map(|w| w[1].1 - w[0].1).collect(),
+            }
+        })
+        .collect();
+    let (t, h) = (profile.thickness_mm(), profile.height_mm());
+    let e = profile.youngs_modulus_mpa();
+    Ok(FlatProblem {
+        nodes,
+        strips,
+        ei_nmm2: e * f64::from(profile.section.per_strip) * h * t.powi(3) / 12.0,
+        youngs_modulus_mpa: e,
+        thickness_mm: t,
+        design_strength_mpa: profile.design_strength_mpa(),
+    })
+}
+
+/// A node of the flat state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatNode {
+    /// Its plan.json id.
+    pub node: usize,
+    /// Floor position, mm.
+    pub position_mm: [f64; 2],
+    /// Oriented angle from A to B in the flat state, degrees in [0, 180).
+    pub angle_deg: f64,
+    /// The erected oriented angle, degrees.
+    pub erected_angle_deg: f64,
+    /// Erected − flat, degrees in (−90, 90]: how far the joint turns.
+    pub rotation_deg: f64,
+}
+
+/// A strip of the flat state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatStrip {
+    /// Strip id.
+    pub strip: String,
+    /// Largest in-plane curvature, 1/mm.
+    pub max_curvature_per_mm: f64,
+    /// E·κ·t/2 at that curvature, MPa.
+    pub max_bending_stress_mpa: f64,
+    /// That stress over the design strength.
+    pub utilization: f64,
+}
+
+/// The solved flat state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatState {
+    /// The gradient and the lengths met their tolerances.
+    pub converged: bool,
+    /// Levenberg–Marquardt iterations plus projection steps.
+    pub iterations: usize,
+    /// Bending energy Σ EI φ²/ℓ of the result, N·mm.
+    pub energy_nmm: f64,
+    /// The same of the start (the erected nodes projected onto their plane,
+    /// lengths then made right), N·mm.
+    pub start_energy_nmm: f64,
+    /// The objective at the result and at the start (energy and the weak
+    /// pulls, lengths met at the result).
+    pub objective: (f64, f64),
+    /// Projected gradient norm over the start's gradient norm (or over
+    /// 1e-6 per mean node interval, when the start is already at rest).
+    pub gradient_norm: f64,
+    /// Largest relative node-to-node length error.
+    pub max_length_error: f64,
+    /// Per node, in problem order.
+    pub nodes: Vec<FlatNode>,
+    /// Per strip, in problem order.
+    pub strips: Vec<FlatStrip>,
+    /// Extent of the layout along its x and y, mm.
+    pub footprint_mm: [f64; 2],
+}
+
+impl FlatState {
+    /// The node that turns most (index into `nodes`), if any.
+    pub fn max_rotation(&self) -> Option<usize> {
+        (0..self.nodes.len()).max_by(|&a, &b| {
+            self.nodes[a]
+                .rotation_deg
+                .abs()
+                .total_cmp(&self.nodes[b].rotation_deg.abs())
+                .then(b.cmp(&a))
+        })
+    }
+}
+
+/// Residual bookkeeping: each row's entries (column, value) and value.
+struct Rows {
+    r: Vec<f64>,
+    entries: Vec<Vec<(usize, f64)>>,
+}
+
+impl Rows {
+    fn new() -> Rows {
+        Rows {
+            r: Vec::new(),
+            entries: Vec::new(),
+        }
+    }
+    fn push(&mut self, r: f64, e: Vec<(usize, f64)>) {
+        self.r.push(r);
+        self.entries.push(e);
+    }
+    fn sum_sq(&self) -> f64 {
+        self.r.iter().map(|x| x * x).sum()
+    }
+    /// Jᵀr.
+    fn gradient(&self, n: usize) -> Vec<f64> {
+        let mut g = vec![0.0; n];
+        for (r, e) in self.r.iter().zip(&self.entries) {
+            for &(c, v) in e {
+                g[c] += v * r;
+            }
+        }
+        g
+    }
+    /// JᵀJ as triplets (lower triangle), and its diagonal.
+    fn normal_matrix(&self, n: usize) -> (Vec<Triplet<usize, usize, f64>>, Vec<f64>) {
+        let mut t = Vec::new();
+        let mut diag = vec![0.0; n];
+        for e in &self.entries {
+            for &(ci, vi) in e {
+                for &(cj, vj) in e {
+                    if ci >= cj {
+                        t.push(Triplet::new(ci, cj, vi * vj));
+                    }
+                    if ci == cj {
+                        diag[ci] += vi * vj;
+                    }
+                }
+            }
+        }
+        (t, diag)
+    }
+}
+
+fn perp_over_sq(d: [f64; 2]) -> [f64; 2] {
+    let q = d[0] * d[0] + d[1] * d[1];
+    [-d[1] / q, d[0] / q]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// Signed angle from `a` to `b`, radians.
+fn turn(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1])
+}
+
+/// An angle wrapped into (−π/2, π/2] (tangent lines are undirected).
+fn wrap_half(a: f64) -> f64 {
+    let p = std::f64::consts::PI;
+    let mut x = a.rem_euclid(p);
+    if x > 0.5 * p {
+        x -= p;
+    }
+    x
+}
+
+/// The chord of a strip at its k-th node: next − previous (one-sided at the
+/// ends), and the two node indices.
+fn chord(s: &FlatStripIn, k: usize) -> (usize, usize) {
+    let last = s.nodes.len() - 1;
+    (s.nodes[k.saturating_sub(1)], s.nodes[(k + 1).min(last)])
+}
+
+struct Setup {
+    /// Mean node interval, mm.
+    l_mean: f64,
+    /// Per node: (strip A, position on it), (strip B, position on it).
+    on: Vec<[(usize, usize); 2]>,
+    start: Vec<[f64; 2]>,
+}
+
+fn p(x: &[f64], i: usize) -> [f64; 2] {
+    [x[2 * i], x[2 * i + 1]]
+}
+
+/// Residuals at `x`: bending, (optionally) lengths, angle pull, anchors.
+fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Rows {
+    let mut rows = Rows::new();
+    let lm = su.l_mean;
+    for s in &pr.strips {
+        for j in 1..s.nodes.len().saturating_sub(1) {
+            let (a, b, c) = (s.nodes[j - 1], s.nodes[j], s.nodes[j + 1]);
+            let (d1, d2) = (sub(p(x, b), p(x, a)), sub(p(x, c), p(x, b)));
+            let ell = 0.5 * (s.lengths_mm[j - 1] + s.lengths_mm[j]);
+            let w = (lm / ell).sqrt();
+            let (g1, g2) = (perp_over_sq(d1), perp_over_sq(d2));
+            rows.push(
+                w * turn(d1, d2),
+                vec![
+                    (2 * a, w * g1[0]),
+                    (2 * a + 1, w * g1[1]),
+                    (2 * b, -w * (g1[0] + g2[0])),
+                    (2 * b + 1, -w * (g1[1] + g2[1])),
+                    (2 * c, w * g2[0]),
+                    (2 * c + 1, w * g2[1]),
+                ],
+            );
+        }
+        if with_lengths {
+            length_rows(&mut rows, s, x, LENGTH_WEIGHT / lm);
+        }
+    }
+    for (i, n) in pr.nodes.iter().enumerate() {
+        let [(sa, ka), (sb, kb)] = su.on[i];
+        let (a0, a1) = chord(&pr.strips[sa], ka);
+        let (b0, b1) = chord(&pr.strips[sb], kb);
+        let (da, db) = (sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
+        let psi = turn(da, db);
+        let w = ANGLE_WEIGHT;
+        let (ga, gb) = (perp_over_sq(da), perp_over_sq(db));
+        let mut e = Vec::with_capacity(8);
+        for (node, sign, g) in [(a1, -1.0, ga), (a0, 1.0, ga), (b1, 1.0, gb), (b0, -1.0, gb)] {
+            e.push((2 * node, w * sign * g[0]));
+            e.push((2 * node + 1, w * sign * g[1]));
+        }
+        rows.push(
+            w * wrap_half(psi - n.erected_angle_deg.to_radians()),
+            e,
+        );
+        let wa = ANCHOR_WEIGHT / lm;
+        let q = p(x, i);
+        rows.push(wa * (q[0] - su.start[i][0]), vec![(2 * i, wa)]);
+        rows.push(wa * (q[1] - su.start[i][1]), vec![(2 * i + 1, wa)]);
+    }
+    rows
+}
+
+/// Length residuals (|d| − L)·w of a strip.
+fn length_rows(rows: &mut Rows, s: &FlatStripIn, x: &[f64], w: f64) {
+    for j in 0..s.lengths_mm.len() {
+        let (a, b) = (s.nodes[j], s.nodes[j + 1]);
+        let d = sub(p(x, b), p(x, a));
+        let len = d[0].hypot(d[1]);
+        let u = [d[0] / len, d[1] / len];
+        rows.push(
+            w * (len - s.lengths_mm[j]),
+            vec![
+                (2 * a, -w * u[0]),
+                (2 * a + 1, -w * u[1]),
+                (2 * b, w * u[0]),
+                (2 * b + 1, w * u[1]),
+            ],
+        );
+    }
+}
+
+fn lengths_only(pr: &FlatProblem, x: &[f64]) -> Rows {
+    let mut rows = Rows::new();
+    for s in &pr.strips {
+        length_rows(&mut rows, s, x, 1.0);
+    }
+    rows
+}
+
+/// Solve (Σ triplets + shift·diag) y = rhs by sparse Cholesky.
+fn solve_spd(
+    n: usize,
+    mut t: Vec<Triplet<usize, usize, f64>>,
+    diag: &[f64],
+    shift: f64,
+    rhs: &[f64],
+) -> Option<Vec<f64>> {
+    for (i, d) in diag.iter().enumerate() {
+        // A floor keeps columns without entries (none here) regular.
+        t.push(Triplet::new(i, i, shift * d.max(1e-12) + 1e-14));
+    }
+    let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &t).ok()?;
+    let llt = a.sp_cholesky(Side::Lower).ok()?;
+    let mut b = Mat::<f64>::from_fn(n, 1, |i, _| rhs[i]);
+    llt.solve_in_place(b.as_mut());
+    let y: Vec<f64> = (0..n).map(|i| b[(i, 0)]).collect();
+    y.iter().all(|v| v.is_finite()).then_some(y)
+}
+
+/// Energy Σ EI φ²/ℓ, N·mm.
+fn energy(pr: &FlatProblem, x: &[f64]) -> f64 {
+    let mut e = 0.0;
+    for s in &pr.strips {
+        for j in 1..s.nodes.len().saturating_sub(1) {
+            let (a, b, c) = (s.nodes[j - 1], s.nodes[j], s.nodes[j + 1]);
+            let phi = turn(sub(p(x, b), p(x, a)), sub(p(x, c), p(x, b)));
+            let ell = 0.5 * (s.lengths_mm[j - 1] + s.lengths_mm[j]);
+            e += pr.ei_nmm2 * phi * phi / ell;
+        }
+    }
+    e
+}
+
+/// The start: erected nodes on their best-fit plane, seen from the normals' side.
+fn start_positions(pr: &FlatProblem) -> Vec<[f64; 2]> {
+    let n = pr.nodes.len() as f64;
+    let c = pr
+        .nodes
+        .iter()
+        .map(|q| q.position_world_mm)
+        .sum::<DVec3>()
+        / n;
+    let mean_normal = pr.nodes.iter().map(|q| q.normal_world).sum::<DVec3>();
+    // Best-fit plane normal: the smallest principal axis of the scatter,
+    // by power iteration on (trace·I − C), oriented along the mean normal.
+    let mut cov = [[0.0f64; 3]; 3];
+    for q in &pr.nodes {
+        let d = q.position_world_mm - c;
+        let v = [d.x, d.y, d.z];
+        for (r, row) in cov.iter_mut().enumerate() {
+            for (k, cell) in row.iter_mut().enumerate() {
+                *cell += v[r] * v[k];
+            }
+        }
+    }
+    let tr = cov[0][0] + cov[1][1] + cov[2][2];
+    let mut v = if mean_normal.length() > 1e-9 {
+        mean_normal.normalize()
+    } else {
+        DVec3::Z
+    };
+    for _ in 0..200 {
+        let w = DVec3::new(
+            tr * v.x - (cov[0][0] * v.x + cov[0][1] * v.y + cov[0][2] * v.z),
+            tr * v.y - (cov[1][0] * v.x + cov[1][1] * v.y + cov[1][2] * v.z),
+            tr * v.z - (cov[2][0] * v.x + cov[2][1] * v.y + cov[2][2] * v.z),
+        );
+        if w.length() < 1e-300 {
+            break;
+        }
+        v = w.normalize();
+    }
+    if v.dot(mean_normal) < 0.0 {
+        v = -v;
+    }
+    let e1 = v.any_orthonormal_vector();
+    let e2 = v.cross(e1);
+    pr.nodes
+        .iter()
+        .map(|q| {
+            let d = q.position_world_mm - c;
+            [d.dot(e1), d.dot(e2)]
+        })
+        .collect()
+}
+
+/// Solve the flat state.
+pub fn solve(pr: &FlatProblem) -> FlatState {
+    let n = 2 * pr.nodes.len();
+    let mut on = vec![[(usize::MAX, 0usize); 2]; pr.nodes.len()];
+    let mut total_len = 0.0;
+    let mut count = 0usize;
+    for (si, s) in pr.strips.iter().enumerate() {
+        for (k, &node) in s.nodes.iter().enumerate() {
+            let slot = usize::from(s.family == Family::B);
+            on[node][slot] = (si, k);
+        }
+        total_len += s.lengths_mm.iter().sum::<f64>();
+        count += s.lengths_mm.len();
+    }
+    let start = start_positions(pr);
+    let su = Setup {
+        l_mean: if count > 0 { total_len / count as f64 } else { 1.0 },
+        on,
+        start: Vec::new(),
+    };
+    let mut x: Vec<f64> = start.iter().flat_map(|q| [q[0], q[1]]).collect();
+    // The start proper: the projection with its lengths made right.
+    let (_, mut iterations) = project_lengths(pr, &mut x);
+    let start_x = x.clone();
+    let su = Setup {
+        start: start_x.chunks(2).map(|c| [c[0], c[1]]).collect(),
+        ..su
+    };
+    let start_energy = energy(pr, &x);
+    let objective = |x: &[f64]| residuals(pr, &su, x, false).sum_sq();
+    let start_objective = objective(&x);
+    let mut rows = residuals(pr, &su, &x, true);
+    let mut cost = rows.sum_sq();
+    let g0 = norm(&rows.gradient(n)).max(1e-300);
+    let mut lambda = 1e-3;
+    for _ in 0..MAX_ITERATIONS {
+        iterations += 1;
+        let g = rows.gradient(n);
+        if norm(&g) <= 1e-12 * g0 {
+            break;
+        }
+        let (t, diag) = rows.normal_matrix(n);
+        let neg: Vec<f64> = g.iter().map(|v| -v).collect();
+        let Some(step) = solve_spd(n, t, &diag, lambda, &neg) else {
+            lambda *= 10.0;
+            continue;
+        };
+        let trial: Vec<f64> = x.iter().zip(&step).map(|(a, b)| a + b).collect();
+        let trial_rows = residuals(pr, &su, &trial, true);
+        let trial_cost = trial_rows.sum_sq();
+        if trial_cost < cost {
+            let small = norm(&step) <= 1e-12 * (1.0 + norm(&x));
+            let gain = (cost - trial_cost) / cost.max(1e-300);
+            x = trial;
+            rows = trial_rows;
+            cost = trial_cost;
+            lambda = (lambda / 3.0).max(1e-12);
+            if small || gain < 1e-15 {
+                break;
+            }
+        } else {
+            lambda *= 4.0;
+            if lambda > 1e12 {
+                break;
+            }
+        }
+    }
+    let (length_ok, steps) = project_lengths(pr, &mut x);
+    iterations += steps;
+    // Stationarity: the objective's gradient projected onto the tangent
+    // space of the length constraints.
+    let obj_rows = residuals(pr, &su, &x, false);
+    let g = obj_rows.gradient(n);
+    let lr = lengths_only(pr, &x);
+    let m = lr.r.len();
+    let jg: Vec<f64> = lr
+        .entries
+        .iter()
+        .map(|row| row.iter().map(|&(c, v)| v * g[c]).sum())
+        .collect();
+    let gt = match solve_spd(m, jjt(&lr), &vec![0.0; m], 0.0, &jg) {
+        Some(y) => {
+            let mut gt = g.clone();
+            for (row, yi) in lr.entries.iter().zip(&y) {
+                for &(c, v) in row {
+                    gt[c] -= v * yi;
+                }
+            }
+            gt
+        }
+        None => g.clone(),
+    };
+    // Relative to the start's gradient; a start already at rest (a planar
+    // grid) is measured against 1e-6 per mean interval instead.
+    let g_start = norm(&residuals(pr, &su, &start_x, false).gradient(n)).max(1e-6 / su.l_mean);
+    let gradient_norm = norm(&gt) / g_start;
+    finish(pr, &su, &x, iterations, start_energy, start_objective, objective(&x), gradient_norm, length_ok)
+}
+
+/// Make every length hold: minimum-norm Gauss–Newton steps through
+/// (J_L J_Lᵀ) y = r_L, Δx = −J_Lᵀ y. Whether they hold to
+/// [`LENGTH_TOLERANCE`], and the steps taken.
+fn project_lengths(pr: &FlatProblem, x: &mut [f64]) -> (bool, usize) {
+    let n = x.len();
+    for step in 0..50 {
+        if worst_length_error(pr, x) <= LENGTH_TOLERANCE {
+            return (true, step);
+        }
+        let lr = lengths_only(pr, x);
+        let m = lr.r.len();
+        let Some(y) = solve_spd(m, jjt(&lr), &vec![0.0; m], 0.0, &lr.r) else {
+            return (false, step);
+        };
+        let mut dx = vec![0.0; n];
+        for (row, yi) in lr.entries.iter().zip(&y) {
+            for &(c, v) in row {
+                dx[c] -= v * yi;
+            }
+        }
+        for (a, d) in x.iter_mut().zip(&dx) {
+            *a += d;
+        }
+    }
+    (worst_length_error(pr, x) <= LENGTH_TOLERANCE, 50)
+}
+
+/// J Jᵀ of constraint rows as lower-triangle triplets.
+fn jjt(lr: &Rows) -> Vec<Triplet<usize, usize, f64>> {
+    // Rows sharing a column couple; index rows by column.
+    let mut by_col: HashMap<usize, Vec<(usize, f64)>> = HashMap::new();
+    for (ri, row) in lr.entries.iter().enumerate() {
+        for &(c, v) in row {
+            by_col.entry(c).or_default().push((ri, v));
+        }
+    }
+    let mut cols: Vec<_> = by_col.into_iter().collect();
+    cols.sort_by_key(|c| c.0);
+    let mut t = Vec::new();
+    for (_, list) in cols {
+        for &(ri, vi) in &list {
+            for &(rj, vj) in &list {
+                if ri >= rj {
+                    t.push(Triplet::new(ri, rj, vi * vj));
+                }
+            }
+        }
+    }
+    t
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+fn worst_length_error(pr: &FlatProblem, x: &[f64]) -> f64 {
+    let mut worst: f64 = 0.0;
+    for s in &pr.strips {
+        for j in 0..s.lengths_mm.len() {
+            let d = sub(p(x, s.nodes[j + 1]), p(x, s.nodes[j]));
+            worst = worst.max((d[0].hypot(d[1]) - s.lengths_mm[j]).abs() / s.lengths_mm[j]);
+        }
+    }
+    worst
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    pr: &FlatProblem,
+    su: &Setup,
+    x: &[f64],
+    iterations: usize,
+    start_energy: f64,
+    start_objective: f64,
+    objective: f64,
+    gradient_norm: f64,
+    length_ok: bool,
+) -> FlatState {
+    let nodes = pr
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            let [(sa, ka), (sb, kb)] = su.on[i];
+            let (a0, a1) = chord(&pr.strips[sa], ka);
+            let (b0, b1) = chord(&pr.strips[sb], kb);
+            let psi = turn(sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
+            let angle_deg = psi.to_degrees().rem_euclid(180.0);
+            let rotation_deg = wrap_half((n.erected_angle_deg - angle_deg).to_radians()).to_degrees();
+            FlatNode {
+                node: n.id,
+                position_mm: p(x, i),
+                angle_deg,
+                erected_angle_deg: n.erected_angle_deg,
+                rotation_deg,
+            }
+        })
+        .collect();
+    let strips = pr
+        .strips
+        .iter()
+        .map(|s| {
+            let mut kappa: f64 = 0.0;
+            for j in 1..s.nodes.len().saturating_sub(1) {
+                let (a, b, c) = (s.nodes[j - 1], s.nodes[j], s.nodes[j + 1]);
+                let phi = turn(sub(p(x, b), p(x, a)), sub(p(x, c), p(x, b)));
+                kappa = kappa.max(phi.abs() / (0.5 * (s.lengths_mm[j - 1] + s.lengths_mm[j])));
+            }
+            let sigma = pr.youngs_modulus_mpa * kappa * 0.5 * pr.thickness_mm;
+            FlatStrip {
+                strip: s.id.clone(),
+                max_curvature_per_mm: kappa,
+                max_bending_stress_mpa: sigma,
+                utilization: sigma / pr.design_strength_mpa,
+            }
+        })
+        .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for i in 0..pr.nodes.len() {
+        let q = p(x, i);
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    let max_length_error = worst_length_error(pr, x);
+    FlatState {
+        converged: length_ok && gradient_norm < 1e-6,
+        iterations,
+        energy_nmm: energy(pr, x),
+        start_energy_nmm: start_energy,
+        objective: (objective, start_objective),
+        gradient_norm,
+        max_length_error,
+        nodes,
+        strips,
+        footprint_mm: if pr.nodes.is_empty() {
+            [0.0, 0.0]
+        } else {
+            [hi[0] - lo[0], hi[1] - lo[1]]
+        },
+    }
+}

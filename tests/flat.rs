@@ -1,0 +1,117 @@
+//! The flat state (issue 12): a planar grid comes back unchanged; on the
+//! Enneper sample every length holds, the result is stationary, its energy
+//! is below the start's, and it is deterministic; two-level grids have none.
+
+mod common;
+
+use glam::DVec3;
+use lamella::flat::{problem, solve};
+use lamella::io::{self, ReadOptions};
+use lamella::network::{Family, RawCurve, RawNetwork, Unit};
+use lamella::profile::Profile;
+use std::path::Path;
+
+fn profile(name: &str) -> Profile {
+    Profile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("profiles/{name}.yaml")))
+        .expect("profile")
+}
+
+/// Straight strips in the plane z = 0: family A along x every 300 mm,
+/// family B at 70° to it, sampled every 10 mm, with file normals +z.
+fn planar_70() -> RawNetwork {
+    let dir_b = DVec3::new(70f64.to_radians().cos(), 70f64.to_radians().sin(), 0.0);
+    let line = |id: String, family, p0: DVec3, d: DVec3, len: f64| {
+        let n = (len / 10.0).round() as usize;
+        RawCurve {
+            id,
+            family,
+            points: (0..=n).map(|k| p0 + d * (len * k as f64 / n as f64)).collect(),
+            normals: Some(vec![DVec3::Z; n + 1]),
+        }
+    };
+    let mut curves = Vec::new();
+    for i in 0..5 {
+        curves.push(line(
+            format!("A{i}"),
+            Family::A,
+            DVec3::new(-400.0, 300.0 * i as f64, 0.0),
+            DVec3::X,
+            2600.0,
+        ));
+    }
+    for j in 0..6 {
+        // Through (300 j, 0) and on across every A line.
+        let p0 = DVec3::new(300.0 * j as f64, 0.0, 0.0) - dir_b * 150.0;
+        curves.push(line(format!("B{j}"), Family::B, p0, dir_b, 1600.0));
+    }
+    RawNetwork {
+        name: "planar-70".into(),
+        unit: Unit::Mm,
+        tolerance: None,
+        curves,
+    }
+}
+
+#[test]
+fn a_planar_grid_comes_back_unchanged_with_zero_rotations() {
+    let (_, an) = common::run(planar_70());
+    let pr = problem(&an, &profile("steel-1.5")).expect("problem");
+    assert_eq!(pr.nodes.len(), 30);
+    let st = solve(&pr);
+    assert!(st.converged, "{st:?}");
+    for n in &st.nodes {
+        assert!((n.angle_deg - 70.0).abs() < 1e-6, "node {}: {}", n.node, n.angle_deg);
+        assert!(n.rotation_deg.abs() < 1e-6, "node {}: {}", n.node, n.rotation_deg);
+    }
+    assert!(st.energy_nmm < 1e-9, "{}", st.energy_nmm);
+    // Congruent to the erected grid: every pairwise distance kept.
+    for (i, a) in pr.nodes.iter().enumerate() {
+        for (j, b) in pr.nodes.iter().enumerate().skip(i + 1) {
+            let (p, q) = (st.nodes[i].position_mm, st.nodes[j].position_mm);
+            let flat = (p[0] - q[0]).hypot(p[1] - q[1]);
+            let erected = a.position_world_mm.distance(b.position_world_mm);
+            assert!((flat - erected).abs() < 1e-6, "{i}-{j}: {flat} vs {erected}");
+        }
+    }
+}
+
+#[test]
+fn enneper_flat_state_keeps_lengths_is_stationary_and_lowers_the_energy() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/enneper-4m.yaml");
+    let net = io::read_network(&path, ReadOptions::default()).expect("read");
+    let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyze");
+    let pr = problem(&an, &profile("steel-1.5")).expect("problem");
+    let st = solve(&pr);
+    // Every node-to-node length, measured independently on the result.
+    let pos: std::collections::HashMap<usize, [f64; 2]> =
+        st.nodes.iter().map(|n| (n.node, n.position_mm)).collect();
+    let mut checked = 0;
+    for s in &pr.strips {
+        for (k, l) in s.lengths_mm.iter().enumerate() {
+            let (a, b) = (pos[&pr.nodes[s.nodes[k]].id], pos[&pr.nodes[s.nodes[k + 1]].id]);
+            let d = (a[0] - b[0]).hypot(a[1] - b[1]);
+            assert!(((d - l) / l).abs() < 1e-6, "{} segment {k}: {d} vs {l}", s.id);
+            checked += 1;
+        }
+    }
+    assert!(checked > 100);
+    assert!(st.gradient_norm < 1e-6, "projected gradient {}", st.gradient_norm);
+    assert!(st.converged);
+    assert!(st.energy_nmm <= st.start_energy_nmm, "{} > {}", st.energy_nmm, st.start_energy_nmm);
+    assert!(st.objective.0 <= st.objective.1);
+    // Deterministic.
+    assert_eq!(solve(&pr), st);
+    let worst = st.max_rotation().map(|i| st.nodes[i].rotation_deg.abs()).expect("nodes");
+    eprintln!(
+        "enneper-4m flat: energy {:.6} N·mm (start {:.6}), largest rotation {worst:.2}°, footprint {:.0} × {:.0} mm, {} iterations, gradient {:.1e}",
+        st.energy_nmm, st.start_energy_nmm, st.footprint_mm[0], st.footprint_mm[1], st.iterations, st.gradient_norm
+    );
+    assert!(worst > 1.0 && worst < 90.0);
+}
+
+#[test]
+fn two_level_grids_have_no_flat_state() {
+    let (_, an) = common::run(planar_70());
+    let e = problem(&an, &profile("poplar-ply-4")).expect_err("two-level").to_string();
+    assert!(e.contains("two-level") && e.contains("flat"), "{e}");
+}
