@@ -54,6 +54,24 @@ enum Command {
         #[command(flatten)]
         read: ReadArgs,
     },
+    /// The flat state of an interlocking grid: the planar layout of least
+    /// bending energy with the erected node-to-node lengths, each joint's
+    /// rotation from flat to erected, each strip's stress while flat; write
+    /// DIR/plan.json (with `flat`) and DIR/flat.svg. Exit status 3 when a
+    /// joint turns past the profile's rotation tolerance or a strip is
+    /// overstressed while flat; 1 for two-level grids (no flat state).
+    Flat {
+        /// The network file (.yaml, .yml, .json, .obj, .dxf).
+        network: PathBuf,
+        /// The material profile (profiles/*.yaml).
+        #[arg(long)]
+        profile: PathBuf,
+        /// Directory for plan.json and flat.svg (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
     /// Find the nodes of a network and compute node-to-node lengths, curvature
     /// and twist of every strip; write DIR/plan.json and print a summary.
     Nodes {
@@ -232,6 +250,12 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> lamella::Result<ExitCode> {
     match cli.command {
+        Command::Flat {
+            network,
+            profile,
+            out,
+            read,
+        } => flat(&network, &profile, &out, &read),
         Command::Build {
             network,
             profile,
@@ -274,6 +298,98 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             export_instance,
             read,
         } => parts(&network, &profile, &out, &read, Some(export_instance)),
+    }
+}
+
+fn flat(
+    path: &Path,
+    profile_path: &Path,
+    out: &Path,
+    read: &ReadArgs,
+) -> lamella::Result<ExitCode> {
+    let target = out.join("plan.json");
+    let svg_target = out.join("flat.svg");
+    for t in [&target, &svg_target] {
+        refuse_overwriting_input(t, &[("network", path), ("profile", profile_path)])?;
+    }
+    let profile = Profile::load(profile_path)?;
+    let net = io::read_network(path, read.options())?;
+    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
+    let problem = lamella::flat::problem(&an, &profile)?;
+    let st = lamella::flat::solve(&problem);
+    let report = lamella::check::check(&an, &profile);
+    let model = Model::checked(&net, &an, profile.clone(), report, None);
+    let mut plan = plan::build(&net, &an, &model);
+    plan::add_flat(&mut plan, &st);
+    let svg = lamella::flat::svg::to_svg(
+        &problem,
+        &st,
+        &format!("{} — flat assembly layout ({}), mm", net.name, profile.name),
+    );
+    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+    plan::write_atomic(&svg_target, svg.as_bytes())?;
+    for w in an.warnings() {
+        eprintln!("warning: {w}");
+    }
+    println!(
+        "{} flat ({}): {} nodes, {} strips; footprint {:.0} × {:.0} mm; energy {:.1} N·mm (start {:.1}); {} iterations, {}",
+        net.name,
+        profile.name,
+        st.nodes.len(),
+        st.strips.len(),
+        st.footprint_mm[0],
+        st.footprint_mm[1],
+        st.energy_nmm,
+        st.start_energy_nmm,
+        st.iterations,
+        if st.converged {
+            format!("converged (projected gradient {:.1e}, lengths to {:.1e})", st.gradient_norm, st.max_length_error)
+        } else {
+            format!("NOT converged (projected gradient {:.1e}, lengths to {:.1e})", st.gradient_norm, st.max_length_error)
+        }
+    );
+    let tolerance = profile.joint.rotation_tolerance_deg;
+    let mut fails = Vec::new();
+    if let Some(i) = st.max_rotation() {
+        let n = &st.nodes[i];
+        println!(
+            "largest rotation: {:+.2}° at node {} (flat {:.2}°, erected {:.2}°); the slots allow ±{tolerance}°",
+            n.rotation_deg, n.node, n.angle_deg, n.erected_angle_deg
+        );
+        if n.rotation_deg.abs() > tolerance {
+            fails.push(format!(
+                "node {} turns {:.2}° on erection, past the rotation tolerance {tolerance}°",
+                n.node,
+                n.rotation_deg.abs()
+            ));
+        }
+    }
+    if let Some(s) = st
+        .strips
+        .iter()
+        .max_by(|a, b| a.utilization.total_cmp(&b.utilization))
+    {
+        println!(
+            "largest stress while flat: {:.1} MPa in {} (utilisation {:.2})",
+            s.max_bending_stress_mpa, s.strip, s.utilization
+        );
+        if s.utilization > 1.0 {
+            fails.push(format!(
+                "strip {} is overstressed while flat ({:.2} × the design strength)",
+                s.strip, s.utilization
+            ));
+        }
+    }
+    if !st.converged {
+        fails.push("the flat state did not converge".into());
+    }
+    println!("wrote {} and {}", target.display(), svg_target.display());
+    if fails.is_empty() {
+        println!("PASS: the grid assembles flat and erects within the slots and the strength");
+        Ok(ExitCode::SUCCESS)
+    } else {
+        println!("FAIL: {}", fails.join("; "));
+        Ok(ExitCode::from(3))
     }
 }
 

@@ -25,7 +25,9 @@ fn planar_70() -> RawNetwork {
         RawCurve {
             id,
             family,
-            points: (0..=n).map(|k| p0 + d * (len * k as f64 / n as f64)).collect(),
+            points: (0..=n)
+                .map(|k| p0 + d * (len * k as f64 / n as f64))
+                .collect(),
             normals: Some(vec![DVec3::Z; n + 1]),
         }
     };
@@ -60,8 +62,18 @@ fn a_planar_grid_comes_back_unchanged_with_zero_rotations() {
     let st = solve(&pr);
     assert!(st.converged, "{st:?}");
     for n in &st.nodes {
-        assert!((n.angle_deg - 70.0).abs() < 1e-6, "node {}: {}", n.node, n.angle_deg);
-        assert!(n.rotation_deg.abs() < 1e-6, "node {}: {}", n.node, n.rotation_deg);
+        assert!(
+            (n.angle_deg - 70.0).abs() < 1e-6,
+            "node {}: {}",
+            n.node,
+            n.angle_deg
+        );
+        assert!(
+            n.rotation_deg.abs() < 1e-6,
+            "node {}: {}",
+            n.node,
+            n.rotation_deg
+        );
     }
     assert!(st.energy_nmm < 1e-9, "{}", st.energy_nmm);
     // Congruent to the erected grid: every pairwise distance kept.
@@ -70,7 +82,10 @@ fn a_planar_grid_comes_back_unchanged_with_zero_rotations() {
             let (p, q) = (st.nodes[i].position_mm, st.nodes[j].position_mm);
             let flat = (p[0] - q[0]).hypot(p[1] - q[1]);
             let erected = a.position_world_mm.distance(b.position_world_mm);
-            assert!((flat - erected).abs() < 1e-6, "{i}-{j}: {flat} vs {erected}");
+            assert!(
+                (flat - erected).abs() < 1e-6,
+                "{i}-{j}: {flat} vs {erected}"
+            );
         }
     }
 }
@@ -88,20 +103,39 @@ fn enneper_flat_state_keeps_lengths_is_stationary_and_lowers_the_energy() {
     let mut checked = 0;
     for s in &pr.strips {
         for (k, l) in s.lengths_mm.iter().enumerate() {
-            let (a, b) = (pos[&pr.nodes[s.nodes[k]].id], pos[&pr.nodes[s.nodes[k + 1]].id]);
+            let (a, b) = (
+                pos[&pr.nodes[s.nodes[k]].id],
+                pos[&pr.nodes[s.nodes[k + 1]].id],
+            );
             let d = (a[0] - b[0]).hypot(a[1] - b[1]);
-            assert!(((d - l) / l).abs() < 1e-6, "{} segment {k}: {d} vs {l}", s.id);
+            assert!(
+                ((d - l) / l).abs() < 1e-6,
+                "{} segment {k}: {d} vs {l}",
+                s.id
+            );
             checked += 1;
         }
     }
     assert!(checked > 100);
-    assert!(st.gradient_norm < 1e-6, "projected gradient {}", st.gradient_norm);
+    assert!(
+        st.gradient_norm < 1e-6,
+        "projected gradient {}",
+        st.gradient_norm
+    );
     assert!(st.converged);
-    assert!(st.energy_nmm <= st.start_energy_nmm, "{} > {}", st.energy_nmm, st.start_energy_nmm);
+    assert!(
+        st.energy_nmm <= st.start_energy_nmm,
+        "{} > {}",
+        st.energy_nmm,
+        st.start_energy_nmm
+    );
     assert!(st.objective.0 <= st.objective.1);
     // Deterministic.
     assert_eq!(solve(&pr), st);
-    let worst = st.max_rotation().map(|i| st.nodes[i].rotation_deg.abs()).expect("nodes");
+    let worst = st
+        .max_rotation()
+        .map(|i| st.nodes[i].rotation_deg.abs())
+        .expect("nodes");
     eprintln!(
         "enneper-4m flat: energy {:.6} N·mm (start {:.6}), largest rotation {worst:.2}°, footprint {:.0} × {:.0} mm, {} iterations, gradient {:.1e}",
         st.energy_nmm, st.start_energy_nmm, st.footprint_mm[0], st.footprint_mm[1], st.iterations, st.gradient_norm
@@ -112,6 +146,56 @@ fn enneper_flat_state_keeps_lengths_is_stationary_and_lowers_the_energy() {
 #[test]
 fn two_level_grids_have_no_flat_state() {
     let (_, an) = common::run(planar_70());
-    let e = problem(&an, &profile("poplar-ply-4")).expect_err("two-level").to_string();
+    let e = problem(&an, &profile("poplar-ply-4"))
+        .expect_err("two-level")
+        .to_string();
     assert!(e.contains("two-level") && e.contains("flat"), "{e}");
+}
+
+/// `lamella flat` writes plan.json with `flat` and flat.svg, the same bytes
+/// twice; a two-level profile exits 1 with one line.
+#[test]
+fn flat_command_writes_the_same_bytes_twice() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let run = |profile: &str, out: &Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_lamella"))
+            .current_dir(root)
+            .args(["flat", "samples/enneper-4m.yaml", "--profile"])
+            .arg(format!("profiles/{profile}.yaml"))
+            .arg("--out")
+            .arg(out)
+            .output()
+            .expect("run")
+    };
+    let (a, b) = (tmp.join("flat-a"), tmp.join("flat-b"));
+    for d in [&a, &b] {
+        let o = run("steel-1.5", d);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            stdout.contains("largest rotation") && stdout.contains("PASS"),
+            "{stdout}"
+        );
+    }
+    for f in ["plan.json", "flat.svg"] {
+        let (x, y) = (
+            std::fs::read(a.join(f)).expect("a"),
+            std::fs::read(b.join(f)).expect("b"),
+        );
+        assert!(x == y, "{f} differs");
+    }
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(a.join("plan.json")).expect("plan")).expect("json");
+    let flat = &plan["flat"];
+    assert_eq!(flat["converged"], true);
+    assert_eq!(flat["nodes"].as_array().expect("nodes").len(), 121);
+    let o = run("poplar-ply-4", &tmp.join("flat-c"));
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("joint.system") && err.contains("two-level"),
+        "{err}"
+    );
 }

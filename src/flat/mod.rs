@@ -32,6 +32,8 @@
 //! Start: the erected nodes projected onto their best-fit plane, seen from
 //! the side the surface normals point to (so angles keep their sense).
 
+pub mod svg;
+
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::io::profile_file::JointSystem;
@@ -107,9 +109,9 @@ pub struct FlatProblem {
 /// no flat state (their studs fix the angles): an error saying so.
 pub fn problem(an: &Analysis, profile: &Profile) -> Result<FlatProblem> {
     if profile.joint.system == JointSystem::TwoLevel {
-        return Err(Error::fabrication_part(
+        return Err(Error::input(
             &profile.source,
-            "joint",
+            crate::error::Location::Field("joint.system".into()),
             "a two-level grid cannot be assembled flat: its studs fix every crossing at 90°, so there is no flat state to erect from",
         ));
     }
@@ -368,10 +370,7 @@ fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Row
             e.push((2 * node, w * sign * g[0]));
             e.push((2 * node + 1, w * sign * g[1]));
         }
-        rows.push(
-            w * wrap_half(psi - n.erected_angle_deg.to_radians()),
-            e,
-        );
+        rows.push(w * wrap_half(psi - n.erected_angle_deg.to_radians()), e);
         let wa = ANCHOR_WEIGHT / lm;
         let q = p(x, i);
         rows.push(wa * (q[0] - su.start[i][0]), vec![(2 * i, wa)]);
@@ -444,12 +443,7 @@ fn energy(pr: &FlatProblem, x: &[f64]) -> f64 {
 /// The start: erected nodes on their best-fit plane, seen from the normals' side.
 fn start_positions(pr: &FlatProblem) -> Vec<[f64; 2]> {
     let n = pr.nodes.len() as f64;
-    let c = pr
-        .nodes
-        .iter()
-        .map(|q| q.position_world_mm)
-        .sum::<DVec3>()
-        / n;
+    let c = pr.nodes.iter().map(|q| q.position_world_mm).sum::<DVec3>() / n;
     let mean_normal = pr.nodes.iter().map(|q| q.normal_world).sum::<DVec3>();
     // Best-fit plane normal: the smallest principal axis of the scatter,
     // by power iteration on (trace·I − C), oriented along the mean normal.
@@ -510,7 +504,11 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
     }
     let start = start_positions(pr);
     let su = Setup {
-        l_mean: if count > 0 { total_len / count as f64 } else { 1.0 },
+        l_mean: if count > 0 {
+            total_len / count as f64
+        } else {
+            1.0
+        },
         on,
         start: Vec::new(),
     };
@@ -590,7 +588,17 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
     // grid) is measured against 1e-6 per mean interval instead.
     let g_start = norm(&residuals(pr, &su, &start_x, false).gradient(n)).max(1e-6 / su.l_mean);
     let gradient_norm = norm(&gt) / g_start;
-    finish(pr, &su, &x, iterations, start_energy, start_objective, objective(&x), gradient_norm, length_ok)
+    finish(
+        pr,
+        &su,
+        &x,
+        iterations,
+        start_energy,
+        start_objective,
+        objective(&x),
+        gradient_norm,
+        length_ok,
+    )
 }
 
 /// Make every length hold: minimum-norm Gauss–Newton steps through
@@ -681,7 +689,8 @@ fn finish(
             let (b0, b1) = chord(&pr.strips[sb], kb);
             let psi = turn(sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
             let angle_deg = psi.to_degrees().rem_euclid(180.0);
-            let rotation_deg = wrap_half((n.erected_angle_deg - angle_deg).to_radians()).to_degrees();
+            let rotation_deg =
+                wrap_half((n.erected_angle_deg - angle_deg).to_radians()).to_degrees();
             FlatNode {
                 node: n.id,
                 position_mm: p(x, i),

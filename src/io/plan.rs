@@ -55,6 +55,95 @@ pub struct Plan {
     /// The nest's figures (added by `nest`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nesting: Option<PlanNesting>,
+    /// The flat assembly state (added by `flat`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flat: Option<PlanFlat>,
+}
+
+/// The flat state of an interlocking grid (`lamella flat`).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFlat {
+    /// Lengths held and the projected gradient at rest.
+    pub converged: bool,
+    /// Solver iterations (minimisation and projection steps).
+    pub iterations: usize,
+    /// Bending energy of the flat state, N·mm.
+    pub energy: f64,
+    /// The same of the starting guess, N·mm.
+    pub start_energy: f64,
+    /// Projected gradient norm, relative to the start's.
+    pub gradient_norm: f64,
+    /// Largest relative node-to-node length error.
+    pub max_length_error: f64,
+    /// Largest |rotation| from flat to erected, degrees.
+    pub max_rotation_deg: f64,
+    /// Extent of the layout, [x, y] mm.
+    pub footprint_mm: [f64; 2],
+    /// Per A×B node.
+    pub nodes: Vec<PlanFlatNode>,
+    /// Per A/B strip.
+    pub strips: Vec<PlanFlatStrip>,
+}
+
+/// A node of the flat state.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFlatNode {
+    /// Node id.
+    pub node: usize,
+    /// Floor position, [x, y] mm.
+    pub position_mm: [f64; 2],
+    /// Oriented angle A → B while flat, degrees in [0, 180).
+    pub angle_deg: f64,
+    /// Erected − flat, degrees.
+    pub rotation_deg: f64,
+}
+
+/// A strip of the flat state.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFlatStrip {
+    /// Strip id.
+    pub strip: String,
+    /// Largest in-plane bending stress while flat, MPa.
+    pub max_bending_stress_mpa: f64,
+    /// That over the design strength.
+    pub utilization: f64,
+}
+
+/// Add the flat state to a plan.
+pub fn add_flat(plan: &mut Plan, st: &crate::flat::FlatState) {
+    plan.flat = Some(PlanFlat {
+        converged: st.converged,
+        iterations: st.iterations,
+        energy: round(st.energy_nmm, 6),
+        start_energy: round(st.start_energy_nmm, 6),
+        gradient_norm: st.gradient_norm,
+        max_length_error: st.max_length_error,
+        max_rotation_deg: round(
+            st.max_rotation()
+                .map_or(0.0, |i| st.nodes[i].rotation_deg.abs()),
+            DEG,
+        ),
+        footprint_mm: [round(st.footprint_mm[0], MM), round(st.footprint_mm[1], MM)],
+        nodes: st
+            .nodes
+            .iter()
+            .map(|n| PlanFlatNode {
+                node: n.node,
+                position_mm: [round(n.position_mm[0], MM), round(n.position_mm[1], MM)],
+                angle_deg: round(n.angle_deg, DEG),
+                rotation_deg: round(n.rotation_deg, DEG),
+            })
+            .collect(),
+        strips: st
+            .strips
+            .iter()
+            .map(|s| PlanFlatStrip {
+                strip: s.strip.clone(),
+                max_bending_stress_mpa: round(s.max_bending_stress_mpa, MPA),
+                utilization: round(s.utilization, UTIL),
+            })
+            .collect(),
+    });
 }
 
 /// One sheet of stock with its placements.
@@ -639,6 +728,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         parts_summary: None,
         sheets: None,
         nesting: None,
+        flat: None,
     }
 }
 
