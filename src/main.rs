@@ -48,6 +48,11 @@ enum Command {
         /// Write the kit even when a strip is overstressed.
         #[arg(long)]
         allow_overstress: bool,
+        /// Size each slot from its node's rotation between the flat state
+        /// and the erected one (see `lamella flat`) instead of the profile's
+        /// blanket rotation tolerance.
+        #[arg(long)]
+        slots_from_flat: bool,
         /// No progress bar and no summary (errors and warnings still print).
         #[arg(long, short)]
         quiet: bool,
@@ -133,6 +138,10 @@ enum Command {
         /// (jagua-rs 0.7 JSON; parts grown by half the kerf plus spacing).
         #[arg(long, value_name = "FILE")]
         export_instance: Option<PathBuf>,
+        /// Size each slot from its node's rotation between the flat state
+        /// and the erected one (see `lamella flat`).
+        #[arg(long)]
+        slots_from_flat: bool,
         #[command(flatten)]
         read: ReadArgs,
     },
@@ -149,6 +158,10 @@ enum Command {
         /// Directory for plan.json (created if missing).
         #[arg(long)]
         out: PathBuf,
+        /// Size each slot from its node's rotation between the flat state
+        /// and the erected one (see `lamella flat`).
+        #[arg(long)]
+        slots_from_flat: bool,
         #[command(flatten)]
         read: ReadArgs,
     },
@@ -262,6 +275,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             out,
             kerf_compensation,
             allow_overstress,
+            slots_from_flat,
             quiet,
             read,
         } => build(
@@ -272,6 +286,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
                 read: read.options(),
                 kerf_compensation,
                 allow_overstress,
+                slots_from_flat,
             },
             quiet,
         ),
@@ -289,15 +304,24 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             network,
             profile,
             out,
+            slots_from_flat,
             read,
-        } => parts(&network, &profile, &out, &read, None),
+        } => parts(&network, &profile, &out, &read, None, slots_from_flat),
         Command::Nest {
             network,
             profile,
             out,
             export_instance,
+            slots_from_flat,
             read,
-        } => parts(&network, &profile, &out, &read, Some(export_instance)),
+        } => parts(
+            &network,
+            &profile,
+            &out,
+            &read,
+            Some(export_instance),
+            slots_from_flat,
+        ),
     }
 }
 
@@ -481,6 +505,7 @@ fn parts(
     out: &Path,
     read: &ReadArgs,
     nest: Option<Option<PathBuf>>,
+    slots_from_flat: bool,
 ) -> lamella::Result<ExitCode> {
     let target = out.join("plan.json");
     refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
@@ -490,7 +515,14 @@ fn parts(
     let profile = Profile::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
-    let kit = lamella::fabricate::fabricate(&net, &an, &profile)?;
+    let rotations = if slots_from_flat {
+        let pr = lamella::flat::problem(&an, &profile)?;
+        Some(lamella::flat::solve(&pr).rotations())
+    } else {
+        None
+    };
+    let kit =
+        lamella::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
     let report = lamella::check::check(&an, &profile);
     let model = Model::checked(&net, &an, profile.clone(), report, None);
     let mut plan = plan::build(&net, &an, &model);

@@ -199,3 +199,62 @@ fn flat_command_writes_the_same_bytes_twice() {
         "{err}"
     );
 }
+
+/// Slots swept over each node's own rotation (flat → erected) are narrower
+/// than those swept over the blanket ±60° wherever the node turns less; the
+/// swept range is exactly the rotation.
+#[test]
+fn slots_from_the_flat_state_are_narrower_where_joints_turn_less() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/enneper-4m.yaml");
+    let net = io::read_network(&path, ReadOptions::default()).expect("read");
+    let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyze");
+    let steel = profile("steel-1.5");
+    let st = solve(&problem(&an, &steel).expect("problem"));
+    let rot = st.rotations();
+    let blanket = lamella::fabricate::fabricate(&net, &an, &steel).expect("blanket");
+    let flat = lamella::fabricate::fabricate_with_rotations(&net, &an, &steel, Some(&rot))
+        .expect("from flat");
+    let mut compared = 0;
+    for (a, b) in blanket.parts.iter().zip(&flat.parts) {
+        assert_eq!(a.id, b.id);
+        let slots = |p: &lamella::fabricate::part::Part| {
+            p.features
+                .iter()
+                .filter(|f| f.kind == lamella::fabricate::part::FeatureKind::Slot)
+                .cloned()
+                .collect::<Vec<_>>()
+        };
+        // Per node: the total slot width (a wide sweep may merge spans).
+        let width_at = |fs: &[lamella::fabricate::part::Feature]| {
+            let mut m: std::collections::BTreeMap<usize, f64> = Default::default();
+            for f in fs {
+                *m.entry(f.node.expect("slot node")).or_default() += f.width_mm;
+            }
+            m
+        };
+        let (sa, sb) = (slots(a), slots(b));
+        for f in &sb {
+            let node = f.node.expect("slot node");
+            let r = rot[&node];
+            let (lo, hi) = f.angle_range_deg.expect("range");
+            assert!(
+                ((hi - lo) - r.abs()).abs() < 1e-6,
+                "node {node}: {lo}..{hi} vs {r}"
+            );
+        }
+        let (wa, wb) = (width_at(&sa), width_at(&sb));
+        assert_eq!(wa.keys().collect::<Vec<_>>(), wb.keys().collect::<Vec<_>>());
+        for (node, w_blanket) in &wa {
+            if rot[node].abs() < steel.joint.rotation_tolerance_deg {
+                assert!(
+                    wb[node] < w_blanket - 0.01,
+                    "{} node {node}: {} vs {w_blanket}",
+                    a.id,
+                    wb[node]
+                );
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared > 300, "{compared}");
+}

@@ -30,6 +30,9 @@ pub struct BuildOptions {
     pub kerf_compensation: bool,
     /// Write the files even when a strip is overstressed.
     pub allow_overstress: bool,
+    /// Size each slot from its node's rotation between the flat state and
+    /// the erected one ([`crate::flat`]) instead of the blanket tolerance.
+    pub slots_from_flat: bool,
 }
 
 /// The governing strip of the elastic check.
@@ -168,7 +171,15 @@ pub fn build(
     let mut the_plan = plan::build(&net, &an, &model);
     drop(model);
     progress.set_message("making parts");
-    let mut kit = crate::fabricate::fabricate(&net, &an, &profile)?;
+    let rotations = if opts.slots_from_flat {
+        progress.set_message("solving the flat state");
+        let pr = crate::flat::problem(&an, &profile)?;
+        Some(crate::flat::solve(&pr).rotations())
+    } else {
+        None
+    };
+    let mut kit =
+        crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
     let nodes = an.topology.nodes.len();
     drop(an);
     warnings.extend(kit.warnings.iter().cloned());

@@ -12,7 +12,7 @@ use super::blocks;
 use super::part::{
     circle_cw, Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge, ARC_TOLERANCE_MM,
 };
-use super::slots::{node_slots, sweep_range_rad, SlotSpan};
+use super::slots::{node_slots, range_between_rad, sweep_range_rad, SlotSpan};
 use crate::analysis::model::LamellaLine;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
@@ -65,12 +65,16 @@ fn signed_angle_deg(a: glam::DVec3, b: glam::DVec3, n: glam::DVec3) -> f64 {
     a.cross(b).dot(n).atan2(a.dot(b)).to_degrees()
 }
 
-/// The parts of strip `i` (an A or B strip).
+/// The parts of strip `i` (an A or B strip). `rotations`: each A×B node's
+/// rotation from the flat state to the erected one (degrees, A → B, by
+/// node id), when the flat state has been computed: its slots are swept
+/// over that range instead of the profile's blanket tolerance.
 pub fn strip_parts(
     net: &Network,
     an: &Analysis,
     profile: &Profile,
     i: usize,
+    rotations: Option<&std::collections::HashMap<usize, f64>>,
 ) -> Result<StripParts> {
     let strip = &an.strips[i];
     let smooth = &an.curves[i];
@@ -116,8 +120,29 @@ pub fn strip_parts(
 
     // Slots of every lamella at every crossing (relative to the node's
     // station on that lamella's line).
-    let range_of =
-        |c: &Crossing| sweep_range_rad(c.angle_deg, profile.joint.rotation_tolerance_deg);
+    let tolerance = profile.joint.rotation_tolerance_deg;
+    // The directed angle mine → theirs turns by the rotation on A strips
+    // (A → B) and by its opposite on B strips.
+    let turn_sign = if strip.family == Family::A { 1.0 } else { -1.0 };
+    if let Some(rot) = rotations {
+        for c in &crossings {
+            if let Some(r) = rot.get(&c.node_id) {
+                if r.abs() > tolerance {
+                    return Err(fail(
+                        Some(c.node_id),
+                        format!(
+                            "the joint turns {:.2}° between the flat state and the erected one, past the profile's rotation tolerance {tolerance}°",
+                            r.abs()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    let range_of = |c: &Crossing| match rotations.and_then(|r| r.get(&c.node_id)) {
+        Some(&r) => range_between_rad(c.angle_deg - turn_sign * r, c.angle_deg),
+        None => sweep_range_rad(c.angle_deg, tolerance),
+    };
     let slots: Vec<Vec<(usize, Vec<SlotSpan>)>> = offsets
         .iter()
         .map(|o| {

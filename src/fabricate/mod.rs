@@ -58,13 +58,27 @@ pub struct KitSummary {
     pub hardware: Vec<hardware::Hardware>,
 }
 
-/// Make every part of the network's A/B strips for `profile`.
+/// Make every part of the network's A/B strips for `profile`, slots swept
+/// over the profile's blanket rotation tolerance.
 pub fn fabricate(net: &Network, an: &Analysis, profile: &Profile) -> Result<Kit> {
+    fabricate_with_rotations(net, an, profile, None)
+}
+
+/// [`fabricate`], with each A×B node's slots swept over the rotation from
+/// the flat state to the erected one (degrees A → B by node id, from
+/// [`crate::flat`]) where given; a rotation past the profile's tolerance is
+/// an error naming the node.
+pub fn fabricate_with_rotations(
+    net: &Network,
+    an: &Analysis,
+    profile: &Profile,
+    rotations: Option<&std::collections::HashMap<usize, f64>>,
+) -> Result<Kit> {
     let per_strip: Vec<lamella::StripParts> = an
         .lamella_strips()
         .collect::<Vec<_>>()
         .par_iter()
-        .map(|s| lamella::strip_parts(net, an, profile, s.curve))
+        .map(|s| lamella::strip_parts(net, an, profile, s.curve, rotations))
         .collect::<Result<Vec<_>>>()?;
     let mut parts: Vec<Part> = Vec::new();
     let (mut blocks, mut plates) = (0usize, 0usize);

@@ -143,6 +143,22 @@ pub fn sweep_range_rad(angle_deg: f64, tolerance_deg: f64) -> (f64, f64) {
     }
 }
 
+/// The range of crossing angles between two angles of one joint (the flat
+/// and the erected, degrees), kept on the erected angle's side of 0° and at
+/// least [`MIN_SWEEP_ANGLE_DEG`] from 0° and 180°; radians.
+pub fn range_between_rad(from_deg: f64, to_deg: f64) -> (f64, f64) {
+    let (lo, hi) = (from_deg.min(to_deg), from_deg.max(to_deg));
+    let (min, max) = if to_deg < 0.0 {
+        (-180.0 + MIN_SWEEP_ANGLE_DEG, -MIN_SWEEP_ANGLE_DEG)
+    } else {
+        (MIN_SWEEP_ANGLE_DEG, 180.0 - MIN_SWEEP_ANGLE_DEG)
+    };
+    (
+        lo.clamp(min, max).to_radians(),
+        hi.clamp(min, max).to_radians(),
+    )
+}
+
 /// A slot along this lamella's line, from the node's station, mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlotSpan {

@@ -225,6 +225,15 @@ pub struct FlatState {
 }
 
 impl FlatState {
+    /// Each node's rotation from flat to erected, degrees, by node id (what
+    /// [`crate::fabricate::fabricate_with_rotations`] sizes slots from).
+    pub fn rotations(&self) -> HashMap<usize, f64> {
+        self.nodes
+            .iter()
+            .map(|n| (n.node, n.rotation_deg))
+            .collect()
+    }
+
     /// The node that turns most (index into `nodes`), if any.
     pub fn max_rotation(&self) -> Option<usize> {
         (0..self.nodes.len()).max_by(|&a, &b| {
