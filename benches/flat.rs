@@ -54,7 +54,9 @@ fn measure(path: &Path) {
     let pr = lamella::flat::problem(&an, &profile).expect("problem");
     let st = lamella::flat::solve(&pr);
     let t2 = Instant::now();
-    let worst = st.max_rotation().map_or(0.0, |i| st.nodes[i].rotation_deg.abs());
+    let worst = st
+        .max_rotation()
+        .map_or(0.0, |i| st.nodes[i].rotation_deg.abs());
     println!(
         "{:>5} {:>8} {:>10.3} {:>8.3} {:>11} {:>10.2} {:>12.1e} {:>10.0}",
         net.curves.len() / 2,

@@ -258,3 +258,78 @@ fn slots_from_the_flat_state_are_narrower_where_joints_turn_less() {
     }
     assert!(compared > 300, "{compared}");
 }
+
+/// A profile whose slots allow only ±10°, and one whose 40 mm lamellas
+/// cannot bend flat: `flat` fails naming the node or the strip (exit 3);
+/// `parts --slots-from-flat` stops naming the node (exit 1, one line).
+#[test]
+fn joints_past_the_tolerance_and_strips_that_break_flat_are_named() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("flat-limits");
+    std::fs::create_dir_all(&tmp).expect("tmp");
+    let steel = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).expect("steel");
+    let tight = tmp.join("steel-tight.yaml");
+    std::fs::write(
+        &tight,
+        steel.replace(
+            "rotation_tolerance_deg: 60.0",
+            "rotation_tolerance_deg: 10.0",
+        ),
+    )
+    .expect("write");
+    let thick = tmp.join("steel-thick.yaml");
+    std::fs::write(
+        &thick,
+        steel.replace("thickness_mm: 1.5\n", "thickness_mm: 40.0\n"),
+    )
+    .expect("write");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_lamella"))
+            .current_dir(root)
+            .args(args)
+            .output()
+            .expect("run")
+    };
+    let out = tmp.join("o").to_string_lossy().into_owned();
+    let o = run(&[
+        "flat",
+        "samples/enneper-4m.yaml",
+        "--profile",
+        &tight.to_string_lossy(),
+        "--out",
+        &out,
+    ]);
+    assert_eq!(o.status.code(), Some(3));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("FAIL: node 140 turns 15.22°") && stdout.contains("tolerance 10°"),
+        "{stdout}"
+    );
+    let o = run(&[
+        "parts",
+        "samples/enneper-4m.yaml",
+        "--profile",
+        &tight.to_string_lossy(),
+        "--out",
+        &out,
+        "--slots-from-flat",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("node") && err.contains("past the profile's rotation tolerance 10°"),
+        "{err}"
+    );
+    let o = run(&[
+        "flat",
+        "samples/enneper-4m.yaml",
+        "--profile",
+        &thick.to_string_lossy(),
+        "--out",
+        &out,
+    ]);
+    assert_eq!(o.status.code(), Some(3));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("is overstressed while flat"), "{stdout}");
+}

@@ -96,6 +96,9 @@ pub struct PlanFlatNode {
     pub angle_deg: f64,
     /// Erected − flat, degrees.
     pub rotation_deg: f64,
+    /// The angles A → B the joint passes through from flat to erected,
+    /// [low, high] degrees.
+    pub angle_range_deg: [f64; 2],
 }
 
 /// A strip of the flat state.
@@ -132,6 +135,10 @@ pub fn add_flat(plan: &mut Plan, st: &crate::flat::FlatState) {
                 position_mm: [round(n.position_mm[0], MM), round(n.position_mm[1], MM)],
                 angle_deg: round(n.angle_deg, DEG),
                 rotation_deg: round(n.rotation_deg, DEG),
+                angle_range_deg: {
+                    let (a, b) = (n.angle_deg, n.angle_deg + n.rotation_deg);
+                    [round(a.min(b), DEG), round(a.max(b), DEG)]
+                },
             })
             .collect(),
         strips: st
