@@ -807,3 +807,37 @@ fn killing_the_build_midway_leaves_the_output_as_it_was() {
     assert!(!staging.exists(), "the next build removes it");
     assert_eq!(std::fs::read_dir(&dir).expect("ls").count(), 1);
 }
+
+/// With two sheet sizes, the takeoff's stock lines are the plan's sheets
+/// grouped by size, each size's cost its sheets' prices, and the total the
+/// nest's cost.
+#[test]
+fn takeoff_prices_each_sheet_size() {
+    let out = scratch("mixed").join("kit");
+    ok(&build("scherk", "steel-1.5-mixed", &out, &[]));
+    let plan = json(&out.join("plan.json"));
+    let t = json(&out.join("takeoff.json"));
+    let mut by_size: BTreeMap<String, (u64, f64)> = BTreeMap::new();
+    for s in plan["sheets"].as_array().expect("sheets") {
+        let e = by_size
+            .entry(s["stock"].as_str().expect("stock").to_string())
+            .or_default();
+        e.0 += 1;
+        e.1 += s["price_per_unit"].as_f64().expect("price");
+    }
+    assert!(by_size.len() >= 2, "{by_size:?}");
+    let lines = t["stock"].as_array().expect("stock");
+    assert_eq!(lines.len(), by_size.len());
+    for l in lines {
+        let item = l["item"].as_str().expect("item");
+        let (n, cost) = by_size
+            .iter()
+            .find(|(k, _)| item == format!("sheet {k} mm"))
+            .map(|(_, v)| *v)
+            .unwrap_or_else(|| panic!("{item} not in the plan"));
+        assert_eq!(l["count"].as_u64(), Some(n));
+        assert!((l["cost"].as_f64().expect("cost") - cost).abs() < 1e-9);
+    }
+    let total = plan["nesting"]["total_cost"].as_f64().expect("total");
+    assert!((t["totals"]["stock_cost"].as_f64().expect("cost") - total).abs() < 1e-9);
+}
