@@ -28,7 +28,8 @@ struct Cli {
 enum Command {
     /// The whole kit in one command: nodes, elastic check, parts, nest, then
     /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet,
-    /// DIR/takeoff.csv and DIR/takeoff.json. Output is staged beside DIR and
+    /// DIR/takeoff.csv, DIR/takeoff.json and DIR/assembly.pdf (the assembly
+    /// sheets). Output is staged beside DIR and
     /// moved into place only when complete. Exit status 3 (nothing written)
     /// when a strip is overstressed, unless --allow-overstress.
     Build {
@@ -48,6 +49,9 @@ enum Command {
         /// Write the kit even when a strip is overstressed.
         #[arg(long)]
         allow_overstress: bool,
+        /// Paper of the assembly sheets (assembly.pdf), landscape.
+        #[arg(long, default_value = "a3", value_parser = ["a3", "a4"])]
+        paper: String,
         /// No progress bar and no summary (errors and warnings still print).
         #[arg(long, short)]
         quiet: bool,
@@ -238,6 +242,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             out,
             kerf_compensation,
             allow_overstress,
+            paper,
             quiet,
             read,
         } => build(
@@ -248,6 +253,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
                 read: read.options(),
                 kerf_compensation,
                 allow_overstress,
+                paper: lamella::emit::assembly::Paper::parse(&paper).unwrap_or_default(),
             },
             quiet,
         ),

@@ -1,7 +1,8 @@
 //! `lamella build`: every stage from a network and a profile to the files a
 //! workshop needs — nodes, the elastic check, parts, nest, then
 //! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
-//! `DIR/takeoff.csv` and `DIR/takeoff.json` — staged beside DIR and moved
+//! `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
+//! `DIR/assembly.pdf` — staged beside DIR and moved
 //! into place only once complete ([`super::outdir`]).
 //!
 //! Everything is computed before anything is written; an overstressed
@@ -30,6 +31,8 @@ pub struct BuildOptions {
     pub kerf_compensation: bool,
     /// Write the files even when a strip is overstressed.
     pub allow_overstress: bool,
+    /// Paper of the assembly sheets.
+    pub paper: super::assembly::Paper,
 }
 
 /// The governing strip of the elastic check.
@@ -88,7 +91,7 @@ impl BuildReport {
 }
 
 /// The files every build writes besides the sheets.
-pub const FIXED_FILES: [&str; 3] = ["plan.json", "takeoff.csv", "takeoff.json"];
+pub const FIXED_FILES: [&str; 4] = ["plan.json", "takeoff.csv", "takeoff.json", "assembly.pdf"];
 
 /// Run every stage and write the kit into `out`. Returns the report; when
 /// a strip is overstressed and `allow_overstress` is off, nothing is
@@ -233,6 +236,23 @@ pub fn build(
     );
     plan_written?;
     sheets_written?;
+    progress.set_message("drawing the assembly sheets");
+    let curves: Vec<super::assembly::CurvePoints> = net
+        .curves
+        .iter()
+        .map(|c| super::assembly::CurvePoints {
+            id: c.id.clone(),
+            points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
+        })
+        .collect();
+    let pdf = super::assembly::assembly_pdf(&super::assembly::AssemblyInput {
+        plan: &the_plan,
+        takeoff: &takeoff,
+        curves: &curves,
+        paper: opts.paper,
+        plan_path: &plan_target,
+    })?;
+    staging.write("assembly.pdf", &pdf)?;
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=drawer.len() {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
