@@ -11,7 +11,10 @@
 //! * a row is [`ROW_ABOVE_MM`] (stations and crossing ids) + the height on
 //!   paper + [`ROW_BELOW_MM`] (piece ids, gap) high; as many rows per page
 //!   as fit in the content height less [`STRIP_HEAD_MM`];
-//! * every strip starts a new page.
+//! * strips follow each other in plan order: a strip (its line of
+//!   [`STRIP_HEAD_MM`] and its rows) that does not fit in what is left of
+//!   the page starts a new one; a strip longer than a page fills pages of
+//!   `rows_per_page` rows, each with the strip's line again.
 //!
 //! At each node: a tick, the distance from the lamella's start end (mm,
 //! its running station) and the crossing strip's id, written upright
@@ -105,10 +108,11 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
             by_strip.entry(s.as_str()).or_default().push(p);
         }
     }
-    plan.strips
+    let strips: Vec<StripRows> = plan
+        .strips
         .par_iter()
         .filter_map(|s| by_strip.get(s.id.as_str()).map(|ps| (s, ps)))
-        .flat_map_iter(|(s, ps)| {
+        .map(|(s, ps)| {
             let mut numbers: Vec<u32> = ps.iter().filter_map(|p| p.lamella).collect();
             numbers.sort_unstable();
             numbers.dedup();
@@ -140,58 +144,99 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
                     }
                 })
                 .collect();
-            strip_pages(s, &lamellas, &layout, frame, block)
+            StripRows { strip: s, lamellas }
         })
-        .collect()
+        .collect();
+    strip_pages(&strips, &layout, frame, block)
 }
 
-/// The pages of one strip.
-fn strip_pages(
-    s: &crate::io::plan::PlanStrip,
-    lamellas: &[Lamella],
-    layout: &StripLayout,
-    frame: &Frame,
-    block: Option<(f64, f64)>,
-) -> Vec<Page> {
-    let rows: Vec<(usize, usize)> = lamellas
-        .iter()
-        .enumerate()
-        .flat_map(|(i, l)| (0..l.rows).map(move |r| (i, r)))
-        .collect();
-    let n_pages = rows.len().div_ceil(layout.rows_per_page).max(1);
-    rows.chunks(layout.rows_per_page)
-        .enumerate()
-        .map(|(p, chunk)| {
-            let heading = format!(
-                "Strip {} (family {}){}",
-                s.id,
-                s.family,
-                if n_pages > 1 {
-                    format!(", sheet {} of {n_pages}", p + 1)
-                } else {
-                    String::new()
-                }
-            );
+/// One strip ready to lay out: its lamellas and their rows.
+struct StripRows<'a> {
+    strip: &'a crate::io::plan::PlanStrip,
+    lamellas: Vec<Lamella<'a>>,
+}
+
+/// Lay strips out on pages: a strip goes on the current page when its
+/// line and all its rows fit there, else it starts a new page; a strip
+/// longer than a page fills pages of [`StripLayout::rows_per_page`] rows
+/// and its last rows stay open to the next strip.
+fn paginate(strips: &[StripRows], layout: &StripLayout, frame: &Frame) -> Vec<Vec<(usize, usize, usize)>> {
+    let full = frame.height_mm();
+    let mut pages: Vec<Vec<(usize, usize, usize)>> = Vec::new();
+    let mut left = 0.0_f64;
+    for (si, s) in strips.iter().enumerate() {
+        let rows: Vec<(usize, usize)> = s
+            .lamellas
+            .iter()
+            .enumerate()
+            .flat_map(|(i, l)| (0..l.rows).map(move |r| (i, r)))
+            .collect();
+        let need = STRIP_HEAD_MM + rows.len() as f64 * layout.row_height_mm;
+        let used = |pages: &Vec<Vec<_>>| pages.last().is_some_and(|p: &Vec<_>| !p.is_empty());
+        if need > left + 1e-9 && used(&pages) || pages.is_empty() {
+            pages.push(Vec::new());
+            left = full;
+        }
+        for chunk in rows.chunks(layout.rows_per_page) {
+            let need = STRIP_HEAD_MM + chunk.len() as f64 * layout.row_height_mm;
+            if need > left + 1e-9 && used(&pages) {
+                pages.push(Vec::new());
+                left = full;
+            }
+            if let Some(page) = pages.last_mut() {
+                page.extend(chunk.iter().map(|&(i, r)| (si, i, r)));
+            }
+            left -= need;
+        }
+    }
+    pages
+}
+
+/// The pages of all strips.
+fn strip_pages(strips: &[StripRows], layout: &StripLayout, frame: &Frame, block: Option<(f64, f64)>) -> Vec<Page> {
+    let pages = paginate(strips, layout, frame);
+    pages
+        .par_iter()
+        .map(|rows| {
+            let mut ids: Vec<&str> = rows.iter().map(|&(si, _, _)| strips[si].strip.id.as_str()).collect();
+            ids.dedup();
+            let heading = match ids.as_slice() {
+                [one] => format!("Strip {one}"),
+                [first, .., last] => format!("Strips {first} to {last}"),
+                [] => "Strips".to_string(),
+            };
             let mut page = Page::new("Strip sheets", heading, Some(layout.scale));
             let c = &mut page.canvas;
-            c.fill(BLACK);
-            c.text(
-                [frame.x0_mm, frame.y1_mm - 4.0],
-                8.0,
-                false,
-                Align::Left,
-                0.0,
-                &format!(
-                    "{} mm along its curve, {} nodes, {} lamella{}; stations in mm from each lamella's start end; crossing strip ids at the nodes",
-                    mm0(s.length_mm),
-                    s.nodes.len(),
-                    lamellas.len(),
-                    if lamellas.len() == 1 { "" } else { "s" }
-                ),
-            );
-            let mut top = frame.y1_mm - STRIP_HEAD_MM;
-            for &(i, r) in chunk {
-                draw_row(c, &s.id, &lamellas[i], r, top, layout, frame, block);
+            let mut top = frame.y1_mm;
+            let mut current = usize::MAX;
+            for &(si, i, r) in rows {
+                let st = &strips[si];
+                if si != current {
+                    current = si;
+                    let s = st.strip;
+                    c.fill(BLACK);
+                    c.text([frame.x0_mm, top - 4.0], 9.0, true, Align::Left, 0.0, &format!("Strip {} (family {})", s.id, s.family));
+                    let cont = if r > 0 || i > 0 { ", continued" } else { "" };
+                    c.text(
+                        [frame.x0_mm + LABEL_COLUMN_MM + 8.0, top - 4.0],
+                        8.0,
+                        false,
+                        Align::Left,
+                        0.0,
+                        &format!(
+                            "{} mm along its curve, {} nodes, {} lamella{}{cont}; stations in mm from each lamella's start end; crossing strip ids at the nodes",
+                            mm0(s.length_mm),
+                            s.nodes.len(),
+                            st.lamellas.len(),
+                            if st.lamellas.len() == 1 { "" } else { "s" }
+                        ),
+                    );
+                    c.stroke(GREY);
+                    c.width(0.15);
+                    c.line([frame.x0_mm, top - 5.5], [frame.x1_mm, top - 5.5]);
+                    top -= STRIP_HEAD_MM;
+                }
+                draw_row(c, &st.strip.id, &st.lamellas[i], r, top, layout, frame, block);
                 top -= layout.row_height_mm;
             }
             page
@@ -397,6 +442,7 @@ fn draw_row(
     let pitch = cap + 0.9;
     let mut last_label = f64::NEG_INFINITY;
     for (x, id) in marks {
+        let station = mm0(x);
         let tick = px(x);
         let lx = tick.max(last_label + pitch);
         last_label = lx;
@@ -408,10 +454,11 @@ fn draw_row(
         }
         c.fill(BLUE);
         // Upright text reads upward; its glyphs lie left of the baseline.
-        c.text([lx + 0.5 * cap, y_top + 3.0], LABEL_PT, false, Align::Left, 90.0, &mm0(x));
+        c.text([lx + 0.5 * cap, y_top + 3.0], LABEL_PT, false, Align::Left, 90.0, &station);
         if let Some(id) = id {
             c.fill(BLACK);
-            c.text([lx + 0.5 * cap, y_top + 12.0], LABEL_PT, true, Align::Left, 90.0, &id);
+            let above = y_top + 4.5 + super::canvas::text_width_mm(&station, LABEL_PT, false);
+            c.text([lx + 0.5 * cap, above], LABEL_PT, true, Align::Left, 90.0, &id);
         }
     }
 }
