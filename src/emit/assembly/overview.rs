@@ -11,7 +11,7 @@ use std::collections::HashMap;
 /// Room around each view for labels, mm.
 const PAD_MM: f64 = 9.0;
 /// Height of the colour bar band at the foot of the plan view, mm.
-const BAR_MM: f64 = 14.0;
+const BAR_MM: f64 = 16.0;
 /// Strip labels, pt.
 const LABEL_PT: f64 = 6.0;
 
@@ -116,8 +116,15 @@ pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
             c.circle(map(&n.position_mm), r, true);
         }
         if vi == 0 {
+            let centre = [ox + 0.5 * ext[i] * s, oy + 0.5 * ext[j] * s];
             for cv in curves {
-                label_ends(c, &cv.id, &cv.points_mm.iter().map(map).collect::<Vec<_>>());
+                let pts: Vec<[f64; 2]> = cv.points_mm.iter().map(map).collect();
+                let edge = util.get(cv.id.as_str()).is_none_or(|u| u.0 == "edge");
+                if edge {
+                    label_middle(c, &cv.id, &pts, centre);
+                } else {
+                    label_ends(c, &cv.id, &pts);
+                }
             }
         }
     }
@@ -170,8 +177,29 @@ fn label_ends(c: &mut Canvas, id: &str, pts: &[[f64; 2]]) {
     }
 }
 
+/// An edge strip's id beside its middle, on the side away from `centre`
+/// (its ends meet the lamella strips' labels).
+fn label_middle(c: &mut Canvas, id: &str, pts: &[[f64; 2]], centre: [f64; 2]) {
+    if pts.is_empty() {
+        return;
+    }
+    let m = pts[pts.len() / 2];
+    let (dx, dy) = (m[0] - centre[0], m[1] - centre[1]);
+    c.fill(BLACK);
+    let cap = canvas::cap_mm(LABEL_PT);
+    if dx.abs() >= dy.abs() {
+        let align = if dx > 0.0 { Align::Left } else { Align::Right };
+        let x = m[0] + if dx > 0.0 { 6.0 } else { -6.0 };
+        c.text([x, m[1] + 1.5], LABEL_PT, true, align, 0.0, id);
+    } else {
+        let y = m[1] + if dy > 0.0 { 5.5 } else { -5.5 - cap };
+        c.text([m[0] + 6.0, y], LABEL_PT, true, Align::Left, 0.0, id);
+    }
+}
+
 /// A colour bar from utilisation 0 to 1 (and above), `w` mm long.
 fn colour_bar(c: &mut Canvas, x: f64, y: f64, w: f64) {
+    let w = w.min(150.0);
     let steps = 40;
     let bw = w / f64::from(steps);
     for k in 0..steps {
@@ -188,7 +216,7 @@ fn colour_bar(c: &mut Canvas, x: f64, y: f64, w: f64) {
     }
     c.text([x + w + 6.0, y + 0.5], 7.0, false, Align::Center, 0.0, "> 1");
     c.text(
-        [x + w + 14.0, y + 4.8],
+        [x, y + 8.8],
         7.0,
         false,
         Align::Left,

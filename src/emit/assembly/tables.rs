@@ -300,10 +300,17 @@ pub fn order_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         push(&mut rows, s, a_what);
     }
     if two_level {
+        let family: std::collections::HashMap<&str, &str> = plan
+            .strips
+            .iter()
+            .map(|s| (s.id.as_str(), s.family.as_str()))
+            .collect();
         let nodes = plan
             .nodes
             .iter()
-            .filter(|n| n.a.starts_with('A') || n.b.starts_with('B'))
+            .filter(|n| {
+                family.get(n.a.as_str()) == Some(&"A") && family.get(n.b.as_str()) == Some(&"B")
+            })
             .count();
         let step = rows.len() + 1;
         rows.push((
