@@ -26,7 +26,15 @@ fn build(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
     let network = format!("samples/{sample}.yaml");
     let profile = format!("profiles/{profile}.yaml");
     let out_s = out.to_string_lossy().into_owned();
-    let mut args = vec!["build", &network, "--profile", &profile, "--out", &out_s, "--quiet"];
+    let mut args = vec![
+        "build",
+        &network,
+        "--profile",
+        &profile,
+        "--out",
+        &out_s,
+        "--quiet",
+    ];
     args.extend_from_slice(extra);
     Command::new(env!("CARGO_BIN_EXE_lamella"))
         .args(&args)
@@ -122,7 +130,9 @@ impl Rules {
             );
             let s0 = p["station_start_mm"].as_f64().expect("start");
             let s1 = s0 + p["length_mm"].as_f64().expect("length");
-            let e = spans.entry(key).or_insert((f64::INFINITY, f64::NEG_INFINITY));
+            let e = spans
+                .entry(key)
+                .or_insert((f64::INFINITY, f64::NEG_INFINITY));
             *e = (e.0.min(s0), e.1.max(s1));
         }
         let (mut pages, mut left) = (0usize, 0.0f64);
@@ -174,7 +184,11 @@ fn expected_pages(plan: &Value, paper: &str) -> usize {
     let order = r.table(108.0, strips.len() + usize::from(two_level));
     let strip_pages = r.strips(plan);
     let nodes = r.table(106.0, plan["nodes"].as_array().expect("nodes").len());
-    let block_pages = if blocks == 0 { 0 } else { r.table(66.0, blocks) };
+    let block_pages = if blocks == 0 {
+        0
+    } else {
+        r.table(66.0, blocks)
+    };
     let takeoff = 1;
     let sheets = plan["sheets"].as_array().expect("sheets").len();
     let check = r.table(169.0, checked);
@@ -196,8 +210,16 @@ fn check_kit(sample: &str, profile: &str, paper: &str) {
         return;
     };
     let pages = doc["page"].as_array().expect("pages");
-    assert_eq!(doc["pages"].as_u64(), Some(expected as u64), "{sample} on {paper}");
-    let (w, h) = if paper == "a3" { (420.0, 297.0) } else { (297.0, 210.0) };
+    assert_eq!(
+        doc["pages"].as_u64(),
+        Some(expected as u64),
+        "{sample} on {paper}"
+    );
+    let (w, h) = if paper == "a3" {
+        (420.0, 297.0)
+    } else {
+        (297.0, 210.0)
+    };
     let texts: Vec<String> = pages
         .iter()
         .map(|p| p["text"].as_str().expect("text").to_string())
@@ -239,7 +261,10 @@ fn check_kit(sample: &str, profile: &str, paper: &str) {
         .cloned()
         .collect::<Vec<_>>()
         .join("\n");
-    let cells: Vec<String> = words(&schedule).into_iter().filter(|w| !w.is_empty()).collect();
+    let cells: Vec<String> = words(&schedule)
+        .into_iter()
+        .filter(|w| !w.is_empty())
+        .collect();
     let mut found = std::collections::HashSet::new();
     for pair in cells.windows(2) {
         if let Ok(id) = pair[0].parse::<u64>() {
@@ -249,7 +274,10 @@ fn check_kit(sample: &str, profile: &str, paper: &str) {
     for n in plan["nodes"].as_array().expect("nodes") {
         let id = n["id"].as_u64().expect("id");
         let a = n["a"].as_str().expect("a").to_string();
-        assert!(found.contains(&(id, a.clone())), "node {id} ({a}) not in the schedule");
+        assert!(
+            found.contains(&(id, a.clone())),
+            "node {id} ({a}) not in the schedule"
+        );
     }
 }
 

@@ -81,6 +81,10 @@ pub struct BuildReport {
     pub files: Vec<String>,
     /// Where they were written.
     pub out: PathBuf,
+    /// Pages of assembly.pdf (0 when not written).
+    pub assembly_pages: usize,
+    /// Time taken to draw and write assembly.pdf, s (not written anywhere).
+    pub assembly_s: f64,
 }
 
 impl BuildReport {
@@ -161,6 +165,8 @@ pub fn build(
             warnings,
             files: Vec::new(),
             out: out.to_path_buf(),
+            assembly_pages: 0,
+            assembly_s: 0.0,
         });
     }
     // Refuse a foreign plan.json or takeoff before the long work.
@@ -245,15 +251,19 @@ pub fn build(
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
-    let pdf = super::assembly::assembly_pdf(&super::assembly::AssemblyInput {
-        plan: &the_plan,
-        takeoff: &takeoff,
-        curves: &curves,
-        paper: opts.paper,
-        plan_path: &plan_target,
-    })?;
+    let t0 = std::time::Instant::now();
+    let (pdf, assembly_pages) =
+        super::assembly::assembly_pdf_counted(&super::assembly::AssemblyInput {
+            plan: &the_plan,
+            takeoff: &takeoff,
+            curves: &curves,
+            paper: opts.paper,
+            plan_path: &plan_target,
+        })?;
     staging.write("assembly.pdf", &pdf)?;
+    let assembly_s = t0.elapsed().as_secs_f64();
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
+    drop(curves);
     for i in 1..=drawer.len() {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
@@ -276,6 +286,8 @@ pub fn build(
         warnings,
         files,
         out: out.to_path_buf(),
+        assembly_pages,
+        assembly_s,
     })
 }
 

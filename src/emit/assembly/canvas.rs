@@ -1,13 +1,10 @@
-//! A page being drawn: paper millimetres (origin bottom left, y up) turned
-//! into printpdf operations. Strokes, fills, text in the built-in Helvetica
+//! A page being drawn: paper millimetres (origin bottom left, y up) written
+//! as a PDF content stream. Strokes, fills, text in the built-in Helvetica
 //! (WinAnsi only: [`winansi`] maps what it lacks), with the state (colour,
 //! line width, font) emitted only when it changes and consecutive text
 //! kept in one text object, so big pages stay small.
 
-use printpdf::{
-    BuiltinFont, Color, Line, LinePoint, Op, PaintMode, PdfFontHandle, Point, Polygon, PolygonRing,
-    Pt, Rgb, TextItem, TextMatrix, WindingOrder,
-};
+use crate::emit::push_decimal;
 
 /// Points per millimetre.
 const PT_PER_MM: f64 = 72.0 / 25.4;
@@ -26,6 +23,14 @@ pub const RED: Rgb3 = [0.8, 0.0, 0.0];
 /// Blue (engraving, dimensions).
 pub const BLUE: Rgb3 = [0.0, 0.2, 0.75];
 
+/// Radius on paper below which a stroked circle is drawn as a square, mm.
+pub const SMALL_CIRCLE_MM: f64 = 0.5;
+
+/// The resource name printpdf gives the built-in Helvetica.
+pub const HELVETICA_RES: &str = "F5";
+/// The resource name printpdf gives the built-in Helvetica-Bold.
+pub const HELVETICA_BOLD_RES: &str = "F6";
+
 /// Horizontal anchor of a text.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Align {
@@ -37,37 +42,25 @@ pub enum Align {
     Right,
 }
 
-/// One page's operations.
+/// One page's content stream, written directly as PDF operators (printpdf
+/// makes the document around it; its per-operation objects were most of
+/// the time and memory of big kits).
 #[derive(Debug, Default)]
 pub struct Canvas {
-    ops: Vec<Op>,
+    out: String,
     in_text: bool,
+    /// The text line start, tenths of a point, when unrotated.
+    line_at: Option<(i64, i64)>,
     font: Option<(bool, u32)>,
     fill: Option<Rgb3>,
     stroke: Option<Rgb3>,
-    width_pt: Option<f32>,
+    width_pt: Option<i64>,
     dashed: bool,
 }
 
-/// Millimetres to points, rounded to 0.01 pt (short numbers in the file).
-fn pt(mm: f64) -> f32 {
-    ((mm * PT_PER_MM * 100.0).round() / 100.0) as f32
-}
-
-fn point(p: [f64; 2]) -> Point {
-    Point {
-        x: Pt(pt(p[0])),
-        y: Pt(pt(p[1])),
-    }
-}
-
-fn color(c: Rgb3) -> Color {
-    Color::Rgb(Rgb {
-        r: c[0],
-        g: c[1],
-        b: c[2],
-        icc_profile: None,
-    })
+/// Millimetres to tenths of a point (0.035 mm, finer than print).
+fn hpt(mm: f64) -> i64 {
+    (mm * PT_PER_MM * 10.0).round() as i64
 }
 
 impl Canvas {
@@ -76,29 +69,54 @@ impl Canvas {
         Canvas::default()
     }
 
-    /// The operations drawn, ending any open text object.
-    pub fn into_ops(mut self) -> Vec<Op> {
+    /// The content stream drawn, ending any open text object.
+    pub fn into_content(mut self) -> Vec<u8> {
         self.end_text();
-        self.ops
+        self.out.into_bytes()
     }
 
-    /// How many operations so far.
+    /// Bytes written so far.
     pub fn len(&self) -> usize {
-        self.ops.len()
+        self.out.len()
+    }
+
+    /// Whether nothing is drawn.
+    pub fn is_empty(&self) -> bool {
+        self.out.is_empty()
+    }
+
+    fn num(&mut self, tenths: i64) {
+        push_decimal(&mut self.out, tenths as f64 / 10.0, 1, false);
+        self.out.push(' ');
+    }
+
+    fn xy(&mut self, p: [f64; 2]) {
+        self.num(hpt(p[0]));
+        self.num(hpt(p[1]));
     }
 
     fn end_text(&mut self) {
         if self.in_text {
-            self.ops.push(Op::EndTextSection);
+            self.out.push_str("ET\n");
             self.in_text = false;
+            self.line_at = None;
         }
+    }
+
+    fn rgb(&mut self, c: Rgb3, op: &str) {
+        for v in c {
+            push_decimal(&mut self.out, f64::from(v), 3, false);
+            self.out.push(' ');
+        }
+        self.out.push_str(op);
+        self.out.push('\n');
     }
 
     /// Stroke colour.
     pub fn stroke(&mut self, c: Rgb3) {
         if self.stroke != Some(c) {
             self.end_text();
-            self.ops.push(Op::SetOutlineColor { col: color(c) });
+            self.rgb(c, "RG");
             self.stroke = Some(c);
         }
     }
@@ -106,17 +124,18 @@ impl Canvas {
     /// Fill (and text) colour.
     pub fn fill(&mut self, c: Rgb3) {
         if self.fill != Some(c) {
-            self.ops.push(Op::SetFillColor { col: color(c) });
+            self.rgb(c, "rg");
             self.fill = Some(c);
         }
     }
 
     /// Line width, mm.
     pub fn width(&mut self, mm: f64) {
-        let w = pt(mm);
+        let w = hpt(mm);
         if self.width_pt != Some(w) {
             self.end_text();
-            self.ops.push(Op::SetOutlineThickness { pt: Pt(w) });
+            self.num(w);
+            self.out.push_str("w\n");
             self.width_pt = Some(w);
         }
     }
@@ -125,14 +144,24 @@ impl Canvas {
     pub fn dash(&mut self, dashed: bool) {
         if self.dashed != dashed {
             self.end_text();
-            let pattern: &[f32] = if dashed { &[4.0, 2.0] } else { &[] };
-            self.ops.push(Op::SetLineDashPattern {
-                dash: printpdf::LineDashPattern {
-                    offset: 0.0,
-                    pattern: pattern.iter().copied().collect(),
-                },
-            });
+            self.out
+                .push_str(if dashed { "[4 2] 0 d\n" } else { "[] 0 d\n" });
             self.dashed = dashed;
+        }
+    }
+
+    fn path(&mut self, pts: &[[f64; 2]]) {
+        self.end_text();
+        let mut last = None;
+        for (k, &p) in pts.iter().enumerate() {
+            let q = (hpt(p[0]), hpt(p[1]));
+            if last == Some(q) {
+                continue;
+            }
+            last = Some(q);
+            self.num(q.0);
+            self.num(q.1);
+            self.out.push_str(if k == 0 { "m\n" } else { "l\n" });
         }
     }
 
@@ -142,19 +171,8 @@ impl Canvas {
         if pts.len() < 2 {
             return;
         }
-        self.end_text();
-        self.ops.push(Op::DrawLine {
-            line: Line {
-                points: pts
-                    .iter()
-                    .map(|&p| LinePoint {
-                        p: point(p),
-                        bezier: false,
-                    })
-                    .collect(),
-                is_closed: closed,
-            },
-        });
+        self.path(pts);
+        self.out.push_str(if closed { "s\n" } else { "S\n" });
     }
 
     /// A straight segment.
@@ -167,86 +185,75 @@ impl Canvas {
         if pts.len() < 3 {
             return;
         }
-        self.end_text();
-        self.ops.push(Op::DrawPolygon {
-            polygon: Polygon {
-                rings: vec![PolygonRing {
-                    points: pts
-                        .iter()
-                        .map(|&p| LinePoint {
-                            p: point(p),
-                            bezier: false,
-                        })
-                        .collect(),
-                }],
-                mode: PaintMode::Fill,
-                winding_order: WindingOrder::NonZero,
-            },
-        });
+        self.path(pts);
+        self.out.push_str("h f\n");
     }
 
     /// An axis-aligned rectangle from (x, y), `w` × `h` mm: filled with the
     /// current fill colour and/or stroked.
     pub fn rect(&mut self, x: f64, y: f64, w: f64, h: f64, fill: bool, stroke: bool) {
-        let pts = [[x, y], [x + w, y], [x + w, y + h], [x, y + h]];
-        if fill {
-            self.fill_polygon(&pts);
+        if !fill && !stroke {
+            return;
         }
-        if stroke {
-            self.polyline(&pts, true);
-        }
+        self.end_text();
+        self.xy([x, y]);
+        self.num(hpt(x + w) - hpt(x));
+        self.num(hpt(y + h) - hpt(y));
+        self.out.push_str(match (fill, stroke) {
+            (true, true) => "re B\n",
+            (true, false) => "re f\n",
+            _ => "re S\n",
+        });
+    }
+
+    /// A dot: a filled square `side_mm` wide centred on `c` (cheaper than a
+    /// circle where thousands are drawn).
+    pub fn dot(&mut self, c: [f64; 2], side_mm: f64) {
+        let h = 0.5 * side_mm;
+        self.rect(c[0] - h, c[1] - h, side_mm, side_mm, true, false);
     }
 
     /// A circle of radius `r` mm (four Bézier arcs): stroked, or filled.
+    /// Below [`SMALL_CIRCLE_MM`] a stroked circle is drawn as a square of
+    /// its diameter (the same at print, a sixth of the bytes).
     pub fn circle(&mut self, c: [f64; 2], r: f64, filled: bool) {
+        if !filled && r < SMALL_CIRCLE_MM {
+            self.rect(c[0] - r, c[1] - r, 2.0 * r, 2.0 * r, false, true);
+            return;
+        }
         const K: f64 = 0.552_284_749_8;
         let k = K * r;
         let [x, y] = c;
-        let seq = [
-            ([x + r, y], false),
-            ([x + r, y + k], true),
-            ([x + k, y + r], true),
-            ([x, y + r], false),
-            ([x - k, y + r], true),
-            ([x - r, y + k], true),
-            ([x - r, y], false),
-            ([x - r, y - k], true),
-            ([x - k, y - r], true),
-            ([x, y - r], false),
-            ([x + k, y - r], true),
-            ([x + r, y - k], true),
-            ([x + r, y], false),
-        ];
-        let points: Vec<LinePoint> = seq
-            .iter()
-            .map(|&(p, bezier)| LinePoint {
-                p: point(p),
-                bezier,
-            })
-            .collect();
         self.end_text();
-        if filled {
-            self.ops.push(Op::DrawPolygon {
-                polygon: Polygon {
-                    rings: vec![PolygonRing { points }],
-                    mode: PaintMode::Fill,
-                    winding_order: WindingOrder::NonZero,
-                },
-            });
-        } else {
-            self.ops.push(Op::DrawLine {
-                line: Line {
-                    points,
-                    is_closed: true,
-                },
-            });
+        self.xy([x + r, y]);
+        self.out.push_str("m\n");
+        let arcs = [
+            [[x + r, y + k], [x + k, y + r], [x, y + r]],
+            [[x - k, y + r], [x - r, y + k], [x - r, y]],
+            [[x - r, y - k], [x - k, y - r], [x, y - r]],
+            [[x + k, y - r], [x + r, y - k], [x + r, y]],
+        ];
+        for a in arcs {
+            for p in a {
+                self.xy(p);
+            }
+            self.out.push_str("c\n");
         }
+        self.out.push_str(if filled { "h f\n" } else { "h S\n" });
     }
 
     /// Text at `at` (its baseline), `size_pt` points, anchored by `align`,
     /// turned `rot_deg` counter-clockwise about the anchor; current fill
     /// colour. Characters outside WinAnsi are mapped by [`winansi`].
-    pub fn text(&mut self, at: [f64; 2], size_pt: f64, bold: bool, align: Align, rot_deg: f64, s: &str) {
+    pub fn text(
+        &mut self,
+        at: [f64; 2],
+        size_pt: f64,
+        bold: bool,
+        align: Align,
+        rot_deg: f64,
+        s: &str,
+    ) {
         if s.is_empty() {
             return;
         }
@@ -258,31 +265,86 @@ impl Canvas {
             Align::Right => w,
         };
         let (sin, cos) = rot_deg.to_radians().sin_cos();
-        let x = at[0] - shift * cos;
-        let y = at[1] - shift * sin;
+        let (x, y) = (hpt(at[0] - shift * cos), hpt(at[1] - shift * sin));
         if !self.in_text {
-            self.ops.push(Op::StartTextSection);
+            self.out.push_str("BT\n");
             self.in_text = true;
+            self.line_at = Some((0, 0));
         }
-        let size = (size_pt * 100.0).round() as u32;
+        let size = (size_pt * 10.0).round() as u32;
         if self.font != Some((bold, size)) {
-            self.ops.push(Op::SetFont {
-                font: PdfFontHandle::Builtin(if bold {
-                    BuiltinFont::HelveticaBold
-                } else {
-                    BuiltinFont::Helvetica
-                }),
-                size: Pt(size as f32 / 100.0),
+            self.out.push('/');
+            self.out.push_str(if bold {
+                HELVETICA_BOLD_RES
+            } else {
+                HELVETICA_RES
             });
+            self.out.push(' ');
+            self.num(i64::from(size));
+            self.out.push_str("Tf\n");
             self.font = Some((bold, size));
         }
-        let r = |v: f64| ((v * 10_000.0).round() / 10_000.0) as f32;
-        self.ops.push(Op::SetTextMatrix {
-            matrix: TextMatrix::Raw([r(cos), r(sin), r(-sin), r(cos), pt(x), pt(y)]),
-        });
-        self.ops.push(Op::ShowText {
-            items: vec![TextItem::Text(s)],
-        });
+        if rot_deg == 0.0 {
+            match self.line_at {
+                // Relative to the last line start: short numbers, exact
+                // (whole tenths of a point).
+                Some((lx, ly)) => {
+                    self.num(x - lx);
+                    self.num(y - ly);
+                    self.out.push_str("Td\n");
+                }
+                None => {
+                    self.out.push_str("1 0 0 1 ");
+                    self.num(x);
+                    self.num(y);
+                    self.out.push_str("Tm\n");
+                }
+            }
+            self.line_at = Some((x, y));
+        } else {
+            for v in [cos, sin, -sin, cos] {
+                push_decimal(&mut self.out, v, 4, false);
+                self.out.push(' ');
+            }
+            self.num(x);
+            self.num(y);
+            self.out.push_str("Tm\n");
+            self.line_at = None;
+        }
+        self.out.push('(');
+        for c in s.chars() {
+            match c {
+                '(' | ')' | '\\' => {
+                    self.out.push('\\');
+                    self.out.push(c);
+                }
+                ' '..='~' => self.out.push(c),
+                _ => {
+                    let b = win_ansi_byte(c).unwrap_or(b'?');
+                    self.out.push_str(&format!("\\{b:03o}"));
+                }
+            }
+        }
+        self.out.push_str(") Tj\n");
+    }
+}
+
+/// The WinAnsi byte of a character [`winansi`] lets through.
+fn win_ansi_byte(c: char) -> Option<u8> {
+    match c as u32 {
+        cp @ 0x20..=0x7e | cp @ 0xa0..=0xff => Some(cp as u8),
+        _ => Some(match c {
+            '€' => 0x80,
+            '…' => 0x85,
+            '‘' => 0x91,
+            '’' => 0x92,
+            '“' => 0x93,
+            '”' => 0x94,
+            '•' => 0x95,
+            '–' => 0x96,
+            '—' => 0x97,
+            _ => return None,
+        }),
     }
 }
 
@@ -358,6 +420,15 @@ mod tests {
     fn maps_what_winansi_lacks() {
         assert_eq!(winansi("A → B ≤ 1 × 2 °"), "A -> B <= 1 × 2 °");
         assert_eq!(winansi("σv"), "sigmav");
+    }
+
+    #[test]
+    fn text_is_escaped_winansi() {
+        let mut c = Canvas::new();
+        c.text([10.0, 10.0], 8.0, false, Align::Left, 0.0, "a (b) 90° \\");
+        let s = String::from_utf8(c.into_content()).expect("ascii");
+        assert!(s.contains("(a \\(b\\) 90\\260 \\\\) Tj"), "{s}");
+        assert!(s.starts_with("BT\n/F5 8 Tf\n"), "{s}");
     }
 
     #[test]

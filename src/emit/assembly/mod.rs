@@ -189,8 +189,14 @@ pub const SECTIONS: [&str; 9] = [
 
 /// The PDF of the assembly sheets.
 pub fn assembly_pdf(input: &AssemblyInput) -> Result<Vec<u8>> {
+    assembly_pdf_counted(input).map(|(bytes, _)| bytes)
+}
+
+/// [`assembly_pdf`] and its page count.
+pub fn assembly_pdf_counted(input: &AssemblyInput) -> Result<(Vec<u8>, usize)> {
     let pages = pages(input)?;
-    Ok(write_pdf(input, pages))
+    let n = pages.len();
+    Ok((write_pdf(input, pages), n))
 }
 
 /// Every page, numbered order, not yet titled.
@@ -271,17 +277,46 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
         .map(|p| p.name.clone())
         .unwrap_or_default();
     let (w, h) = input.paper.size_mm();
-    let pdf_pages: Vec<printpdf::PdfPage> = pages
+    // Each page's content stream, compressed, in parallel.
+    let contents: Vec<Vec<u8>> = pages
         .into_par_iter()
         .enumerate()
         .map(|(i, mut page)| {
-            title(&mut page, &frame, &project, &profile, i + 1, total, input.paper);
-            printpdf::PdfPage::new(printpdf::Mm(w as f32), printpdf::Mm(h as f32), page.canvas.into_ops())
+            title(
+                &mut page,
+                &frame,
+                &project,
+                &profile,
+                i + 1,
+                total,
+                input.paper,
+            );
+            deflate(&page.canvas.into_content())
         })
         .collect();
-    let mut doc = printpdf::PdfDocument::new(&canvas::winansi(&format!(
-        "{project}: assembly sheets"
-    )));
+    // printpdf makes the document (page tree, the built-in fonts as shared
+    // resources, metadata); its pages carry a stand-in that names both
+    // fonts, replaced by the content streams drawn here.
+    let marker = || {
+        use printpdf::{BuiltinFont, Op, PdfFontHandle, Pt};
+        vec![
+            Op::StartTextSection,
+            Op::SetFont {
+                font: PdfFontHandle::Builtin(BuiltinFont::Helvetica),
+                size: Pt(8.0),
+            },
+            Op::SetFont {
+                font: PdfFontHandle::Builtin(BuiltinFont::HelveticaBold),
+                size: Pt(8.0),
+            },
+            Op::EndTextSection,
+        ]
+    };
+    let pdf_pages: Vec<printpdf::PdfPage> = (0..total)
+        .map(|_| printpdf::PdfPage::new(printpdf::Mm(w as f32), printpdf::Mm(h as f32), marker()))
+        .collect();
+    let mut doc =
+        printpdf::PdfDocument::new(&canvas::winansi(&format!("{project}: assembly sheets")));
     doc.metadata.info.creator = format!("lamella {}", env!("CARGO_PKG_VERSION"));
     doc.metadata.info.producer = doc.metadata.info.creator.clone();
     doc.with_pages(pdf_pages);
@@ -294,15 +329,42 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
     let mut warnings = Vec::new();
     let mut lo = doc.to_lopdf_document(&opts, &mut warnings);
     drop(doc);
+    for ((_, page_id), content) in lo.get_pages().into_iter().zip(contents) {
+        let stream = lopdf::Stream::new(
+            lopdf::Dictionary::from_iter(vec![(
+                "Filter",
+                lopdf::Object::Name(b"FlateDecode".to_vec()),
+            )]),
+            content,
+        );
+        let id = lo.add_object(stream);
+        if let Ok(lopdf::Object::Dictionary(d)) = lo.get_object_mut(page_id) {
+            d.set("Contents", lopdf::Object::Reference(id));
+        }
+    }
+    // The stand-in streams are no longer referenced.
+    lo.prune_objects();
+    lo.renumber_objects();
     // printpdf's trailer /ID is random: a stable one from the content.
     let id = stable_id(&project, total, plan.parts.as_ref().map_or(0, Vec::len));
     let s = || lopdf::Object::String(id.as_bytes().to_vec(), lopdf::StringFormat::Hexadecimal);
     lo.trailer.set("ID", lopdf::Object::Array(vec![s(), s()]));
-    lo.compress();
     let mut bytes = Vec::new();
     // Writing into a Vec cannot fail.
     let _ = lo.save_to(&mut bytes);
     bytes
+}
+
+/// zlib-compressed bytes (FlateDecode).
+fn deflate(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut e = flate2::write::ZlibEncoder::new(
+        Vec::with_capacity(bytes.len() / 4),
+        flate2::Compression::new(6),
+    );
+    // Writing into a Vec cannot fail.
+    let _ = e.write_all(bytes);
+    e.finish().unwrap_or_default()
 }
 
 /// A 16-byte id (FNV-1a over what the document is of).
@@ -350,9 +412,23 @@ fn title(
     c.text([x0 + 3.0, y + 3.5], 9.0, true, Align::Left, 0.0, project);
     let left_w = canvas::text_width_mm(&canvas::winansi(project), 9.0, true);
     c.fill(GREY);
-    c.text([x0 + 6.0 + left_w, y + 3.5], 9.0, false, Align::Left, 0.0, profile);
+    c.text(
+        [x0 + 6.0 + left_w, y + 3.5],
+        9.0,
+        false,
+        Align::Left,
+        0.0,
+        profile,
+    );
     c.fill(BLACK);
-    c.text([mid, y + 3.5], 9.0, false, Align::Center, 0.0, &format!("{}  |  {scale}", page.section));
+    c.text(
+        [mid, y + 3.5],
+        9.0,
+        false,
+        Align::Center,
+        0.0,
+        &format!("{}  |  {scale}", page.section),
+    );
     c.text(
         [x1 - 3.0, y + 3.5],
         9.0,

@@ -65,15 +65,18 @@ pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<Page>> 
                             closed,
                             vertices,
                         } if *layer != Layer::Engrave => {
-                            c.stroke(if *layer == Layer::CutOuter { BLACK } else { GREY });
+                            c.stroke(if *layer == Layer::CutOuter {
+                                BLACK
+                            } else {
+                                GREY
+                            });
                             c.width(if *layer == Layer::CutOuter { 0.15 } else { 0.1 });
                             let mut pts: Vec<[f64; 2]> = Vec::with_capacity(vertices.len());
                             for v in vertices {
                                 let p = map(v.x_mm, v.y_mm);
-                                if pts
-                                    .last()
-                                    .is_none_or(|q: &[f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]) >= 0.1)
-                                {
+                                if pts.last().is_none_or(|q: &[f64; 2]| {
+                                    (p[0] - q[0]).hypot(p[1] - q[1]) >= 0.1
+                                }) {
                                     pts.push(p);
                                 }
                             }
@@ -86,7 +89,11 @@ pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<Page>> 
                         } => {
                             c.stroke(GREY);
                             c.width(0.1);
-                            c.circle(map(center_mm[0], center_mm[1]), (radius_mm * s).max(0.15), false);
+                            c.circle(
+                                map(center_mm[0], center_mm[1]),
+                                (radius_mm * s).max(0.15),
+                                false,
+                            );
                         }
                         _ => {}
                     }
@@ -99,14 +106,32 @@ pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<Page>> 
                 let (bw, bh) = ((x1 - x0) * s, (y1 - y0) * s);
                 let text = canvas::winansi(&part.part);
                 let w1 = canvas::text_width_mm(&text, 1.0, false);
-                let size = (0.85 * bw / w1).min(0.6 * bh / canvas::cap_mm(1.0)).clamp(4.0, 8.0);
+                let size = (0.85 * bw / w1)
+                    .min(0.6 * bh / canvas::cap_mm(1.0))
+                    .clamp(4.0, 8.0);
                 let at = map(0.5 * (x0 + x1), 0.5 * (y0 + y1));
                 // A part much taller than wide is labelled upright.
                 if bh > 2.0 * bw && bw < w1 * 4.0 {
-                    let size = (0.85 * bh / w1).min(0.6 * bw / canvas::cap_mm(1.0)).clamp(4.0, 8.0);
-                    c.text([at[0] + 0.5 * canvas::cap_mm(size), at[1]], size, false, Align::Center, 90.0, &text);
+                    let size = (0.85 * bh / w1)
+                        .min(0.6 * bw / canvas::cap_mm(1.0))
+                        .clamp(4.0, 8.0);
+                    c.text(
+                        [at[0] + 0.5 * canvas::cap_mm(size), at[1]],
+                        size,
+                        false,
+                        Align::Center,
+                        90.0,
+                        &text,
+                    );
                 } else {
-                    c.text([at[0], at[1] - 0.5 * canvas::cap_mm(size)], size, false, Align::Center, 0.0, &text);
+                    c.text(
+                        [at[0], at[1] - 0.5 * canvas::cap_mm(size)],
+                        size,
+                        false,
+                        Align::Center,
+                        0.0,
+                        &text,
+                    );
                 }
             }
             Ok(page)

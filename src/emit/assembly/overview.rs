@@ -66,13 +66,21 @@ pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
         .map(|st| {
             (
                 st.id.as_str(),
-                (st.family.clone(), st.check.as_ref().map(|k| k.stress.utilization)),
+                (
+                    st.family.clone(),
+                    st.check.as_ref().map(|k| k.stress.utilization),
+                ),
             )
         })
         .collect();
     // View origins: each view centred in its box.
     let plan_box = (frame.x0_mm, frame.y0_mm + BAR_MM, plan_w, plan_h);
-    let front_box = (frame.x0_mm + plan_w + gap, frame.y0_mm + elev_h + gap, right_w, elev_h);
+    let front_box = (
+        frame.x0_mm + plan_w + gap,
+        frame.y0_mm + elev_h + gap,
+        right_w,
+        elev_h,
+    );
     let side_box = (frame.x0_mm + plan_w + gap, frame.y0_mm, right_w, elev_h);
     let views: [(&str, (f64, f64, f64, f64), usize, usize); 3] = [
         ("plan (x right, y up)", plan_box, 0, 1),
@@ -105,15 +113,29 @@ pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
                 };
                 c.stroke(colour);
                 c.width(if edges { 0.5 } else { 0.3 });
-                let pts: Vec<[f64; 2]> = thin(cv.points_mm.iter().map(map).collect(), 0.2);
+                let pts: Vec<[f64; 2]> = thin(cv.points_mm.iter().map(map).collect(), 0.4);
                 c.polyline(&pts, false);
             }
         }
         // Nodes.
         c.fill(BLACK);
-        let r = if input.plan.nodes.len() > 2000 { 0.2 } else { 0.35 };
-        for n in &input.plan.nodes {
-            c.circle(map(&n.position_mm), r, true);
+        let r = if input.plan.nodes.len() > 2000 {
+            0.2
+        } else {
+            0.35
+        };
+        // A big grid's nodes are dotted in plan only (elevations would be solid).
+        let nodes: &[crate::io::plan::PlanNode] = if input.plan.nodes.len() > 2000 && vi > 0 {
+            &[]
+        } else {
+            &input.plan.nodes
+        };
+        for n in nodes {
+            if input.plan.nodes.len() > 2000 {
+                c.dot(map(&n.position_mm), 2.0 * r);
+            } else {
+                c.circle(map(&n.position_mm), r, true);
+            }
         }
         if vi == 0 {
             let centre = [ox + 0.5 * ext[i] * s, oy + 0.5 * ext[j] * s];
@@ -160,7 +182,10 @@ fn label_ends(c: &mut Canvas, id: &str, pts: &[[f64; 2]]) {
         let (dx, dy) = (end[0] - inner[0], end[1] - inner[1]);
         let len = dx.hypot(dy).max(1e-9);
         let (ux, uy) = (dx / len, dy / len);
-        let at = [end[0] + 1.2 * ux, end[1] + 1.2 * uy - 0.35 * canvas::cap_mm(LABEL_PT)];
+        let at = [
+            end[0] + 1.2 * ux,
+            end[1] + 1.2 * uy - 0.35 * canvas::cap_mm(LABEL_PT),
+        ];
         let align = if ux > 0.4 {
             Align::Left
         } else if ux < -0.4 {
@@ -212,9 +237,23 @@ fn colour_bar(c: &mut Canvas, x: f64, y: f64, w: f64) {
     c.fill(BLACK);
     for k in 0..=4 {
         let u = f64::from(k) / 4.0;
-        c.text([x + u * w, y + 0.5], 7.0, false, Align::Center, 0.0, &format!("{u:.2}"));
+        c.text(
+            [x + u * w, y + 0.5],
+            7.0,
+            false,
+            Align::Center,
+            0.0,
+            &format!("{u:.2}"),
+        );
     }
-    c.text([x + w + 6.0, y + 0.5], 7.0, false, Align::Center, 0.0, "> 1");
+    c.text(
+        [x + w + 6.0, y + 0.5],
+        7.0,
+        false,
+        Align::Center,
+        0.0,
+        "> 1",
+    );
     c.text(
         [x, y + 8.8],
         7.0,

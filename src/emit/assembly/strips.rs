@@ -95,7 +95,12 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         .profile
         .as_ref()
         .map(|p| p.height_mm)
-        .or_else(|| parts.iter().find(|p| p.kind == "lamella").map(|p| p.height_mm))
+        .or_else(|| {
+            parts
+                .iter()
+                .find(|p| p.kind == "lamella")
+                .map(|p| p.height_mm)
+        })
         .unwrap_or(50.0);
     let layout = StripLayout::new(frame, height);
     let block = parts
@@ -119,8 +124,11 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
             let lamellas: Vec<Lamella> = numbers
                 .iter()
                 .map(|&n| {
-                    let mut pieces: Vec<&PlanPart> =
-                        ps.iter().copied().filter(|p| p.lamella == Some(n)).collect();
+                    let mut pieces: Vec<&PlanPart> = ps
+                        .iter()
+                        .copied()
+                        .filter(|p| p.lamella == Some(n))
+                        .collect();
                     pieces.sort_by(|a, b| {
                         a.station_start_mm
                             .unwrap_or(0.0)
@@ -134,7 +142,8 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
                         .iter()
                         .map(|p| p.station_start_mm.unwrap_or(0.0) + p.length_mm)
                         .fold(f64::NEG_INFINITY, f64::max);
-                    let rows = (((end_mm - start_mm) / layout.row_length_mm).ceil() as usize).max(1);
+                    let rows =
+                        (((end_mm - start_mm) / layout.row_length_mm).ceil() as usize).max(1);
                     Lamella {
                         number: n,
                         pieces,
@@ -160,7 +169,11 @@ struct StripRows<'a> {
 /// line and all its rows fit there, else it starts a new page; a strip
 /// longer than a page fills pages of [`StripLayout::rows_per_page`] rows
 /// and its last rows stay open to the next strip.
-fn paginate(strips: &[StripRows], layout: &StripLayout, frame: &Frame) -> Vec<Vec<(usize, usize, usize)>> {
+fn paginate(
+    strips: &[StripRows],
+    layout: &StripLayout,
+    frame: &Frame,
+) -> Vec<Vec<(usize, usize, usize)>> {
     let full = frame.height_mm();
     let mut pages: Vec<Vec<(usize, usize, usize)>> = Vec::new();
     let mut left = 0.0_f64;
@@ -193,7 +206,12 @@ fn paginate(strips: &[StripRows], layout: &StripLayout, frame: &Frame) -> Vec<Ve
 }
 
 /// The pages of all strips.
-fn strip_pages(strips: &[StripRows], layout: &StripLayout, frame: &Frame, block: Option<(f64, f64)>) -> Vec<Page> {
+fn strip_pages(
+    strips: &[StripRows],
+    layout: &StripLayout,
+    frame: &Frame,
+    block: Option<(f64, f64)>,
+) -> Vec<Page> {
     let pages = paginate(strips, layout, frame);
     pages
         .par_iter()
@@ -321,7 +339,14 @@ fn draw_row(
     let py = |y: f64| y_bot + y / d;
     // Name column.
     c.fill(BLACK);
-    c.text([frame.x0_mm, y_top + 2.0], 10.0, true, Align::Left, 0.0, &format!("{strip}-{}", l.number));
+    c.text(
+        [frame.x0_mm, y_top + 2.0],
+        10.0,
+        true,
+        Align::Left,
+        0.0,
+        &format!("{strip}-{}", l.number),
+    );
     c.text(
         [frame.x0_mm, y_top - 2.5],
         7.0,
@@ -348,7 +373,11 @@ fn draw_row(
         }
         if let Some((bl, bh)) = block {
             c.fill([0.8, 0.86, 0.95]);
-            for f in p.features.iter().filter(|f| f.hole_use.as_deref() == Some("shear_block")) {
+            for f in p
+                .features
+                .iter()
+                .filter(|f| f.hole_use.as_deref() == Some("shear_block"))
+            {
                 let x = f.center_mm[0] + off;
                 if x - 0.5 * bl >= xa && x + 0.5 * bl <= xb {
                     let (x0, y0) = (px(x - 0.5 * bl), py(f.center_mm[1] - 0.5 * bh));
@@ -374,13 +403,21 @@ fn draw_row(
         for f in p.features.iter().filter(|f| f.kind == "hole") {
             let x = f.center_mm[0] + off;
             if (xa..=xb).contains(&x) {
-                c.circle([px(x), py(f.center_mm[1])], (0.5 * f.width_mm / d).max(0.2), false);
+                c.circle(
+                    [px(x), py(f.center_mm[1])],
+                    (0.5 * f.width_mm / d).max(0.2),
+                    false,
+                );
             }
         }
         for f in &p.features {
             if let (Some(_), Some(cross)) = (f.node, &f.crossing) {
                 let x = f.center_mm[0] + off;
-                if (xa..=xb).contains(&x) && !nodes.iter().any(|(nx, id)| id == cross && (nx - x).abs() < 1.0) {
+                if (xa..=xb).contains(&x)
+                    && !nodes
+                        .iter()
+                        .any(|(nx, id)| id == cross && (nx - x).abs() < 1.0)
+                {
                     nodes.push((x, cross.clone()));
                 }
             }
@@ -440,25 +477,59 @@ fn draw_row(
     }
     let cap = 0.718 * LABEL_PT * 25.4 / 72.0;
     let pitch = cap + 0.9;
+    // Where each label goes (moved right along a leader when crowded).
     let mut last_label = f64::NEG_INFINITY;
-    for (x, id) in marks {
-        let station = mm0(x);
-        let tick = px(x);
-        let lx = tick.max(last_label + pitch);
-        last_label = lx;
-        c.stroke(BLUE);
-        c.width(0.15);
-        c.line([tick, y_top + 0.3], [tick, y_top + 1.5]);
+    let placed: Vec<(f64, f64, String, Option<String>)> = marks
+        .into_iter()
+        .map(|(x, id)| {
+            let tick = px(x);
+            let lx = tick.max(last_label + pitch);
+            last_label = lx;
+            (tick, lx, mm0(x), id)
+        })
+        .collect();
+    // Ticks and leaders, then the stations, then the ids: one colour and
+    // font change each per row.
+    c.stroke(BLUE);
+    c.width(0.15);
+    for (tick, lx, _, _) in &placed {
         if (lx - tick).abs() > 0.05 {
-            c.line([tick, y_top + 1.5], [lx, y_top + 2.5]);
+            c.polyline(
+                &[
+                    [*tick, y_top + 0.3],
+                    [*tick, y_top + 1.5],
+                    [*lx, y_top + 2.5],
+                ],
+                false,
+            );
+        } else {
+            c.line([*tick, y_top + 0.3], [*tick, y_top + 1.5]);
         }
-        c.fill(BLUE);
-        // Upright text reads upward; its glyphs lie left of the baseline.
-        c.text([lx + 0.5 * cap, y_top + 3.0], LABEL_PT, false, Align::Left, 90.0, &station);
+    }
+    // Upright text reads upward; its glyphs lie left of the baseline.
+    c.fill(BLUE);
+    for (_, lx, station, _) in &placed {
+        c.text(
+            [lx + 0.5 * cap, y_top + 3.0],
+            LABEL_PT,
+            false,
+            Align::Left,
+            90.0,
+            station,
+        );
+    }
+    c.fill(BLACK);
+    for (_, lx, station, id) in &placed {
         if let Some(id) = id {
-            c.fill(BLACK);
-            let above = y_top + 4.5 + super::canvas::text_width_mm(&station, LABEL_PT, false);
-            c.text([lx + 0.5 * cap, above], LABEL_PT, true, Align::Left, 90.0, &id);
+            let above = y_top + 4.5 + super::canvas::text_width_mm(station, LABEL_PT, false);
+            c.text(
+                [lx + 0.5 * cap, above],
+                LABEL_PT,
+                true,
+                Align::Left,
+                90.0,
+                id,
+            );
         }
     }
 }

@@ -392,7 +392,9 @@ pub fn check_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
                     fixed(c.stress.torsion_shear_mpa, 1),
                     fixed(c.stress.trapeze_stress_mpa, 1),
                     fixed(c.stress.combined_stress_mpa, 1),
-                    s.min_bending_radius_mm.map(mm0).unwrap_or_else(|| "-".into()),
+                    s.min_bending_radius_mm
+                        .map(mm0)
+                        .unwrap_or_else(|| "-".into()),
                     fixed(s.max_twist_deg_per_m, 1),
                 ],
                 colour,
@@ -400,10 +402,7 @@ pub fn check_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         })
         .collect();
     let verdict = match &plan.check {
-        Some(c) if c.passes => format!(
-            "PASS, highest utilisation {}",
-            fixed(c.max_utilization, 3)
-        ),
+        Some(c) if c.passes => format!("PASS, highest utilisation {}", fixed(c.max_utilization, 3)),
         Some(c) => format!(
             "FAIL: {} strips over 1, highest {}",
             c.strips_overstressed,
@@ -523,7 +522,14 @@ pub fn takeoff_page(t: &Takeoff, frame: &Frame) -> Page {
         ),
     ];
     c.fill(BLACK);
-    c.text([frame.x0_mm, top - 4.0], 9.0, true, Align::Left, 0.0, "Totals");
+    c.text(
+        [frame.x0_mm, top - 4.0],
+        9.0,
+        true,
+        Align::Left,
+        0.0,
+        "Totals",
+    );
     for (i, l) in lines.iter().enumerate() {
         c.text(
             [frame.x0_mm, top - 9.0 - 4.5 * i as f64],
@@ -562,7 +568,14 @@ pub fn cover_page(input: &AssemblyInput, frame: &Frame, first: &[(&str, usize, u
     let x0 = frame.x0_mm;
     let top = frame.y1_mm;
     c.fill(BLACK);
-    c.text([x0, top - 12.0], 24.0, true, Align::Left, 0.0, &plan.network.name);
+    c.text(
+        [x0, top - 12.0],
+        24.0,
+        true,
+        Align::Left,
+        0.0,
+        &plan.network.name,
+    );
     let count = |f: &str| plan.strips.iter().filter(|s| s.family == f).count();
     let mut facts: Vec<(String, String)> = vec![
         (
@@ -574,20 +587,12 @@ pub fn cover_page(input: &AssemblyInput, frame: &Frame, first: &[(&str, usize, u
         ),
         (
             "strips".into(),
-            format!(
-                "{} A, {} B, {} edge",
-                count("A"),
-                count("B"),
-                count("edge")
-            ),
+            format!("{} A, {} B, {} edge", count("A"), count("B"), count("edge")),
         ),
         ("nodes".into(), plan.nodes.len().to_string()),
     ];
     if let Some(p) = &plan.profile {
-        facts.push((
-            "profile".into(),
-            format!("{} ({})", p.name, p.source),
-        ));
+        facts.push(("profile".into(), format!("{} ({})", p.name, p.source)));
         facts.push((
             "section".into(),
             format!(
@@ -642,7 +647,11 @@ pub fn cover_page(input: &AssemblyInput, frame: &Frame, first: &[(&str, usize, u
             fixed(tt.mass_kg, 1),
             tt.sheets,
             tt.stock_cost
-                .map(|v| format!(", {} {}", fixed(v, 2), t.currency.clone().unwrap_or_default()))
+                .map(|v| format!(
+                    ", {} {}",
+                    fixed(v, 2),
+                    t.currency.clone().unwrap_or_default()
+                ))
                 .unwrap_or_default()
         ),
     ));
@@ -683,7 +692,14 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     let x = frame.x1_mm - w;
     let mut y = frame.y1_mm - 24.0;
     c.fill(BLACK);
-    c.text([x, y], 11.0, true, Align::Left, 0.0, "Engraved marks (blue on the parts)");
+    c.text(
+        [x, y],
+        11.0,
+        true,
+        Align::Left,
+        0.0,
+        "Engraved marks (blue on the parts)",
+    );
     y -= 26.0;
     // A sample lamella 0.9 w long, 16 mm high, one slot from the top.
     let (lx, lw, lh) = (x + 2.0, 0.9 * w, 16.0);
@@ -705,14 +721,35 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     c.circle([lx + 0.85 * lw, y + 0.5 * lh], 1.2, false);
     c.fill(BLUE);
     c.stroke(BLUE);
-    c.text([lx + 4.0, y + 4.0], 10.0, false, Align::Left, 0.0, "A05-1.2");
+    c.text(
+        [lx + 4.0, y + 4.0],
+        10.0,
+        false,
+        Align::Left,
+        0.0,
+        "A05-1.2",
+    );
     c.text([slot_x, y + 2.5], 8.0, false, Align::Center, 0.0, "B12");
-    c.text([lx + 0.85 * lw, y + 2.5], 8.0, false, Align::Center, 0.0, "B13");
+    c.text(
+        [lx + 0.85 * lw, y + 2.5],
+        8.0,
+        false,
+        Align::Center,
+        0.0,
+        "B13",
+    );
     // The orientation arrow with its tick toward the top edge.
     let (ax, ay) = (lx + 30.0, y + 6.0);
     c.width(0.3);
     c.line([ax, ay], [ax + 14.0, ay]);
-    c.polyline(&[[ax + 11.0, ay + 1.5], [ax + 14.0, ay], [ax + 11.0, ay - 1.5]], false);
+    c.polyline(
+        &[
+            [ax + 11.0, ay + 1.5],
+            [ax + 14.0, ay],
+            [ax + 11.0, ay - 1.5],
+        ],
+        false,
+    );
     c.line([ax, ay], [ax, ay + 3.0]);
     c.fill(BLACK);
     let notes = [
