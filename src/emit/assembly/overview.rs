@@ -8,6 +8,9 @@ use super::canvas::{self, Align, Canvas, BLACK, GREY};
 use super::{standard_scale, utilisation_colour, AssemblyInput, Frame, Page};
 use std::collections::HashMap;
 
+/// A view's box on the page: x, y, width, height, mm.
+type ViewBox = (f64, f64, f64, f64);
+
 /// Room around each view for labels, mm.
 const PAD_MM: f64 = 9.0;
 /// Height of the colour bar band at the foot of the plan view, mm.
@@ -82,7 +85,7 @@ pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
         elev_h,
     );
     let side_box = (frame.x0_mm + plan_w + gap, frame.y0_mm, right_w, elev_h);
-    let views: [(&str, (f64, f64, f64, f64), usize, usize); 3] = [
+    let views: [(&str, ViewBox, usize, usize); 3] = [
         ("plan (x right, y up)", plan_box, 0, 1),
         ("front elevation (x right, z up)", front_box, 0, 2),
         ("side elevation (y right, z up)", side_box, 1, 2),
