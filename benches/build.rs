@@ -2,7 +2,8 @@
 //! curves with the prototype's cell size (n = 100, 200, 400; the largest is
 //! a 100 m grid with 160,000 nodes) and the steel prototype's profile: every
 //! stage from reading the network to the files moved into place (plan.json,
-//! takeoff, a DXF and an SVG per sheet). Each size runs in a fresh child
+//! takeoff, a DXF and an SVG per sheet, assembly.pdf; its pages, size and
+//! time in the last columns). Each size runs in a fresh child
 //! process so its peak memory (VmHWM) is its own.
 //!
 //!     cargo bench --bench build            # all sizes
@@ -25,8 +26,18 @@ fn main() {
     }
     let dir = support::network_dir();
     println!(
-        "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10} {:>9} {:>10}",
-        "n", "nodes", "pieces", "sheets", "files", "files MiB", "build s", "peak MiB"
+        "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10} {:>9} {:>10} {:>7} {:>8} {:>6}",
+        "n",
+        "nodes",
+        "pieces",
+        "sheets",
+        "files",
+        "files MiB",
+        "build s",
+        "peak MiB",
+        "pages",
+        "pdf MiB",
+        "pdf s"
     );
     for n in support::sizes() {
         let path = dir.join(format!("enneper-parts-{n}.json"));
@@ -59,8 +70,10 @@ fn measure(path: &Path) {
         .iter()
         .map(|f| std::fs::metadata(out.join(f)).map_or(0, |m| m.len()))
         .sum();
+    let pdf_mib = std::fs::metadata(out.join("assembly.pdf")).map_or(0, |m| m.len()) as f64
+        / (1024.0 * 1024.0);
     println!(
-        "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10.0} {:>9.2} {:>10.0}",
+        "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10.0} {:>9.2} {:>10.0} {:>7} {:>8.1} {:>6.2}",
         r.strips / 2,
         r.nodes,
         r.takeoff.totals.pieces,
@@ -68,7 +81,10 @@ fn measure(path: &Path) {
         r.files.len(),
         bytes as f64 / (1024.0 * 1024.0),
         secs,
-        support::peak_mib()
+        support::peak_mib(),
+        r.assembly_pages,
+        pdf_mib,
+        r.assembly_s
     );
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -28,7 +28,8 @@ struct Cli {
 enum Command {
     /// The whole kit in one command: nodes, elastic check, parts, nest, then
     /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet,
-    /// DIR/takeoff.csv and DIR/takeoff.json. Output is staged beside DIR and
+    /// DIR/takeoff.csv, DIR/takeoff.json and DIR/assembly.pdf (the assembly
+    /// sheets). Output is staged beside DIR and
     /// moved into place only when complete. Exit status 3 (nothing written)
     /// when a strip is overstressed, unless --allow-overstress.
     Build {
@@ -53,6 +54,9 @@ enum Command {
         /// blanket rotation tolerance.
         #[arg(long)]
         slots_from_flat: bool,
+        /// Paper of the assembly sheets (assembly.pdf), landscape.
+        #[arg(long, default_value = "a3", value_parser = ["a3", "a4"])]
+        paper: String,
         /// No progress bar and no summary (errors and warnings still print).
         #[arg(long, short)]
         quiet: bool,
@@ -276,6 +280,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             kerf_compensation,
             allow_overstress,
             slots_from_flat,
+            paper,
             quiet,
             read,
         } => build(
@@ -287,6 +292,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
                 kerf_compensation,
                 allow_overstress,
                 slots_from_flat,
+                paper: lamella::emit::assembly::Paper::parse(&paper).unwrap_or_default(),
             },
             quiet,
         ),

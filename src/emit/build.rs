@@ -1,7 +1,8 @@
 //! `lamella build`: every stage from a network and a profile to the files a
 //! workshop needs — nodes, the elastic check, parts, nest, then
 //! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
-//! `DIR/takeoff.csv` and `DIR/takeoff.json` — staged beside DIR and moved
+//! `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
+//! `DIR/assembly.pdf` — staged beside DIR and moved
 //! into place only once complete ([`super::outdir`]).
 //!
 //! Everything is computed before anything is written; an overstressed
@@ -33,6 +34,8 @@ pub struct BuildOptions {
     /// Size each slot from its node's rotation between the flat state and
     /// the erected one ([`crate::flat`]) instead of the blanket tolerance.
     pub slots_from_flat: bool,
+    /// Paper of the assembly sheets.
+    pub paper: super::assembly::Paper,
 }
 
 /// The governing strip of the elastic check.
@@ -81,6 +84,10 @@ pub struct BuildReport {
     pub files: Vec<String>,
     /// Where they were written.
     pub out: PathBuf,
+    /// Pages of assembly.pdf (0 when not written).
+    pub assembly_pages: usize,
+    /// Time taken to draw and write assembly.pdf, s (not written anywhere).
+    pub assembly_s: f64,
 }
 
 impl BuildReport {
@@ -91,7 +98,7 @@ impl BuildReport {
 }
 
 /// The files every build writes besides the sheets.
-pub const FIXED_FILES: [&str; 3] = ["plan.json", "takeoff.csv", "takeoff.json"];
+pub const FIXED_FILES: [&str; 4] = ["plan.json", "takeoff.csv", "takeoff.json", "assembly.pdf"];
 
 /// Run every stage and write the kit into `out`. Returns the report; when
 /// a strip is overstressed and `allow_overstress` is off, nothing is
@@ -161,6 +168,8 @@ pub fn build(
             warnings,
             files: Vec::new(),
             out: out.to_path_buf(),
+            assembly_pages: 0,
+            assembly_s: 0.0,
         });
     }
     // Refuse a foreign plan.json or takeoff before the long work.
@@ -244,7 +253,28 @@ pub fn build(
     );
     plan_written?;
     sheets_written?;
+    progress.set_message("drawing the assembly sheets");
+    let curves: Vec<super::assembly::CurvePoints> = net
+        .curves
+        .iter()
+        .map(|c| super::assembly::CurvePoints {
+            id: c.id.clone(),
+            points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
+        })
+        .collect();
+    let t0 = std::time::Instant::now();
+    let (pdf, assembly_pages) =
+        super::assembly::assembly_pdf_counted(&super::assembly::AssemblyInput {
+            plan: &the_plan,
+            takeoff: &takeoff,
+            curves: &curves,
+            paper: opts.paper,
+            plan_path: &plan_target,
+        })?;
+    staging.write("assembly.pdf", &pdf)?;
+    let assembly_s = t0.elapsed().as_secs_f64();
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
+    drop(curves);
     for i in 1..=drawer.len() {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
@@ -267,6 +297,8 @@ pub fn build(
         warnings,
         files,
         out: out.to_path_buf(),
+        assembly_pages,
+        assembly_s,
     })
 }
 

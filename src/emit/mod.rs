@@ -4,10 +4,12 @@
 //! * [`drawing`]: every placed part in sheet coordinates, by operation;
 //! * [`dxf_out`], [`svg_out`]: one cutting file per sheet in each format;
 //! * [`takeoff`]: parts, stock, hardware and totals as CSV and JSON;
+//! * [`assembly`]: the assembly sheets, `assembly.pdf`;
 //! * [`outdir`]: staging beside the output directory, moved into place
 //!   only once complete;
 //! * [`build`]: `lamella build`, every stage from the network to the files.
 
+pub mod assembly;
 pub mod build;
 pub mod drawing;
 pub mod dxf_out;

@@ -1,0 +1,533 @@
+//! `DIR/assembly.pdf`: the assembly sheets a workshop builds the grid from
+//! (issue 11, fabrication.md "Assembly sheets"). Plain data in (the plan
+//! with its parts and sheets, the takeoff, the curves' points), PDF bytes
+//! out; vector drawings on landscape A3 or A4, every page titled with the
+//! project, its section, its scale and "page i of N".
+//!
+//! Sections, in order (each starts on a new page):
+//! * **cover**: project, network, profile, counts, the elastic verdict,
+//!   takeoff totals, the legend of the engraved marks, contents;
+//! * **overview**: plan and two elevations of the erected grid at one
+//!   scale, strips coloured by utilisation (colour bar), labelled at both
+//!   ends, nodes dotted, edge strips in black;
+//! * **assembly order**: which strips go down first and in which order
+//!   the rest follow (interlocking: family A slots up, then B slotted in;
+//!   two-level: lower level, studs, upper level; edge strips last);
+//! * **strip sheets** ([`strips`]): every lamella flat at a stated scale,
+//!   broken across rows, a new page for every strip;
+//! * **schedules** ([`tables`]): nodes, shear blocks, parts, stock and
+//!   hardware;
+//! * **sheets as nested** ([`nested`]): one stock sheet per page;
+//! * **elastic check**: A and B strips by utilisation, governing first.
+//!
+//! Only the built-in Helvetica is used (no font embedded): text is
+//! WinAnsi, mapped by [`canvas::winansi`]. The bytes are deterministic:
+//! printpdf's dates are fixed at the epoch and the trailer's random `/ID`
+//! is replaced by one derived from the document's content.
+
+pub mod canvas;
+pub mod nested;
+pub mod overview;
+pub mod strips;
+pub mod tables;
+
+use crate::emit::takeoff::Takeoff;
+use crate::error::{Error, Result};
+use crate::io::plan::Plan;
+use canvas::{Align, Canvas, BLACK, GREY};
+use rayon::prelude::*;
+use std::path::Path;
+
+/// Paper size (always landscape).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Paper {
+    /// 420 × 297 mm.
+    #[default]
+    A3,
+    /// 297 × 210 mm.
+    A4,
+}
+
+impl Paper {
+    /// Width and height, landscape, mm.
+    pub fn size_mm(self) -> (f64, f64) {
+        match self {
+            Paper::A3 => (420.0, 297.0),
+            Paper::A4 => (297.0, 210.0),
+        }
+    }
+
+    /// `A3` or `A4`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Paper::A3 => "A3",
+            Paper::A4 => "A4",
+        }
+    }
+
+    /// `a3` or `a4` (either case).
+    pub fn parse(s: &str) -> Option<Paper> {
+        match s.to_ascii_lowercase().as_str() {
+            "a3" => Some(Paper::A3),
+            "a4" => Some(Paper::A4),
+            _ => None,
+        }
+    }
+}
+
+/// A curve's points in the world frame, mm (the network's, as read).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurvePoints {
+    /// The curve's id (a strip id of the plan).
+    pub id: String,
+    /// Its points, world frame, mm.
+    pub points_mm: Vec<[f64; 3]>,
+}
+
+/// What the assembly sheets are drawn from.
+#[derive(Debug, Clone, Copy)]
+pub struct AssemblyInput<'a> {
+    /// The plan with its parts and sheets (`lamella build`'s plan.json).
+    pub plan: &'a Plan,
+    /// The takeoff written beside it.
+    pub takeoff: &'a Takeoff,
+    /// Every curve's points, for the overview.
+    pub curves: &'a [CurvePoints],
+    /// Paper size.
+    pub paper: Paper,
+    /// Names the plan in errors.
+    pub plan_path: &'a Path,
+}
+
+/// Page margin, mm.
+pub const MARGIN_MM: f64 = 10.0;
+/// Height of the title block at the foot of every page, mm.
+pub const TITLE_BLOCK_MM: f64 = 10.0;
+/// Height of the section heading at the top of every page, mm.
+pub const HEADING_MM: f64 = 8.0;
+
+/// The drawable area of a page, mm: below the heading, above the title block.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// Page width, mm.
+    pub page_w_mm: f64,
+    /// Page height, mm.
+    pub page_h_mm: f64,
+    /// Left edge of the content, mm.
+    pub x0_mm: f64,
+    /// Right edge of the content, mm.
+    pub x1_mm: f64,
+    /// Bottom of the content, mm.
+    pub y0_mm: f64,
+    /// Top of the content, mm.
+    pub y1_mm: f64,
+}
+
+impl Frame {
+    /// The frame of a page of `paper`.
+    pub fn of(paper: Paper) -> Frame {
+        let (w, h) = paper.size_mm();
+        Frame {
+            page_w_mm: w,
+            page_h_mm: h,
+            x0_mm: MARGIN_MM,
+            x1_mm: w - MARGIN_MM,
+            y0_mm: MARGIN_MM + TITLE_BLOCK_MM + 2.0,
+            y1_mm: h - MARGIN_MM - HEADING_MM,
+        }
+    }
+
+    /// Content width, mm.
+    pub fn width_mm(&self) -> f64 {
+        self.x1_mm - self.x0_mm
+    }
+
+    /// Content height, mm.
+    pub fn height_mm(&self) -> f64 {
+        self.y1_mm - self.y0_mm
+    }
+}
+
+/// One page before numbering: its section, its heading, its scale and
+/// what is drawn on it.
+#[derive(Debug)]
+pub struct Page {
+    /// The section (`Strip sheets`, …), also in the title block.
+    pub section: &'static str,
+    /// The heading at the top (the section and what this page holds).
+    pub heading: String,
+    /// The drawing scale `1:n`, or `None` (not to scale).
+    pub scale: Option<u32>,
+    /// The drawing.
+    pub canvas: Canvas,
+}
+
+impl Page {
+    /// An empty page.
+    pub fn new(section: &'static str, heading: impl Into<String>, scale: Option<u32>) -> Page {
+        Page {
+            section,
+            heading: heading.into(),
+            scale,
+            canvas: Canvas::new(),
+        }
+    }
+}
+
+/// The section names, in the document's order.
+pub const SECTIONS: [&str; 9] = [
+    "Cover",
+    "Overview",
+    "Assembly order",
+    "Strip sheets",
+    "Node schedule",
+    "Shear blocks",
+    "Parts, stock and hardware",
+    "Sheets as nested",
+    "Elastic check",
+];
+
+/// The PDF of the assembly sheets.
+pub fn assembly_pdf(input: &AssemblyInput) -> Result<Vec<u8>> {
+    assembly_pdf_counted(input).map(|(bytes, _)| bytes)
+}
+
+/// [`assembly_pdf`] and its page count.
+pub fn assembly_pdf_counted(input: &AssemblyInput) -> Result<(Vec<u8>, usize)> {
+    let pages = pages(input)?;
+    let n = pages.len();
+    Ok((write_pdf(input, pages), n))
+}
+
+/// Every page, numbered order, not yet titled.
+pub fn pages(input: &AssemblyInput) -> Result<Vec<Page>> {
+    let plan = input.plan;
+    let frame = Frame::of(input.paper);
+    let (Some(_), Some(_)) = (&plan.parts, &plan.sheets) else {
+        return Err(Error::output(
+            input.plan_path,
+            "the plan has no parts or no sheets: the assembly sheets need a built kit",
+        ));
+    };
+    // The heavy sections in parallel; each is deterministic on its own.
+    let ((overview, order), ((strip_pages, tables), (nested, check))) = rayon::join(
+        || {
+            (
+                overview::pages(input, &frame),
+                tables::order_pages(plan, &frame),
+            )
+        },
+        || {
+            rayon::join(
+                || {
+                    rayon::join(
+                        || strips::pages(plan, &frame),
+                        || {
+                            (
+                                tables::node_pages(plan, &frame),
+                                tables::block_pages(plan, &frame),
+                                tables::takeoff_page(input.takeoff, &frame),
+                            )
+                        },
+                    )
+                },
+                || {
+                    rayon::join(
+                        || nested::pages(plan, &frame, input.plan_path),
+                        || tables::check_pages(plan, &frame),
+                    )
+                },
+            )
+        },
+    );
+    let (nodes, blocks, takeoff) = tables;
+    let sections: Vec<Vec<Page>> = vec![
+        overview,
+        order,
+        strip_pages,
+        nodes,
+        blocks,
+        vec![takeoff],
+        nested?,
+        check,
+    ];
+    // Contents: the first page of every section (the cover is page 1).
+    let mut first = Vec::new();
+    let mut n = 2;
+    for (name, s) in SECTIONS[1..].iter().zip(&sections) {
+        if !s.is_empty() {
+            first.push((*name, n, s.len()));
+        }
+        n += s.len();
+    }
+    let mut out = vec![tables::cover_page(input, &frame, &first)];
+    out.extend(sections.into_iter().flatten());
+    Ok(out)
+}
+
+/// Title every page (heading, title block, page i of N) and write the PDF.
+fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
+    let plan = input.plan;
+    let frame = Frame::of(input.paper);
+    let total = pages.len();
+    let project = plan.network.name.clone();
+    let profile = plan
+        .profile
+        .as_ref()
+        .map(|p| p.name.clone())
+        .unwrap_or_default();
+    let (w, h) = input.paper.size_mm();
+    // Each page's content stream, compressed, in parallel.
+    let contents: Vec<Vec<u8>> = pages
+        .into_par_iter()
+        .enumerate()
+        .map(|(i, mut page)| {
+            title(
+                &mut page,
+                &frame,
+                &project,
+                &profile,
+                i + 1,
+                total,
+                input.paper,
+            );
+            deflate(&page.canvas.into_content())
+        })
+        .collect();
+    // printpdf makes the document (page tree, the built-in fonts as shared
+    // resources, metadata); its pages carry a stand-in that names both
+    // fonts, replaced by the content streams drawn here.
+    let marker = || {
+        use printpdf::{BuiltinFont, Op, PdfFontHandle, Pt};
+        vec![
+            Op::StartTextSection,
+            Op::SetFont {
+                font: PdfFontHandle::Builtin(BuiltinFont::Helvetica),
+                size: Pt(8.0),
+            },
+            Op::SetFont {
+                font: PdfFontHandle::Builtin(BuiltinFont::HelveticaBold),
+                size: Pt(8.0),
+            },
+            Op::EndTextSection,
+        ]
+    };
+    let pdf_pages: Vec<printpdf::PdfPage> = (0..total)
+        .map(|_| printpdf::PdfPage::new(printpdf::Mm(w as f32), printpdf::Mm(h as f32), marker()))
+        .collect();
+    let mut doc =
+        printpdf::PdfDocument::new(&canvas::winansi(&format!("{project}: assembly sheets")));
+    doc.metadata.info.creator = format!("lamella {}", env!("CARGO_PKG_VERSION"));
+    doc.metadata.info.producer = doc.metadata.info.creator.clone();
+    doc.with_pages(pdf_pages);
+    let opts = printpdf::PdfSaveOptions {
+        optimize: false,
+        subset_fonts: false,
+        secure: true,
+        image_optimization: None,
+    };
+    let mut warnings = Vec::new();
+    let mut lo = doc.to_lopdf_document(&opts, &mut warnings);
+    drop(doc);
+    for ((_, page_id), content) in lo.get_pages().into_iter().zip(contents) {
+        let stream = lopdf::Stream::new(
+            lopdf::Dictionary::from_iter(vec![(
+                "Filter",
+                lopdf::Object::Name(b"FlateDecode".to_vec()),
+            )]),
+            content,
+        );
+        let id = lo.add_object(stream);
+        if let Ok(lopdf::Object::Dictionary(d)) = lo.get_object_mut(page_id) {
+            d.set("Contents", lopdf::Object::Reference(id));
+        }
+    }
+    // The stand-in streams are no longer referenced.
+    lo.prune_objects();
+    lo.renumber_objects();
+    // printpdf's trailer /ID is random: a stable one from the content.
+    let id = stable_id(&project, total, plan.parts.as_ref().map_or(0, Vec::len));
+    let s = || lopdf::Object::String(id.as_bytes().to_vec(), lopdf::StringFormat::Hexadecimal);
+    lo.trailer.set("ID", lopdf::Object::Array(vec![s(), s()]));
+    let mut bytes = Vec::new();
+    // Writing into a Vec cannot fail.
+    let _ = lo.save_to(&mut bytes);
+    bytes
+}
+
+/// zlib-compressed bytes (FlateDecode).
+fn deflate(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut e = flate2::write::ZlibEncoder::new(
+        Vec::with_capacity(bytes.len() / 4),
+        flate2::Compression::new(6),
+    );
+    // Writing into a Vec cannot fail.
+    let _ = e.write_all(bytes);
+    e.finish().unwrap_or_default()
+}
+
+/// A 16-byte id (FNV-1a over what the document is of).
+fn stable_id(project: &str, pages: usize, parts: usize) -> String {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in format!("{project}/{pages}/{parts}").bytes() {
+        hash ^= u64::from(b);
+        hash = hash.wrapping_mul(0x0100_0000_01b3);
+    }
+    let mut s = String::new();
+    for h in [hash, hash.rotate_left(29) ^ 0x9e37_79b9_7f4a_7c15] {
+        for b in h.to_be_bytes() {
+            s.push(char::from(b'0' + b % 10));
+        }
+    }
+    s
+}
+
+/// The heading and the title block.
+fn title(
+    page: &mut Page,
+    frame: &Frame,
+    project: &str,
+    profile: &str,
+    number: usize,
+    total: usize,
+    paper: Paper,
+) {
+    let c = &mut page.canvas;
+    let (x0, x1) = (frame.x0_mm, frame.x1_mm);
+    let top = frame.page_h_mm - MARGIN_MM;
+    c.fill(BLACK);
+    c.text([x0, top - 5.0], 12.0, true, Align::Left, 0.0, &page.heading);
+    c.stroke(BLACK);
+    c.width(0.3);
+    c.line([x0, top - 7.0], [x1, top - 7.0]);
+    let y = MARGIN_MM;
+    c.width(0.3);
+    c.rect(x0, y, x1 - x0, TITLE_BLOCK_MM, false, true);
+    let scale = match page.scale {
+        Some(n) => format!("scale 1:{n} ({})", paper.name()),
+        None => format!("not to scale ({})", paper.name()),
+    };
+    let mid = 0.5 * (x0 + x1);
+    c.text([x0 + 3.0, y + 3.5], 9.0, true, Align::Left, 0.0, project);
+    let left_w = canvas::text_width_mm(&canvas::winansi(project), 9.0, true);
+    c.fill(GREY);
+    c.text(
+        [x0 + 6.0 + left_w, y + 3.5],
+        9.0,
+        false,
+        Align::Left,
+        0.0,
+        profile,
+    );
+    c.fill(BLACK);
+    c.text(
+        [mid, y + 3.5],
+        9.0,
+        false,
+        Align::Center,
+        0.0,
+        &format!("{}  |  {scale}", page.section),
+    );
+    c.text(
+        [x1 - 3.0, y + 3.5],
+        9.0,
+        true,
+        Align::Right,
+        0.0,
+        &format!("page {number} of {total}"),
+    );
+}
+
+/// Format a length in whole millimetres with thin grouping (`12 345`).
+pub fn mm0(x: f64) -> String {
+    let v = x.round() as i64;
+    let (neg, mut n) = (v < 0, v.unsigned_abs());
+    let mut groups = Vec::new();
+    loop {
+        groups.push(n % 1000);
+        n /= 1000;
+        if n == 0 {
+            break;
+        }
+    }
+    let mut s = String::new();
+    if neg {
+        s.push('-');
+    }
+    for (i, g) in groups.iter().rev().enumerate() {
+        if i == 0 {
+            s.push_str(&g.to_string());
+        } else {
+            s.push_str(&format!(" {g:03}"));
+        }
+    }
+    s
+}
+
+/// `x` with `d` decimals.
+pub fn fixed(x: f64, d: usize) -> String {
+    let s = format!("{x:.d$}");
+    if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}
+
+/// The smallest standard scale denominator (1, 2, 2.5, 5 × 10^k, and
+/// 1 upward) at or above `den`.
+pub fn standard_scale(den: f64) -> u32 {
+    let mut k = 1.0;
+    loop {
+        for m in [1.0, 2.0, 2.5, 5.0] {
+            let s = m * k;
+            if s >= den - 1e-9 && s.fract() == 0.0 {
+                return s as u32;
+            }
+        }
+        k *= 10.0;
+        if k > 1e9 {
+            return u32::MAX;
+        }
+    }
+}
+
+/// The colour of a utilisation: green at 0, yellow at 0.5, red at 1,
+/// purple above.
+pub fn utilisation_colour(u: f64) -> canvas::Rgb3 {
+    if u > 1.0 {
+        return [0.55, 0.0, 0.55];
+    }
+    let u = u.clamp(0.0, 1.0) as f32;
+    if u < 0.5 {
+        let t = u / 0.5;
+        [0.1 + 0.8 * t, 0.6 + 0.15 * t, 0.1]
+    } else {
+        let t = (u - 0.5) / 0.5;
+        [0.9, 0.75 * (1.0 - t), 0.1 * (1.0 - t)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn standard_scales() {
+        assert_eq!(standard_scale(1.0), 1);
+        assert_eq!(standard_scale(3.0), 5);
+        assert_eq!(standard_scale(11.0), 20);
+        assert_eq!(standard_scale(21.0), 25);
+        assert_eq!(standard_scale(26.0), 50);
+        assert_eq!(standard_scale(101.0), 200);
+    }
+
+    #[test]
+    fn millimetres_grouped() {
+        assert_eq!(mm0(12345.4), "12 345");
+        assert_eq!(mm0(-25.0), "-25");
+        assert_eq!(mm0(1000.0), "1 000");
+        assert_eq!(fixed(-0.0001, 2), "0.00");
+    }
+}

@@ -1,0 +1,268 @@
+//! The overview: the erected grid in plan (x, y) and two elevations (x, z
+//! from the front, y, z from the side), one scale for all three, chosen
+//! from the standard series so they fit. A and B strips coloured by their
+//! utilisation (a colour bar explains it), edge strips in black and
+//! thicker, nodes as dots, every strip labelled at both ends in plan.
+
+use super::canvas::{self, Align, Canvas, BLACK, GREY};
+use super::{standard_scale, utilisation_colour, AssemblyInput, Frame, Page};
+use std::collections::HashMap;
+
+/// A view's box on the page: x, y, width, height, mm.
+type ViewBox = (f64, f64, f64, f64);
+
+/// Room around each view for labels, mm.
+const PAD_MM: f64 = 9.0;
+/// Height of the colour bar band at the foot of the plan view, mm.
+const BAR_MM: f64 = 16.0;
+/// Strip labels, pt.
+const LABEL_PT: f64 = 6.0;
+
+/// The overview page (none when there are no curves).
+pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
+    let curves = input.curves;
+    if curves.is_empty() {
+        return Vec::new();
+    }
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in curves.iter().flat_map(|c| &c.points_mm) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let ext = [
+        (hi[0] - lo[0]).max(1.0),
+        (hi[1] - lo[1]).max(1.0),
+        (hi[2] - lo[2]).max(1.0),
+    ];
+    // Plan on the left, the two elevations stacked on the right.
+    let gap = 6.0;
+    let w = frame.width_mm();
+    let h = frame.height_mm();
+    let plan_w = 0.6 * w;
+    let right_w = w - plan_w - gap;
+    let plan_h = h - BAR_MM;
+    let elev_h = 0.5 * (h - gap);
+    let den = [
+        ext[0] / (plan_w - 2.0 * PAD_MM),
+        ext[1] / (plan_h - 2.0 * PAD_MM),
+        ext[0] / (right_w - 2.0 * PAD_MM),
+        ext[1] / (right_w - 2.0 * PAD_MM),
+        ext[2] / (elev_h - 2.0 * PAD_MM),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max);
+    let scale = standard_scale(den.max(1e-6));
+    let s = 1.0 / f64::from(scale);
+    let mut page = Page::new(
+        "Overview",
+        "Overview: plan and elevations of the erected grid",
+        Some(scale),
+    );
+    let c = &mut page.canvas;
+    let util: HashMap<&str, (String, Option<f64>)> = input
+        .plan
+        .strips
+        .iter()
+        .map(|st| {
+            (
+                st.id.as_str(),
+                (
+                    st.family.clone(),
+                    st.check.as_ref().map(|k| k.stress.utilization),
+                ),
+            )
+        })
+        .collect();
+    // View origins: each view centred in its box.
+    let plan_box = (frame.x0_mm, frame.y0_mm + BAR_MM, plan_w, plan_h);
+    let front_box = (
+        frame.x0_mm + plan_w + gap,
+        frame.y0_mm + elev_h + gap,
+        right_w,
+        elev_h,
+    );
+    let side_box = (frame.x0_mm + plan_w + gap, frame.y0_mm, right_w, elev_h);
+    let views: [(&str, ViewBox, usize, usize); 3] = [
+        ("plan (x right, y up)", plan_box, 0, 1),
+        ("front elevation (x right, z up)", front_box, 0, 2),
+        ("side elevation (y right, z up)", side_box, 1, 2),
+    ];
+    for (vi, (name, (bx, by, bw, bh), i, j)) in views.into_iter().enumerate() {
+        let ox = bx + 0.5 * bw - 0.5 * ext[i] * s;
+        let oy = by + 0.5 * bh - 0.5 * ext[j] * s;
+        let map = |p: &[f64; 3]| [ox + (p[i] - lo[i]) * s, oy + (p[j] - lo[j]) * s];
+        c.stroke(GREY);
+        c.width(0.15);
+        c.rect(bx, by, bw, bh, false, true);
+        c.fill(BLACK);
+        c.text([bx + 2.0, by + bh - 4.0], 8.0, true, Align::Left, 0.0, name);
+        // Lamella strips first, edges on top.
+        for edges in [false, true] {
+            for cv in curves {
+                let (family, u) = util
+                    .get(cv.id.as_str())
+                    .cloned()
+                    .unwrap_or(("edge".into(), None));
+                if (family == "edge") != edges {
+                    continue;
+                }
+                let colour = if edges {
+                    BLACK
+                } else {
+                    u.map(utilisation_colour).unwrap_or(GREY)
+                };
+                c.stroke(colour);
+                c.width(if edges { 0.5 } else { 0.3 });
+                let pts: Vec<[f64; 2]> = thin(cv.points_mm.iter().map(map).collect(), 0.4);
+                c.polyline(&pts, false);
+            }
+        }
+        // Nodes.
+        c.fill(BLACK);
+        let r = if input.plan.nodes.len() > 2000 {
+            0.2
+        } else {
+            0.35
+        };
+        // A big grid's nodes are dotted in plan only (elevations would be solid).
+        let nodes: &[crate::io::plan::PlanNode] = if input.plan.nodes.len() > 2000 && vi > 0 {
+            &[]
+        } else {
+            &input.plan.nodes
+        };
+        for n in nodes {
+            if input.plan.nodes.len() > 2000 {
+                c.dot(map(&n.position_mm), 2.0 * r);
+            } else {
+                c.circle(map(&n.position_mm), r, true);
+            }
+        }
+        if vi == 0 {
+            let centre = [ox + 0.5 * ext[i] * s, oy + 0.5 * ext[j] * s];
+            for cv in curves {
+                let pts: Vec<[f64; 2]> = cv.points_mm.iter().map(map).collect();
+                let edge = util.get(cv.id.as_str()).is_none_or(|u| u.0 == "edge");
+                if edge {
+                    label_middle(c, &cv.id, &pts, centre);
+                } else {
+                    label_ends(c, &cv.id, &pts);
+                }
+            }
+        }
+    }
+    colour_bar(c, frame.x0_mm + 4.0, frame.y0_mm + 3.0, 0.6 * plan_w);
+    vec![page]
+}
+
+/// Drop points within `tol_mm` of the last kept (paper mm), keeping the ends.
+fn thin(pts: Vec<[f64; 2]>, tol_mm: f64) -> Vec<[f64; 2]> {
+    let n = pts.len();
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(n);
+    for (k, p) in pts.into_iter().enumerate() {
+        let keep = match out.last() {
+            None => true,
+            Some(q) => k + 1 == n || (p[0] - q[0]).hypot(p[1] - q[1]) >= tol_mm,
+        };
+        if keep {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// The strip's id just beyond both ends, along its end direction.
+fn label_ends(c: &mut Canvas, id: &str, pts: &[[f64; 2]]) {
+    if pts.len() < 2 {
+        return;
+    }
+    let n = pts.len();
+    let ends = [(pts[0], pts[1.min(n - 1)]), (pts[n - 1], pts[n - 2])];
+    c.fill(BLACK);
+    for (end, inner) in ends {
+        let (dx, dy) = (end[0] - inner[0], end[1] - inner[1]);
+        let len = dx.hypot(dy).max(1e-9);
+        let (ux, uy) = (dx / len, dy / len);
+        let at = [
+            end[0] + 1.2 * ux,
+            end[1] + 1.2 * uy - 0.35 * canvas::cap_mm(LABEL_PT),
+        ];
+        let align = if ux > 0.4 {
+            Align::Left
+        } else if ux < -0.4 {
+            Align::Right
+        } else {
+            Align::Center
+        };
+        let at = if align == Align::Center {
+            [at[0], at[1] + if uy > 0.0 { 0.8 } else { -1.6 }]
+        } else {
+            at
+        };
+        c.text(at, LABEL_PT, false, align, 0.0, id);
+    }
+}
+
+/// An edge strip's id beside its middle, on the side away from `centre`
+/// (its ends meet the lamella strips' labels).
+fn label_middle(c: &mut Canvas, id: &str, pts: &[[f64; 2]], centre: [f64; 2]) {
+    if pts.is_empty() {
+        return;
+    }
+    let m = pts[pts.len() / 2];
+    let (dx, dy) = (m[0] - centre[0], m[1] - centre[1]);
+    c.fill(BLACK);
+    let cap = canvas::cap_mm(LABEL_PT);
+    if dx.abs() >= dy.abs() {
+        let align = if dx > 0.0 { Align::Left } else { Align::Right };
+        let x = m[0] + if dx > 0.0 { 6.0 } else { -6.0 };
+        c.text([x, m[1] + 1.5], LABEL_PT, true, align, 0.0, id);
+    } else {
+        let y = m[1] + if dy > 0.0 { 5.5 } else { -5.5 - cap };
+        c.text([m[0] + 6.0, y], LABEL_PT, true, Align::Left, 0.0, id);
+    }
+}
+
+/// A colour bar from utilisation 0 to 1 (and above), `w` mm long.
+fn colour_bar(c: &mut Canvas, x: f64, y: f64, w: f64) {
+    let w = w.min(150.0);
+    let steps = 40;
+    let bw = w / f64::from(steps);
+    for k in 0..steps {
+        let u = (f64::from(k) + 0.5) / f64::from(steps);
+        c.fill(utilisation_colour(u));
+        c.rect(x + f64::from(k) * bw, y + 4.0, bw + 0.05, 3.5, true, false);
+    }
+    c.fill(utilisation_colour(1.1));
+    c.rect(x + w + 2.0, y + 4.0, 8.0, 3.5, true, false);
+    c.fill(BLACK);
+    for k in 0..=4 {
+        let u = f64::from(k) / 4.0;
+        c.text(
+            [x + u * w, y + 0.5],
+            7.0,
+            false,
+            Align::Center,
+            0.0,
+            &format!("{u:.2}"),
+        );
+    }
+    c.text(
+        [x + w + 6.0, y + 0.5],
+        7.0,
+        false,
+        Align::Center,
+        0.0,
+        "> 1",
+    );
+    c.text(
+        [x, y + 8.8],
+        7.0,
+        false,
+        Align::Left,
+        0.0,
+        "utilisation of the strip's worst lamella; edge strips black; dots: nodes",
+    );
+}

@@ -1,0 +1,364 @@
+//! The assembly sheets, `DIR/assembly.pdf` (issue 11), read back by an
+//! independent reader (pypdf, `tests/tools/pdf_text.py`): every strip id
+//! and every node of the schedule on its pages, the page count the kit
+//! implies — recomputed here from plan.json and the layout rules the
+//! README states — "page i of N" on every page, the paper size, and
+//! byte-identical rebuilds. Without pypdf the reading is skipped (CI
+//! installs it and sets LAMELLA_REQUIRE_PYPDF).
+
+use serde_json::Value;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("assembly-{name}"));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("scratch");
+    d
+}
+
+fn build(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
+    let network = format!("samples/{sample}.yaml");
+    let profile = format!("profiles/{profile}.yaml");
+    let out_s = out.to_string_lossy().into_owned();
+    let mut args = vec![
+        "build",
+        &network,
+        "--profile",
+        &profile,
+        "--out",
+        &out_s,
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args(&args)
+        .current_dir(root())
+        .output()
+        .expect("run lamella")
+}
+
+fn ok(o: &Output) {
+    assert!(
+        o.status.success(),
+        "exit {:?}\nstderr: {}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// pypdf's reading of a PDF, or `None` when pypdf is not installed.
+fn read_pdf(path: &Path) -> Option<Value> {
+    let have = Command::new("python3")
+        .args(["-c", "import pypdf"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !have {
+        assert!(
+            std::env::var_os("LAMELLA_REQUIRE_PYPDF").is_none(),
+            "pypdf is required (pip install -r tests/tools/requirements.txt)"
+        );
+        eprintln!("pypdf not installed: the PDF is not read back (CI reads it)");
+        return None;
+    }
+    let o = Command::new("python3")
+        .arg(root().join("tests/tools/pdf_text.py"))
+        .arg(path)
+        .output()
+        .expect("python3");
+    assert!(
+        o.status.success(),
+        "pypdf could not read {}: {}",
+        path.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    Some(serde_json::from_slice(&o.stdout).expect("json"))
+}
+
+/// The layout rules of the README's "Assembly sheets", written out again.
+struct Rules {
+    content_w: f64,
+    content_h: f64,
+}
+
+impl Rules {
+    fn new(paper: &str) -> Rules {
+        let (w, h) = match paper {
+            "a3" => (420.0, 297.0),
+            _ => (297.0, 210.0),
+        };
+        // 10 mm margins, an 8 mm heading, a 10 mm title block + 2 mm.
+        Rules {
+            content_w: w - 20.0,
+            content_h: h - 10.0 - 8.0 - 22.0,
+        }
+    }
+
+    /// Pages of a table `width` mm wide with `n` rows: blocks side by side
+    /// 8 mm apart, a 6 mm header, 4.5 mm rows.
+    fn table(&self, width: f64, n: usize) -> usize {
+        let blocks = (((self.content_w + 8.0) / (width + 8.0)).floor() as usize).max(1);
+        let rows = ((self.content_h - 6.0) / 4.5).floor() as usize;
+        n.div_ceil(blocks * rows).max(1)
+    }
+
+    /// Strip-sheet pages: scale, rows per lamella, strips flowing down pages.
+    fn strips(&self, plan: &Value) -> usize {
+        let height = plan["profile"]["height_mm"].as_f64().expect("height");
+        let d = [20.0, 10.0, 5.0, 2.0, 1.0]
+            .into_iter()
+            .find(|d| height / d >= 4.0)
+            .unwrap_or(1.0);
+        let row_len = (self.content_w - 28.0) * d;
+        let row_h = 20.0 + height / d + 9.0;
+        let head = 6.0;
+        let per_page = ((self.content_h - head) / row_h).floor() as usize;
+        // Lamella spans by strip.
+        let mut spans: HashMap<(String, u64), (f64, f64)> = HashMap::new();
+        for p in plan["parts"].as_array().expect("parts") {
+            if p["kind"] != "lamella" {
+                continue;
+            }
+            let key = (
+                p["strip"].as_str().expect("strip").to_string(),
+                p["lamella"].as_u64().expect("lamella"),
+            );
+            let s0 = p["station_start_mm"].as_f64().expect("start");
+            let s1 = s0 + p["length_mm"].as_f64().expect("length");
+            let e = spans
+                .entry(key)
+                .or_insert((f64::INFINITY, f64::NEG_INFINITY));
+            *e = (e.0.min(s0), e.1.max(s1));
+        }
+        let (mut pages, mut left) = (0usize, 0.0f64);
+        for s in plan["strips"].as_array().expect("strips") {
+            let id = s["id"].as_str().expect("id");
+            let rows: usize = (1..=2)
+                .filter_map(|n| spans.get(&(id.to_string(), n)))
+                .map(|(a, b)| (((b - a) / row_len).ceil() as usize).max(1))
+                .sum();
+            if rows == 0 {
+                continue;
+            }
+            let need = head + rows as f64 * row_h;
+            if pages == 0 || (need > left + 1e-9 && left < self.content_h) {
+                pages += 1;
+                left = self.content_h;
+            }
+            let mut rest = rows;
+            while rest > 0 {
+                let chunk = rest.min(per_page);
+                let need = head + chunk as f64 * row_h;
+                if need > left + 1e-9 && left < self.content_h {
+                    pages += 1;
+                    left = self.content_h;
+                }
+                left -= need;
+                rest -= chunk;
+            }
+        }
+        pages
+    }
+}
+
+/// The page count plan.json and the takeoff imply.
+fn expected_pages(plan: &Value, paper: &str) -> usize {
+    let r = Rules::new(paper);
+    let strips = plan["strips"].as_array().expect("strips");
+    let two_level = plan["profile"]["joint_system"] == "two_level";
+    let parts = plan["parts"].as_array().expect("parts");
+    let blocks = parts
+        .iter()
+        .filter(|p| p["kind"] == "lamella" && p["lamella"] == 1)
+        .flat_map(|p| p["features"].as_array().expect("features"))
+        .filter(|f| f["hole_use"] == "shear_block")
+        .count();
+    let checked = strips.iter().filter(|s| s.get("check").is_some()).count();
+    let cover = 1;
+    let overview = 1;
+    let order = r.table(108.0, strips.len() + usize::from(two_level));
+    let strip_pages = r.strips(plan);
+    let nodes = r.table(106.0, plan["nodes"].as_array().expect("nodes").len());
+    let block_pages = if blocks == 0 {
+        0
+    } else {
+        r.table(66.0, blocks)
+    };
+    let takeoff = 1;
+    let sheets = plan["sheets"].as_array().expect("sheets").len();
+    let check = r.table(169.0, checked);
+    cover + overview + order + strip_pages + nodes + block_pages + takeoff + sheets + check
+}
+
+fn check_kit(sample: &str, profile: &str, paper: &str) {
+    let out = scratch(&format!("{sample}-{paper}"));
+    ok(&build(sample, profile, &out, &["--paper", paper]));
+    let pdf = out.join("assembly.pdf");
+    let bytes = std::fs::read(&pdf).expect("assembly.pdf written");
+    assert!(bytes.starts_with(b"%PDF-"), "a PDF");
+    let manifest = std::fs::read_to_string(out.join(".lamella-manifest")).expect("manifest");
+    assert!(manifest.lines().any(|l| l == "assembly.pdf"), "{manifest}");
+    let plan: Value = serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan"))
+        .expect("plan json");
+    let expected = expected_pages(&plan, paper);
+    let Some(doc) = read_pdf(&pdf) else {
+        return;
+    };
+    let pages = doc["page"].as_array().expect("pages");
+    assert_eq!(
+        doc["pages"].as_u64(),
+        Some(expected as u64),
+        "{sample} on {paper}"
+    );
+    let (w, h) = if paper == "a3" {
+        (420.0, 297.0)
+    } else {
+        (297.0, 210.0)
+    };
+    let texts: Vec<String> = pages
+        .iter()
+        .map(|p| p["text"].as_str().expect("text").to_string())
+        .collect();
+    for (i, p) in pages.iter().enumerate() {
+        assert!((p["width_mm"].as_f64().expect("w") - w).abs() < 0.5);
+        assert!((p["height_mm"].as_f64().expect("h") - h).abs() < 0.5);
+        let title = format!("page {} of {expected}", i + 1);
+        assert!(texts[i].contains(&title), "page {}: no '{title}'", i + 1);
+        assert!(texts[i].contains(plan["network"]["name"].as_str().expect("name")));
+        assert!(texts[i].contains("scale 1:") || texts[i].contains("not to scale"));
+    }
+    // Every strip id as a word somewhere; A and B strips on a strip sheet.
+    let words = |t: &str| -> Vec<String> {
+        t.split(|c: char| c.is_whitespace() || c == ',' || c == '(' || c == ')')
+            .map(str::to_string)
+            .collect()
+    };
+    let all: std::collections::HashSet<String> = texts.iter().flat_map(|t| words(t)).collect();
+    let strip_text: String = texts
+        .iter()
+        .filter(|t| t.contains("Strip sheets"))
+        .cloned()
+        .collect();
+    for s in plan["strips"].as_array().expect("strips") {
+        let id = s["id"].as_str().expect("id");
+        assert!(all.contains(id), "strip {id} is on no page");
+        if s["family"] != "edge" {
+            assert!(
+                strip_text.contains(&format!("Strip {id} (family")),
+                "strip {id} has no strip sheet"
+            );
+        }
+    }
+    // Every node in the schedule: its id, then its first strip.
+    let schedule: String = texts
+        .iter()
+        .filter(|t| t.contains("Node schedule"))
+        .cloned()
+        .collect::<Vec<_>>()
+        .join("\n");
+    let cells: Vec<String> = words(&schedule)
+        .into_iter()
+        .filter(|w| !w.is_empty())
+        .collect();
+    let mut found = std::collections::HashSet::new();
+    for pair in cells.windows(2) {
+        if let Ok(id) = pair[0].parse::<u64>() {
+            found.insert((id, pair[1].clone()));
+        }
+    }
+    for n in plan["nodes"].as_array().expect("nodes") {
+        let id = n["id"].as_u64().expect("id");
+        let a = n["a"].as_str().expect("a").to_string();
+        assert!(
+            found.contains(&(id, a.clone())),
+            "node {id} ({a}) not in the schedule"
+        );
+    }
+}
+
+#[test]
+fn interlocking_kit_on_a3() {
+    check_kit("enneper-4m", "steel-1.5", "a3");
+}
+
+#[test]
+fn two_level_kit_on_a4() {
+    check_kit("hypar-small", "poplar-ply-4", "a4");
+}
+
+#[test]
+fn same_input_same_bytes() {
+    let (a, b) = (scratch("same-a"), scratch("same-b"));
+    ok(&build("hypar-small", "steel-1.5", &a, &[]));
+    // Another time zone and another process: nothing may leak in.
+    let network = "samples/hypar-small.yaml";
+    let out_s = b.to_string_lossy().into_owned();
+    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args([
+            "build",
+            network,
+            "--profile",
+            "profiles/steel-1.5.yaml",
+            "--out",
+            &out_s,
+            "--quiet",
+        ])
+        .env("TZ", "Asia/Kathmandu")
+        .current_dir(root())
+        .output()
+        .expect("run");
+    ok(&o);
+    let pa = std::fs::read(a.join("assembly.pdf")).expect("a");
+    let pb = std::fs::read(b.join("assembly.pdf")).expect("b");
+    assert!(pa == pb, "assembly.pdf differs between identical builds");
+}
+
+#[test]
+fn unknown_paper_is_a_usage_error() {
+    let out = scratch("paper");
+    let o = build("hypar-small", "steel-1.5", &out, &["--paper", "letter"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("letter"), "{err}");
+    assert!(!err.contains("panicked"));
+}
+
+/// A plan without parts (not a built kit) is a one-line error, not a panic.
+#[test]
+fn a_plan_without_parts_is_an_error() {
+    let out = scratch("noparts");
+    ok(&build("hypar-small", "steel-1.5", &out, &[]));
+    let mut plan: lamella::io::plan::Plan =
+        serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("plan");
+    plan.parts = None;
+    let takeoff = lamella::emit::takeoff::Takeoff {
+        project: "x".into(),
+        profile: "y".into(),
+        currency: None,
+        parts: vec![],
+        stock: vec![],
+        hardware: vec![],
+        totals: lamella::emit::takeoff::Totals {
+            pieces: 0,
+            lamella_length_m: 0.0,
+            mass_kg: 0.0,
+            sheets: 0,
+            stock_cost: None,
+        },
+    };
+    let e = lamella::emit::assembly::assembly_pdf(&lamella::emit::assembly::AssemblyInput {
+        plan: &plan,
+        takeoff: &takeoff,
+        curves: &[],
+        paper: lamella::emit::assembly::Paper::A4,
+        plan_path: Path::new("plan.json"),
+    })
+    .expect_err("no parts");
+    let msg = e.to_string();
+    assert!(!msg.contains('\n') && msg.contains("parts"), "{msg}");
+}
