@@ -499,7 +499,7 @@ fn print_build_summary(r: &lamella::emit::build::BuildReport) {
         None => println!("elastic check: no strips"),
     }
     println!(
-        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, sheets/)",
+        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, assembly.pdf, sheets/)",
         r.files.len(),
         r.out.display()
     );
