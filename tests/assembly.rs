@@ -181,7 +181,10 @@ fn expected_pages(plan: &Value, paper: &str) -> usize {
     let checked = strips.iter().filter(|s| s.get("check").is_some()).count();
     let cover = 1;
     let overview = 1;
-    let order = r.table(108.0, strips.len() + usize::from(two_level));
+    // The order table, and one flat layout page when the flat state was
+    // computed (`--slots-from-flat`).
+    let order = r.table(108.0, strips.len() + usize::from(two_level))
+        + usize::from(plan.get("flat").is_some());
     let strip_pages = r.strips(plan);
     let nodes = r.table(106.0, plan["nodes"].as_array().expect("nodes").len());
     let block_pages = if blocks == 0 {
@@ -361,4 +364,49 @@ fn a_plan_without_parts_is_an_error() {
     .expect_err("no parts");
     let msg = e.to_string();
     assert!(!msg.contains('\n') && msg.contains("parts"), "{msg}");
+}
+
+/// With the flat state computed, the assembly order gains the flat layout
+/// page: its heading states the footprint and the largest rotation, and
+/// every A×B node's id is on it.
+#[test]
+fn flat_layout_page_when_the_flat_state_is_computed() {
+    let out = scratch("flat-layout");
+    ok(&build(
+        "enneper-4m",
+        "steel-1.5",
+        &out,
+        &["--slots-from-flat"],
+    ));
+    let plan: Value =
+        serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("json");
+    let flat = &plan["flat"];
+    let Some(pdf) = read_pdf(&out.join("assembly.pdf")) else {
+        return;
+    };
+    assert_eq!(
+        pdf["pages"].as_u64(),
+        Some(expected_pages(&plan, "a3") as u64)
+    );
+    let page = pdf["page"]
+        .as_array()
+        .expect("pages")
+        .iter()
+        .find(|p| {
+            p["text"]
+                .as_str()
+                .is_some_and(|t| t.contains("Flat assembly layout"))
+        })
+        .expect("a flat layout page");
+    let text = page["text"].as_str().expect("text");
+    let max_rot = flat["max_rotation_deg"].as_f64().expect("max");
+    assert!(text.contains(&format!("up to {max_rot:.1} deg")), "{text}");
+    for n in flat["nodes"].as_array().expect("nodes") {
+        let label = format!(
+            "{} {:+.1}",
+            n["node"],
+            n["rotation_deg"].as_f64().expect("rot")
+        );
+        assert!(text.contains(&label), "node label {label} missing");
+    }
 }

@@ -180,13 +180,17 @@ pub fn build(
     let mut the_plan = plan::build(&net, &an, &model);
     drop(model);
     progress.set_message("making parts");
-    let rotations = if opts.slots_from_flat {
+    let flat = if opts.slots_from_flat {
         progress.set_message("solving the flat state");
         let pr = crate::flat::problem(&an, &profile)?;
-        Some(crate::flat::solve(&pr).rotations())
+        Some(crate::flat::solve(&pr))
     } else {
         None
     };
+    let rotations = flat.as_ref().map(|f| f.rotations());
+    if let Some(f) = &flat {
+        plan::add_flat(&mut the_plan, f);
+    }
     let mut kit =
         crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
     let nodes = an.topology.nodes.len();

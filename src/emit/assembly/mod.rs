@@ -241,6 +241,8 @@ pub fn pages(input: &AssemblyInput) -> Result<Vec<Page>> {
         },
     );
     let (nodes, blocks, takeoff) = tables;
+    let mut order = order;
+    order.extend(overview::flat_page(plan, &frame));
     let sections: Vec<Vec<Page>> = vec![
         overview,
         order,

@@ -266,3 +266,92 @@ fn colour_bar(c: &mut Canvas, x: f64, y: f64, w: f64) {
         "utilisation of the strip's worst lamella; edge strips black; dots: nodes",
     );
 }
+
+/// Node labels on the flat layout, pt.
+const NODE_PT: f64 = 5.0;
+
+/// The flat assembly layout (plan.json's `flat`, when the flat state was
+/// computed): every A/B strip through its nodes' floor positions at one
+/// standard scale, A red, B blue, labelled at both ends; every node a
+/// circle with its id and the rotation it turns through on erection.
+pub fn flat_page(plan: &crate::io::plan::Plan, frame: &Frame) -> Option<Page> {
+    let flat = plan.flat.as_ref()?;
+    let pos: HashMap<usize, [f64; 2]> =
+        flat.nodes.iter().map(|n| (n.node, n.position_mm)).collect();
+    if pos.is_empty() {
+        return None;
+    }
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in pos.values() {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let pad = 2.0 * PAD_MM;
+    let den = ((hi[0] - lo[0]).max(1.0) / (frame.width_mm() - 2.0 * pad))
+        .max((hi[1] - lo[1]).max(1.0) / (frame.height_mm() - 2.0 * pad));
+    let scale = standard_scale(den.max(1e-6));
+    let s = 1.0 / f64::from(scale);
+    let (cx, cy) = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]));
+    let (px, py) = (
+        0.5 * (frame.x0_mm + frame.x1_mm),
+        0.5 * (frame.y0_mm + frame.y1_mm),
+    );
+    let at = |p: [f64; 2]| [px + (p[0] - cx) * s, py + (p[1] - cy) * s];
+    let mut page = Page::new(
+        "Assembly order",
+        format!(
+            "Flat assembly layout: footprint {} x {} mm, joints turn up to {:.1} deg on erection (node: id, rotation)",
+            super::mm0(flat.footprint_mm[0]),
+            super::mm0(flat.footprint_mm[1]),
+            flat.max_rotation_deg
+        ),
+        Some(scale),
+    );
+    let c: &mut Canvas = &mut page.canvas;
+    c.width(0.35);
+    for st in &plan.strips {
+        let colour = match st.family.as_str() {
+            "A" => canvas::RED,
+            "B" => canvas::BLUE,
+            _ => continue,
+        };
+        let pts: Vec<[f64; 2]> = st
+            .nodes
+            .iter()
+            .filter_map(|n| pos.get(&n.node).map(|p| at(*p)))
+            .collect();
+        if pts.len() < 2 {
+            continue;
+        }
+        c.stroke(colour);
+        c.polyline(&pts, false);
+        c.fill(colour);
+        for (end, next) in [(0, 1), (pts.len() - 1, pts.len() - 2)] {
+            let (p, q) = (pts[end], pts[next]);
+            let d = [p[0] - q[0], p[1] - q[1]];
+            let len = d[0].hypot(d[1]).max(1e-9);
+            let lbl = [p[0] + d[0] / len * 5.0, p[1] + d[1] / len * 5.0 - 1.0];
+            c.text(lbl, LABEL_PT, true, Align::Center, 0.0, &st.id);
+        }
+    }
+    c.stroke(BLACK);
+    c.fill(BLACK);
+    c.width(0.2);
+    for n in &flat.nodes {
+        let p = at(n.position_mm);
+        c.circle(p, 0.8, false);
+        c.text(
+            [p[0] + 1.0, p[1] + 1.0],
+            NODE_PT,
+            false,
+            Align::Left,
+            0.0,
+            &format!("{} {:+.1}", n.node, n.rotation_deg),
+        );
+    }
+    c.fill(GREY);
+    Some(page)
+}
