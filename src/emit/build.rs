@@ -257,12 +257,22 @@ pub fn build(
     );
     plan_written?;
     sheets_written?;
+    let sheet_count = drawer.len();
     progress.set_message("drawing the assembly sheets");
+    drop(drawer);
+    // plan.json and the cutting files are written: the engraving strokes
+    // (the largest part of a big kit's plan) are not drawn in the assembly
+    // sheets, and the network's points live on as the overview's curves.
+    let mut the_plan = the_plan;
+    for p in the_plan.parts.iter_mut().flatten() {
+        p.engraving = Vec::new();
+    }
+    let network_name = net.name.clone();
     let curves: Vec<super::assembly::CurvePoints> = net
         .curves
-        .iter()
+        .into_iter()
         .map(|c| super::assembly::CurvePoints {
-            id: c.id.clone(),
+            id: c.id,
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
@@ -279,14 +289,14 @@ pub fn build(
     let assembly_s = t0.elapsed().as_secs_f64();
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     drop(curves);
-    for i in 1..=drawer.len() {
+    for i in 1..=sheet_count {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
     }
     progress.set_message("moving into place");
     staging.commit()?;
     Ok(BuildReport {
-        network: net.name.clone(),
+        network: network_name,
         profile: profile.name.clone(),
         strips,
         edges,
