@@ -263,7 +263,6 @@ pub fn build(
     // plan.json and the cutting files are written: the engraving strokes
     // (the largest part of a big kit's plan) are not drawn in the assembly
     // sheets, and the network's points live on as the overview's curves.
-    let mut the_plan = the_plan;
     for p in the_plan.parts.iter_mut().flatten() {
         p.engraving = Vec::new();
     }
