@@ -24,7 +24,6 @@ fn main() {
         measure(&path);
         return;
     }
-    let dir = support::network_dir();
     println!(
         "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10} {:>9} {:>10} {:>7} {:>8} {:>6}",
         "n",
@@ -40,13 +39,9 @@ fn main() {
         "pdf s"
     );
     for n in support::sizes() {
-        let path = dir.join(format!("enneper-parts-{n}.json"));
-        if !path.exists() {
-            // The same networks as the parts bench.
-            let scale_mm = 4400.0 * (n - 1) as f64 / 12.0;
-            let raw = synth::enneper_grid(n, scale_mm, 100.0);
-            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
-        }
+        let path = support::generated(&format!("enneper-parts-{n}.json"), || {
+            io::network_file::to_json(&synth::enneper_prototype_grid(n), 3)
+        });
         support::run_child(&path);
     }
 }

@@ -22,7 +22,6 @@ fn main() {
         measure(&path);
         return;
     }
-    let dir = support::network_dir();
     println!(
         "{:>5} {:>8} {:>10} {:>8} {:>11} {:>10} {:>12} {:>10}",
         "n", "nodes", "analyse s", "flat s", "iterations", "max rot °", "proj. grad", "peak MiB"
@@ -33,12 +32,9 @@ fn main() {
         vec![50, 100, 200]
     };
     for n in sizes {
-        let path = dir.join(format!("enneper-parts-{n}.json"));
-        if !path.exists() {
-            let scale_mm = 4400.0 * (n - 1) as f64 / 12.0;
-            let raw = synth::enneper_grid(n, scale_mm, 100.0);
-            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
-        }
+        let path = support::generated(&format!("enneper-parts-{n}.json"), || {
+            io::network_file::to_json(&synth::enneper_prototype_grid(n), 3)
+        });
         support::run_child(&path);
     }
 }

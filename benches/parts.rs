@@ -27,7 +27,6 @@ fn main() {
         return;
     }
     let sizes = support::sizes();
-    let dir = support::network_dir();
     println!(
         "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>8} {:>7} {:>7} {:>6} {:>10}",
         "n",
@@ -43,15 +42,9 @@ fn main() {
         "peak MiB"
     );
     for n in sizes {
-        let path = dir.join(format!("enneper-parts-{n}.json"));
-        if !path.exists() {
-            // Cells like the 4 m prototype's (~260 mm between nodes, so the
-            // steel profile's washers, blocks and splice plates fit), sampled
-            // every 100 mm: at n = 400 a 100 m grid, curves up to ~150 m long.
-            let scale_mm = 4400.0 * (n - 1) as f64 / 12.0;
-            let raw = synth::enneper_grid(n, scale_mm, 100.0);
-            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
-        }
+        let path = support::generated(&format!("enneper-parts-{n}.json"), || {
+            io::network_file::to_json(&synth::enneper_prototype_grid(n), 3)
+        });
         support::run_child(&path);
     }
 }

@@ -23,20 +23,17 @@ fn main() {
         return;
     }
     let sizes = support::sizes();
-    let dir = support::network_dir();
     println!(
         "{:>5} {:>8} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10}",
         "n", "nodes", "points", "MB", "read s", "nodes s", "plan s", "total s", "peak MiB"
     );
     for n in sizes {
-        let path = dir.join(format!("enneper-{n}.json"));
-        if !path.exists() {
-            // 400 lines per family over a 40 m Enneper: samples ~26 mm apart,
-            // 1250 per curve at n = 400 (scaled so every size samples alike).
+        // 400 lines per family over a 40 m Enneper: samples ~26 mm apart,
+        // 1250 per curve at n = 400 (scaled so every size samples alike).
+        let path = support::generated(&format!("enneper-{n}.json"), || {
             let scale_mm = 44_000.0 * n as f64 / 400.0;
-            let raw = synth::enneper_grid(n, scale_mm, 26.0);
-            std::fs::write(&path, io::network_file::to_json(&raw, 3)).expect("write network");
-        }
+            io::network_file::to_json(&synth::enneper_grid(n, scale_mm, 26.0), 3)
+        });
         support::run_child(&path);
     }
 }

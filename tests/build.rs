@@ -76,6 +76,16 @@ fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     out
 }
 
+/// plan.json's parts by id.
+fn parts_by_id(plan: &Value) -> BTreeMap<&str, &Value> {
+    plan["parts"]
+        .as_array()
+        .expect("parts")
+        .iter()
+        .map(|p| (p["id"].as_str().expect("id"), p))
+        .collect()
+}
+
 fn pt(v: &Value) -> [f64; 2] {
     [v[0].as_f64().expect("x"), v[1].as_f64().expect("y")]
 }
@@ -153,12 +163,7 @@ fn close_to(a: &[[f64; 2]], b: &[[f64; 2]], tol: f64) -> bool {
 /// of entities checked.
 fn dxf_matches_plan(out: &Path) -> usize {
     let plan = json(&out.join("plan.json"));
-    let parts: BTreeMap<&str, &Value> = plan["parts"]
-        .as_array()
-        .expect("parts")
-        .iter()
-        .map(|p| (p["id"].as_str().expect("id"), p))
-        .collect();
+    let parts = parts_by_id(&plan);
     let sheets = plan["sheets"].as_array().expect("sheets");
     assert!(!sheets.is_empty());
     let mut checked = 0;
@@ -370,12 +375,7 @@ fn ezdxf_audit(out: &Path) {
 /// box grown by 2 px, and 2 px inside the sheet's edge).
 fn svg_ink_where_parts_are(out: &Path, mm_per_px: f64) {
     let plan = json(&out.join("plan.json"));
-    let parts: BTreeMap<&str, &Value> = plan["parts"]
-        .as_array()
-        .expect("parts")
-        .iter()
-        .map(|p| (p["id"].as_str().expect("id"), p))
-        .collect();
+    let parts = parts_by_id(&plan);
     for (i, sheet) in plan["sheets"]
         .as_array()
         .expect("sheets")
@@ -608,12 +608,7 @@ fn kerf_compensation_offsets_by_half_the_kerf() {
     ));
     ezdxf_audit(&out);
     let plan = json(&out.join("plan.json"));
-    let parts: BTreeMap<&str, &Value> = plan["parts"]
-        .as_array()
-        .expect("parts")
-        .iter()
-        .map(|p| (p["id"].as_str().expect("id"), p))
-        .collect();
+    let parts = parts_by_id(&plan);
     let sheet = &plan["sheets"][0];
     let (_, ents) = read_dxf(&out.join("sheets/sheet-001.dxf"));
     let outers: Vec<&Vec<[f64; 2]>> = ents

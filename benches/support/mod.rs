@@ -59,3 +59,13 @@ pub fn peak_mib() -> f64 {
         })
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
+
+/// The generated network file `name` (kept between runs), written by `make`
+/// (the network file's text) the first time it is asked for.
+pub fn generated(name: &str, make: impl FnOnce() -> String) -> PathBuf {
+    let path = network_dir().join(name);
+    if !path.exists() {
+        std::fs::write(&path, make()).expect("write network");
+    }
+    path
+}

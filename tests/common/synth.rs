@@ -180,6 +180,14 @@ pub const ENNEPER_4M_HALF: f64 = 0.5;
 /// mm per surface unit of [`enneper_4m`].
 pub const ENNEPER_4M_SCALE_MM: f64 = 4400.0;
 
+/// The benchmarks' fabrication network: n × n Enneper curves with cells
+/// like the 4 m prototype's (~260 mm between nodes, so the steel profile's
+/// washers, blocks and splice plates fit), sampled every 100 mm; at
+/// n = 400 a 100 m grid with curves up to ~150 m long.
+pub fn enneper_prototype_grid(n: usize) -> RawNetwork {
+    enneper_grid(n, ENNEPER_4M_SCALE_MM * (n - 1) as f64 / 12.0, 100.0)
+}
+
 /// A square n × n Enneper network for benchmarks, `step_mm` sampling.
 pub fn enneper_grid(n: usize, scale_mm: f64, step_mm: f64) -> RawNetwork {
     let lines = diagonal_lines(0.5, n, DVec2::ZERO);
