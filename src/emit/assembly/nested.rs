@@ -42,10 +42,8 @@ pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<Page>> 
                 Align::Left,
                 0.0,
                 &format!(
-                    "stock {}, {} × {} mm, {} parts, utilisation {} %; file sheets/{}.dxf",
+                    "stock sheet {} mm, {} parts, utilisation {} %; file sheets/{}.dxf",
                     meta.stock,
-                    fixed(sheet.length_mm, 1),
-                    fixed(sheet.width_mm, 1),
                     sheet.parts.len(),
                     fixed(100.0 * meta.utilization, 1),
                     sheet.file_stem()
