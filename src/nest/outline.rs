@@ -637,3 +637,46 @@ fn try_empty(
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
+        box_poly((x, y, x + s, y + s))
+    }
+
+    #[test]
+    fn distance_of_apart_touching_crossing_and_nested_polygons() {
+        let a = square(0.0, 0.0, 10.0);
+        assert!((distance(&a, &square(15.0, 0.0, 10.0), 10.0) - 5.0).abs() < 1e-12);
+        // Diagonal: corner to corner.
+        let d = distance(&a, &square(13.0, 14.0, 10.0), 10.0);
+        assert!((d - 5.0).abs() < 1e-12, "{d}");
+        assert_eq!(distance(&a, &square(10.0, 0.0, 10.0), 10.0), 0.0);
+        assert_eq!(distance(&a, &square(5.0, 5.0, 10.0), 10.0), 0.0);
+        assert_eq!(distance(&a, &square(2.0, 2.0, 3.0), 10.0), 0.0);
+        assert_eq!(distance(&square(2.0, 2.0, 3.0), &a, 10.0), 0.0);
+        // Farther than the limit: at least the limit.
+        assert!(distance(&a, &square(100.0, 0.0, 10.0), 10.0) >= 10.0);
+    }
+
+    #[test]
+    fn simplified_outlines_stay_within_the_tolerance() {
+        let v: Vec<Point> = (0..400)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 400.0;
+                Point::new(100.0 * a.cos(), 100.0 * a.sin())
+            })
+            .collect();
+        let s = simplify(&v, 0.25);
+        assert!(s.len() < 100, "{}", s.len());
+        for q in &v {
+            let n = s.len();
+            let d = (0..n)
+                .map(|i| point_segment(*q, s[i], s[(i + 1) % n]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 0.25 + 1e-9, "{d}");
+        }
+    }
+}
