@@ -47,7 +47,7 @@ pub const MAX_ATTEMPTS: usize = 6;
 /// Target sheets (most free area first) a part may move to at most.
 pub const MAX_TARGETS: usize = 8;
 /// Collision queries of one pass at most (a deterministic bound on its time).
-pub const MAX_QUERIES: u64 = 4_000_000;
+pub const MAX_QUERIES: u64 = 1_000_000;
 
 /// What induces a hazard on a sheet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -505,7 +505,8 @@ pub fn eliminate(
             .map(|pl| net_area_mm2(&kit.parts[pl.part]))
             .sum()
     };
-    let mut boards: Vec<Option<Board>> = sheets.iter().map(|s| pass.board(s)).collect();
+    // Boards are built when a sheet is first a target.
+    let mut boards: Vec<Option<Board>> = sheets.iter().map(|_| None).collect();
     let mut tried = vec![false; sheets.len()];
     let mut dropped = 0;
     let mut attempts = 0;
@@ -552,15 +553,33 @@ fn try_empty(
         .map(|pl| net_area_mm2(&kit.parts[pl.part]))
         .sum();
     // Most free area first, ties by index.
-    let mut targets: Vec<usize> = (0..sheets.len())
-        .filter(|&t| t != k && boards[t].is_some())
-        .collect();
-    let free = |t: usize| boards[t].as_ref().map_or(0.0, |b| b.free);
-    targets.sort_by(|&a, &b| free(b).total_cmp(&free(a)).then(a.cmp(&b)));
+    let m = pass.margin;
+    let free = |t: usize| -> f64 {
+        boards[t].as_ref().map_or_else(
+            || {
+                let s = &sheets[t];
+                (s.length_mm - 2.0 * m) * (s.width_mm - 2.0 * m)
+                    - s.placements
+                        .iter()
+                        .map(|pl| net_area_mm2(&kit.parts[pl.part]))
+                        .sum::<f64>()
+            },
+            |b| b.free,
+        )
+    };
+    let mut targets: Vec<usize> = (0..sheets.len()).filter(|&t| t != k).collect();
+    let frees: Vec<f64> = (0..sheets.len()).map(free).collect();
+    targets.sort_by(|&a, &b| frees[b].total_cmp(&frees[a]).then(a.cmp(&b)));
     targets.truncate(MAX_TARGETS);
-    if targets.iter().map(|&t| free(t)).sum::<f64>() < need {
+    if targets.iter().map(|&t| frees[t]).sum::<f64>() < need {
         return None;
     }
+    for &t in &targets {
+        if boards[t].is_none() {
+            boards[t] = pass.board(&sheets[t]);
+        }
+    }
+    targets.retain(|&t| boards[t].is_some());
     let saved: Vec<_> = targets
         .iter()
         .filter_map(|&t| boards[t].as_ref())
