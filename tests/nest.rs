@@ -78,7 +78,8 @@ fn sheet_outline(
 fn brute_distance(a: &[kurbo::Point], b: &[kurbo::Point]) -> f64 {
     use kurbo::{Line, ParamCurveNearest, Point};
     let seg = |v: &[Point], i: usize| Line::new(v[i], v[(i + 1) % v.len()]);
-    let cross = |o: Point, p: Point, q: Point| (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
+    let cross =
+        |o: Point, p: Point, q: Point| (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
     let inside = |v: &[Point], p: Point| {
         let mut c = false;
         for i in 0..v.len() {
@@ -183,11 +184,13 @@ fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part:
         v.push(arc(r - w, k));
     }
     // Into the positive quadrant.
-    let (x0, y0) = v
-        .iter()
-        .fold((f64::INFINITY, f64::INFINITY), |(a, b), q| (a.min(q.x), b.min(q.y)));
+    let (x0, y0) = v.iter().fold((f64::INFINITY, f64::INFINITY), |(a, b), q| {
+        (a.min(q.x), b.min(q.y))
+    });
     let v: Vec<Point> = v.iter().map(|q| Point::new(q.x - x0, q.y - y0)).collect();
-    let (x1, y1) = v.iter().fold((0.0f64, 0.0f64), |(a, b), q| (a.max(q.x), b.max(q.y)));
+    let (x1, y1) = v
+        .iter()
+        .fold((0.0f64, 0.0f64), |(a, b), q| (a.max(q.x), b.max(q.y)));
     Part {
         id: id.into(),
         kind: PartKind::EdgeStrip,
