@@ -220,16 +220,12 @@ fn box_poly(b: (f64, f64, f64, f64)) -> Vec<Point> {
     ]
 }
 
-/// A part's grown outline as a jagua-rs polygon, turned by `rot`; where the
+/// A part's grown outline as a jagua-rs polygon, in its own frame; where the
 /// grown outline is not a simple polygon, its bounding box. A lamella as a
 /// hazard (`hazard`): its grown bounding box (its slots are too narrow to
 /// take a part, and four edges query faster than hundreds).
-fn grown_poly(p: &Part, rot: u32, d: f64, hazard: bool) -> Option<SPolygon> {
-    let g: Vec<Point> = grown_outline(p, d + SIMPLIFY_MM)
-        .into_iter()
-        .map(|q| rotate(q, rot))
-        .collect();
-    let g = simplify(&g, SIMPLIFY_MM);
+fn grown_poly(p: &Part, d: f64, hazard: bool) -> Option<SPolygon> {
+    let g = simplify(&grown_outline(p, d + SIMPLIFY_MM), SIMPLIFY_MM);
     if hazard && p.kind == PartKind::Lamella {
         return jpoly(&box_poly(bounds(&g)));
     }
@@ -251,10 +247,17 @@ struct Pass<'a> {
     margin: f64,
     gap: f64,
     rotations: &'a [u32],
+    /// Net area of each part, mm².
+    areas: Vec<f64>,
     /// Collision queries made so far.
     queries: Cell<u64>,
     /// Grown hazard polygons by (part, rotation), in the part's frame.
     hazards: RefCell<HashMap<(usize, u32), Option<Arc<SPolygon>>>>,
+    /// Grown polygons by (part, as a hazard), in the part's frame (those
+    /// of moving parts with fail-fast poles).
+    bases: RefCell<HashMap<(usize, bool), Option<Arc<SPolygon>>>>,
+    /// Whether a part's grown polygon has fail-fast poles.
+    surrogates: RefCell<HashMap<usize, Option<()>>>,
     /// Each part's shapes in its allowed rotations.
     shapes: RefCell<HashMap<usize, Option<Rc<Vec<Shape>>>>>,
 }
@@ -293,7 +296,7 @@ impl Pass<'_> {
             let o = placed_outline(p, pl);
             let b = bounds(&o);
             placed.push((o, b));
-            area += net_area_mm2(p);
+            area += self.areas[pl.part];
         }
         let m = self.margin;
         let free = (s.length_mm - 2.0 * m) * (s.width_mm - 2.0 * m) - area;
@@ -315,9 +318,7 @@ impl Pass<'_> {
             .hazards
             .borrow_mut()
             .entry((pl.part, pl.rotation_deg))
-            .or_insert_with(|| {
-                grown_poly(p, pl.rotation_deg, 0.5 * self.gap + SAFETY_MM, true).map(Arc::new)
-            })
+            .or_insert_with(|| self.turned(pl.part, p, pl.rotation_deg, true).map(Arc::new))
             .clone()?;
         let t = Transformation::from_translation((pl.x_mm as f32, pl.y_mm as f32));
         engine.register_hazard(Hazard::new(
@@ -429,6 +430,35 @@ impl Pass<'_> {
     }
 
     /// The shapes of part `i` in each allowed rotation.
+    /// Part `i`'s grown polygon (as a hazard: a lamella's box) turned by
+    /// `rot`: made once in the part's frame (jagua-rs's polygons are costly
+    /// to make), then turned by the engine's own transformation.
+    fn turned(&self, i: usize, p: &Part, rot: u32, hazard: bool) -> Option<SPolygon> {
+        let base = self
+            .bases
+            .borrow_mut()
+            .entry((i, hazard))
+            .or_insert_with(|| {
+                let mut g = grown_poly(p, 0.5 * self.gap + SAFETY_MM, hazard)?;
+                if !hazard {
+                    let sur = SPSurrogateConfig {
+                        n_pole_limits: [(8, 0.0), (4, 0.6), (2, 0.9)],
+                        ff_pole_area_ratio: 0.6,
+                        n_ff_piers: 0,
+                    };
+                    let ok = g.generate_surrogate(sur).is_ok();
+                    self.surrogates.borrow_mut().insert(i, ok.then_some(()));
+                }
+                Some(Arc::new(g))
+            })
+            .clone()?;
+        if rot % 360 == 0 {
+            return Some((*base).clone());
+        }
+        let angle = (f64::from(rot % 360)).to_radians() as f32;
+        Some(base.transform_clone(&Transformation::from_rotation(angle)))
+    }
+
     fn shapes_of(&self, i: usize) -> Option<Vec<Shape>> {
         let p = &self.kit.parts[i];
         self.rotations
@@ -436,16 +466,14 @@ impl Pass<'_> {
             .map(|&rot| {
                 let outline: Vec<Point> =
                     p.outline_part_mm.iter().map(|&q| rotate(q, rot)).collect();
-                let mut grown = grown_poly(p, rot, 0.5 * self.gap + SAFETY_MM, false)?;
-                let sur = SPSurrogateConfig {
-                    n_pole_limits: [(8, 0.0), (4, 0.6), (2, 0.9)],
-                    ff_pole_area_ratio: 0.6,
-                    n_ff_piers: 0,
-                };
-                let surrogate = grown
-                    .generate_surrogate(sur)
-                    .ok()
-                    .map(|()| grown.surrogate().clone());
+                let grown = self.turned(i, p, rot, false)?;
+                let surrogate = self
+                    .surrogates
+                    .borrow()
+                    .get(&i)
+                    .cloned()
+                    .flatten()
+                    .map(|_| grown.surrogate().clone());
                 Some(Shape {
                     surrogate,
                     rot,
@@ -487,9 +515,12 @@ pub fn eliminate(
         margin,
         gap,
         rotations,
+        areas: kit.parts.iter().map(net_area_mm2).collect(),
         queries: Cell::new(0),
         hazards: RefCell::new(HashMap::new()),
         shapes: RefCell::new(HashMap::new()),
+        bases: RefCell::new(HashMap::new()),
+        surrogates: RefCell::new(HashMap::new()),
     };
     let only_small = |s: &SheetNest| {
         s.placements
@@ -499,27 +530,20 @@ pub fn eliminate(
     if sheets.len() < 2 || !sheets.iter().any(only_small) {
         return 0;
     }
-    let area = |s: &SheetNest| -> f64 {
-        s.placements
-            .iter()
-            .map(|pl| net_area_mm2(&kit.parts[pl.part]))
-            .sum()
-    };
+    let area = |s: &SheetNest| -> f64 { s.placements.iter().map(|pl| pass.areas[pl.part]).sum() };
     // Boards are built when a sheet is first a target.
     let mut boards: Vec<Option<Board>> = sheets.iter().map(|_| None).collect();
     let mut tried = vec![false; sheets.len()];
     let mut dropped = 0;
     let mut attempts = 0;
     while attempts < MAX_ATTEMPTS && sheets.len() > 1 && !pass.exhausted() {
-        let mut cands: Vec<usize> = (0..sheets.len())
+        // The fewest-filled sheet not tried yet, ties by index.
+        let Some(k) = (0..sheets.len())
             .filter(|&k| !tried[k] && only_small(&sheets[k]))
-            .collect();
-        cands.sort_by(|&a, &b| {
-            area(&sheets[a])
-                .total_cmp(&area(&sheets[b]))
-                .then(a.cmp(&b))
-        });
-        let Some(&k) = cands.first() else {
+            .map(|k| (area(&sheets[k]), k))
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            .map(|(_, k)| k)
+        else {
             break;
         };
         attempts += 1;
@@ -550,7 +574,7 @@ fn try_empty(
     let need: f64 = sheets[k]
         .placements
         .iter()
-        .map(|pl| net_area_mm2(&kit.parts[pl.part]))
+        .map(|pl| pass.areas[pl.part])
         .sum();
     // Most free area first, ties by index.
     let m = pass.margin;
@@ -561,7 +585,7 @@ fn try_empty(
                 (s.length_mm - 2.0 * m) * (s.width_mm - 2.0 * m)
                     - s.placements
                         .iter()
-                        .map(|pl| net_area_mm2(&kit.parts[pl.part]))
+                        .map(|pl| pass.areas[pl.part])
                         .sum::<f64>()
             },
             |b| b.free,
@@ -611,7 +635,7 @@ fn try_empty(
             break;
         };
         let p = &kit.parts[pl.part];
-        let area = net_area_mm2(p);
+        let area = pass.areas[pl.part];
         for &t in &targets {
             let Some(b) = boards[t].as_mut() else {
                 continue;
