@@ -232,11 +232,16 @@ fn grown_poly(p: &Part, d: f64, hazard: bool) -> Option<SPolygon> {
     jpoly(&g).or_else(|| jpoly(&box_poly(bounds(&g))))
 }
 
+/// A box (x0, y0, x1, y1), mm.
+type BBox = (f64, f64, f64, f64);
+/// jagua-rs polygons made once (`None`: none could be made).
+type PolyCache<K> = RefCell<HashMap<K, Option<Arc<SPolygon>>>>;
+
 /// One target sheet: its collision engine and the true outlines on it.
 struct Board {
     engine: CDEngine<Haz>,
     /// True outlines (sheet frame) and their boxes.
-    placed: Vec<(Vec<Point>, (f64, f64, f64, f64))>,
+    placed: Vec<(Vec<Point>, BBox)>,
     /// Usable area less the parts' net area, mm².
     free: f64,
 }
@@ -252,10 +257,10 @@ struct Pass<'a> {
     /// Collision queries made so far.
     queries: Cell<u64>,
     /// Grown hazard polygons by (part, rotation), in the part's frame.
-    hazards: RefCell<HashMap<(usize, u32), Option<Arc<SPolygon>>>>,
+    hazards: PolyCache<(usize, u32)>,
     /// Grown polygons by (part, as a hazard), in the part's frame (those
     /// of moving parts with fail-fast poles).
-    bases: RefCell<HashMap<(usize, bool), Option<Arc<SPolygon>>>>,
+    bases: PolyCache<(usize, bool)>,
     /// Whether a part's grown polygon has fail-fast poles.
     surrogates: RefCell<HashMap<usize, Option<()>>>,
     /// Each part's shapes in its allowed rotations.
@@ -452,7 +457,7 @@ impl Pass<'_> {
                 Some(Arc::new(g))
             })
             .clone()?;
-        if rot % 360 == 0 {
+        if rot.is_multiple_of(360) {
             return Some((*base).clone());
         }
         let angle = (f64::from(rot % 360)).to_radians() as f32;
