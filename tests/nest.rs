@@ -42,34 +42,221 @@ fn every_buildable_kit_nests_within_the_rules() {
             let s = &n.summary;
             assert!(s.sheets_used >= s.lower_bound_sheets, "{sample} {profile}");
             assert!(s.utilization > 0.0 && s.utilization <= 1.0);
-            // Independently: boxes on a sheet pairwise at least the gap apart.
+            // Independently: parts on a sheet pairwise at least the gap
+            // apart, by their boxes or else by their true outlines.
             let g = p.cutting.kerf_mm + p.cutting.part_spacing_mm;
-            for sheet in &n.sheets {
-                let boxes: Vec<_> = sheet
-                    .placements
-                    .iter()
-                    .map(|pl| placed_bbox(&kit.parts[pl.part], pl))
-                    .collect();
-                if boxes.len() > 2000 {
-                    continue; // the sweep in check_nest covers the large ones
-                }
-                for i in 0..boxes.len() {
-                    for j in i + 1..boxes.len() {
-                        let (a, b) = (boxes[i], boxes[j]);
-                        let apart = a.2 + g <= b.0 + 1e-6
-                            || b.2 + g <= a.0 + 1e-6
-                            || a.3 + g <= b.1 + 1e-6
-                            || b.3 + g <= a.1 + 1e-6;
-                        assert!(apart, "{sample} {profile} {}: {a:?} {b:?}", sheet.id);
-                    }
-                }
-            }
+            pairwise_apart(&kit, &n, g, &format!("{sample} {profile}"));
             // Deterministic.
             assert_eq!(nest(&kit, &p).unwrap().sheets, n.sheets);
             nested += 1;
         }
     }
     assert_eq!(nested, 18);
+}
+
+/// A placed part's outline in sheet coordinates (independent of the crate's).
+fn sheet_outline(
+    part: &lamella::fabricate::part::Part,
+    pl: &lamella::nest::Placement,
+) -> Vec<kurbo::Point> {
+    part.outline_part_mm
+        .iter()
+        .map(|q| {
+            let (x, y) = match pl.rotation_deg {
+                90 => (-q.y, q.x),
+                180 => (-q.x, -q.y),
+                270 => (q.y, -q.x),
+                _ => (q.x, q.y),
+            };
+            kurbo::Point::new(x + pl.x_mm, y + pl.y_mm)
+        })
+        .collect()
+}
+
+/// Brute-force distance of two closed polygons' filled areas (0 when they
+/// cross or one holds the other).
+fn brute_distance(a: &[kurbo::Point], b: &[kurbo::Point]) -> f64 {
+    use kurbo::{Line, ParamCurveNearest, Point};
+    let seg = |v: &[Point], i: usize| Line::new(v[i], v[(i + 1) % v.len()]);
+    let cross =
+        |o: Point, p: Point, q: Point| (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
+    let inside = |v: &[Point], p: Point| {
+        let mut c = false;
+        for i in 0..v.len() {
+            let (s, t) = (v[i], v[(i + 1) % v.len()]);
+            if (s.y > p.y) != (t.y > p.y) && p.x < s.x + (p.y - s.y) / (t.y - s.y) * (t.x - s.x) {
+                c = !c;
+            }
+        }
+        c
+    };
+    if inside(b, a[0]) || inside(a, b[0]) {
+        return 0.0;
+    }
+    let mut best = f64::INFINITY;
+    for i in 0..a.len() {
+        let l = seg(a, i);
+        for j in 0..b.len() {
+            let m = seg(b, j);
+            let (d1, d2) = (cross(l.p0, l.p1, m.p0), cross(l.p0, l.p1, m.p1));
+            let (d3, d4) = (cross(m.p0, m.p1, l.p0), cross(m.p0, m.p1, l.p1));
+            if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+                return 0.0;
+            }
+            for (p, s) in [(l.p0, m), (l.p1, m), (m.p0, l), (m.p1, l)] {
+                best = best.min(s.nearest(p, 1e-9).distance_sq.sqrt());
+            }
+        }
+    }
+    best
+}
+
+/// Every pair of parts on every sheet: boxes at least `g` apart, or else
+/// true outlines at least `g` apart (brute force).
+fn pairwise_apart(kit: &lamella::fabricate::Kit, n: &lamella::nest::Nest, g: f64, what: &str) {
+    for sheet in &n.sheets {
+        let boxes: Vec<_> = sheet
+            .placements
+            .iter()
+            .map(|pl| placed_bbox(&kit.parts[pl.part], pl))
+            .collect();
+        if boxes.len() > 2000 {
+            continue; // the sweep in check_nest covers the large ones
+        }
+        for i in 0..boxes.len() {
+            for j in i + 1..boxes.len() {
+                let (a, b) = (boxes[i], boxes[j]);
+                let apart = a.2 + g <= b.0 + 1e-6
+                    || b.2 + g <= a.0 + 1e-6
+                    || a.3 + g <= b.1 + 1e-6
+                    || b.3 + g <= a.1 + 1e-6;
+                if apart {
+                    continue;
+                }
+                let (pi, pj) = (&sheet.placements[i], &sheet.placements[j]);
+                let d = brute_distance(
+                    &sheet_outline(&kit.parts[pi.part], pi),
+                    &sheet_outline(&kit.parts[pj.part], pj),
+                );
+                assert!(d >= g - 1e-6, "{what} {}: {d} mm: {a:?} {b:?}", sheet.id);
+            }
+        }
+    }
+}
+
+/// The sample that only the veneer profile builds: the outline pass keeps
+/// the invariants there too (its edge bands are what it moves).
+#[test]
+fn the_small_pavilion_nests_within_the_rules_by_outline() {
+    let net = read_network(
+        &root().join("samples/schwarz-d-pavilion-1to5.yaml"),
+        ReadOptions::default(),
+    )
+    .unwrap();
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+    let p = Profile::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
+    let kit = fabricate(&net, &an, &p).unwrap();
+    let n = nest(&kit, &p).unwrap();
+    assert_eq!(check_nest(&kit, &n, &p), Ok(()));
+    let g = p.cutting.kerf_mm + p.cutting.part_spacing_mm;
+    pairwise_apart(&kit, &n, g, "pavilion-1to5 veneer");
+    // By bounding box it took 9 sheets; by outline no more than 5.
+    assert!(n.summary.sheets_used <= 5, "{}", n.summary.sheets_used);
+    assert_eq!(nest(&kit, &p).unwrap().sheets, n.sheets);
+}
+
+/// A band bowed like an arch: an annular sector of outer radius `r`, width
+/// `w`, whose outer chord is `chord` (counter-clockwise).
+fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part::Part {
+    use kurbo::Point;
+    use lamella::fabricate::part::{Part, PartKind};
+    let half = (0.5 * chord / r).asin();
+    let n = 120;
+    let mut v: Vec<Point> = Vec::new();
+    let arc = |rad: f64, k: usize| {
+        let a = std::f64::consts::FRAC_PI_2 - half + 2.0 * half * k as f64 / n as f64;
+        Point::new(rad * a.cos(), rad * a.sin())
+    };
+    for k in 0..=n {
+        v.push(arc(r, k));
+    }
+    for k in (0..=n).rev() {
+        v.push(arc(r - w, k));
+    }
+    // Into the positive quadrant.
+    let (x0, y0) = v.iter().fold((f64::INFINITY, f64::INFINITY), |(a, b), q| {
+        (a.min(q.x), b.min(q.y))
+    });
+    let v: Vec<Point> = v.iter().map(|q| Point::new(q.x - x0, q.y - y0)).collect();
+    let (x1, y1) = v
+        .iter()
+        .fold((0.0f64, 0.0f64), |(a, b), q| (a.max(q.x), b.max(q.y)));
+    Part {
+        id: id.into(),
+        kind: PartKind::EdgeStrip,
+        strip: None,
+        lamella: None,
+        count: 1,
+        length_mm: x1,
+        height_mm: y1,
+        station_start_mm: Some(0.0),
+        outline_part_mm: v,
+        holes_part_mm: Vec::new(),
+        engraving_part_mm: Vec::new(),
+        features: Vec::new(),
+    }
+}
+
+/// Two strongly bowed edge bands: their bounding boxes (each about 800 mm
+/// high) cannot share the 1480 mm usable width of a steel sheet, so the
+/// bounding-box nest needs two sheets; by outline the second nests in the
+/// first's bow and one sheet holds both, the true outlines at least the
+/// gap apart. Moving one band 1 mm closer breaks `check_nest`.
+#[test]
+fn two_bowed_bands_share_one_sheet_by_outline() {
+    use lamella::fabricate::part::signed_area_mm2;
+    use lamella::fabricate::{Kit, KitSummary};
+    let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
+    let m = steel.cutting.edge_margin_mm;
+    let z = &steel.stock.sizes[0];
+    let (lu, wu) = (z.usable_length_mm(m), z.usable_width_mm(m));
+    let parts = vec![
+        bowed_band("E1", 1700.0, 100.0, 2800.0),
+        bowed_band("E2", 1700.0, 100.0, 2800.0),
+    ];
+    assert!(signed_area_mm2(&parts[0].outline_part_mm) > 0.0);
+    let (w, h) = (parts[0].length_mm, parts[0].height_mm);
+    // By bounding box: no two on one sheet in any quarter turn.
+    assert!(2.0 * h + g > wu && 2.0 * w + g > lu && w > wu, "{w} × {h}");
+    let kit = Kit {
+        parts,
+        summary: KitSummary::default(),
+        warnings: Vec::new(),
+    };
+    let n = nest(&kit, &steel).unwrap();
+    assert_eq!(check_nest(&kit, &n, &steel), Ok(()));
+    pairwise_apart(&kit, &n, g, "bands");
+    assert_eq!(n.summary.sheets_used, 1);
+    assert_eq!(n.sheets[0].placements.len(), 2);
+    assert_eq!(nest(&kit, &steel).unwrap().sheets, n.sheets);
+    // The second band sits in the first's bow: how close they are is the
+    // gap (to the refinement's step), not more than a few mm.
+    let (a, b) = (&n.sheets[0].placements[0], &n.sheets[0].placements[1]);
+    let d = brute_distance(
+        &sheet_outline(&kit.parts[a.part], a),
+        &sheet_outline(&kit.parts[b.part], b),
+    );
+    assert!(d >= g - 1e-6 && d < g + 5.0, "{d}");
+    // One millimetre closer along the line between them: check_nest says so.
+    let mut bad = n.clone();
+    let ya = placed_bbox(&kit.parts[a.part], a).1;
+    let yb = placed_bbox(&kit.parts[b.part], b).1;
+    let k = usize::from(yb > ya);
+    let dy = if yb > ya { -1.0 } else { 1.0 };
+    bad.sheets[0].placements[k].y_mm += dy * (d - g + 1.0).max(1.0);
+    let e = check_nest(&kit, &bad, &steel).unwrap_err();
+    assert!(e.contains("closer than"), "{e}");
 }
 
 #[test]

@@ -10,6 +10,9 @@
 //! blocks, splice plates, washers, studs, edge strips) go by their bounding
 //! boxes, in an allowed rotation, onto a skyline of each sheet's free
 //! space (the lane tails first), first sheet with room, else a new sheet.
+//! Then [`outline::eliminate`] empties sheets holding no lamella into the
+//! free space of the others by the parts' true outlines, where all of a
+//! sheet's parts find a place.
 //!
 //! Several sheet sizes: the cheapest nest (by price, else by stock area)
 //! over the sizes as first choice, each improved by repacking the
@@ -31,6 +34,7 @@
 
 pub mod binpack;
 pub mod export;
+pub mod outline;
 
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Part, PartKind};
@@ -990,6 +994,9 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
         ctx.sheets()?
     };
     sheets.retain(|s| !s.placements.is_empty());
+    if !(coil && st.sizes[0].length_mm.is_none()) {
+        outline::eliminate(kit, &mut sheets, ctx.margin, ctx.gap, &ctx.rotations);
+    }
     sheets.sort_by_key(|s| s.size);
     let m = ctx.margin;
     for (k, s) in sheets.iter_mut().enumerate() {
@@ -1148,8 +1155,10 @@ fn summarize(
 }
 
 /// Named invariant: every part inside its sheet's margins, in an allowed
-/// rotation, placed exactly its count of times, and no two parts' boxes
-/// closer than kerf + spacing (boxes apart means the true shapes are).
+/// rotation, placed exactly its count of times, and no two parts' true
+/// outlines closer than kerf + spacing (polygon-to-polygon distance, where
+/// their bounding boxes come closer than that; boxes apart means the true
+/// shapes are).
 pub fn check_nest(kit: &Kit, nest: &Nest, profile: &Profile) -> std::result::Result<(), String> {
     let c = &profile.cutting;
     let m = c.edge_margin_mm;
@@ -1159,6 +1168,7 @@ pub fn check_nest(kit: &Kit, nest: &Nest, profile: &Profile) -> std::result::Res
     let mut seen: std::collections::HashSet<(usize, u32)> = std::collections::HashSet::new();
     for s in &nest.sheets {
         let mut boxes: Vec<((f64, f64, f64, f64), usize)> = Vec::with_capacity(s.placements.len());
+        let mut outlines: Vec<Option<Vec<Point>>> = vec![None; s.placements.len()];
         for (k, pl) in s.placements.iter().enumerate() {
             let p = &kit.parts[pl.part];
             if !c.allowed_rotations_deg.contains(&pl.rotation_deg) {
@@ -1189,20 +1199,36 @@ pub fn check_nest(kit: &Kit, nest: &Nest, profile: &Profile) -> std::result::Res
         }
         // Sweep along x: boxes whose x-extents come within the gap.
         boxes.sort_by(|a, b| a.0 .0.total_cmp(&b.0 .0));
-        let mut active: Vec<(f64, f64, f64, f64)> = Vec::new();
+        let mut active: Vec<((f64, f64, f64, f64), usize)> = Vec::new();
         for (b, k) in boxes {
-            active.retain(|a| a.2 + g > b.0 + eps);
-            for a in &active {
+            active.retain(|a| a.0 .2 + g > b.0 + eps);
+            for &(a, j) in &active {
                 let apart_y = a.3 + g <= b.1 + eps || b.3 + g <= a.1 + eps;
                 let apart_x = a.2 + g <= b.0 + eps;
-                if !apart_y && !apart_x {
+                if apart_y || apart_x {
+                    continue;
+                }
+                // Boxes closer than the gap: the true outlines decide.
+                for q in [j, k] {
+                    if outlines[q].is_none() {
+                        let pl = &s.placements[q];
+                        outlines[q] = Some(outline::placed_outline(&kit.parts[pl.part], pl));
+                    }
+                }
+                let (Some(oa), Some(ob)) = (&outlines[j], &outlines[k]) else {
+                    continue;
+                };
+                let d = outline::distance(oa, ob, g);
+                if d < g - eps {
                     return Err(format!(
-                        "{}: {} is closer than {g} mm to another part",
-                        s.id, kit.parts[s.placements[k].part].id
+                        "{}: {} is {d:.3} mm from {}, closer than {g} mm",
+                        s.id,
+                        kit.parts[s.placements[k].part].id,
+                        kit.parts[s.placements[j].part].id
                     ));
                 }
             }
-            active.push(b);
+            active.push((b, k));
         }
     }
     for (i, p) in kit.parts.iter().enumerate() {

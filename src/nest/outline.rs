@@ -1,0 +1,730 @@
+//! Parts by their true outlines (issue 9): the sheet-elimination pass after
+//! the lane and skyline nest, and the true-shape distance `check_nest` uses.
+//!
+//! For each sheet holding no lamella, fewest-filled first, every one of its
+//! parts is moved into the free space of the other sheets by its outline:
+//! in an allowed rotation, inside the margins, its outline grown by half the
+//! gap (kerf + spacing) plus [`SAFETY_MM`] clear of every placed part's
+//! outline grown as much. Where all of a sheet's parts find a place, the
+//! sheet is dropped. Collisions are tested by jagua-rs's collision-detection
+//! engine (one `CDEngine` per target sheet, the placed parts as hazards; f32),
+//! then confirmed in f64 by [`distance`] against the neighbours, so the
+//! clearance holds exactly. Candidate positions: a bottom-left scan of a
+//! grid over the usable area (step a quarter of the part's smaller side, at
+//! most [`GRID_POINTS`] points), the first free point refined towards the
+//! lower-left by halving steps. Deterministic (no threads, fixed orders) and
+//! bounded ([`MAX_ATTEMPTS`] sheets tried, [`MAX_TARGETS`] target sheets).
+
+use super::export::grown_outline;
+use super::{placed_bbox, rotate, Placement, SheetNest};
+use crate::fabricate::part::{Part, PartKind};
+use crate::fabricate::{net_area_mm2, Kit};
+use jagua_rs::collision_detection::hazards::filter::NoFilter;
+use jagua_rs::collision_detection::hazards::{Hazard, HazardEntity};
+use jagua_rs::collision_detection::{CDEConfig, CDEngine};
+use jagua_rs::geometry::fail_fast::{SPSurrogate, SPSurrogateConfig};
+use jagua_rs::geometry::geo_enums::GeoPosition;
+use jagua_rs::geometry::geo_traits::{Transformable, TransformableFrom};
+use jagua_rs::geometry::primitives::{Point as JPoint, Rect, SPolygon};
+use jagua_rs::geometry::Transformation;
+use kurbo::Point;
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// Extra growth of every outline beyond half the gap, mm: absorbs the f32
+/// arithmetic of the collision engine.
+pub const SAFETY_MM: f64 = 0.02;
+/// The engine's polygons: grown this much more, then simplified to within
+/// it (Douglas–Peucker), so they still hold the outline grown by the gap and
+/// have few edges; the f64 check decides exactly, mm.
+pub const SIMPLIFY_MM: f64 = 0.05;
+/// Grid points of the candidate scan at most, per part and rotation.
+pub const GRID_POINTS: f64 = 6000.0;
+/// Sheets whose elimination is tried at most.
+pub const MAX_ATTEMPTS: usize = 6;
+/// Target sheets (most free area first) a part may move to at most.
+pub const MAX_TARGETS: usize = 8;
+/// Collision queries of one pass at most (a deterministic bound on its time).
+pub const MAX_QUERIES: u64 = 1_000_000;
+
+/// What induces a hazard on a sheet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Haz {
+    Exterior,
+    Part(usize),
+}
+
+impl HazardEntity for Haz {
+    fn scope(&self) -> GeoPosition {
+        match self {
+            Haz::Exterior => GeoPosition::Exterior,
+            Haz::Part(_) => GeoPosition::Interior,
+        }
+    }
+
+    fn is_dynamic(&self) -> bool {
+        matches!(self, Haz::Part(_))
+    }
+}
+
+/// Bounding box (x0, y0, x1, y1) of points.
+fn bounds(v: &[Point]) -> (f64, f64, f64, f64) {
+    v.iter().fold(
+        (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), q| (a.min(q.x), b.min(q.y), c.max(q.x), d.max(q.y)),
+    )
+}
+
+/// A placed part's outline in sheet coordinates.
+pub fn placed_outline(p: &Part, pl: &Placement) -> Vec<Point> {
+    p.outline_part_mm
+        .iter()
+        .map(|&q| {
+            let r = rotate(q, pl.rotation_deg);
+            Point::new(r.x + pl.x_mm, r.y + pl.y_mm)
+        })
+        .collect()
+}
+
+fn cross(o: Point, a: Point, b: Point) -> f64 {
+    (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+}
+
+fn point_segment(p: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let len2 = ab.hypot2();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
+fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let (d1, d2) = (cross(a, b, c), cross(a, b, d));
+    let (d3, d4) = (cross(c, d, a), cross(c, d, b));
+    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+}
+
+fn segment_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    if segments_cross(a, b, c, d) {
+        return 0.0;
+    }
+    point_segment(a, c, d)
+        .min(point_segment(b, c, d))
+        .min(point_segment(c, a, b))
+        .min(point_segment(d, a, b))
+}
+
+/// Whether `p` lies inside the closed polygon `poly` (even-odd rule).
+pub fn contains(poly: &[Point], p: Point) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// Distance between two closed polygons (their filled areas), mm: 0 where
+/// they touch, cross or one holds the other. Segment pairs whose boxes are
+/// farther apart than `limit` are skipped, so a result at or above `limit`
+/// only says "at least `limit`".
+pub fn distance(a: &[Point], b: &[Point], limit: f64) -> f64 {
+    if a.is_empty() || b.is_empty() {
+        return f64::INFINITY;
+    }
+    let (na, nb) = (a.len(), b.len());
+    let bb = bounds(b);
+    let mut best = f64::INFINITY;
+    for i in 0..na {
+        let (p, q) = (a[i], a[(i + 1) % na]);
+        let (x0, x1) = (p.x.min(q.x) - limit, p.x.max(q.x) + limit);
+        let (y0, y1) = (p.y.min(q.y) - limit, p.y.max(q.y) + limit);
+        if x1 < bb.0 || x0 > bb.2 || y1 < bb.1 || y0 > bb.3 {
+            continue;
+        }
+        for j in 0..nb {
+            let (r, s) = (b[j], b[(j + 1) % nb]);
+            if r.x.max(s.x) < x0 || r.x.min(s.x) > x1 || r.y.max(s.y) < y0 || r.y.min(s.y) > y1 {
+                continue;
+            }
+            best = best.min(segment_distance(p, q, r, s));
+            if best == 0.0 {
+                return 0.0;
+            }
+        }
+    }
+    if contains(b, a[0]) || contains(a, b[0]) {
+        return 0.0;
+    }
+    best
+}
+
+fn jpoly(v: &[Point]) -> Option<SPolygon> {
+    let pts: Vec<JPoint> = v.iter().map(|q| JPoint(q.x as f32, q.y as f32)).collect();
+    SPolygon::new(pts).ok()
+}
+
+/// A closed polygon simplified (Douglas–Peucker) to within `tol`.
+fn simplify(v: &[Point], tol: f64) -> Vec<Point> {
+    let n = v.len();
+    if n < 8 {
+        return v.to_vec();
+    }
+    // Split at vertex 0 and the vertex farthest from it.
+    let far = (1..n)
+        .max_by(|&a, &b| v[a].distance(v[0]).total_cmp(&v[b].distance(v[0])))
+        .unwrap_or(n / 2);
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[far] = true;
+    let mut stack = vec![(0, far), (far, n)];
+    while let Some((a, b)) = stack.pop() {
+        let (pa, pb) = (v[a], v[b % n]);
+        let mut worst = (0.0, a);
+        for (k, &q) in v.iter().enumerate().take(b).skip(a + 1) {
+            let d = point_segment(q, pa, pb);
+            if d > worst.0 {
+                worst = (d, k);
+            }
+        }
+        if worst.0 > tol {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    (0..n).filter(|&k| keep[k]).map(|k| v[k]).collect()
+}
+
+/// The polygon of a box, counter-clockwise.
+fn box_poly(b: (f64, f64, f64, f64)) -> Vec<Point> {
+    vec![
+        Point::new(b.0, b.1),
+        Point::new(b.2, b.1),
+        Point::new(b.2, b.3),
+        Point::new(b.0, b.3),
+    ]
+}
+
+/// A part's grown outline as a jagua-rs polygon, in its own frame; where the
+/// grown outline is not a simple polygon, its bounding box. A lamella as a
+/// hazard (`hazard`): its grown bounding box (its slots are too narrow to
+/// take a part, and four edges query faster than hundreds).
+fn grown_poly(p: &Part, d: f64, hazard: bool) -> Option<SPolygon> {
+    let g = simplify(&grown_outline(p, d + SIMPLIFY_MM), SIMPLIFY_MM);
+    if hazard && p.kind == PartKind::Lamella {
+        return jpoly(&box_poly(bounds(&g)));
+    }
+    jpoly(&g).or_else(|| jpoly(&box_poly(bounds(&g))))
+}
+
+/// A box (x0, y0, x1, y1), mm.
+type BBox = (f64, f64, f64, f64);
+/// jagua-rs polygons made once (`None`: none could be made).
+type PolyCache<K> = RefCell<HashMap<K, Option<Arc<SPolygon>>>>;
+
+/// One target sheet: its collision engine and the true outlines on it.
+struct Board {
+    engine: CDEngine<Haz>,
+    /// True outlines (sheet frame) and their boxes.
+    placed: Vec<(Vec<Point>, BBox)>,
+    /// Usable area less the parts' net area, mm².
+    free: f64,
+}
+
+/// The pass's settings.
+struct Pass<'a> {
+    kit: &'a Kit,
+    margin: f64,
+    gap: f64,
+    rotations: &'a [u32],
+    /// Net area of each part, mm².
+    areas: Vec<f64>,
+    /// Collision queries made so far.
+    queries: Cell<u64>,
+    /// Grown hazard polygons by (part, rotation), in the part's frame.
+    hazards: PolyCache<(usize, u32)>,
+    /// Grown polygons by (part, as a hazard), in the part's frame (those
+    /// of moving parts with fail-fast poles).
+    bases: PolyCache<(usize, bool)>,
+    /// Whether a part's grown polygon has fail-fast poles.
+    surrogates: RefCell<HashMap<usize, Option<()>>>,
+    /// Each part's shapes in its allowed rotations.
+    shapes: RefCell<HashMap<usize, Option<Rc<Vec<Shape>>>>>,
+}
+
+impl Pass<'_> {
+    fn exhausted(&self) -> bool {
+        self.queries.get() >= MAX_QUERIES
+    }
+
+    fn board(&self, s: &SheetNest) -> Option<Board> {
+        let g = self.gap;
+        let pad = g + 10.0;
+        let outer = jpoly(&box_poly((-pad, -pad, s.length_mm + pad, s.width_mm + pad)))?;
+        let rect = Rect::try_new(
+            -pad as f32,
+            -pad as f32,
+            (s.length_mm + pad) as f32,
+            (s.width_mm + pad) as f32,
+        )
+        .ok()?;
+        let config = CDEConfig {
+            quadtree_depth: 6,
+            cd_threshold: 16,
+            item_surrogate_config: SPSurrogateConfig::none(),
+        };
+        let mut engine = CDEngine::new(
+            rect.inflate_to_square(),
+            vec![Hazard::new(Haz::Exterior, Arc::new(outer))],
+            config,
+        );
+        let mut placed = Vec::with_capacity(s.placements.len());
+        let mut area = 0.0;
+        for pl in &s.placements {
+            let p = &self.kit.parts[pl.part];
+            self.register(&mut engine, placed.len(), p, pl)?;
+            let o = placed_outline(p, pl);
+            let b = bounds(&o);
+            placed.push((o, b));
+            area += self.areas[pl.part];
+        }
+        let m = self.margin;
+        let free = (s.length_mm - 2.0 * m) * (s.width_mm - 2.0 * m) - area;
+        Some(Board {
+            engine,
+            placed,
+            free,
+        })
+    }
+
+    fn register(
+        &self,
+        engine: &mut CDEngine<Haz>,
+        k: usize,
+        p: &Part,
+        pl: &Placement,
+    ) -> Option<()> {
+        let shape = self
+            .hazards
+            .borrow_mut()
+            .entry((pl.part, pl.rotation_deg))
+            .or_insert_with(|| self.turned(pl.part, p, pl.rotation_deg, true).map(Arc::new))
+            .clone()?;
+        let t = Transformation::from_translation((pl.x_mm as f32, pl.y_mm as f32));
+        engine.register_hazard(Hazard::new(
+            Haz::Part(k),
+            Arc::new(shape.transform_clone(&t)),
+        ));
+        Some(())
+    }
+
+    /// Where part `p` turned by `rot` can go on `b` with its outline's box
+    /// lower-left corner at (x, y): free by the engine, then by [`distance`].
+    fn free_at(&self, b: &Board, shape: &Shape, x: f64, y: f64) -> bool {
+        if self.exhausted() {
+            return false;
+        }
+        self.queries.set(self.queries.get() + 1);
+        let (tx, ty) = (x - shape.bbox.0, y - shape.bbox.1);
+        let t = Transformation::from_translation((tx as f32, ty as f32));
+        if let Some(sur) = shape.surrogate.as_ref() {
+            if b.engine.detect_surrogate_collision(sur, &t, &NoFilter) {
+                return false;
+            }
+        }
+        let mut moved = shape.scratch.borrow_mut();
+        moved.transform_from(&shape.grown, &t);
+        if b.engine.detect_poly_collision(&moved, &NoFilter) {
+            return false;
+        }
+        drop(moved);
+        let g = self.gap;
+        let (w, h) = (shape.bbox.2 - shape.bbox.0, shape.bbox.3 - shape.bbox.1);
+        let moved: Vec<Point> = shape
+            .outline
+            .iter()
+            .map(|q| Point::new(q.x + tx, q.y + ty))
+            .collect();
+        b.placed.iter().all(|(o, ob)| {
+            ob.2 + g <= x || x + w + g <= ob.0 || ob.3 + g <= y || y + h + g <= ob.1 || {
+                distance(&moved, o, g) >= g + 1e-6
+            }
+        })
+    }
+
+    /// The bottom-left free place of a part on `b`: (x, y, rotation index).
+    fn find(&self, b: &Board, shapes: &[Shape], s: &SheetNest) -> Option<(f64, f64, usize)> {
+        let m = self.margin;
+        let (lu, wu) = (s.length_mm - 2.0 * m, s.width_mm - 2.0 * m);
+        let mut best: Option<(f64, f64, usize)> = None;
+        for (r, shape) in shapes.iter().enumerate() {
+            let (w, h) = (shape.bbox.2 - shape.bbox.0, shape.bbox.3 - shape.bbox.1);
+            if w > lu + 1e-9 || h > wu + 1e-9 {
+                continue;
+            }
+            let (x_max, y_max) = (m + lu - w, m + wu - h);
+            let step = (0.25 * w.min(h))
+                .max((lu * wu / GRID_POINTS).sqrt())
+                .max(1.0);
+            let nx = ((x_max - m) / step).floor() as usize + 1;
+            let ny = ((y_max - m) / step).floor() as usize + 1;
+            let mut found = None;
+            'scan: for i in 0..=nx {
+                let x = if i == nx {
+                    x_max
+                } else {
+                    (m + i as f64 * step).min(x_max)
+                };
+                if best.is_some_and(|bb| x > bb.0 + 1e-9) {
+                    break;
+                }
+                for j in 0..=ny {
+                    let y = if j == ny {
+                        y_max
+                    } else {
+                        (m + j as f64 * step).min(y_max)
+                    };
+                    if self.free_at(b, shape, x, y) {
+                        found = Some((x, y));
+                        break 'scan;
+                    }
+                }
+            }
+            let Some((mut x, mut y)) = found else {
+                continue;
+            };
+            // Towards the lower left by halving steps.
+            for _ in 0..2 {
+                let mut d = step;
+                while d > 0.05 {
+                    if y - d >= m - 1e-9 && self.free_at(b, shape, x, (y - d).max(m)) {
+                        y = (y - d).max(m);
+                    } else {
+                        d *= 0.5;
+                    }
+                }
+                let mut d = step;
+                while d > 0.05 {
+                    if x - d >= m - 1e-9 && self.free_at(b, shape, (x - d).max(m), y) {
+                        x = (x - d).max(m);
+                    } else {
+                        d *= 0.5;
+                    }
+                }
+            }
+            if best.is_none_or(|bb| x < bb.0 - 1e-9 || (x <= bb.0 + 1e-9 && y < bb.1 - 1e-9)) {
+                best = Some((x, y, r));
+            }
+        }
+        best
+    }
+
+    /// The shapes of part `i` in each allowed rotation.
+    /// Part `i`'s grown polygon (as a hazard: a lamella's box) turned by
+    /// `rot`: made once in the part's frame (jagua-rs's polygons are costly
+    /// to make), then turned by the engine's own transformation.
+    fn turned(&self, i: usize, p: &Part, rot: u32, hazard: bool) -> Option<SPolygon> {
+        let base = self
+            .bases
+            .borrow_mut()
+            .entry((i, hazard))
+            .or_insert_with(|| {
+                let mut g = grown_poly(p, 0.5 * self.gap + SAFETY_MM, hazard)?;
+                if !hazard {
+                    let sur = SPSurrogateConfig {
+                        n_pole_limits: [(8, 0.0), (4, 0.6), (2, 0.9)],
+                        ff_pole_area_ratio: 0.6,
+                        n_ff_piers: 0,
+                    };
+                    let ok = g.generate_surrogate(sur).is_ok();
+                    self.surrogates.borrow_mut().insert(i, ok.then_some(()));
+                }
+                Some(Arc::new(g))
+            })
+            .clone()?;
+        if rot.is_multiple_of(360) {
+            return Some((*base).clone());
+        }
+        let angle = (f64::from(rot % 360)).to_radians() as f32;
+        Some(base.transform_clone(&Transformation::from_rotation(angle)))
+    }
+
+    fn shapes_of(&self, i: usize) -> Option<Vec<Shape>> {
+        let p = &self.kit.parts[i];
+        self.rotations
+            .iter()
+            .map(|&rot| {
+                let outline: Vec<Point> =
+                    p.outline_part_mm.iter().map(|&q| rotate(q, rot)).collect();
+                let grown = self.turned(i, p, rot, false)?;
+                let surrogate = self
+                    .surrogates
+                    .borrow()
+                    .get(&i)
+                    .cloned()
+                    .flatten()
+                    .map(|_| grown.surrogate().clone());
+                Some(Shape {
+                    surrogate,
+                    rot,
+                    bbox: bounds(&outline),
+                    scratch: RefCell::new(grown.clone()),
+                    grown,
+                    outline,
+                })
+            })
+            .collect()
+    }
+}
+
+/// A part turned by one rotation, in its own frame.
+struct Shape {
+    rot: u32,
+    outline: Vec<Point>,
+    bbox: (f64, f64, f64, f64),
+    /// The outline grown by half the gap and [`SAFETY_MM`], for the engine.
+    grown: SPolygon,
+    /// Fail-fast poles of `grown`, if they could be made.
+    surrogate: Option<SPSurrogate>,
+    /// Room for `grown` moved to a candidate place.
+    scratch: RefCell<SPolygon>,
+}
+
+/// The sheet-elimination pass: sheets of non-lamella parts, fewest-filled
+/// first, emptied into the free space of the others by true outline where
+/// every part finds a place; returns how many sheets were dropped.
+pub fn eliminate(
+    kit: &Kit,
+    sheets: &mut Vec<SheetNest>,
+    margin: f64,
+    gap: f64,
+    rotations: &[u32],
+) -> usize {
+    let pass = Pass {
+        kit,
+        margin,
+        gap,
+        rotations,
+        areas: kit.parts.iter().map(net_area_mm2).collect(),
+        queries: Cell::new(0),
+        hazards: RefCell::new(HashMap::new()),
+        shapes: RefCell::new(HashMap::new()),
+        bases: RefCell::new(HashMap::new()),
+        surrogates: RefCell::new(HashMap::new()),
+    };
+    let only_small = |s: &SheetNest| {
+        s.placements
+            .iter()
+            .all(|pl| kit.parts[pl.part].kind != PartKind::Lamella)
+    };
+    if sheets.len() < 2 || !sheets.iter().any(only_small) {
+        return 0;
+    }
+    let area = |s: &SheetNest| -> f64 { s.placements.iter().map(|pl| pass.areas[pl.part]).sum() };
+    // Boards are built when a sheet is first a target.
+    let mut boards: Vec<Option<Board>> = sheets.iter().map(|_| None).collect();
+    let mut tried = vec![false; sheets.len()];
+    let mut dropped = 0;
+    let mut attempts = 0;
+    while attempts < MAX_ATTEMPTS && sheets.len() > 1 && !pass.exhausted() {
+        // The fewest-filled sheet not tried yet, ties by index.
+        let Some(k) = (0..sheets.len())
+            .filter(|&k| !tried[k] && only_small(&sheets[k]))
+            .map(|k| (area(&sheets[k]), k))
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            .map(|(_, k)| k)
+        else {
+            break;
+        };
+        attempts += 1;
+        tried[k] = true;
+        if let Some(moves) = try_empty(&pass, sheets, &mut boards, k) {
+            for (t, pl) in moves {
+                sheets[t].placements.push(pl);
+            }
+            sheets.remove(k);
+            boards.remove(k);
+            tried.remove(k);
+            dropped += 1;
+        }
+    }
+    dropped
+}
+
+/// Places for every part of sheet `k` on the other sheets' boards (which
+/// then hold them): (sheet, placement); `None` (the boards as they were)
+/// where some part finds none.
+fn try_empty(
+    pass: &Pass,
+    sheets: &[SheetNest],
+    boards: &mut [Option<Board>],
+    k: usize,
+) -> Option<Vec<(usize, Placement)>> {
+    let kit = pass.kit;
+    let need: f64 = sheets[k]
+        .placements
+        .iter()
+        .map(|pl| pass.areas[pl.part])
+        .sum();
+    // Most free area first, ties by index.
+    let m = pass.margin;
+    let free = |t: usize| -> f64 {
+        boards[t].as_ref().map_or_else(
+            || {
+                let s = &sheets[t];
+                (s.length_mm - 2.0 * m) * (s.width_mm - 2.0 * m)
+                    - s.placements
+                        .iter()
+                        .map(|pl| pass.areas[pl.part])
+                        .sum::<f64>()
+            },
+            |b| b.free,
+        )
+    };
+    let mut targets: Vec<usize> = (0..sheets.len()).filter(|&t| t != k).collect();
+    let frees: Vec<f64> = (0..sheets.len()).map(free).collect();
+    targets.sort_by(|&a, &b| frees[b].total_cmp(&frees[a]).then(a.cmp(&b)));
+    targets.truncate(MAX_TARGETS);
+    if targets.iter().map(|&t| frees[t]).sum::<f64>() < need {
+        return None;
+    }
+    for &t in &targets {
+        if boards[t].is_none() {
+            boards[t] = pass.board(&sheets[t]);
+        }
+    }
+    targets.retain(|&t| boards[t].is_some());
+    let saved: Vec<_> = targets
+        .iter()
+        .filter_map(|&t| boards[t].as_ref())
+        .map(|b| (b.engine.save(), b.placed.len(), b.free))
+        .collect();
+    // Largest box first, ties by index.
+    let mut order: Vec<Placement> = sheets[k].placements.clone();
+    order.sort_by(|a, b| {
+        let ar = |pl: &Placement| {
+            let bb = placed_bbox(&kit.parts[pl.part], pl);
+            (bb.2 - bb.0) * (bb.3 - bb.1)
+        };
+        ar(b)
+            .total_cmp(&ar(a))
+            .then(a.part.cmp(&b.part))
+            .then(a.copy.cmp(&b.copy))
+    });
+    let mut moves = Vec::with_capacity(order.len());
+    let mut ok = true;
+    'parts: for pl in order {
+        let cached = pass
+            .shapes
+            .borrow_mut()
+            .entry(pl.part)
+            .or_insert_with(|| pass.shapes_of(pl.part).map(Rc::new))
+            .clone();
+        let Some(shapes) = cached else {
+            ok = false;
+            break;
+        };
+        let p = &kit.parts[pl.part];
+        let area = pass.areas[pl.part];
+        for &t in &targets {
+            let Some(b) = boards[t].as_mut() else {
+                continue;
+            };
+            if b.free < area {
+                continue;
+            }
+            let Some((x, y, r)) = pass.find(b, &shapes, &sheets[t]) else {
+                continue;
+            };
+            let sh = &shapes[r];
+            let new = Placement {
+                part: pl.part,
+                copy: pl.copy,
+                x_mm: x - sh.bbox.0,
+                y_mm: y - sh.bbox.1,
+                rotation_deg: sh.rot,
+            };
+            let n = b.placed.len();
+            if pass.register(&mut b.engine, n, p, &new).is_none() {
+                continue;
+            }
+            let o = placed_outline(p, &new);
+            let bb = bounds(&o);
+            b.placed.push((o, bb));
+            b.free -= area;
+            moves.push((t, new));
+            continue 'parts;
+        }
+        ok = false;
+        break;
+    }
+    if ok {
+        return Some(moves);
+    }
+    for (&t, (snap, n, free)) in targets.iter().zip(saved) {
+        if let Some(b) = boards[t].as_mut() {
+            b.engine.restore(&snap);
+            b.placed.truncate(n);
+            b.free = free;
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
+        box_poly((x, y, x + s, y + s))
+    }
+
+    #[test]
+    fn distance_of_apart_touching_crossing_and_nested_polygons() {
+        let a = square(0.0, 0.0, 10.0);
+        assert!((distance(&a, &square(15.0, 0.0, 10.0), 10.0) - 5.0).abs() < 1e-12);
+        // Diagonal: corner to corner.
+        let d = distance(&a, &square(13.0, 14.0, 10.0), 10.0);
+        assert!((d - 5.0).abs() < 1e-12, "{d}");
+        assert_eq!(distance(&a, &square(10.0, 0.0, 10.0), 10.0), 0.0);
+        assert_eq!(distance(&a, &square(5.0, 5.0, 10.0), 10.0), 0.0);
+        assert_eq!(distance(&a, &square(2.0, 2.0, 3.0), 10.0), 0.0);
+        assert_eq!(distance(&square(2.0, 2.0, 3.0), &a, 10.0), 0.0);
+        // Farther than the limit: at least the limit.
+        assert!(distance(&a, &square(100.0, 0.0, 10.0), 10.0) >= 10.0);
+    }
+
+    #[test]
+    fn simplified_outlines_stay_within_the_tolerance() {
+        let v: Vec<Point> = (0..400)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 400.0;
+                Point::new(100.0 * a.cos(), 100.0 * a.sin())
+            })
+            .collect();
+        let s = simplify(&v, 0.25);
+        assert!(s.len() < 100, "{}", s.len());
+        for q in &v {
+            let n = s.len();
+            let d = (0..n)
+                .map(|i| point_segment(*q, s[i], s[(i + 1) % n]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 0.25 + 1e-9, "{d}");
+        }
+    }
+}
