@@ -6,6 +6,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
+mod common;
+
 use lamella::fabricate::fabricate;
 use lamella::io::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, placed_bbox};
@@ -20,20 +22,8 @@ fn root() -> PathBuf {
 #[test]
 fn every_buildable_kit_nests_within_the_rules() {
     let mut nested = 0;
-    for sample in [
-        "enneper-4m",
-        "catenoid",
-        "scherk",
-        "schwarz-d-patch",
-        "hypar-small",
-        "schwarz-d-pavilion",
-    ] {
-        let net = read_network(
-            &root().join(format!("samples/{sample}.yaml")),
-            ReadOptions::default(),
-        )
-        .unwrap();
-        let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+    for sample in common::BUILDABLE_SAMPLES {
+        let (net, an) = common::analysed_sample(sample);
         for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
             let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
             let kit = fabricate(&net, &an, &p).unwrap();

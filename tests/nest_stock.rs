@@ -5,6 +5,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
+mod common;
+
 use kurbo::Point;
 use lamella::fabricate::part::{Part, PartKind};
 use lamella::fabricate::{fabricate, Kit, KitSummary};
@@ -364,20 +366,8 @@ fn shipped_samples_nest_on_two_sizes_within_the_rules() {
         "stock:\n  kind: sheet\n  length_mm: 2000\n  width_mm: 1000\n  price_per_unit: 45\n",
     ))
     .unwrap();
-    for sample in [
-        "enneper-4m",
-        "catenoid",
-        "scherk",
-        "schwarz-d-patch",
-        "hypar-small",
-        "schwarz-d-pavilion",
-    ] {
-        let net = read_network(
-            &root().join(format!("samples/{sample}.yaml")),
-            ReadOptions::default(),
-        )
-        .unwrap();
-        let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
+    for sample in common::BUILDABLE_SAMPLES {
+        let (net, an) = common::analysed_sample(sample);
         let kit = fabricate(&net, &an, &mixed).unwrap();
         // The same parts as with the large size alone (splices at 2980 mm).
         let kit_single = fabricate(&net, &an, &single).unwrap();

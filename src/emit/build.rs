@@ -148,17 +148,7 @@ pub fn build(
             takeoff: takeoff::Takeoff {
                 project: net.name.clone(),
                 profile: profile.name.clone(),
-                currency: None,
-                parts: Vec::new(),
-                stock: Vec::new(),
-                hardware: Vec::new(),
-                totals: takeoff::Totals {
-                    pieces: 0,
-                    lamella_length_m: 0.0,
-                    mass_kg: 0.0,
-                    sheets: 0,
-                    stock_cost: None,
-                },
+                ..Default::default()
             },
             sheets_used: 0,
             lower_bound_sheets: 0,

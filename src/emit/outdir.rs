@@ -56,7 +56,7 @@ impl Staging {
             for name in fixed_names {
                 let p = dir.join(name);
                 if p.exists() && !is_lamellas(dir, name, &ours) {
-                    return Err(foreign(&p));
+                    return Err(foreign_err(&p));
                 }
             }
         }
@@ -272,10 +272,6 @@ fn remove_stale(parent: &Path, name: &str) {
             let _ = std::fs::remove_dir_all(&path);
         }
     }
-}
-
-fn foreign(p: &Path) -> Error {
-    foreign_err(p)
 }
 
 fn foreign_err(p: &Path) -> Error {

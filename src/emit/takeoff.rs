@@ -13,7 +13,7 @@ use crate::profile::Profile;
 use serde::Serialize;
 
 /// The whole takeoff.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Default, Serialize, PartialEq)]
 pub struct Takeoff {
     /// Network name.
     pub project: String,
@@ -83,7 +83,7 @@ pub struct HardwareLine {
 }
 
 /// Sums over the takeoff.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Default, Serialize, PartialEq)]
 pub struct Totals {
     /// Pieces to cut or saw.
     pub pieces: u64,

@@ -123,3 +123,23 @@ pub fn assert_ab_orthogonal(net: &Network, an: &Analysis, what: &str) -> usize {
     }
     ab
 }
+
+/// The shipped samples every profile can make parts for (the 1:5 pavilion
+/// only with the veneer profile: full-size splice plates do not fit).
+pub const BUILDABLE_SAMPLES: [&str; 6] = [
+    "enneper-4m",
+    "catenoid",
+    "scherk",
+    "schwarz-d-patch",
+    "hypar-small",
+    "schwarz-d-pavilion",
+];
+
+/// A shipped sample, read and analysed.
+pub fn analysed_sample(name: &str) -> (Network, Analysis) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("samples/{name}.yaml"));
+    let net =
+        lamella::io::read_network(&path, lamella::io::ReadOptions::default()).expect("read sample");
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analyse sample");
+    (net, an)
+}
