@@ -22,6 +22,9 @@ pub enum Location {
     Curve(String),
     /// A field of a structured file (profile, spec), dotted path.
     Field(String),
+    /// An element of a mesh or a part, named in full: `triangle 12`,
+    /// `vertex 5 at (1.000, 2.000, 0.000) mm`, `edge 3–7`.
+    Element(String),
 }
 
 impl fmt::Display for Location {
@@ -32,6 +35,7 @@ impl fmt::Display for Location {
             Location::Line(line) => write!(f, "line {line}"),
             Location::Curve(id) => write!(f, "curve {id}"),
             Location::Field(name) => write!(f, "field `{name}`"),
+            Location::Element(name) => f.write_str(name),
         }
     }
 }

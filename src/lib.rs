@@ -25,6 +25,7 @@ pub mod fabricate;
 pub mod flat;
 pub mod geom;
 pub mod io;
+pub mod mesh;
 pub mod nest;
 pub mod network;
 pub mod profile;

@@ -1,0 +1,18 @@
+//! Triangle meshes: the data every mesh stage shares.
+//!
+//! A [`TriMesh`] holds positions in mm and counter-clockwise triangles (seen
+//! from the side the normals point to). Mesh files are read into it
+//! (`read`), curvature tensors are estimated on it (`curvature`), form
+//! finding (`crate::minimal`) produces one with a planar chart, and
+//! tracing on meshes walks it through a chart (`surface`).
+
+use glam::DVec3;
+
+/// A triangle mesh in mm.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions, mm.
+    pub positions_mm: Vec<DVec3>,
+    /// Triangles as vertex indices, counter-clockwise seen from the normals' side.
+    pub triangles: Vec<[u32; 3]>,
+}
