@@ -827,6 +827,9 @@ const COORDINATE_DECIMALS: usize = 6;
 fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
     refuse_overwriting_input(out, &[("trace spec", spec_path)])?;
     let spec = io::trace_spec::load(spec_path)?;
+    if let Some(mesh) = lamella::design::mesh_source::mesh_path(&spec, spec_path) {
+        refuse_overwriting_input(out, &[("mesh", &mesh)])?;
+    }
     let (net, report) = lamella::design::design(&spec, spec_path)?;
     let comment = format!(
         "Traced by lamella {} from {}.\nRegenerate: lamella trace {} --out {}",
@@ -866,6 +869,9 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         net.curves.iter().map(|c| c.points.len()).sum::<usize>(),
         length_m
     );
+    for note in &report.notes {
+        println!("{note}");
+    }
     let unusual: Vec<String> = report
         .stops
         .iter()

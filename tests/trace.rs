@@ -67,32 +67,6 @@ fn closed_form_error(name: &str) -> (f64, f64) {
     (worst, longest)
 }
 
-/// (u, v) of a point on the surface, by Gauss–Newton from a coarse search.
-fn invert(surface: &dyn Surface, p: glam::DVec3) -> DVec2 {
-    let mut best = (f64::INFINITY, DVec2::ZERO);
-    for i in -40..=40 {
-        for j in -40..=40 {
-            let q = DVec2::new(i as f64 * 0.02, j as f64 * 0.02);
-            if surface.in_domain(q) {
-                let d = surface.point(q).distance(p);
-                if d < best.0 {
-                    best = (d, q);
-                }
-            }
-        }
-    }
-    let mut q = best.1;
-    for _ in 0..50 {
-        let j = surface.eval(q);
-        let r = j.p - p;
-        let (a, b, c) = (j.pu.dot(j.pu), j.pu.dot(j.pv), j.pv.dot(j.pv));
-        let (g1, g2) = (j.pu.dot(r), j.pv.dot(r));
-        let det = a * c - b * b;
-        q -= DVec2::new((c * g1 - b * g2) / det, (a * g2 - b * g1) / det);
-    }
-    q
-}
-
 #[test]
 fn traced_enneper_and_catenoid_follow_the_closed_form() {
     let (worst, longest) = closed_form_error("enneper-4m");

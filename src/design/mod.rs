@@ -12,6 +12,7 @@
 
 mod clip;
 mod edges;
+pub mod mesh_source;
 pub mod periodic;
 mod seed;
 pub mod surface;
@@ -31,7 +32,9 @@ use clip::{validate_clip, AlongFace, Face};
 use edges::{near_polyline, trace_edges};
 use seed::{crossing_uv, marks, station_of, PointIndex, FILL_GAP, FILL_ROUNDS};
 
-/// The placed surface of a spec.
+/// The placed analytic surface of a spec. A mesh or film spec (`surface:
+/// mesh` or `minimal`) has its surface made by [`prepare_surface`], which
+/// reads files and can fail; here it gives an empty mesh.
 pub fn placed_surface(spec: &TraceSpec) -> Placed {
     let base: Arc<dyn Surface> = match spec.surface {
         SurfaceName::Enneper => Arc::new(surface::Enneper),
@@ -40,11 +43,19 @@ pub fn placed_surface(spec: &TraceSpec) -> Placed {
         SurfaceName::Scherk => Arc::new(surface::Scherk),
         SurfaceName::SchwarzD => Arc::new(surface::SchwarzD),
         SurfaceName::Hypar => Arc::new(surface::Hypar { c: spec.c }),
+        SurfaceName::Mesh | SurfaceName::Minimal => Arc::new(
+            crate::mesh::surface::MeshSurface::new(&Default::default(), Vec::new(), &[]),
+        ),
     };
+    place(spec, base, spec.scale_mm.unwrap_or(1.0))
+}
+
+/// A surface scaled and placed as the spec's `placement` says.
+fn place(spec: &TraceSpec, base: Arc<dyn Surface>, scale_mm: f64) -> Placed {
     let [rx, ry, rz] = spec.placement.rotate_deg.map(f64::to_radians);
     Placed {
         surface: base,
-        scale_mm: spec.scale_mm,
+        scale_mm,
         rotation: DMat3::from_rotation_z(rz)
             * DMat3::from_rotation_y(ry)
             * DMat3::from_rotation_x(rx),
@@ -52,15 +63,101 @@ pub fn placed_surface(spec: &TraceSpec) -> Placed {
     }
 }
 
+/// A spec's surface ready to trace on: placed, with the seed in its
+/// parameters and what a designer should know about it (form finding,
+/// curvature, singular points).
+pub struct Prepared {
+    /// The placed surface.
+    pub surface: Placed,
+    /// The seed in the surface's parameters.
+    pub seed_uv: DVec2,
+    /// One line each: how the surface was made and what was found on it.
+    pub notes: Vec<String>,
+    /// Warnings about the surface (synclastic regions).
+    pub warnings: Vec<String>,
+}
+
+/// The surface of a validated spec: analytic, or a mesh read or form-found
+/// (see [`mesh_source`]).
+pub fn prepare_surface(spec: &TraceSpec, path: &Path) -> Result<Prepared> {
+    if spec.surface.is_mesh() {
+        let m = mesh_source::prepare(spec, path)?;
+        return Ok(Prepared {
+            surface: place(spec, m.surface, 1.0),
+            seed_uv: m.seed_uv,
+            notes: m.notes,
+            warnings: m.warnings,
+        });
+    }
+    Ok(Prepared {
+        surface: placed_surface(spec),
+        seed_uv: DVec2::from_array(spec.seed.unwrap_or_default()),
+        notes: Vec::new(),
+        warnings: Vec::new(),
+    })
+}
+
 /// Validate a spec before tracing (one-line errors naming the field).
 fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
     let err =
         |field: &str, what: String| Err(Error::input(path, Location::Field(field.into()), what));
-    if !(spec.scale_mm.is_finite() && spec.scale_mm > 0.0) {
-        return err(
-            "scale_mm",
-            format!("must be positive, got {}", spec.scale_mm),
-        );
+    let is_mesh = spec.surface.is_mesh();
+    let name = format!("{:?}", spec.surface).to_lowercase();
+    let only_for = |field: &str, present: bool, what: &str| -> Result<()> {
+        if present {
+            return Err(Error::input(
+                path,
+                Location::Field(field.into()),
+                format!("is for {what}, not `surface: {name}`"),
+            ));
+        }
+        Ok(())
+    };
+    only_for("mesh", spec.mesh.is_some() && spec.surface != SurfaceName::Mesh, "`surface: mesh`")?;
+    only_for(
+        "boundaries_mm",
+        spec.boundaries_mm.is_some() && spec.surface != SurfaceName::Minimal,
+        "`surface: minimal`",
+    )?;
+    only_for(
+        "film_edge_mm",
+        spec.film_edge_mm.is_some() && spec.surface != SurfaceName::Minimal,
+        "`surface: minimal`",
+    )?;
+    only_for("seed_mm", spec.seed_mm.is_some() && !is_mesh, "meshes and films (analytic surfaces take `seed: [u, v]`)")?;
+    only_for(
+        "seed",
+        spec.seed.is_some() && is_mesh,
+        "analytic surfaces (a mesh has no parameters: give `seed_mm: [x, y, z]`)",
+    )?;
+    only_for("scale_mm", spec.scale_mm.is_some() && is_mesh, "analytic surfaces (meshes and films are in mm)")?;
+    match spec.surface {
+        SurfaceName::Mesh if spec.mesh.is_none() => {
+            return err("mesh", "`surface: mesh` needs `mesh: FILE` (an OBJ, PLY or STL triangle mesh in mm)".into());
+        }
+        SurfaceName::Minimal if spec.boundaries_mm.is_none() => {
+            return err("boundaries_mm", "`surface: minimal` needs `boundaries_mm`: one or more closed polylines of [x, y, z] points".into());
+        }
+        _ => {}
+    }
+    if let Some(e) = spec.film_edge_mm {
+        if !(e.is_finite() && e > 0.0) {
+            return err("film_edge_mm", format!("must be positive, got {e}"));
+        }
+    }
+    if spec.seed_mm.is_some_and(|p| p.iter().any(|x| !x.is_finite())) {
+        return err("seed_mm", "must be three finite numbers".into());
+    }
+    let scale_mm = match (is_mesh, spec.scale_mm) {
+        (true, _) => 1.0,
+        (false, Some(s)) => s,
+        (false, None) => return err("scale_mm", "required: mm per surface unit".into()),
+    };
+    if !is_mesh && spec.seed.is_none() {
+        return err("seed", "required: the seed point [u, v] in the surface's parameters".into());
+    }
+    if !(scale_mm.is_finite() && scale_mm > 0.0) {
+        return err("scale_mm", format!("must be positive, got {scale_mm}"));
     }
     if !(spec.spacing_mm.is_finite() && spec.spacing_mm > 0.0) {
         return err(
@@ -99,7 +196,7 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             ),
         );
     }
-    if spec.seed.iter().any(|x| !x.is_finite()) {
+    if spec.seed.is_some_and(|q| q.iter().any(|x| !x.is_finite())) {
         return err("seed", "must be two finite numbers".into());
     }
     if spec.max_curves_per_side == 0 || spec.max_curves_per_side > MAX_CURVES_PER_SIDE {
@@ -117,19 +214,16 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             format!("{} mm is too small a spacing for strips", spec.spacing_mm),
         );
     }
-    if spec.scale_mm > 1e7 {
+    if scale_mm > 1e7 {
         return err(
             "scale_mm",
-            format!("{:e} mm per unit is beyond any structure", spec.scale_mm),
+            format!("{scale_mm:e} mm per unit is beyond any structure"),
         );
     }
-    if spec.scale_mm < 1.0 {
+    if scale_mm < 1.0 {
         return err(
             "scale_mm",
-            format!(
-                "{} mm per unit is too small a surface (at least 1)",
-                spec.scale_mm
-            ),
+            format!("{scale_mm} mm per unit is too small a surface (at least 1)"),
         );
     }
     if spec.spacing_mm > crate::network::MAX_EXTENT_MM {
@@ -161,6 +255,12 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
     };
     if let Some(c) = &clip {
         validate_clip(c, path)?;
+    }
+    if is_mesh && matches!(clip, Some(ClipSpec::Parameters { .. })) {
+        return err(
+            "clip",
+            "a mesh or film has no parameters of its own: clip it in space (box, block, plane, polygon)".into(),
+        );
     }
     if spec.fill && !spec.periodic {
         return err(
@@ -210,8 +310,12 @@ pub struct DesignReport {
     pub edges: usize,
     /// (curve id, where its start stopped, where its end stopped).
     pub stops: Vec<(String, Stop, Stop)>,
-    /// What a designer should look at (crossings far from 90°).
+    /// What a designer should look at (crossings far from 90°, synclastic
+    /// regions of a mesh).
     pub warnings: Vec<String>,
+    /// How a mesh or film surface was made and what was found on it (form
+    /// finding, curvature, singular points), one line each.
+    pub notes: Vec<String>,
 }
 
 /// Trace the network a spec describes, and check it: it has A and B
@@ -254,7 +358,7 @@ pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport
             format!("the traced network would not read back: {what}"),
         )
     })?;
-    report.warnings = crossing_warnings(spec, &net);
+    report.warnings.extend(crossing_warnings(spec, &net));
     Ok((raw, report))
 }
 
@@ -268,7 +372,7 @@ pub const RIGHT_ANGLE_SLACK_DEG: f64 = 1.0;
 /// beyond its self-intersections, a clip that keeps too much), not a
 /// crossing of the net.
 fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<String> {
-    if spec.net == Net::Asymptotic && spec.surface == SurfaceName::Hypar {
+    if spec.net == Net::Asymptotic && matches!(spec.surface, SurfaceName::Hypar | SurfaceName::Mesh) {
         return Vec::new();
     }
     let curves: Vec<crate::geom::curve::SmoothCurve> = net
@@ -314,9 +418,13 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
 /// Trace the network a spec describes (unchecked).
 fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
     let clip_spec = validate(spec, path)?;
-    let surface = placed_surface(spec);
+    let Prepared {
+        surface,
+        seed_uv: seed,
+        notes,
+        warnings,
+    } = prepare_surface(spec, path)?;
     let clip = Clip::from_spec(clip_spec.as_ref());
-    let seed = DVec2::from_array(spec.seed);
     let opts = TraceOptions {
         tolerance_mm: spec.sampling.tolerance_mm,
         max_step_mm: spec.sampling.step_mm,
@@ -330,6 +438,8 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
             seed.x, seed.y, spec.surface
         )));
     }
+    let seed_field = if spec.surface.is_mesh() { "seed_mm" } else { "seed" };
+    let seed_err = |what: String| Error::input(path, Location::Field(seed_field.into()), what);
     if !clip.contains(seed, surface.point(seed)) {
         let p = surface.point(seed);
         return Err(Error::input(
@@ -440,13 +550,16 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
         points_world_mm: t.points_world_mm,
         stops: (t.stop_start, t.stop_end),
     };
-    Ok(assemble(
+    let (raw, mut report) = assemble(
         spec,
         path,
         a_curves.into_iter().map(|c| finished(c.1)).collect(),
         b_curves.into_iter().map(|c| finished(c.1)).collect(),
         edges.into_iter().map(finished).collect(),
-    ))
+    );
+    report.notes = notes;
+    report.warnings = warnings;
+    Ok((raw, report))
 }
 
 /// A traced curve ready for the network file: world points and normals.
@@ -471,6 +584,7 @@ fn assemble(
         edges: edges.len(),
         stops: Vec::new(),
         warnings: Vec::new(),
+        notes: Vec::new(),
     };
     let mut curves = Vec::with_capacity(a.len() + b.len() + edges.len());
     for (prefix, family, list) in [
@@ -565,7 +679,7 @@ fn design_periodic(
         schwarz_d_patch, unfold_through, Placement, Site, Unfolded, WorldField,
     };
     let edges = schwarz_d_patch(surface);
-    let seed_uv = DVec2::from_array(spec.seed);
+    let seed_uv = DVec2::from_array(spec.seed.unwrap_or_default());
     let seed_err = |what: String| Error::input(path, Location::Field("seed".into()), what);
     let seed = Site {
         placement: Placement::IDENTITY,

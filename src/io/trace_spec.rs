@@ -29,18 +29,37 @@ pub struct TraceSpec {
     /// Network name (default: the spec's file stem).
     #[serde(default)]
     pub name: Option<String>,
-    /// `surface:` which analytic surface.
+    /// `surface:` which surface: an analytic one, `mesh` or `minimal`.
     pub surface: SurfaceName,
+    /// `mesh:` the triangle mesh (OBJ, PLY or STL, mm) of `surface: mesh`,
+    /// relative to the spec's folder.
+    #[serde(default)]
+    pub mesh: Option<std::path::PathBuf>,
+    /// `boundaries_mm:` the closed boundary polylines (x, y, z points, mm;
+    /// the last point joins the first) a soap film spans for `surface: minimal`.
+    #[serde(default)]
+    pub boundaries_mm: Option<Vec<Vec<[f64; 3]>>>,
+    /// `film_edge_mm:` target edge length of the form-found mesh (`surface:
+    /// minimal`); default a sixth of `spacing_mm`.
+    #[serde(default)]
+    pub film_edge_mm: Option<f64>,
     /// The surface's shape parameter c (catenoid, helicoid, hypar), surface units.
     #[serde(default = "one")]
     pub c: f64,
-    /// mm per surface unit.
-    pub scale_mm: f64,
+    /// mm per surface unit (analytic surfaces; meshes and films are in mm).
+    #[serde(default)]
+    pub scale_mm: Option<f64>,
     /// `placement:` rotation and translation of the scaled surface; default none.
     #[serde(default)]
     pub placement: Placement,
-    /// Seed point (u, v) in the surface's parameters.
-    pub seed: [f64; 2],
+    /// Seed point (u, v) in the surface's parameters (analytic surfaces).
+    #[serde(default)]
+    pub seed: Option<[f64; 2]>,
+    /// Seed point (x, y, z) in mm near the mesh or film (`mesh`, `minimal`):
+    /// the nearest point of the surface; default the vertex nearest the
+    /// centre of its area.
+    #[serde(default)]
+    pub seed_mm: Option<[f64; 3]>,
     /// Target spacing between neighbouring curves of a family, mm.
     pub spacing_mm: f64,
     /// `net:` asymptotic (default) or principal families.
@@ -91,6 +110,17 @@ pub enum SurfaceName {
     SchwarzD,
     /// The hyperbolic paraboloid z = xy/c (anticlastic, not minimal).
     Hypar,
+    /// A triangle mesh from a file (`mesh:`), anticlastic, not necessarily minimal.
+    Mesh,
+    /// The soap film (discrete minimal surface) spanning `boundaries_mm`.
+    Minimal,
+}
+
+impl SurfaceName {
+    /// Whether the surface is a mesh (read or form-found) rather than analytic.
+    pub fn is_mesh(self) -> bool {
+        matches!(self, SurfaceName::Mesh | SurfaceName::Minimal)
+    }
 }
 
 /// `placement:` how the scaled surface is placed in the world: X' = R·X + t.

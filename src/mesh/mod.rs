@@ -16,3 +16,6 @@ pub struct TriMesh {
     /// Triangles as vertex indices, counter-clockwise seen from the normals' side.
     pub triangles: Vec<[u32; 3]>,
 }
+
+pub mod chart;
+pub mod surface;

@@ -5,6 +5,7 @@
 use glam::{DVec2, DVec3};
 use lamella::analysis::{analyze, Analysis, AnalysisOptions};
 use lamella::network::{Network, RawNetwork};
+pub mod meshes;
 pub mod synth;
 
 use std::path::Path;
@@ -143,3 +144,30 @@ pub fn analysed_sample(name: &str) -> (Network, Analysis) {
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analyse sample");
     (net, an)
 }
+
+/// (u, v) of a point on the surface, by Gauss–Newton from a coarse search.
+pub fn invert(surface: &dyn lamella::design::surface::Surface, p: DVec3) -> DVec2 {
+    let mut best = (f64::INFINITY, DVec2::ZERO);
+    for i in -40..=40 {
+        for j in -40..=40 {
+            let q = DVec2::new(i as f64 * 0.02, j as f64 * 0.02);
+            if surface.in_domain(q) {
+                let d = surface.point(q).distance(p);
+                if d < best.0 {
+                    best = (d, q);
+                }
+            }
+        }
+    }
+    let mut q = best.1;
+    for _ in 0..50 {
+        let j = surface.eval(q);
+        let r = j.p - p;
+        let (a, b, c) = (j.pu.dot(j.pu), j.pu.dot(j.pv), j.pv.dot(j.pv));
+        let (g1, g2) = (j.pu.dot(r), j.pv.dot(r));
+        let det = a * c - b * b;
+        q -= DVec2::new((c * g1 - b * g2) / det, (a * g2 - b * g1) / det);
+    }
+    q
+}
+

@@ -1,0 +1,206 @@
+//! The surfaces of `surface: mesh` and `surface: minimal` specs: a triangle
+//! mesh read from a file, or the soap film form-found over boundary
+//! polylines ([`crate::minimal`]), checked (manifold, not degenerate,
+//! anticlastic somewhere), its curvature tensors estimated
+//! ([`crate::mesh::curvature`]), its singular points found
+//! ([`crate::mesh::singular`]), charted ([`crate::mesh::chart`]) and
+//! wrapped as a [`MeshSurface`] for the tracer.
+
+use crate::error::{Error, Location, Result};
+use crate::io::trace_spec::{SurfaceName, TraceSpec};
+use crate::mesh::chart::{make_chart, ChartError, ChartKind};
+use crate::mesh::surface::MeshSurface;
+use crate::mesh::TriMesh;
+use glam::{DVec2, DVec3};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A mesh surface ready to trace on.
+pub struct MeshSource {
+    /// The surface.
+    pub surface: Arc<MeshSurface>,
+    /// The seed in its chart.
+    pub seed_uv: DVec2,
+    /// What was made and found, one line each.
+    pub notes: Vec<String>,
+    /// Synclastic regions and other things to look at.
+    pub warnings: Vec<String>,
+}
+
+/// The mesh file of a `surface: mesh` spec, relative to the spec's folder.
+pub fn mesh_path(spec: &TraceSpec, spec_path: &Path) -> Option<PathBuf> {
+    let m = spec.mesh.as_ref()?;
+    Some(if m.is_absolute() {
+        m.clone()
+    } else {
+        spec_path.parent().unwrap_or(Path::new(".")).join(m)
+    })
+}
+
+/// Read or form-find the mesh of a validated spec and make it a surface.
+pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
+    let mut notes = Vec::new();
+    let (mesh, chart_uv, named) = match spec.surface {
+        SurfaceName::Minimal => {
+            let boundaries: Vec<Vec<DVec3>> = spec
+                .boundaries_mm
+                .iter()
+                .flatten()
+                .map(|l| l.iter().map(|p| DVec3::from_array(*p)).collect())
+                .collect();
+            let opts = crate::minimal::FormFindOptions {
+                target_edge_mm: spec.film_edge_mm.unwrap_or(spec.spacing_mm / 6.0),
+                ..Default::default()
+            };
+            let found = crate::minimal::form_find(&boundaries, &opts, spec_path)?;
+            let r = &found.report;
+            notes.push(format!(
+                "film: {} triangles, {} iterations{}, area {:.3} m², mean-curvature residual {:.2e}/mm mean, {:.2e}/mm max, smallest angle {:.1}°",
+                found.mesh.triangles.len(),
+                r.iterations,
+                if r.converged { "" } else { " (not converged)" },
+                r.area_end_mm2 * 1e-6,
+                r.mean_curvature_mean_per_mm,
+                r.mean_curvature_max_per_mm,
+                r.min_angle_deg,
+            ));
+            (found.mesh, Some(found.chart_uv), spec_path.to_path_buf())
+        }
+        _ => {
+            let file = mesh_path(spec, spec_path).unwrap_or_default();
+            if !file.exists() {
+                return Err(Error::input(
+                    spec_path,
+                    Location::Field("mesh".into()),
+                    format!("no such file {}", file.display()),
+                ));
+            }
+            (crate::mesh::read::read_mesh(&file)?, None, file)
+        }
+    };
+    let (mesh, topo) = crate::mesh::topology::build(&mesh, &named)?;
+    let curvatures = crate::mesh::curvature::vertex_curvatures(&mesh, &topo);
+    let report = crate::mesh::singular::anticlastic_report(&mesh, &curvatures);
+    crate::mesh::singular::require_anticlastic(&report, &named)?;
+    let warnings = report.warnings();
+    let singular = crate::mesh::singular::singularities(&mesh, &topo, &curvatures);
+    for s in &singular {
+        notes.push(format!(
+            "singular point ({}, index {}) at ({:.1}, {:.1}, {:.1}) mm: the net changes valence there",
+            s.kind.as_str(),
+            half_integer(s.index),
+            s.position_mm.x,
+            s.position_mm.y,
+            s.position_mm.z
+        ));
+    }
+    let (uv, kind) = match chart_uv {
+        Some(uv) => (uv, "the film's plan"),
+        None => {
+            let chart = make_chart(&mesh, topo.boundary_loops()).map_err(|e| match e {
+                ChartError::Topology { loops } => Error::input(
+                    &named,
+                    Location::File,
+                    format!(
+                        "the mesh folds over in every plan and has {loops} boundary loops: lamella charts such meshes only as disks (one loop) or rings (two)"
+                    ),
+                ),
+                ChartError::Folded { triangle } => {
+                    let t = mesh.triangles[triangle];
+                    let p = mesh.positions_mm[t[0] as usize];
+                    Error::input(
+                        &named,
+                        Location::Element(format!(
+                            "triangle {triangle} at ({:.3}, {:.3}, {:.3}) mm",
+                            p.x, p.y, p.z
+                        )),
+                        "the mesh cannot be flattened into a chart without folding here",
+                    )
+                }
+            })?;
+            let kind = match chart.kind {
+                ChartKind::Projection => "its best-fit plane",
+                ChartKind::Embedding => "a mean-value embedding",
+            };
+            (chart.uv, kind)
+        }
+    };
+    notes.insert(
+        0,
+        format!(
+            "mesh: {} vertices, {} triangles, charted by {kind}; K < 0 at {} of {} vertices",
+            mesh.positions_mm.len(),
+            mesh.triangles.len(),
+            report.anticlastic_vertices,
+            mesh.positions_mm.len()
+        ),
+    );
+    let surface = MeshSurface::new(&mesh, uv, &curvatures);
+    let seed_uv = match spec.seed_mm {
+        Some(p) => {
+            let p = DVec3::from_array(p);
+            let (q, d) = surface.nearest_uv(p).ok_or_else(|| {
+                Error::input(spec_path, Location::Field("seed_mm".into()), "the mesh is empty")
+            })?;
+            if d > spec.spacing_mm {
+                return Err(Error::input(
+                    spec_path,
+                    Location::Field("seed_mm".into()),
+                    format!(
+                        "({:.1}, {:.1}, {:.1}) mm is {d:.1} mm from the surface, more than spacing_mm: put the seed on it",
+                        p.x, p.y, p.z
+                    ),
+                ));
+            }
+            q
+        }
+        None => surface.chart()[centre_vertex(&mesh)],
+    };
+    Ok(MeshSource {
+        surface: Arc::new(surface),
+        seed_uv,
+        notes,
+        warnings,
+    })
+}
+
+/// `-1/2`, `1`, `3/2`: an index in halves.
+fn half_integer(x: f64) -> String {
+    let h = (2.0 * x).round() as i64;
+    if h % 2 == 0 {
+        format!("{}", h / 2)
+    } else {
+        format!("{h}/2")
+    }
+}
+
+/// The vertex nearest the area centroid of the mesh.
+fn centre_vertex(mesh: &TriMesh) -> usize {
+    let (mut c, mut area) = (DVec3::ZERO, 0.0);
+    for t in &mesh.triangles {
+        let [a, b, cc] = t.map(|i| mesh.positions_mm[i as usize]);
+        let w = 0.5 * (b - a).cross(cc - a).length();
+        c += (a + b + cc) / 3.0 * w;
+        area += w;
+    }
+    let c = if area > 0.0 { c / area } else { DVec3::ZERO };
+    (0..mesh.positions_mm.len())
+        .min_by(|&i, &j| {
+            mesh.positions_mm[i]
+                .distance_squared(c)
+                .total_cmp(&mesh.positions_mm[j].distance_squared(c))
+        })
+        .unwrap_or(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_integers_print_as_fractions() {
+        assert_eq!(half_integer(-0.5), "-1/2");
+        assert_eq!(half_integer(1.0), "1");
+        assert_eq!(half_integer(-1.5), "-3/2");
+    }
+}

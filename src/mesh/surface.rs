@@ -1,0 +1,447 @@
+//! A triangle mesh seen as a [`Surface`], so that the same tracer, seeds,
+//! spacing, alternation and clips work on meshes as on analytic surfaces.
+//!
+//! The parameter plane is a [`Chart`](crate::mesh::chart::Chart): a point
+//! (u, v) lies in one chart triangle with barycentric coordinates λ.
+//! * The point is the mesh's own: X = Σ λᵢ Xᵢ (piecewise linear).
+//! * The partials ∂X/∂u, ∂X/∂v are interpolated from per-vertex ones (the
+//!   area-weighted mean of the incident triangles' linear maps, made tangent
+//!   to the vertex normal), so they and the normal are continuous across
+//!   edges and the tracer's steps are not broken at every edge.
+//! * The curvature is the per-vertex shape operators (from
+//!   [`vertex_curvatures`](crate::mesh::curvature)) each turned by the
+//!   smallest rotation taking its vertex normal to the point's normal, then
+//!   interpolated (as Rusinkiewicz 2004 does between frames). The jet's
+//!   second derivatives are set to (II(∂u, ∂u), II(∂u, ∂v), II(∂v, ∂v)) · n,
+//!   which is all [`curvature_of`](crate::design::surface::curvature_of)
+//!   reads, so asymptotic and principal directions come out of the
+//!   estimated tensor field, not the flat facets.
+//!
+//! Accuracy is the mesh's: points lie on the facets (O(h²) from a smooth
+//! surface sampled at spacing h), directions follow the estimated tensors
+//! (see `curvature`).
+
+use crate::design::surface::{Curvature, Surface, SurfaceJet};
+use crate::mesh::TriMesh;
+use glam::{DMat3, DVec2, DVec3};
+
+/// A mesh with a chart and curvature tensors, as a surface.
+#[derive(Debug, Clone)]
+pub struct MeshSurface {
+    positions_mm: Vec<DVec3>,
+    uv: Vec<DVec2>,
+    triangles: Vec<[u32; 3]>,
+    /// Per vertex ∂X/∂u, ∂X/∂v, tangent to the vertex normal.
+    partials: Vec<[DVec3; 2]>,
+    /// Per vertex unit normal.
+    normals: Vec<DVec3>,
+    /// Per vertex shape operator k1·d1d1ᵀ + k2·d2d2ᵀ.
+    shape: Vec<DMat3>,
+    grid: UvGrid,
+}
+
+impl MeshSurface {
+    /// A surface from a mesh, its chart (every triangle counter-clockwise
+    /// in uv, as the chart module guarantees) and per-vertex curvatures
+    /// (normals on the side of the counter-clockwise triangles).
+    pub fn new(mesh: &TriMesh, uv: Vec<DVec2>, curvatures: &[Curvature]) -> MeshSurface {
+        let nv = mesh.positions_mm.len();
+        let mut sum = vec![[DVec3::ZERO; 2]; nv];
+        let mut weight = vec![0.0; nv];
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| mesh.positions_mm[i as usize]);
+            let [qa, qb, qc] = t.map(|i| uv[i as usize]);
+            // Solve [b−a, c−a] = J [qb−qa, qc−qa] for J = [Xu, Xv].
+            let (e1, e2) = (qb - qa, qc - qa);
+            let det = e1.perp_dot(e2);
+            if det.abs() < 1e-300 {
+                continue;
+            }
+            let (f1, f2) = (b - a, c - a);
+            let xu = (f1 * e2.y - f2 * e1.y) / det;
+            let xv = (f2 * e1.x - f1 * e2.x) / det;
+            let area = 0.5 * f1.cross(f2).length();
+            for &i in t {
+                sum[i as usize][0] += xu * area;
+                sum[i as usize][1] += xv * area;
+                weight[i as usize] += area;
+            }
+        }
+        let normals: Vec<DVec3> = curvatures.iter().map(|c| c.normal).collect();
+        let partials = sum
+            .iter()
+            .zip(&weight)
+            .zip(&normals)
+            .map(|((s, w), n)| {
+                let w = if *w > 0.0 { *w } else { 1.0 };
+                s.map(|x| {
+                    let x = x / w;
+                    x - *n * n.dot(x)
+                })
+            })
+            .collect();
+        let shape = curvatures
+            .iter()
+            .map(|c| outer(c.d1, c.d1) * c.k1 + outer(c.d2, c.d2) * c.k2)
+            .collect();
+        let grid = UvGrid::new(&uv, &mesh.triangles);
+        MeshSurface {
+            positions_mm: mesh.positions_mm.clone(),
+            uv,
+            triangles: mesh.triangles.clone(),
+            partials,
+            normals,
+            shape,
+            grid,
+        }
+    }
+
+    /// The chart triangle holding uv and its barycentric coordinates.
+    pub fn locate(&self, q: DVec2) -> Option<(usize, [f64; 3])> {
+        self.grid.locate(q, &self.uv, &self.triangles)
+    }
+
+    /// The chart point of the mesh point nearest to `p` (mm), and its
+    /// distance (mm). Brute force over the triangles: for seeds.
+    pub fn nearest_uv(&self, p: DVec3) -> Option<(DVec2, f64)> {
+        let mut best: Option<(DVec2, f64)> = None;
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|i| self.positions_mm[i as usize]);
+            let (x, l) = closest_on_triangle(p, a, b, c);
+            let d = x.distance(p);
+            if best.is_none_or(|(_, bd)| d < bd) {
+                let q = t
+                    .iter()
+                    .zip(l)
+                    .map(|(&i, w)| self.uv[i as usize] * w)
+                    .sum::<DVec2>();
+                best = Some((q, d));
+            }
+        }
+        best
+    }
+
+    /// The chart coordinates of the vertices.
+    pub fn chart(&self) -> &[DVec2] {
+        &self.uv
+    }
+
+    fn jet(&self, q: DVec2, with_point: bool) -> SurfaceJet {
+        let Some((t, l)) = self.locate(q) else {
+            // Outside the chart: the nearest triangle's plane (the tracer
+            // asks only inside; this keeps evaluation total).
+            return SurfaceJet {
+                p: DVec3::ZERO,
+                pu: DVec3::X,
+                pv: DVec3::Y,
+                puu: DVec3::ZERO,
+                puv: DVec3::ZERO,
+                pvv: DVec3::ZERO,
+            };
+        };
+        let tri = self.triangles[t];
+        let mut p = DVec3::ZERO;
+        let (mut pu, mut pv) = (DVec3::ZERO, DVec3::ZERO);
+        for (&i, w) in tri.iter().zip(l) {
+            if with_point {
+                p += self.positions_mm[i as usize] * w;
+            }
+            pu += self.partials[i as usize][0] * w;
+            pv += self.partials[i as usize][1] * w;
+        }
+        let n = pu.cross(pv).normalize_or(DVec3::Z);
+        let mut s = DMat3::ZERO;
+        for (&i, w) in tri.iter().zip(l) {
+            let r = rotation_between(self.normals[i as usize], n);
+            s += r * self.shape[i as usize] * r.transpose() * w;
+        }
+        let ii = |a: DVec3, b: DVec3| a.dot(s * b);
+        SurfaceJet {
+            p,
+            pu,
+            pv,
+            puu: n * ii(pu, pu),
+            puv: n * ii(pu, pv),
+            pvv: n * ii(pv, pv),
+        }
+    }
+}
+
+impl Surface for MeshSurface {
+    fn eval(&self, q: DVec2) -> SurfaceJet {
+        self.jet(q, true)
+    }
+    fn derivatives(&self, q: DVec2) -> SurfaceJet {
+        self.jet(q, false)
+    }
+    fn point(&self, q: DVec2) -> DVec3 {
+        match self.locate(q) {
+            Some((t, l)) => self.triangles[t]
+                .iter()
+                .zip(l)
+                .map(|(&i, w)| self.positions_mm[i as usize] * w)
+                .sum(),
+            None => DVec3::ZERO,
+        }
+    }
+    fn in_domain(&self, q: DVec2) -> bool {
+        self.locate(q).is_some()
+    }
+}
+
+fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
+/// The smallest rotation taking unit `from` to unit `to` (identity when
+/// they agree; a half turn about any perpendicular when opposite).
+fn rotation_between(from: DVec3, to: DVec3) -> DMat3 {
+    let c = from.dot(to);
+    let axis = from.cross(to);
+    if c < -1.0 + 1e-12 {
+        let a = from.any_orthonormal_vector();
+        return DMat3::from_axis_angle(a, std::f64::consts::PI);
+    }
+    // Rodrigues with k = axis (unnormalised): R = I + [k]× + [k]×²/(1 + c).
+    let k = DMat3::from_cols(
+        DVec3::new(0.0, axis.z, -axis.y),
+        DVec3::new(-axis.z, 0.0, axis.x),
+        DVec3::new(axis.y, -axis.x, 0.0),
+    );
+    DMat3::IDENTITY + k + k * k * (1.0 / (1.0 + c))
+}
+
+/// Closest point of triangle abc to p, and its barycentric coordinates
+/// (Ericson, Real-Time Collision Detection, 5.1.5).
+fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> (DVec3, [f64; 3]) {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, [1.0, 0.0, 0.0]);
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, [0.0, 1.0, 0.0]);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return (a + ab * v, [1.0 - v, v, 0.0]);
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, [0.0, 0.0, 1.0]);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return (a + ac * w, [1.0 - w, 0.0, w]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + (c - b) * w, [0.0, 1.0 - w, w]);
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    (a + ab * v + ac * w, [1.0 - v - w, v, w])
+}
+
+/// A uniform grid over the chart: each cell lists the triangles whose
+/// bounding box meets it, so a point is located among a handful.
+#[derive(Debug, Clone)]
+struct UvGrid {
+    origin: DVec2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+/// Barycentric slack of point location: points this far outside a
+/// triangle (relative) still count as inside, so the chart has no cracks
+/// along its edges from rounding.
+const LOCATE_SLACK: f64 = 1e-12;
+
+impl UvGrid {
+    fn new(uv: &[DVec2], triangles: &[[u32; 3]]) -> UvGrid {
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for q in uv {
+            lo = lo.min(*q);
+            hi = hi.max(*q);
+        }
+        if triangles.is_empty() || !lo.is_finite() {
+            return UvGrid {
+                origin: DVec2::ZERO,
+                cell: 1.0,
+                nx: 0,
+                ny: 0,
+                start: vec![0],
+                items: Vec::new(),
+            };
+        }
+        let size = (hi - lo).max(DVec2::splat(1e-9));
+        let cells = (triangles.len() as f64 / 2.0).max(1.0);
+        let cell = (size.x * size.y / cells).sqrt().max(1e-12);
+        let nx = ((size.x / cell).ceil() as usize).clamp(1, 4096);
+        let ny = ((size.y / cell).ceil() as usize).clamp(1, 4096);
+        let cell = (size.x / nx as f64).max(size.y / ny as f64);
+        let index = |q: DVec2| -> (usize, usize) {
+            let c = (q - lo) / cell;
+            (
+                (c.x.floor().max(0.0) as usize).min(nx - 1),
+                (c.y.floor().max(0.0) as usize).min(ny - 1),
+            )
+        };
+        let mut count = vec![0u32; nx * ny + 1];
+        let span = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| uv[i as usize]);
+            (index(a.min(b).min(c)), index(a.max(b).max(c)))
+        };
+        for t in triangles {
+            let ((x0, y0), (x1, y1)) = span(t);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    count[y * nx + x + 1] += 1;
+                }
+            }
+        }
+        for k in 1..count.len() {
+            count[k] += count[k - 1];
+        }
+        let mut fill = count.clone();
+        let mut items = vec![0u32; count[nx * ny] as usize];
+        for (ti, t) in triangles.iter().enumerate() {
+            let ((x0, y0), (x1, y1)) = span(t);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let k = y * nx + x;
+                    items[fill[k] as usize] = ti as u32;
+                    fill[k] += 1;
+                }
+            }
+        }
+        UvGrid {
+            origin: lo,
+            cell,
+            nx,
+            ny,
+            start: count,
+            items,
+        }
+    }
+
+    fn locate(&self, q: DVec2, uv: &[DVec2], triangles: &[[u32; 3]]) -> Option<(usize, [f64; 3])> {
+        if self.nx == 0 || !q.is_finite() {
+            return None;
+        }
+        let c = (q - self.origin) / self.cell;
+        let slack = 1e-9;
+        if c.x < -slack || c.y < -slack || c.x > self.nx as f64 + slack || c.y > self.ny as f64 + slack {
+            return None;
+        }
+        let (x, y) = (
+            (c.x.floor().max(0.0) as usize).min(self.nx - 1),
+            (c.y.floor().max(0.0) as usize).min(self.ny - 1),
+        );
+        let k = y * self.nx + x;
+        let mut best: Option<(usize, [f64; 3], f64)> = None;
+        for &ti in &self.items[self.start[k] as usize..self.start[k + 1] as usize] {
+            let [a, b, cc] = triangles[ti as usize].map(|i| uv[i as usize]);
+            let area = (b - a).perp_dot(cc - a);
+            if area.abs() < 1e-300 {
+                continue;
+            }
+            let l0 = (cc - b).perp_dot(q - b) / area;
+            let l1 = (a - cc).perp_dot(q - cc) / area;
+            let l2 = 1.0 - l0 - l1;
+            let worst = l0.min(l1).min(l2);
+            if worst >= 0.0 {
+                return Some((ti as usize, [l0, l1, l2]));
+            }
+            if worst >= -LOCATE_SLACK && best.is_none_or(|b| worst > b.2) {
+                best = Some((ti as usize, [l0, l1, l2], worst));
+            }
+        }
+        best.map(|(t, l, _)| (t, l))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::design::surface::{curvature_of, Surface};
+
+    /// A mesh of the paraboloid z = (a x² + b y²)/2 with exact curvatures
+    /// at the vertices: the surface must hand them back at the vertices
+    /// and interpolate between.
+    #[test]
+    fn vertex_tensors_come_back_through_the_jet() {
+        let n = 10;
+        let (a, b) = (1.0 / 2000.0, -1.0 / 3000.0);
+        let f = |x: f64, y: f64| DVec3::new(x, y, 0.5 * (a * x * x + b * y * y));
+        let mut mesh = TriMesh::default();
+        for j in 0..=n {
+            for i in 0..=n {
+                mesh.positions_mm
+                    .push(f(i as f64 * 50.0 - 250.0, j as f64 * 50.0 - 250.0));
+            }
+        }
+        let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+        for j in 0..n {
+            for i in 0..n {
+                mesh.triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                mesh.triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        // Exact curvature of the graph at each vertex, from its own jet.
+        let exact = |x: f64, y: f64| {
+            curvature_of(&SurfaceJet {
+                p: f(x, y),
+                pu: DVec3::new(1.0, 0.0, a * x),
+                pv: DVec3::new(0.0, 1.0, b * y),
+                puu: DVec3::new(0.0, 0.0, a),
+                puv: DVec3::ZERO,
+                pvv: DVec3::new(0.0, 0.0, b),
+            })
+        };
+        let curv: Vec<Curvature> = mesh.positions_mm.iter().map(|p| exact(p.x, p.y)).collect();
+        let uv: Vec<DVec2> = mesh.positions_mm.iter().map(|p| p.truncate()).collect();
+        let s = MeshSurface::new(&mesh, uv, &curv);
+        // At the centre vertex (symmetric neighbourhood) the jet's normal is
+        // the exact one and the curvatures come back to rounding.
+        let c = curvature_of(&s.derivatives(DVec2::ZERO));
+        assert!((c.k1 - a).abs() < 1e-12 && (c.k2 - b).abs() < 1e-12, "{c:?}");
+        // Between vertices: within the interpolation error O(h²·k''), far
+        // below 1 % here.
+        let q = DVec2::new(37.0, -81.0);
+        let c = curvature_of(&s.derivatives(q));
+        let e = exact(q.x, q.y);
+        assert!((c.k1 - e.k1).abs() < 0.01 * a.abs(), "{} vs {}", c.k1, e.k1);
+        assert!((c.k2 - e.k2).abs() < 0.01 * b.abs(), "{} vs {}", c.k2, e.k2);
+        // The point is on the facet.
+        let p = s.point(q);
+        assert!((p.x - q.x).abs() < 1e-9 && (p.y - q.y).abs() < 1e-9);
+        assert!(!s.in_domain(DVec2::new(251.0, 0.0)));
+        assert!(s.in_domain(DVec2::new(250.0, 250.0)));
+        // 5 mm above the facet at (10, 20): the foot is within the facet's
+        // tilt (< 0.03) times 5 mm of (10, 20), the distance 5 mm to 0.1 %.
+        let above = s.point(DVec2::new(10.0, 20.0)) + DVec3::Z * 5.0;
+        let (near, d) = s.nearest_uv(above).unwrap();
+        assert!((near - DVec2::new(10.0, 20.0)).length() < 0.15, "{near}");
+        assert!((d - 5.0).abs() < 0.005, "{d}");
+    }
+
+    #[test]
+    fn rotation_between_takes_one_normal_to_the_other() {
+        let (a, b) = (DVec3::new(0.1, 0.2, 1.0).normalize(), DVec3::new(-0.3, 0.1, 1.0).normalize());
+        let r = rotation_between(a, b);
+        assert!((r * a - b).length() < 1e-14);
+        assert!((r.determinant() - 1.0).abs() < 1e-14);
+        let axis = a.cross(b).normalize();
+        assert!((r * axis - axis).length() < 1e-14);
+    }
+}

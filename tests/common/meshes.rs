@@ -1,0 +1,68 @@
+//! Triangle meshes sampled from closed forms, written as designers export
+//! them: OBJ, coordinates at 0.001 mm, no normals, irregular triangles.
+
+use glam::{DMat3, DVec2, DVec3};
+use lamella::design::surface::Surface;
+
+/// A deterministic jitter in [−1, 1] per grid vertex (a hash, no RNG state).
+fn jitter(i: usize, j: usize, k: u64) -> f64 {
+    let mut x = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (j as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+        ^ k.wrapping_mul(0x1656_67B1_9E37_79F9);
+    x ^= x >> 31;
+    x = x.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x ^= x >> 29;
+    (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+}
+
+/// Vertices (mm) and counter-clockwise triangles of `surface` scaled by
+/// `scale_mm` and turned about z by `rot_z_deg` (a spec's placement), over
+/// the parameter square [−r, r]² in n × n cells; interior vertices moved by
+/// up to `jitter_cells` of a cell, cells split along alternating diagonals.
+pub fn param_mesh(
+    surface: &dyn Surface,
+    scale_mm: f64,
+    rot_z_deg: f64,
+    r: f64,
+    n: usize,
+    jitter_cells: f64,
+) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let rot = DMat3::from_rotation_z(rot_z_deg.to_radians());
+    let h = 2.0 * r / n as f64;
+    let mut v = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let mut q = DVec2::new(-r + i as f64 * h, -r + j as f64 * h);
+            if i > 0 && j > 0 && i < n && j < n {
+                q += DVec2::new(jitter(i, j, 1), jitter(i, j, 2)) * (jitter_cells * h);
+            }
+            v.push(rot * (surface.point(q) * scale_mm));
+        }
+    }
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut t = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            if (i + j) % 2 == 0 {
+                t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            } else {
+                t.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+                t.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+    }
+    (v, t)
+}
+
+/// OBJ text as Rhino exports a mesh: `v` at three decimals, `f` 1-based.
+pub fn obj_text(v: &[DVec3], t: &[[u32; 3]]) -> String {
+    let mut s = String::from("# lamella test mesh\n");
+    for p in v {
+        s.push_str(&format!("v {:.3} {:.3} {:.3}\n", p.x, p.y, p.z));
+    }
+    for f in t {
+        s.push_str(&format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1));
+    }
+    s
+}

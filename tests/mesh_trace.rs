@@ -1,0 +1,244 @@
+//! Tracing on meshes and films (`surface: mesh`, `surface: minimal`): the
+//! traced net on a triangulated Enneper surface against the closed form,
+//! converging as the mesh is refined; the shipped film specs regenerate
+//! their samples and run through `nodes` and `check`; bad meshes get
+//! one-line errors.
+
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
+mod common;
+use common::meshes::{obj_text, param_mesh};
+use common::*;
+use glam::{DMat3, DVec2, DVec3};
+use lamella::design::design;
+use lamella::design::surface::{Enneper, Placed, Surface};
+use lamella::io::trace_spec;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Arc;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("lamella-mesh-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The Enneper surface of the 4 m sample: scale 4400 mm, turned 45° about z.
+fn enneper_4m() -> Placed {
+    Placed {
+        surface: Arc::new(Enneper),
+        scale_mm: 4400.0,
+        rotation: DMat3::from_rotation_z(45f64.to_radians()),
+        translation_mm: DVec3::ZERO,
+    }
+}
+
+/// Trace the 4 m Enneper net on an n × n-cell mesh of the surface over
+/// (u, v) ∈ [−0.45, 0.45]² (jittered, written as OBJ at 0.001 mm, no
+/// normals) and return the largest distance (mm) of a traced point from the
+/// closed-form asymptotic line u ± v = const through its curve's start, and
+/// the number of traced points.
+fn enneper_mesh_error(n: usize) -> (f64, usize) {
+    let dir = temp(&format!("enneper{n}"));
+    let (v, t) = param_mesh(&Enneper, 4400.0, 45.0, 0.45, n, 0.25);
+    std::fs::write(dir.join("enneper.obj"), obj_text(&v, &t)).unwrap();
+    let spec_path = dir.join("enneper.trace.yaml");
+    std::fs::write(
+        &spec_path,
+        "surface: mesh\nmesh: enneper.obj\nseed_mm: [0, 0, 0]\nspacing_mm: 270\n\
+         clip:\n  box:\n    min_mm: [-1200, -1200, -3000]\n    max_mm: [1200, 1200, 3000]\n\
+         sampling:\n  step_mm: 25\n  tolerance_mm: 1.0e-4\n",
+    )
+    .unwrap();
+    let spec = trace_spec::load(&spec_path).unwrap();
+    let (net, _) = design(&spec, &spec_path).unwrap();
+    let surface = enneper_4m();
+    let (mut worst, mut points) = (0.0f64, 0);
+    for c in net
+        .curves
+        .iter()
+        .filter(|c| c.family != lamella::Family::Edge)
+    {
+        let uvs: Vec<DVec2> = c.points.iter().map(|p| invert(&surface, *p)).collect();
+        let start = uvs[0];
+        // The family: the diagonal coordinate that varies least along it.
+        let spread = |f: &dyn Fn(DVec2) -> f64| {
+            let (lo, hi) = uvs
+                .iter()
+                .map(|q| f(*q))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+            hi - lo
+        };
+        let along_p = spread(&|q| q.x + q.y) < spread(&|q| q.x - q.y);
+        for (q, pt) in uvs.iter().zip(&c.points) {
+            let exact = diagonal_closed_form(start, *q, along_p);
+            worst = worst.max(pt.distance(surface.point(exact)));
+            points += 1;
+        }
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+    (worst, points)
+}
+
+/// The traced net on the mesh follows the closed form, and refining the
+/// mesh (cells 99 mm → 50 mm along u) shrinks the error by the order the
+/// method reaches: points on the facets are O(h²) off the surface, and the
+/// curvature tensors (cubic jets) O(h²), so the order is close to 2.
+#[test]
+fn traced_enneper_mesh_converges_to_the_closed_form() {
+    let (coarse, n1) = enneper_mesh_error(40);
+    let (fine, n2) = enneper_mesh_error(80);
+    let order = (coarse / fine).log2();
+    eprintln!("Enneper mesh: {coarse:.4} mm (40², {n1} points), {fine:.4} mm (80², {n2} points), order {order:.2}");
+    assert!(n1 > 1000 && n2 > 1000);
+    assert!(fine < coarse, "refining must shrink the error");
+    assert!(order > 1.5, "order {order:.2}");
+    assert!(fine < 2.0, "{fine} mm on the 80² mesh");
+}
+
+/// Run a lamella subcommand; (success, stdout, stderr).
+fn lamella(args: &[&str], dir: &Path) -> (bool, String, String) {
+    let (code, out, err) = lamella_code(args, dir);
+    (code == 0, out, err)
+}
+
+/// Run a lamella subcommand; (exit code, stdout, stderr).
+fn lamella_code(args: &[&str], dir: &Path) -> (i32, String, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+const FILMS: [&str; 4] = ["film-saddle", "film-three-peaks", "film-rings", "film-oculus"];
+
+#[test]
+fn shipped_film_specs_regenerate_their_samples_and_run_through_nodes_and_check() {
+    let dir = temp("films");
+    for name in FILMS {
+        let out = dir.join(format!("{name}.yaml"));
+        let spec = format!("samples/{name}.trace.yaml");
+        let (ok, stdout, stderr) = lamella(&["trace", &spec, "--out", out.to_str().unwrap()], &root());
+        assert!(ok, "{name}: {stderr}");
+        assert!(stdout.contains("film:"), "{name}: {stdout}");
+        let strip = |t: String| {
+            t.lines()
+                .filter(|l| !l.starts_with('#'))
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        let made = strip(std::fs::read_to_string(&out).unwrap());
+        let shipped =
+            strip(std::fs::read_to_string(root().join(format!("samples/{name}.yaml"))).unwrap());
+        assert!(made == shipped, "{name}: samples/{name}.yaml is not what its spec traces");
+        let (ok, _, stderr) = lamella(
+            &["nodes", out.to_str().unwrap(), "--out", dir.join(name).to_str().unwrap()],
+            &root(),
+        );
+        assert!(ok, "{name}: nodes: {stderr}");
+        // The elastic check runs to a verdict: 0 (all strips bend
+        // elastically) or 3 (some overstressed), never an input error.
+        let (code, _, stderr) = lamella_code(
+            &[
+                "check",
+                out.to_str().unwrap(),
+                "--profile",
+                "profiles/steel-1.5.yaml",
+            ],
+            &root(),
+        );
+        assert!(code == 0 || code == 3, "{name}: check: {stderr}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// The film over a curve with three high and three low points has one flat
+/// point, a monkey saddle at its centre (index −1/2), and `trace` reports it.
+#[test]
+fn the_three_peak_film_reports_its_monkey_saddle() {
+    let dir = temp("peaks");
+    let out = dir.join("net.yaml");
+    let (ok, stdout, stderr) = lamella(
+        &["trace", "samples/film-three-peaks.trace.yaml", "--out", out.to_str().unwrap()],
+        &root(),
+    );
+    assert!(ok, "{stderr}");
+    let lines: Vec<&str> = stdout.lines().filter(|l| l.contains("singular point")).collect();
+    assert_eq!(lines.len(), 1, "{stdout}");
+    assert!(lines[0].contains("index -1/2"), "{stdout}");
+    // At the centre (the boundary is symmetric under a third of a turn, so
+    // the film's flat point is on the axis): within two mesh edges (100 mm).
+    let at = lines[0]
+        .split("at (")
+        .nth(1)
+        .unwrap()
+        .split(')')
+        .next()
+        .unwrap()
+        .split(", ")
+        .map(|x| x.trim_end_matches(" mm").parse::<f64>().unwrap())
+        .collect::<Vec<_>>();
+    assert!(at[0].hypot(at[1]) < 100.0, "{:?}", at);
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+fn bad_mesh(name: &str, obj: &str, fragments: &[&str]) {
+    let dir = temp(name);
+    std::fs::write(dir.join("m.obj"), obj).unwrap();
+    std::fs::write(
+        dir.join("m.trace.yaml"),
+        "surface: mesh\nmesh: m.obj\nspacing_mm: 300\n",
+    )
+    .unwrap();
+    let (ok, _, stderr) = lamella(&["trace", "m.trace.yaml", "--out", "net.yaml"], &dir);
+    assert!(!ok, "{name}: accepted");
+    assert_eq!(stderr.trim().lines().count(), 1, "{name}: {stderr}");
+    for f in fragments {
+        assert!(stderr.contains(f), "{name}: {stderr} lacks {f}");
+    }
+    assert!(!dir.join("net.yaml").exists(), "{name}: wrote a network");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn bad_meshes_get_one_line_errors() {
+    // Three triangles on one edge.
+    bad_mesh(
+        "nonmanifold",
+        "v 0 0 0\nv 1000 0 0\nv 0 1000 0\nv 0 -1000 0\nv 0 0 1000\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
+        &["m.obj", "edge"],
+    );
+    // A triangle with no area.
+    bad_mesh(
+        "degenerate",
+        "v 0 0 0\nv 1000 0 0\nv 2000 0 0\nv 0 1000 0\nf 1 2 3\nf 1 2 4\n",
+        &["m.obj", "triangle"],
+    );
+    // A sphere cap: synclastic, no asymptotic directions anywhere.
+    let mut obj = String::new();
+    let (n, r) = (12usize, 1000.0f64);
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (-400.0 + 800.0 * i as f64 / n as f64, -400.0 + 800.0 * j as f64 / n as f64);
+            obj.push_str(&format!("v {x:.3} {y:.3} {:.3}\n", (r * r - x * x - y * y).sqrt()));
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let id = |i: usize, j: usize| j * (n + 1) + i + 1;
+            obj.push_str(&format!("f {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1)));
+            obj.push_str(&format!("f {} {} {}\n", id(i, j), id(i + 1, j + 1), id(i, j + 1)));
+        }
+    }
+    bad_mesh("sphere", &obj, &["m.obj", "synclastic"]);
+}
