@@ -8,6 +8,10 @@
 
 use glam::DVec3;
 
+pub mod read;
+
+pub use read::read_mesh;
+
 /// A triangle mesh in mm.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TriMesh {
