@@ -9,8 +9,12 @@
 use glam::DVec3;
 
 pub mod read;
+#[cfg(test)]
+pub(crate) mod samples;
+pub mod topology;
 
 pub use read::read_mesh;
+pub use topology::Topology;
 
 /// A triangle mesh in mm.
 #[derive(Debug, Clone, Default, PartialEq)]
