@@ -8,11 +8,13 @@
 
 use glam::DVec3;
 
+pub mod curvature;
 pub mod read;
 #[cfg(test)]
 pub(crate) mod samples;
 pub mod topology;
 
+pub use curvature::{vertex_curvatures, vertex_jets, VertexJet};
 pub use read::read_mesh;
 pub use topology::Topology;
 
