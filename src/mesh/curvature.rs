@@ -20,8 +20,8 @@
 //! neighbourhood at the boundary has a larger constant). Coordinates rounded
 //! to δ add an error of order δ/ρ² (ρ the neighbourhood radius, about 2h),
 //! which matters only on meshes much finer than the surface's curvature.
-//! The standard error of the fit ([`VertexJet::sigma_per_mm`]) measures it
-//! together with the truncation error.
+//! [`VertexJet::sigma_per_mm`] is the curvature's standard error from the
+//! rounding (the coordinates' decimal step, [`coordinate_step_mm`]).
 //!
 //! The [`Curvature`] returned per vertex is expressed in its own principal
 //! frame: `first = [1, 0, 1]` and `second = [k1, 0, k2]` are the fundamental
@@ -44,10 +44,43 @@ pub const MIN_POINTS: usize = 16;
 pub const MAX_RINGS: usize = 8;
 
 /// How many standard errors ([`VertexJet::sigma_per_mm`]) make a curvature
-/// or an anisotropy significant. On a plane rounded to 0.001 mm the largest
-/// |k|/σ measured is below 4 (the residual of 16–20 points is a rough
-/// estimate of the noise): 8 leaves a margin.
+/// or an anisotropy significant: on planes rounded to 0.001 mm the largest
+/// max(|k1|, |k2|, k1 − k2)/σ measured is below 4; 8 leaves a margin.
 pub const SIGNIFICANT: f64 = 8.0;
+
+/// Finest decimal places looked for in coordinates.
+const MAX_DECIMALS: i32 = 9;
+
+/// The rounding step of the mesh's coordinates, mm: the coarsest decimal
+/// grid 10^−d (d = 0…9) every coordinate lies on (0.001 for a Rhino export
+/// rounded to three decimals; as `crate::network::coordinate_precision`
+/// finds it for curves); else the f32 spacing at the largest coordinate if
+/// every coordinate is an f32 (binary STL, float PLY); else the f64 spacing.
+pub fn coordinate_step_mm(mesh: &TriMesh) -> f64 {
+    let coords = || mesh.positions_mm.iter().flat_map(|p| p.to_array());
+    let on_grid = |x: f64, d: i32| {
+        let y = x * 10f64.powi(d);
+        (y - y.round()).abs() <= 1e-6f64.max(y.abs() * 1e-14)
+    };
+    let mut d = 0;
+    for x in coords() {
+        while d <= MAX_DECIMALS && !on_grid(x, d) {
+            d += 1;
+        }
+        if d > MAX_DECIMALS {
+            break;
+        }
+    }
+    if d <= MAX_DECIMALS {
+        return 10f64.powi(-d);
+    }
+    let largest = coords().fold(0.0f64, |m, x| m.max(x.abs()));
+    if coords().all(|x| (x as f32) as f64 == x) {
+        largest * f32::EPSILON as f64
+    } else {
+        largest * f64::EPSILON
+    }
+}
 
 /// A vertex's fitted jet: curvature and how well it is determined.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,15 +88,16 @@ pub struct VertexJet {
     /// Normal, principal curvatures and directions (see the module docs for
     /// the meaning of `first` and `second`).
     pub curvature: Curvature,
-    /// Standard error of the shape operator (Frobenius norm), 1/mm: the fit's
-    /// residual (rounding and truncation), but at least the mesh's median
-    /// residual, propagated through the least squares to the curvatures.
-    /// A curvature or an anisotropy |k1 − k2| within a few of these is not
-    /// told apart from zero (see [`SIGNIFICANT`]). Infinite where the fit
-    /// has no redundancy.
+    /// Standard error of the shape operator (Frobenius norm), 1/mm, caused
+    /// by the coordinates' rounding: uniform noise of one
+    /// [`coordinate_step_mm`] propagated through the least squares. A
+    /// curvature or an anisotropy k1 − k2 within [`SIGNIFICANT`] of these
+    /// is not told apart from zero. It leaves out the truncation error
+    /// (O(h²), smooth: it moves features, it does not make noise).
     pub sigma_per_mm: f64,
     /// The fit's residual, mm: root of the residual sum of squares over the
-    /// degrees of freedom left.
+    /// degrees of freedom left (rounding and truncation together; infinite
+    /// where none are left).
     pub residual_mm: f64,
     /// Vertices in the fitted neighbourhood (the vertex included).
     pub points: usize,
@@ -92,23 +126,11 @@ pub fn vertex_jets(mesh: &TriMesh, topo: &Topology) -> Vec<VertexJet> {
         .into_par_iter()
         .map(|v| fit_vertex(mesh, topo, normals[v as usize], v))
         .collect();
-    // The mesh's median residual: a floor for every vertex's, so that a fit
-    // that happens to pass its few points closely does not claim more
-    // precision than the file's rounding allows.
-    let mut residuals: Vec<f64> = fits
-        .iter()
-        .map(|f| f.0.residual_mm)
-        .filter(|r| r.is_finite())
-        .collect();
-    let floor = if residuals.is_empty() {
-        0.0
-    } else {
-        let mid = residuals.len() / 2;
-        *residuals.select_nth_unstable_by(mid, f64::total_cmp).1
-    };
+    // Rounding to a step q: uniform noise of standard deviation q/√12.
+    let noise_mm = coordinate_step_mm(mesh) / 12f64.sqrt();
     fits.into_iter()
         .map(|(mut j, gain)| {
-            j.sigma_per_mm = j.residual_mm.max(floor) * gain;
+            j.sigma_per_mm = noise_mm * gain;
             j
         })
         .collect()
@@ -736,8 +758,9 @@ mod tests {
 
     /// A plane (tilted, 1 m², 100 mm cells, rounded): the curvature is
     /// rounding noise, and the standard error says so: measured
-    /// max(|k1|, |k2|, k1 − k2)/σ = 2.6 (on 3600-vertex planes up to 3.9:
-    /// hence [`SIGNIFICANT`] = 8), σ ≤ 1.9e-7 /mm, normal within 1.1e-5 rad.
+    /// max(|k1|, |k2|, k1 − k2)/σ = 2.5 (on planes of 1,700 to 10,000
+    /// vertices, 200 mm to 5 m wide, at most 3.8: hence [`SIGNIFICANT`] = 8),
+    /// σ ≤ 1.5e-7 /mm, normal within 1.1e-5 rad.
     #[test]
     fn plane_is_flat_within_its_standard_error() {
         let (uv, tris) = samples::grid(10, 10, (0.0, 1000.0), (0.0, 1000.0), 0.3, 8);
@@ -757,6 +780,29 @@ mod tests {
             normal = normal.max(c.normal.angle_between(n));
         }
         eprintln!("plane: max/σ {ratio:.2}, σ ≤ {sigma:.2e}, normal {normal:.2e} rad");
-        assert!(ratio < 3.0 && sigma < 2.3e-7 && normal < 1.3e-5);
+        assert!(ratio < 3.0 && sigma < 1.8e-7 && normal < 1.3e-5);
+    }
+
+    #[test]
+    fn coordinate_step_is_the_files_rounding() {
+        let mesh = |p: Vec<[f64; 3]>| TriMesh {
+            positions_mm: p.into_iter().map(DVec3::from_array).collect(),
+            triangles: vec![],
+        };
+        assert_eq!(
+            coordinate_step_mm(&mesh(vec![[1234.567, -0.5, 2.0], [1.0, 0.25, 0.0]])),
+            1e-3
+        );
+        assert_eq!(coordinate_step_mm(&mesh(vec![[1200.0, -30.0, 2.0]])), 1.0);
+        let f32s = mesh(vec![[0.1f32 as f64, 1000.3f32 as f64, 0.0]]);
+        assert_eq!(
+            coordinate_step_mm(&f32s),
+            1000.3f32 as f64 * f32::EPSILON as f64
+        );
+        let f64s = mesh(vec![[0.1, std::f64::consts::PI, 0.0]]);
+        assert_eq!(
+            coordinate_step_mm(&f64s),
+            std::f64::consts::PI * f64::EPSILON
+        );
     }
 }
