@@ -8,6 +8,21 @@
 
 use glam::DVec3;
 
+pub mod curvature;
+pub mod read;
+#[cfg(test)]
+pub(crate) mod samples;
+pub mod singular;
+pub mod topology;
+
+pub use curvature::{vertex_curvatures, vertex_jets, VertexJet};
+pub use read::read_mesh;
+pub use singular::{
+    anticlastic_report, require_anticlastic, singularities, AnticlasticReport, SingularKind,
+    Singularity,
+};
+pub use topology::Topology;
+
 /// A triangle mesh in mm.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TriMesh {

@@ -1,0 +1,808 @@
+//! Per-vertex curvature tensors by fitting osculating jets (Cazals &
+//! Pouget, "Estimating differential quantities using polynomial fitting of
+//! osculating jets", 2005).
+//!
+//! At each vertex: the n-ring neighbourhood, grown ring by ring until it
+//! holds at least [`MIN_POINTS`] vertices (the 2-ring inside a regular mesh,
+//! the 3-ring on the boundary), is written in a frame whose z axis is the
+//! vertex normal (angle-weighted, on the side the counter-clockwise
+//! triangles point to), its coordinates divided by the neighbourhood's
+//! radius for conditioning, and a height function with constant, linear,
+//! quadratic and cubic terms (a cubic jet, 10 coefficients) is fitted by
+//! least squares (Householder QR). The fit is repeated once in the frame of
+//! the fitted normal. The shape operator of the fitted graph at the vertex
+//! gives k1 ≥ k2 and the principal directions.
+//!
+//! Accuracy: the jet's curvature error is O(h²) in the mesh spacing h
+//! (Cazals & Pouget, degree-3 fit); the tests measure it on jittered,
+//! rounded meshes of the sphere, cylinder, Enneper's surface and the
+//! catenoid, at interior and boundary vertices separately (the one-sided
+//! neighbourhood at the boundary has a larger constant). Coordinates rounded
+//! to δ add an error of order δ/ρ² (ρ the neighbourhood radius, about 2h),
+//! which matters only on meshes much finer than the surface's curvature.
+//! [`VertexJet::sigma_per_mm`] is the curvature's standard error from the
+//! rounding (the coordinates' decimal step, [`coordinate_step_mm`]).
+//!
+//! The [`Curvature`] returned per vertex is expressed in its own principal
+//! frame: `first = [1, 0, 1]` and `second = [k1, 0, k2]` are the fundamental
+//! forms in the orthonormal basis (d1, d2), so that the asymptotic
+//! directions, normal curvature and geodesic torsion of
+//! [`Curvature`] work unchanged. The normal points to the side the
+//! triangles' counter-clockwise order points to.
+
+use super::topology::Topology;
+use super::TriMesh;
+use crate::design::surface::{curvature_of, Curvature, SurfaceJet};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// The neighbourhood of a vertex grows ring by ring until it holds at least
+/// this many vertices (the vertex included).
+pub const MIN_POINTS: usize = 16;
+
+/// The neighbourhood grows by at most this many rings.
+pub const MAX_RINGS: usize = 8;
+
+/// How many standard errors ([`VertexJet::sigma_per_mm`]) make a curvature
+/// or an anisotropy significant: on planes rounded to 0.001 mm the largest
+/// max(|k1|, |k2|, k1 − k2)/σ measured is below 4; 8 leaves a margin.
+pub const SIGNIFICANT: f64 = 8.0;
+
+/// Finest decimal places looked for in coordinates.
+const MAX_DECIMALS: i32 = 9;
+
+/// The rounding step of the mesh's coordinates, mm: the coarsest decimal
+/// grid 10^−d (d = 0…9) every coordinate lies on (0.001 for a Rhino export
+/// rounded to three decimals; as `crate::network::coordinate_precision`
+/// finds it for curves); else the f32 spacing at the largest coordinate if
+/// every coordinate is an f32 (binary STL, float PLY); else the f64 spacing.
+pub fn coordinate_step_mm(mesh: &TriMesh) -> f64 {
+    let coords = || mesh.positions_mm.iter().flat_map(|p| p.to_array());
+    let on_grid = |x: f64, d: i32| {
+        let y = x * 10f64.powi(d);
+        (y - y.round()).abs() <= 1e-6f64.max(y.abs() * 1e-14)
+    };
+    let mut d = 0;
+    for x in coords() {
+        while d <= MAX_DECIMALS && !on_grid(x, d) {
+            d += 1;
+        }
+        if d > MAX_DECIMALS {
+            break;
+        }
+    }
+    if d <= MAX_DECIMALS {
+        return 10f64.powi(-d);
+    }
+    let largest = coords().fold(0.0f64, |m, x| m.max(x.abs()));
+    if coords().all(|x| (x as f32) as f64 == x) {
+        largest * f32::EPSILON as f64
+    } else {
+        largest * f64::EPSILON
+    }
+}
+
+/// A vertex's fitted jet: curvature and how well it is determined.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VertexJet {
+    /// Normal, principal curvatures and directions (see the module docs for
+    /// the meaning of `first` and `second`).
+    pub curvature: Curvature,
+    /// Standard error of the shape operator (Frobenius norm), 1/mm, caused
+    /// by the coordinates' rounding: uniform noise of one
+    /// [`coordinate_step_mm`] propagated through the least squares. A
+    /// curvature or an anisotropy k1 − k2 within [`SIGNIFICANT`] of these
+    /// is not told apart from zero. It leaves out the truncation error
+    /// (O(h²), smooth: it moves features, it does not make noise).
+    pub sigma_per_mm: f64,
+    /// The fit's residual, mm: root of the residual sum of squares over the
+    /// degrees of freedom left (rounding and truncation together; infinite
+    /// where none are left).
+    pub residual_mm: f64,
+    /// Vertices in the fitted neighbourhood (the vertex included).
+    pub points: usize,
+    /// Rings of neighbours used.
+    pub rings: usize,
+    /// Degree of the fitted polynomial: 3, or lower only where the whole
+    /// mesh has too few vertices (1 means no curvature: zero).
+    pub degree: usize,
+}
+
+/// Per-vertex curvature of `mesh`, which must be `topo.mesh()` (the
+/// validated, cleaned mesh): see [`vertex_jets`].
+pub fn vertex_curvatures(mesh: &TriMesh, topo: &Topology) -> Vec<Curvature> {
+    vertex_jets(mesh, topo)
+        .into_iter()
+        .map(|j| j.curvature)
+        .collect()
+}
+
+/// Per-vertex fitted jets of `mesh`, which must be `topo.mesh()`; in vertex
+/// order, the same for any number of threads.
+pub fn vertex_jets(mesh: &TriMesh, topo: &Topology) -> Vec<VertexJet> {
+    debug_assert_eq!(mesh.positions_mm.len(), topo.vertex_count());
+    let normals = topo.vertex_normals();
+    let fits: Vec<(VertexJet, f64)> = (0..mesh.positions_mm.len() as u32)
+        .into_par_iter()
+        .map(|v| fit_vertex(mesh, topo, normals[v as usize], v))
+        .collect();
+    // Rounding to a step q: uniform noise of standard deviation q/√12.
+    let noise_mm = coordinate_step_mm(mesh) / 12f64.sqrt();
+    fits.into_iter()
+        .map(|(mut j, gain)| {
+            j.sigma_per_mm = noise_mm * gain;
+            j
+        })
+        .collect()
+}
+
+/// Monomials of a degree-`d` jet: 1, x, y, x², xy, y², x³, x²y, xy², y³.
+fn unknowns(degree: usize) -> usize {
+    (degree + 1) * (degree + 2) / 2
+}
+
+fn monomials(x: f64, y: f64, out: &mut [f64]) {
+    let all = [
+        1.0,
+        x,
+        y,
+        x * x,
+        x * y,
+        y * y,
+        x * x * x,
+        x * x * y,
+        x * y * y,
+        y * y * y,
+    ];
+    out.copy_from_slice(&all[..out.len()]);
+}
+
+/// The vertices within `rings` rings of `v` (v first), in breadth-first order.
+fn grow(topo: &Topology, hood: &mut Vec<u32>, frontier: &mut usize) -> bool {
+    let start = hood.len();
+    for i in *frontier..start {
+        for &w in topo.neighbours(hood[i]) {
+            if !hood.contains(&w) {
+                hood.push(w);
+            }
+        }
+    }
+    *frontier = start;
+    hood.len() > start
+}
+
+/// The vertex's jet (its `sigma_per_mm` not yet set) and the gain from the
+/// residual (mm) to the curvature's standard error (1/mm).
+fn fit_vertex(mesh: &TriMesh, topo: &Topology, n0: DVec3, v: u32) -> (VertexJet, f64) {
+    let p = &mesh.positions_mm;
+    let p0 = p[v as usize];
+    let mut hood = vec![v];
+    let mut frontier = 0;
+    let mut rings = 0;
+    while hood.len() < MIN_POINTS && rings < MAX_RINGS && grow(topo, &mut hood, &mut frontier) {
+        rings += 1;
+    }
+    let n0 = if n0 == DVec3::ZERO { DVec3::Z } else { n0 };
+    loop {
+        let rel: Vec<DVec3> = hood.iter().map(|&w| p[w as usize] - p0).collect();
+        let jet = |degree: usize| -> Option<(VertexJet, f64)> {
+            if rel.len() < unknowns(degree) {
+                return None;
+            }
+            let second = fit(&rel, fit(&rel, n0, degree)?.normal(), degree)?;
+            Some((
+                VertexJet {
+                    curvature: second.curvature(),
+                    sigma_per_mm: f64::INFINITY,
+                    residual_mm: second.residual_mm,
+                    points: rel.len(),
+                    rings,
+                    degree,
+                },
+                second.gain_per_mm2(),
+            ))
+        };
+        if let Some(j) = jet(3) {
+            return j;
+        }
+        // A rank-deficient cubic may recover with one ring more; only a
+        // mesh too small for a cubic falls back to lower degrees.
+        if rings < MAX_RINGS && grow(topo, &mut hood, &mut frontier) {
+            rings += 1;
+            continue;
+        }
+        // Not even a plane fits only on a mesh with no proper triangle
+        // (which validation refuses): zero curvature, unknown error.
+        return jet(2)
+            .or_else(|| jet(1))
+            .unwrap_or_else(|| flat(n0, rel.len(), rings));
+    }
+}
+
+fn flat(n: DVec3, points: usize, rings: usize) -> (VertexJet, f64) {
+    let d1 = n.any_orthonormal_vector();
+    let jet = VertexJet {
+        curvature: Curvature {
+            normal: n,
+            first: [1.0, 0.0, 1.0],
+            second: [0.0; 3],
+            k1: 0.0,
+            k2: 0.0,
+            d1,
+            d2: n.cross(d1),
+        },
+        sigma_per_mm: f64::INFINITY,
+        residual_mm: f64::INFINITY,
+        points,
+        rings,
+        degree: 1,
+    };
+    (jet, f64::INFINITY)
+}
+
+/// A jet fitted in the frame (e1, e2, n), coordinates divided by `scale`.
+struct Fit {
+    e1: DVec3,
+    e2: DVec3,
+    n: DVec3,
+    scale: f64,
+    coef: Vec<f64>,
+    /// The diagonal of (AᵀA)⁻¹: the (scaled) coefficients' variances per
+    /// unit residual variance.
+    diag: Vec<f64>,
+    /// The residual, mm (infinite without degrees of freedom left).
+    residual_mm: f64,
+}
+
+/// Fit a degree-`degree` height function over the tangent plane of `n` to
+/// the points `rel` (relative to the vertex); None when rank deficient.
+fn fit(rel: &[DVec3], n: DVec3, degree: usize) -> Option<Fit> {
+    let e1 = n.any_orthonormal_vector();
+    let e2 = n.cross(e1);
+    let scale = rel
+        .iter()
+        .map(|q| (q.dot(e1).powi(2) + q.dot(e2).powi(2)).sqrt())
+        .fold(0.0, f64::max);
+    if scale <= 0.0 {
+        return None;
+    }
+    let (m, k) = (rel.len(), unknowns(degree));
+    let mut a = vec![0.0; m * k];
+    let mut b = vec![0.0; m];
+    for (i, q) in rel.iter().enumerate() {
+        let (x, y, z) = (q.dot(e1) / scale, q.dot(e2) / scale, q.dot(n) / scale);
+        monomials(x, y, &mut a[i * k..(i + 1) * k]);
+        b[i] = z;
+    }
+    let (coef, rss, diag) = least_squares(&mut a, &mut b, m, k)?;
+    let residual_mm = if m > k {
+        (rss / (m - k) as f64).sqrt() * scale
+    } else {
+        f64::INFINITY
+    };
+    Some(Fit {
+        e1,
+        e2,
+        n,
+        scale,
+        coef,
+        diag,
+        residual_mm,
+    })
+}
+
+impl Fit {
+    /// The coefficient `i`, 0 when the degree lacks it.
+    fn c(&self, i: usize) -> f64 {
+        self.coef.get(i).copied().unwrap_or(0.0)
+    }
+    /// The fitted surface's unit normal at the vertex.
+    fn normal(&self) -> DVec3 {
+        (self.n - self.c(1) * self.e1 - self.c(2) * self.e2).normalize()
+    }
+    /// The graph's point and derivatives at the vertex, in world axes, mm.
+    fn jet(&self) -> SurfaceJet {
+        let s = self.scale;
+        let (fx, fy) = (self.c(1), self.c(2));
+        let (fxx, fxy, fyy) = (2.0 * self.c(3) / s, self.c(4) / s, 2.0 * self.c(5) / s);
+        SurfaceJet {
+            p: self.n * self.c(0) * s,
+            pu: self.e1 + fx * self.n,
+            pv: self.e2 + fy * self.n,
+            puu: fxx * self.n,
+            puv: fxy * self.n,
+            pvv: fyy * self.n,
+        }
+    }
+    fn curvature(&self) -> Curvature {
+        let c = curvature_of(&self.jet());
+        Curvature {
+            first: [1.0, 0.0, 1.0],
+            second: [c.k1, 0.0, c.k2],
+            ..c
+        }
+    }
+    /// Standard error of the shape operator S = [2c₂₀, c₁₁; c₁₁, 2c₀₂]/scale
+    /// in the Frobenius norm, per mm of residual (the residual in scaled
+    /// units is residual_mm/scale). It bounds the error of each principal
+    /// curvature, and of k1 − k2 within a factor √2.
+    fn gain_per_mm2(&self) -> f64 {
+        let d = |i: usize| self.diag.get(i).copied().unwrap_or(f64::INFINITY);
+        (4.0 * d(3) + 2.0 * d(4) + 4.0 * d(5)).sqrt() / (self.scale * self.scale)
+    }
+}
+
+/// Least squares min |A x − b| by Householder QR. `a` is m × k row-major
+/// (m ≥ k), both overwritten. Returns x, the residual sum of squares and the
+/// diagonal of (AᵀA)⁻¹; None when A's columns are (numerically) dependent.
+fn least_squares(
+    a: &mut [f64],
+    b: &mut [f64],
+    m: usize,
+    k: usize,
+) -> Option<(Vec<f64>, f64, Vec<f64>)> {
+    let mut v = vec![0.0; m];
+    for j in 0..k {
+        let norm = (j..m).map(|i| a[i * k + j].powi(2)).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            return None;
+        }
+        let ajj = a[j * k + j];
+        let alpha = if ajj > 0.0 { -norm } else { norm };
+        for i in j..m {
+            v[i] = a[i * k + j];
+        }
+        v[j] -= alpha;
+        let vv: f64 = (j..m).map(|i| v[i] * v[i]).sum();
+        if vv > 0.0 {
+            for c in j..k {
+                let s: f64 = (j..m).map(|i| v[i] * a[i * k + c]).sum();
+                let f = 2.0 * s / vv;
+                for i in j..m {
+                    a[i * k + c] -= f * v[i];
+                }
+            }
+            let s: f64 = (j..m).map(|i| v[i] * b[i]).sum();
+            let f = 2.0 * s / vv;
+            for i in j..m {
+                b[i] -= f * v[i];
+            }
+        }
+    }
+    // R is the upper k × k block; refuse a (numerically) singular one.
+    let rmax = (0..k).map(|j| a[j * k + j].abs()).fold(0.0, f64::max);
+    if (0..k).any(|j| a[j * k + j].abs() <= 1e-9 * rmax) {
+        return None;
+    }
+    let mut x = vec![0.0; k];
+    for j in (0..k).rev() {
+        let s: f64 = (j + 1..k).map(|c| a[j * k + c] * x[c]).sum();
+        x[j] = (b[j] - s) / a[j * k + j];
+    }
+    let rss = (k..m).map(|i| b[i] * b[i]).sum();
+    // (AᵀA)⁻¹ = R⁻¹R⁻ᵀ: its diagonal is the squared row norms of R⁻¹.
+    let mut rinv = vec![0.0; k * k];
+    for col in 0..k {
+        for j in (0..=col).rev() {
+            let e = if j == col { 1.0 } else { 0.0 };
+            let s: f64 = (j + 1..=col)
+                .map(|c| a[j * k + c] * rinv[c * k + col])
+                .sum();
+            rinv[j * k + col] = (e - s) / a[j * k + j];
+        }
+    }
+    let diag = (0..k)
+        .map(|j| (j..k).map(|c| rinv[j * k + c].powi(2)).sum())
+        .collect();
+    Some((x, rss, diag))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::samples;
+    use glam::DVec2;
+    use std::path::Path;
+
+    /// The exact normal, k1, k2 and d1 (None where k1 = k2) at a parameter.
+    type Exact = (DVec3, f64, f64, Option<DVec3>);
+
+    /// Largest errors over interior and boundary vertices: curvature
+    /// (max(|Δk1|, |Δk2|) over the surface's largest |k|), normal (deg) and
+    /// d1 (deg, modulo 180°).
+    #[derive(Debug, Clone, Copy, Default)]
+    struct Errors {
+        k_int: f64,
+        k_bnd: f64,
+        n_int_deg: f64,
+        n_bnd_deg: f64,
+        d_int_deg: f64,
+        d_bnd_deg: f64,
+        rms_int: f64,
+        rms_bnd: f64,
+    }
+
+    fn measure(
+        n: (usize, usize),
+        u: (f64, f64),
+        v: (f64, f64),
+        place: impl Fn(DVec2) -> DVec3,
+        exact: impl Fn(DVec2) -> Exact,
+        seed: u64,
+    ) -> (Errors, f64) {
+        let (uv, tris) = samples::grid(n.0, n.1, u, v, 0.3, seed);
+        let mesh = samples::place(&uv, &tris, &place);
+        let topo = Topology::build(&mesh, Path::new("t.obj")).expect("valid");
+        assert_eq!(topo.vertex_count(), uv.len());
+        let jets = vertex_jets(topo.mesh(), &topo);
+        let kref = uv
+            .iter()
+            .map(|&q| {
+                let (_, k1, k2, _) = exact(q);
+                k1.abs().max(k2.abs())
+            })
+            .fold(0.0, f64::max);
+        let mut e = Errors::default();
+        let (mut ni, mut nb) = (0, 0);
+        for (i, (j, &q)) in jets.iter().zip(&uv).enumerate() {
+            let (nn, k1, k2, d1) = exact(q);
+            let c = j.curvature;
+            let ek = (c.k1 - k1).abs().max((c.k2 - k2).abs()) / kref;
+            let en = c.normal.angle_between(nn).to_degrees();
+            let ed = d1.map_or(0.0, |d| {
+                let a = c.d1.angle_between(d).to_degrees();
+                a.min(180.0 - a)
+            });
+            let b = topo.is_boundary(i as u32);
+            if b {
+                e.rms_bnd += ek * ek;
+                nb += 1;
+            } else {
+                e.rms_int += ek * ek;
+                ni += 1;
+            }
+            let (k, nd, dd) = if b {
+                (&mut e.k_bnd, &mut e.n_bnd_deg, &mut e.d_bnd_deg)
+            } else {
+                (&mut e.k_int, &mut e.n_int_deg, &mut e.d_int_deg)
+            };
+            *k = k.max(ek);
+            *nd = nd.max(en);
+            *dd = dd.max(ed);
+        }
+        e.rms_int = (e.rms_int / ni as f64).sqrt();
+        e.rms_bnd = (e.rms_bnd / nb as f64).sqrt();
+        // The mean edge length, mm.
+        let m = topo.mesh();
+        let (mut sum, mut cnt) = (0.0, 0);
+        for t in &m.triangles {
+            for i in 0..3 {
+                sum += (m.positions_mm[t[i] as usize] - m.positions_mm[t[(i + 1) % 3] as usize])
+                    .length();
+                cnt += 1;
+            }
+        }
+        (e, sum / cnt as f64)
+    }
+
+    fn report(name: &str, coarse: (Errors, f64), fine: (Errors, f64)) {
+        let order = |a: f64, b: f64| (a / b).ln() / (coarse.1 / fine.1).ln();
+        eprintln!(
+            "{name}: h {:.1} → {:.1} mm\n  rms interior {:.2e} → {:.2e} (order {:.2}), boundary {:.2e} → {:.2e} (order {:.2})\n  k interior {:.2e} → {:.2e} (order {:.2}), boundary {:.2e} → {:.2e} (order {:.2})\n  normal interior {:.3}° → {:.3}°, boundary {:.3}° → {:.3}°\n  d1 interior {:.3}° → {:.3}°, boundary {:.3}° → {:.3}°",
+            coarse.1, fine.1,
+            coarse.0.rms_int, fine.0.rms_int, order(coarse.0.rms_int, fine.0.rms_int),
+            coarse.0.rms_bnd, fine.0.rms_bnd, order(coarse.0.rms_bnd, fine.0.rms_bnd),
+            coarse.0.k_int, fine.0.k_int, order(coarse.0.k_int, fine.0.k_int),
+            coarse.0.k_bnd, fine.0.k_bnd, order(coarse.0.k_bnd, fine.0.k_bnd),
+            coarse.0.n_int_deg, fine.0.n_int_deg, coarse.0.n_bnd_deg, fine.0.n_bnd_deg,
+            coarse.0.d_int_deg, fine.0.d_int_deg, coarse.0.d_bnd_deg, fine.0.d_bnd_deg,
+        );
+    }
+
+    const R: f64 = 1000.0;
+
+    fn sphere(n: usize) -> (Errors, f64) {
+        measure(
+            (n, n),
+            (-500.0, 500.0),
+            (-500.0, 500.0),
+            |q| DVec3::new(q.x, q.y, (R * R - q.length_squared()).sqrt()),
+            |q| {
+                let p = DVec3::new(q.x, q.y, (R * R - q.length_squared()).sqrt());
+                (p / R, -1.0 / R, -1.0 / R, None)
+            },
+            11,
+        )
+    }
+
+    fn cylinder(n: usize) -> (Errors, f64) {
+        measure(
+            (n, n),
+            (-0.6, 0.6),
+            (-600.0, 600.0),
+            |q| DVec3::new(R * q.x.sin(), q.y, R * q.x.cos()),
+            |q| {
+                let nn = DVec3::new(q.x.sin(), 0.0, q.x.cos());
+                (nn, 0.0, -1.0 / R, Some(DVec3::Y))
+            },
+            12,
+        )
+    }
+
+    const S: f64 = 1000.0;
+
+    fn enneper(n: usize) -> (Errors, f64) {
+        use crate::design::surface::{Enneper, Surface};
+        measure(
+            (n, n),
+            (-1.0, 1.0),
+            (-1.0, 1.0),
+            |q| Enneper.point(q) * S,
+            |q| {
+                let (u, v) = (q.x, q.y);
+                let lam = 1.0 + u * u + v * v;
+                let pu = DVec3::new(1.0 - u * u + v * v, 2.0 * u * v, 2.0 * u);
+                let pv = DVec3::new(2.0 * u * v, 1.0 - v * v + u * u, -2.0 * v);
+                let k = 2.0 / (lam * lam * S);
+                (pu.cross(pv).normalize(), k, -k, Some(pu.normalize()))
+            },
+            13,
+        )
+    }
+
+    const C: f64 = 1000.0;
+
+    fn catenoid(n: usize) -> (Errors, f64) {
+        measure(
+            (n, n),
+            (0.0, std::f64::consts::FRAC_PI_2),
+            (-0.8, 0.8),
+            |q| {
+                let (u, v) = (q.x, q.y);
+                C * DVec3::new(v.cosh() * u.cos(), v.cosh() * u.sin(), v)
+            },
+            |q| {
+                let (u, v) = (q.x, q.y);
+                let nn = DVec3::new(u.cos(), u.sin(), -v.sinh()) / v.cosh();
+                let k = 1.0 / (C * v.cosh().powi(2));
+                let pv = DVec3::new(v.sinh() * u.cos(), v.sinh() * u.sin(), 1.0);
+                (nn, k, -k, Some(pv.normalize()))
+            },
+            14,
+        )
+    }
+
+    /// Holds the measured errors (coarse, fine) to their stated values
+    /// (with 20 % headroom for floating-point reordering, not for a worse
+    /// method) and the rms order to at least 1.8 at interior and boundary
+    /// vertices alike.
+    fn check(
+        name: &str,
+        coarse: (Errors, f64),
+        fine: (Errors, f64),
+        k_int: [f64; 2],
+        k_bnd: [f64; 2],
+        normal_deg: [f64; 2],
+        d1_deg: [f64; 2],
+    ) {
+        report(name, coarse, fine);
+        let (c, f) = (coarse.0, fine.0);
+        let within = |what: &str, got: f64, stated: f64| {
+            assert!(
+                got <= 1.2 * stated,
+                "{name}: {what} {got:.3e} > stated {stated:.3e}"
+            );
+        };
+        within("k interior, coarse", c.k_int, k_int[0]);
+        within("k interior, fine", f.k_int, k_int[1]);
+        within("k boundary, coarse", c.k_bnd, k_bnd[0]);
+        within("k boundary, fine", f.k_bnd, k_bnd[1]);
+        within("normal interior, fine", f.n_int_deg, normal_deg[0]);
+        within("normal boundary, fine", f.n_bnd_deg, normal_deg[1]);
+        within("d1 interior, fine", f.d_int_deg, d1_deg[0]);
+        within("d1 boundary, fine", f.d_bnd_deg, d1_deg[1]);
+        let order = |a: f64, b: f64| (a / b).ln() / (coarse.1 / fine.1).ln();
+        let (oi, ob) = (order(c.rms_int, f.rms_int), order(c.rms_bnd, f.rms_bnd));
+        assert!(
+            oi >= 1.8 && ob >= 1.8,
+            "{name}: rms orders {oi:.2}, {ob:.2}"
+        );
+    }
+
+    /// Sphere R = 1000 mm (outward normal: k1 = k2 = −1/R), the cap over
+    /// [−500, 500]² mm, 10² and 20² jittered cells (h ≈ 122 → 61 mm).
+    /// Measured max |Δk|·R: interior 3.1e-2 → 8.9e-3, boundary 1.1e-1 →
+    /// 3.6e-2; rms order 1.93 (interior), 2.09 (boundary).
+    #[test]
+    fn sphere_curvature_is_second_order() {
+        check(
+            "sphere",
+            sphere(10),
+            sphere(20),
+            [3.2e-2, 9.0e-3],
+            [1.2e-1, 3.6e-2],
+            [0.022, 0.065],
+            [0.0, 0.0],
+        );
+    }
+
+    /// Cylinder R = 1000 mm (k1 = 0 along the axis, k2 = −1/R), 1.2 rad ×
+    /// 1200 mm, 12² and 24² cells (h ≈ 116 → 58 mm). Measured max |Δk|·R:
+    /// interior 2.3e-2 → 6.2e-3, boundary 5.9e-2 → 1.4e-2; d1 within 0.04°
+    /// (interior) and 0.13° (boundary); rms order 1.96, 2.11.
+    #[test]
+    fn cylinder_curvature_is_second_order() {
+        check(
+            "cylinder",
+            cylinder(12),
+            cylinder(24),
+            [2.4e-2, 6.3e-3],
+            [5.9e-2, 1.4e-2],
+            [0.008, 0.019],
+            [0.043, 0.131],
+        );
+    }
+
+    /// Enneper's surface × 1000 mm over [−1, 1]² (k = ±2/(λ²·1000 mm),
+    /// λ = 1 + u² + v², d1 along X_u), 20² and 40² cells (h ≈ 195 → 97 mm).
+    /// Measured max |Δk| / max |k|: interior 6.2e-2 → 1.3e-2, boundary
+    /// 1.6e-1 → 3.4e-2; d1 within 0.72° (interior) and 1.4° (boundary);
+    /// rms order 2.12, 1.97.
+    #[test]
+    fn enneper_curvature_is_second_order() {
+        check(
+            "enneper",
+            enneper(20),
+            enneper(40),
+            [6.3e-2, 1.4e-2],
+            [1.6e-1, 3.4e-2],
+            [0.052, 0.191],
+            [0.722, 1.426],
+        );
+    }
+
+    /// Catenoid with waist 1000 mm (k = ±1/(c·cosh² v), d1 along X_v), a
+    /// quarter turn × v ∈ [−0.8, 0.8], 14² and 28² cells (h ≈ 146 → 73 mm).
+    /// Measured max |Δk| / max |k|: interior 3.1e-2 → 1.2e-2, boundary
+    /// 9.8e-2 → 2.7e-2; d1 within 0.10° and 0.60°; rms order 2.11, 1.98.
+    /// (The max's order is 1.4 here but 1.9 a step finer: the worst vertex
+    /// depends on the jitter; the rms is the stable measure.)
+    #[test]
+    fn catenoid_curvature_is_second_order() {
+        check(
+            "catenoid",
+            catenoid(14),
+            catenoid(28),
+            [3.2e-2, 1.2e-2],
+            [9.8e-2, 2.8e-2],
+            [0.017, 0.065],
+            [0.102, 0.600],
+        );
+    }
+
+    /// The normal follows the triangles: reversing every triangle turns
+    /// the normal over and swaps k1 = −k2', d1 = ±d2'. On the elliptic
+    /// paraboloid z = 0.003 x² + 0.001 y² (mm) the principal curvatures
+    /// agree with the closed form (from the graph's K and H).
+    #[test]
+    fn normal_side_follows_the_triangles() {
+        let (uv, tris) = samples::grid(8, 8, (-1.0, 1.0), (-1.0, 1.0), 0.3, 5);
+        let place = |q: DVec2| {
+            DVec3::new(
+                100.0 * q.x,
+                100.0 * q.y,
+                30.0 * q.x * q.x + 10.0 * q.y * q.y,
+            )
+        };
+        let up = samples::place(&uv, &tris, place);
+        let mut down = up.clone();
+        for t in &mut down.triangles {
+            t.swap(1, 2);
+        }
+        let (tu, td) = (
+            Topology::build(&up, Path::new("u.obj")).expect("valid"),
+            Topology::build(&down, Path::new("d.obj")).expect("valid"),
+        );
+        let (cu, cd) = (
+            vertex_curvatures(tu.mesh(), &tu),
+            vertex_curvatures(td.mesh(), &td),
+        );
+        for (a, b) in cu.iter().zip(&cd) {
+            assert!(a.normal.z > 0.8 && b.normal.z < -0.8);
+            assert!((a.normal + b.normal).length() < 1e-9);
+            assert!((a.k1 + b.k2).abs() < 1e-12 && (a.k2 + b.k1).abs() < 1e-12);
+            assert!(a.d1.dot(b.d2).abs() > 1.0 - 1e-9);
+            // The principal frame: d2 = n × d1, forms as documented.
+            assert!((a.d2 - a.normal.cross(a.d1)).length() < 1e-12);
+            assert_eq!(a.first, [1.0, 0.0, 1.0]);
+            assert_eq!(a.second, [a.k1, 0.0, a.k2]);
+        }
+        // z = 0.003 x² + 0.001 y² (mm): principal curvatures from the
+        // graph's K and H at every interior vertex.
+        let mut worst = 0.0f64;
+        for (i, c) in cu.iter().enumerate() {
+            if tu.is_boundary(i as u32) {
+                continue;
+            }
+            let p = tu.mesh().positions_mm[i];
+            let (fx, fy, fxx, fyy) = (0.006 * p.x, 0.002 * p.y, 0.006, 0.002);
+            let w = 1.0 + fx * fx + fy * fy;
+            let k = fxx * fyy / (w * w);
+            let h = ((1.0 + fy * fy) * fxx + (1.0 + fx * fx) * fyy) / (2.0 * w.powf(1.5));
+            let r = (h * h - k).sqrt();
+            worst = worst.max((c.k1 - (h + r)).abs().max((c.k2 - (h - r)).abs()) / 0.006);
+        }
+        // Measured 1.8e-2 (25 mm cells on curvature radii ≥ 167 mm).
+        eprintln!("paraboloid: max |Δk|/0.006 = {worst:.2e}");
+        assert!(worst < 2.2e-2);
+    }
+
+    /// The same numbers with one thread or several.
+    #[test]
+    fn deterministic_across_threads() {
+        let (uv, tris) = samples::grid(12, 12, (-1.0, 1.0), (-1.0, 1.0), 0.3, 6);
+        let mesh = samples::place(&uv, &tris, |q| {
+            use crate::design::surface::{Enneper, Surface};
+            Enneper.point(q) * 1000.0
+        });
+        let topo = Topology::build(&mesh, Path::new("e.obj")).expect("valid");
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool")
+                .install(|| vertex_jets(topo.mesh(), &topo))
+        };
+        assert_eq!(run(1), run(3));
+    }
+
+    /// A plane (tilted, 1 m², 100 mm cells, rounded): the curvature is
+    /// rounding noise, and the standard error says so: measured
+    /// max(|k1|, |k2|, k1 − k2)/σ = 2.5 (on planes of 1,700 to 10,000
+    /// vertices, 200 mm to 5 m wide, at most 3.8: hence [`SIGNIFICANT`] = 8),
+    /// σ ≤ 1.5e-7 /mm, normal within 1.1e-5 rad.
+    #[test]
+    fn plane_is_flat_within_its_standard_error() {
+        let (uv, tris) = samples::grid(10, 10, (0.0, 1000.0), (0.0, 1000.0), 0.3, 8);
+        let n = DVec3::new(1.0, 2.0, 3.0).normalize();
+        let (a, b) = (
+            n.any_orthonormal_vector(),
+            n.cross(n.any_orthonormal_vector()),
+        );
+        let mesh = samples::place(&uv, &tris, |q| a * q.x + b * q.y);
+        let topo = Topology::build(&mesh, Path::new("p.obj")).expect("valid");
+        let (mut ratio, mut sigma, mut normal) = (0.0f64, 0.0f64, 0.0f64);
+        for j in vertex_jets(topo.mesh(), &topo) {
+            let c = j.curvature;
+            assert_eq!(j.degree, 3);
+            ratio = ratio.max(c.k1.abs().max(c.k2.abs()).max(c.k1 - c.k2) / j.sigma_per_mm);
+            sigma = sigma.max(j.sigma_per_mm);
+            normal = normal.max(c.normal.angle_between(n));
+        }
+        eprintln!("plane: max/σ {ratio:.2}, σ ≤ {sigma:.2e}, normal {normal:.2e} rad");
+        assert!(ratio < 3.0 && sigma < 1.8e-7 && normal < 1.3e-5);
+    }
+
+    #[test]
+    fn coordinate_step_is_the_files_rounding() {
+        let mesh = |p: Vec<[f64; 3]>| TriMesh {
+            positions_mm: p.into_iter().map(DVec3::from_array).collect(),
+            triangles: vec![],
+        };
+        assert_eq!(
+            coordinate_step_mm(&mesh(vec![[1234.567, -0.5, 2.0], [1.0, 0.25, 0.0]])),
+            1e-3
+        );
+        assert_eq!(coordinate_step_mm(&mesh(vec![[1200.0, -30.0, 2.0]])), 1.0);
+        let f32s = mesh(vec![[0.1f32 as f64, 1000.3f32 as f64, 0.0]]);
+        assert_eq!(
+            coordinate_step_mm(&f32s),
+            1000.3f32 as f64 * f32::EPSILON as f64
+        );
+        let f64s = mesh(vec![[0.1, std::f64::consts::PI, 0.0]]);
+        assert_eq!(
+            coordinate_step_mm(&f64s),
+            std::f64::consts::PI * f64::EPSILON
+        );
+    }
+}
