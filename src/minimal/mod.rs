@@ -72,6 +72,11 @@ use std::path::Path;
 /// Each loop keeps at least this many points on the coarsest mesh.
 pub const MIN_COARSE_LOOP_POINTS: usize = 8;
 
+/// A level whose smallest triangle angle falls below this has collapsed
+/// (a film pinching off, as a catenoid between rings too far apart):
+/// form finding stops with an error, degrees.
+pub const COLLAPSE_ANGLE_DEG: f64 = 1.0;
+
 /// Options of form finding.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FormFindOptions {
@@ -384,6 +389,10 @@ fn iterate(
         } else {
             next
         };
+        let min_angle = solve::min_angle_deg(film, &film.positions);
+        if min_angle < COLLAPSE_ANGLE_DEG {
+            return Err((solve::SolveFailure::Collapsed(min_angle), iterations));
+        }
         let a = solve::area_mm2(film, &film.positions);
         let change = (area - a).abs() / area.max(f64::MIN_POSITIVE);
         area = a;
@@ -405,6 +414,9 @@ fn failure(path: &Path, e: solve::SolveFailure, level: usize, iteration: usize) 
     let what = match e {
         solve::SolveFailure::Degenerate(t) => format!(
             "form finding failed at refinement {level}, iteration {iteration}: triangle {t} degenerated (the film collapses, e.g. two rings too far apart for a stable catenoid)"
+        ),
+        solve::SolveFailure::Collapsed(angle) => format!(
+            "form finding failed at refinement {level}, iteration {iteration}: the film degenerates (a triangle angle of {angle:.2e}°), so no stable soap film spans these loops (e.g. two rings too far apart for a catenoid)"
         ),
         solve::SolveFailure::NotPositiveDefinite => format!(
             "form finding failed at refinement {level}, iteration {iteration}: the cotangent Laplacian could not be factorised (degenerate triangles)"

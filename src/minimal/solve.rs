@@ -30,13 +30,15 @@ pub fn cotangents(p: [DVec3; 3]) -> Option<[f64; 3]> {
 }
 
 /// Why a Dirichlet solve failed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SolveFailure {
     /// This triangle is degenerate in the metric the weights are taken from.
     Degenerate(usize),
     /// The factorisation failed (the matrix is not positive definite in
     /// floating point).
     NotPositiveDefinite,
+    /// A triangle angle fell below [`super::COLLAPSE_ANGLE_DEG`] (degrees).
+    Collapsed(f64),
 }
 
 /// The Dirichlet problem on a fixed mesh: interior vertices are unknown,
