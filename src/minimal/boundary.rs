@@ -379,11 +379,17 @@ pub fn segment_lengths(pts: &[DVec3]) -> Vec<f64> {
         .collect()
 }
 
-/// Number of coarse pieces per segment at spacing `h0_mm`: ⌈L/h0⌉, at least 1.
+/// A piece may be this much longer than the spacing before its segment is
+/// split once more (so a polyline whose chords are about the spacing keeps
+/// them whole).
+pub const PIECE_SLACK: f64 = 1.1;
+
+/// Number of pieces per segment at spacing `h0_mm`: the fewest equal
+/// pieces no longer than [`PIECE_SLACK`] × h0, at least 1.
 pub fn pieces(lengths_mm: &[f64], h0_mm: f64) -> Vec<usize> {
     lengths_mm
         .iter()
-        .map(|&l| ((l / h0_mm) * (1.0 - 1e-12)).ceil().max(1.0) as usize)
+        .map(|&l| (l / (PIECE_SLACK * h0_mm)).ceil().max(1.0) as usize)
         .collect()
 }
 
@@ -512,8 +518,10 @@ mod tests {
             DVec3::new(0.0, 3.0, 0.0),
         ];
         let l = segment_lengths(&pts);
+        // 10/4.4 → 3, 10.44/4.4 → 3, 3/4.4 → 1.
         let mut p = pieces(&l, 4.0);
         assert_eq!(p, vec![3, 3, 1]);
+        assert_eq!(pieces(&[4.4, 4.41], 4.0), vec![1, 2]);
         add_pieces(&l, &mut p, 8);
         // The added piece goes to the longest pieces: 10.44/3 > 10/3.
         assert_eq!(p, vec![3, 4, 1]);

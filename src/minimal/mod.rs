@@ -9,8 +9,9 @@
 //!    boundary is the polyline itself). The coarsest mesh is made at
 //!    spacing h₀ = target × 2^k with the largest k ≤
 //!    [`FormFindOptions::max_refinements`] for which no given segment is
-//!    shorter than h₀/2 (it would end up shorter than half the target) and
-//!    each loop keeps at least [`MIN_COARSE_LOOP_POINTS`] points.
+//!    shorter than [`COARSE_SHORTEST`] × h₀ and each loop keeps at least
+//!    [`MIN_COARSE_LOOP_POINTS`] points (finely sampled curves, such as
+//!    circles with chords of about the target, get k = 0: one level).
 //! 2. **Initial mesh and chart.** If the loops projected onto their
 //!    best-fit plane (PCA of all boundary points, normal = least variance)
 //!    are simple, disjoint and nested as one outer loop around holes, the
@@ -68,6 +69,11 @@ use crate::error::{Error, Location, Result};
 use crate::mesh::TriMesh;
 use glam::{DVec2, DVec3};
 use std::path::Path;
+
+/// No given segment is shorter than this fraction of the coarsest spacing
+/// h₀: a shorter one would make the coarse mesh anisotropic there and end
+/// up with edges well below the target.
+pub const COARSE_SHORTEST: f64 = 0.75;
 
 /// Each loop keeps at least this many points on the coarsest mesh.
 pub const MIN_COARSE_LOOP_POINTS: usize = 8;
@@ -337,7 +343,8 @@ fn check_options(opts: &FormFindOptions, path: &Path) -> Result<()> {
 }
 
 /// The number of levels k below the target: the largest k ≤ the
-/// refinement limit with every segment at least h₀/2 long and every loop at
+/// refinement limit with every segment at least [`COARSE_SHORTEST`] × h₀
+/// long and every loop at
 /// least [`MIN_COARSE_LOOP_POINTS`] points at spacing h₀.
 fn coarse_levels(lengths: &[Vec<f64>], opts: &FormFindOptions) -> usize {
     let shortest = lengths
@@ -349,7 +356,7 @@ fn coarse_levels(lengths: &[Vec<f64>], opts: &FormFindOptions) -> usize {
         .rev()
         .find(|&k| {
             let h0 = opts.target_edge_mm * f64::from(1u32 << k);
-            shortest >= 0.5 * h0
+            shortest >= COARSE_SHORTEST * h0
                 && lengths.iter().all(|l| {
                     boundary::pieces(l, h0).iter().sum::<usize>() >= MIN_COARSE_LOOP_POINTS
                 })
