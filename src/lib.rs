@@ -26,6 +26,7 @@ pub mod flat;
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod minimal;
 pub mod nest;
 pub mod network;
 pub mod profile;

@@ -1,0 +1,562 @@
+//! Boundary loops: validation, the best-fit plane, whether the projected
+//! loops bound a planar domain (simple, disjoint, nested), and resampling.
+
+use crate::error::{Error, Location, Result};
+use glam::{DVec2, DVec3};
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// Two points closer than this are one point (a repeated closing point is
+/// dropped; coincident consecutive points are an error), mm.
+pub const COINCIDENT_MM: f64 = 1e-6;
+
+/// The loops as given, checked: finite, at least 3 points, no repeated
+/// closing point, no coincident consecutive points.
+pub fn clean_loops(boundaries_mm: &[Vec<DVec3>], path: &Path) -> Result<Vec<Vec<DVec3>>> {
+    if boundaries_mm.is_empty() {
+        return Err(Error::input(
+            path,
+            Location::Field("boundaries".into()),
+            "no boundary loop given: a soap film needs at least one closed polyline",
+        ));
+    }
+    let mut out = Vec::with_capacity(boundaries_mm.len());
+    for (i, b) in boundaries_mm.iter().enumerate() {
+        let at = || Location::Field(format!("boundaries[{i}]"));
+        if let Some(j) = b.iter().position(|p| !p.is_finite()) {
+            return Err(Error::input(
+                path,
+                at(),
+                format!("point {j} has a coordinate that is not a finite number"),
+            ));
+        }
+        let mut pts = b.clone();
+        if pts.len() >= 2 && pts[0].distance(pts[pts.len() - 1]) <= COINCIDENT_MM {
+            pts.pop();
+        }
+        if pts.len() < 3 {
+            return Err(Error::input(
+                path,
+                at(),
+                format!(
+                    "a closed boundary loop needs at least 3 distinct points, this one has {}",
+                    pts.len()
+                ),
+            ));
+        }
+        for j in 0..pts.len() {
+            let k = (j + 1) % pts.len();
+            if pts[j].distance(pts[k]) <= COINCIDENT_MM {
+                return Err(Error::input(
+                    path,
+                    at(),
+                    format!(
+                        "points {j} and {k} coincide at ({:.3}, {:.3}, {:.3}) mm",
+                        pts[j].x, pts[j].y, pts[j].z
+                    ),
+                ));
+            }
+        }
+        out.push(pts);
+    }
+    Ok(out)
+}
+
+/// An orthonormal right-handed frame: origin, in-plane axes `u`, `v` and
+/// the normal `n = u × v`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// Origin, mm.
+    pub origin: DVec3,
+    /// First in-plane axis.
+    pub u: DVec3,
+    /// Second in-plane axis.
+    pub v: DVec3,
+    /// Normal, u × v.
+    pub n: DVec3,
+}
+
+impl Frame {
+    /// Coordinates of `p` in the plane.
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        let d = p - self.origin;
+        DVec2::new(d.dot(self.u), d.dot(self.v))
+    }
+    /// The same plane seen from the other side (v and n reversed).
+    pub fn flipped(&self) -> Frame {
+        Frame {
+            origin: self.origin,
+            u: self.u,
+            v: -self.v,
+            n: -self.n,
+        }
+    }
+}
+
+/// The best-fit plane of all points: PCA, normal = the direction of least
+/// variance (eigenvectors of the covariance by cyclic Jacobi rotations).
+pub fn best_fit_frame(loops: &[Vec<DVec3>]) -> Frame {
+    let count = loops.iter().map(Vec::len).sum::<usize>() as f64;
+    let origin = loops.iter().flatten().fold(DVec3::ZERO, |a, &p| a + p) / count;
+    let mut c = [[0.0f64; 3]; 3];
+    for p in loops.iter().flatten() {
+        let d = (*p - origin).to_array();
+        for (r, row) in c.iter_mut().enumerate() {
+            for (s, x) in row.iter_mut().enumerate() {
+                *x += d[r] * d[s];
+            }
+        }
+    }
+    let (values, vectors) = jacobi_eigen(c);
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&a, &b| values[b].total_cmp(&values[a]));
+    let col = |k: usize| DVec3::new(vectors[0][k], vectors[1][k], vectors[2][k]).normalize();
+    let u = col(order[0]);
+    let v0 = col(order[1]);
+    let v = (v0 - u * u.dot(v0)).normalize();
+    Frame {
+        origin,
+        u,
+        v,
+        n: u.cross(v),
+    }
+}
+
+/// Eigenvalues and eigenvectors (columns) of a symmetric 3 × 3 matrix.
+fn jacobi_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _sweep in 0..50 {
+        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let scale = a[0][0].abs() + a[1][1].abs() + a[2][2].abs();
+        if off <= 1e-300 || off <= 1e-17 * scale {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t * c;
+            // A ← Jᵀ A J with the rotation J in the (p, q) plane.
+            for row in a.iter_mut() {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - s * akq;
+                row[q] = s * akp + c * akq;
+            }
+            let (rp, rq) = (a[p], a[q]);
+            a[p] = std::array::from_fn(|k| c * rp[k] - s * rq[k]);
+            a[q] = std::array::from_fn(|k| s * rp[k] + c * rq[k]);
+            for row in v.iter_mut() {
+                let (vp, vq) = (row[p], row[q]);
+                row[p] = c * vp - s * vq;
+                row[q] = s * vp + c * vq;
+            }
+        }
+    }
+    ([a[0][0], a[1][1], a[2][2]], v)
+}
+
+/// Twice the signed area of a closed 2D polygon (shoelace), positive when
+/// counter-clockwise.
+pub fn signed_area2(poly: &[DVec2]) -> f64 {
+    (0..poly.len())
+        .map(|i| poly[i].perp_dot(poly[(i + 1) % poly.len()]))
+        .sum()
+}
+
+fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    robust::orient2d(
+        robust::Coord { x: a.x, y: a.y },
+        robust::Coord { x: b.x, y: b.y },
+        robust::Coord { x: c.x, y: c.y },
+    )
+}
+
+/// `p` on the closed segment a–b, given that it is collinear with it.
+fn within(a: DVec2, b: DVec2, p: DVec2) -> bool {
+    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
+}
+
+/// Whether two closed segments share a point (exact predicates).
+fn segments_meet(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let (o1, o2) = (orient(a, b, c), orient(a, b, d));
+    let (o3, o4) = (orient(c, d, a), orient(c, d, b));
+    if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
+        return true;
+    }
+    (o1 == 0.0 && within(a, b, c))
+        || (o2 == 0.0 && within(a, b, d))
+        || (o3 == 0.0 && within(c, d, a))
+        || (o4 == 0.0 && within(c, d, b))
+}
+
+/// How the projected loops fail to bound a planar domain.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum DomainProblem {
+    /// A loop crosses or touches itself: (loop, segment, segment).
+    SelfIntersection(usize, usize, usize),
+    /// Two loops cross or touch: (loop, loop).
+    Crossing(usize, usize),
+    /// The loops are disjoint but not one outer loop around holes:
+    /// (loop, loop) that are not nested as required.
+    NotNested(usize, usize),
+}
+
+impl DomainProblem {
+    /// The loop to name in an error.
+    pub fn first_loop(&self) -> usize {
+        match *self {
+            DomainProblem::SelfIntersection(l, ..)
+            | DomainProblem::Crossing(l, _)
+            | DomainProblem::NotNested(l, _) => l,
+        }
+    }
+    /// One line saying what is wrong.
+    pub fn message(&self) -> String {
+        match *self {
+            DomainProblem::SelfIntersection(l, s, t) => format!(
+                "loop {l} intersects itself in projection onto the boundaries' best-fit plane (its segments {s} and {t} meet), so the film has no planar chart"
+            ),
+            DomainProblem::Crossing(a, b) => format!(
+                "loops {a} and {b} cross or touch in projection onto the boundaries' best-fit plane; with more than two loops the film needs one outer loop around disjoint holes"
+            ),
+            DomainProblem::NotNested(a, b) => format!(
+                "loops {a} and {b} are not nested as one outer loop around holes in projection onto the boundaries' best-fit plane"
+            ),
+        }
+    }
+}
+
+/// A planar domain: which loop is outer, all loops projected, oriented so
+/// that the outer loop runs counter-clockwise and the holes clockwise.
+#[derive(Debug, Clone)]
+pub struct PlanarDomain {
+    /// The frame, oriented so that the outer loop as given runs
+    /// counter-clockwise in (u, v).
+    pub frame: Frame,
+    /// Index of the outer loop.
+    pub outer: usize,
+    /// Per loop: whether its order was reversed to orient it.
+    pub reversed: Vec<bool>,
+}
+
+/// Check that the loops projected with `frame` are simple, disjoint and
+/// nested as one outer loop around holes.
+pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain, DomainProblem> {
+    let proj: Vec<Vec<DVec2>> = loops
+        .iter()
+        .map(|l| l.iter().map(|&p| frame.project(p)).collect())
+        .collect();
+    // Every segment, swept by its smallest x.
+    struct Seg {
+        lo: f64,
+        hi: f64,
+        l: usize,
+        s: usize,
+    }
+    let mut segs: Vec<Seg> = Vec::new();
+    for (l, p) in proj.iter().enumerate() {
+        for s in 0..p.len() {
+            let (a, b) = (p[s], p[(s + 1) % p.len()]);
+            segs.push(Seg {
+                lo: a.x.min(b.x),
+                hi: a.x.max(b.x),
+                l,
+                s,
+            });
+        }
+    }
+    segs.sort_by(|a, b| {
+        a.lo.total_cmp(&b.lo)
+            .then(a.l.cmp(&b.l))
+            .then(a.s.cmp(&b.s))
+    });
+    let mut selfs: BTreeSet<(usize, usize, usize)> = BTreeSet::new();
+    let mut crossings: BTreeSet<(usize, usize)> = BTreeSet::new();
+    for i in 0..segs.len() {
+        for j in i + 1..segs.len() {
+            if segs[j].lo > segs[i].hi {
+                break;
+            }
+            let (x, y) = (&segs[i], &segs[j]);
+            let (px, py) = (&proj[x.l], &proj[y.l]);
+            let (a, b) = (px[x.s], px[(x.s + 1) % px.len()]);
+            let (c, d) = (py[y.s], py[(y.s + 1) % py.len()]);
+            if x.l == y.l {
+                let n = px.len();
+                let (s, t) = (x.s.min(y.s), x.s.max(y.s));
+                let adjacent = t == s + 1 || (s == 0 && t == n - 1);
+                if adjacent {
+                    // Sharing one end: they meet elsewhere only when they
+                    // fold back onto each other (collinear, opposite), or
+                    // in a triangle-like loop of 3 where both ends are shared.
+                    let (p, q, r) = if t == s + 1 {
+                        (px[s], px[t], px[(t + 1) % n])
+                    } else {
+                        (px[t], px[0], px[1])
+                    };
+                    if orient(p, q, r) == 0.0 && (q - p).dot(r - q) < 0.0 {
+                        selfs.insert((x.l, s, t));
+                    }
+                } else if segments_meet(a, b, c, d) {
+                    selfs.insert((x.l, s, t));
+                }
+            } else if segments_meet(a, b, c, d) {
+                crossings.insert((x.l.min(y.l), x.l.max(y.l)));
+            }
+        }
+    }
+    if let Some(&(l, s, t)) = selfs.iter().next() {
+        return Err(DomainProblem::SelfIntersection(l, s, t));
+    }
+    if let Some(&(a, b)) = crossings.iter().next() {
+        return Err(DomainProblem::Crossing(a, b));
+    }
+    // Disjoint simple loops: nesting by one vertex each.
+    let n = loops.len();
+    let inside = |i: usize, j: usize| point_in_polygon(proj[i][0], &proj[j]);
+    let outers: Vec<usize> = (0..n)
+        .filter(|&i| (0..n).all(|j| j == i || !inside(i, j)))
+        .collect();
+    if outers.len() != 1 {
+        return Err(DomainProblem::NotNested(outers[0], outers[1]));
+    }
+    let outer = outers[0];
+    for i in 0..n {
+        for j in 0..n {
+            if i != j && j != outer && inside(i, j) {
+                return Err(DomainProblem::NotNested(j, i));
+            }
+        }
+    }
+    let frame = if signed_area2(&proj[outer]) < 0.0 {
+        frame.flipped()
+    } else {
+        frame
+    };
+    // Areas change sign with the frame: recompute in the oriented frame.
+    let reversed = (0..n)
+        .map(|i| {
+            let a: Vec<DVec2> = loops[i].iter().map(|&p| frame.project(p)).collect();
+            let ccw = signed_area2(&a) > 0.0;
+            if i == outer {
+                !ccw
+            } else {
+                ccw
+            }
+        })
+        .collect();
+    Ok(PlanarDomain {
+        frame,
+        outer,
+        reversed,
+    })
+}
+
+/// Crossing-number test of a point strictly inside or outside a polygon.
+fn point_in_polygon(p: DVec2, poly: &[DVec2]) -> bool {
+    let mut inside = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if p.x < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Segment lengths of a closed loop, mm.
+pub fn segment_lengths(pts: &[DVec3]) -> Vec<f64> {
+    (0..pts.len())
+        .map(|i| pts[i].distance(pts[(i + 1) % pts.len()]))
+        .collect()
+}
+
+/// A piece may be this much longer than the spacing before its segment is
+/// split once more (so a polyline whose chords are about the spacing keeps
+/// them whole).
+pub const PIECE_SLACK: f64 = 1.1;
+
+/// Number of pieces per segment at spacing `h0_mm`: the fewest equal
+/// pieces no longer than [`PIECE_SLACK`] × h0, at least 1.
+pub fn pieces(lengths_mm: &[f64], h0_mm: f64) -> Vec<usize> {
+    lengths_mm
+        .iter()
+        .map(|&l| (l / (PIECE_SLACK * h0_mm)).ceil().max(1.0) as usize)
+        .collect()
+}
+
+/// Add pieces to the segments with the longest pieces (lowest index on a
+/// tie) until there are `total` pieces.
+pub fn add_pieces(lengths_mm: &[f64], pieces: &mut [usize], total: usize) {
+    while pieces.iter().sum::<usize>() < total {
+        let mut best = 0;
+        for s in 1..pieces.len() {
+            if lengths_mm[s] / pieces[s] as f64 > lengths_mm[best] / pieces[best] as f64 {
+                best = s;
+            }
+        }
+        pieces[best] += 1;
+    }
+}
+
+/// The loop resampled: segment s split into `pieces[s]` equal parts; the
+/// given points are kept exactly.
+pub fn resample(pts: &[DVec3], pieces: &[usize]) -> Vec<DVec3> {
+    let mut out = Vec::with_capacity(pieces.iter().sum());
+    for (s, &m) in pieces.iter().enumerate() {
+        let (a, b) = (pts[s], pts[(s + 1) % pts.len()]);
+        out.push(a);
+        for j in 1..m {
+            out.push(a.lerp(b, j as f64 / m as f64));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(c: DVec2, h: f64, z: f64) -> Vec<DVec3> {
+        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .iter()
+            .map(|&(x, y)| DVec3::new(c.x + h * x, c.y + h * y, z))
+            .collect()
+    }
+
+    #[test]
+    fn frame_of_a_tilted_plane_has_its_normal() {
+        let n = DVec3::new(1.0, 2.0, 3.0).normalize();
+        let u = n.any_orthonormal_vector();
+        let v = n.cross(u);
+        let pts: Vec<DVec3> = (0..7)
+            .map(|i| {
+                let t = i as f64;
+                u * (100.0 * t.cos() + 3.0 * t) + v * (40.0 * t.sin()) + n * 5.0
+            })
+            .collect();
+        let f = best_fit_frame(&[pts]);
+        assert!(f.n.cross(n).length() < 1e-12, "{:?}", f.n);
+        assert!((f.u.cross(f.v) - f.n).length() < 1e-12);
+    }
+
+    #[test]
+    fn a_square_with_a_hole_is_a_domain_and_holes_turn_clockwise() {
+        let outer = square(DVec2::ZERO, 10.0, 0.0);
+        let hole = square(DVec2::new(1.0, 0.0), 3.0, 0.0); // counter-clockwise as given
+        let f = best_fit_frame(&[outer.clone(), hole.clone()]);
+        let d = planar_domain(&[outer, hole], f).expect("domain");
+        assert_eq!(d.outer, 0);
+        assert_eq!(d.reversed, vec![false, true]);
+        assert!(d.frame.n.z > 0.0);
+    }
+
+    #[test]
+    fn crossing_touching_and_self_intersecting_loops_are_found() {
+        let f = Frame {
+            origin: DVec3::ZERO,
+            u: DVec3::X,
+            v: DVec3::Y,
+            n: DVec3::Z,
+        };
+        let a = square(DVec2::ZERO, 10.0, 0.0);
+        let b = square(DVec2::new(10.0, 0.0), 5.0, 0.0);
+        assert_eq!(
+            planar_domain(&[a.clone(), b], f).unwrap_err(),
+            DomainProblem::Crossing(0, 1)
+        );
+        // Touching at a vertex of the hole.
+        let t = vec![
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(5.0, 2.0, 0.0),
+            DVec3::new(5.0, -2.0, 0.0),
+        ];
+        assert_eq!(
+            planar_domain(&[a.clone(), t], f).unwrap_err(),
+            DomainProblem::Crossing(0, 1)
+        );
+        let bow = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(10.0, 10.0, 0.0),
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(0.0, 10.0, 0.0),
+        ];
+        assert!(matches!(
+            planar_domain(&[bow], f).unwrap_err(),
+            DomainProblem::SelfIntersection(0, _, _)
+        ));
+        let fold = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(5.0, 0.0, 0.0),
+            DVec3::new(5.0, 5.0, 0.0),
+        ];
+        assert!(matches!(
+            planar_domain(&[fold], f).unwrap_err(),
+            DomainProblem::SelfIntersection(0, _, _)
+        ));
+        let c = square(DVec2::new(30.0, 0.0), 5.0, 0.0);
+        assert_eq!(
+            planar_domain(&[a, c], f).unwrap_err(),
+            DomainProblem::NotNested(0, 1)
+        );
+    }
+
+    #[test]
+    fn resampling_keeps_corners_and_splits_evenly() {
+        let pts = vec![
+            DVec3::ZERO,
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(0.0, 3.0, 0.0),
+        ];
+        let l = segment_lengths(&pts);
+        // 10/4.4 → 3, 10.44/4.4 → 3, 3/4.4 → 1.
+        let mut p = pieces(&l, 4.0);
+        assert_eq!(p, vec![3, 3, 1]);
+        assert_eq!(pieces(&[4.4, 4.41], 4.0), vec![1, 2]);
+        add_pieces(&l, &mut p, 8);
+        // The added piece goes to the longest pieces: 10.44/3 > 10/3.
+        assert_eq!(p, vec![3, 4, 1]);
+        let r = resample(&pts, &p);
+        assert_eq!(r.len(), 8);
+        assert_eq!(r[0], pts[0]);
+        assert_eq!(r[3], pts[1]);
+        assert_eq!(r[7], pts[2]);
+        assert!((r[2] - DVec3::new(20.0 / 3.0, 0.0, 0.0)).length() < 1e-12);
+        assert!((r[5] - DVec3::new(5.0, 1.5, 0.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn short_loops_and_bad_points_are_one_line_errors() {
+        let p = Path::new("spec.yaml");
+        let e = clean_loops(&[vec![DVec3::ZERO, DVec3::X, DVec3::ZERO]], p)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "spec.yaml: field `boundaries[0]`: a closed boundary loop needs at least 3 distinct points, this one has 2"
+        );
+        let e = clean_loops(&[vec![DVec3::ZERO, DVec3::X, DVec3::X, DVec3::Y]], p)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("boundaries[0]") && e.contains("points 1 and 2 coincide"),
+            "{e}"
+        );
+        let e = clean_loops(
+            &[vec![DVec3::ZERO, DVec3::X, DVec3::new(f64::NAN, 0.0, 0.0)]],
+            p,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("point 2"), "{e}");
+    }
+}

@@ -1,0 +1,436 @@
+//! Form finding (issue 13): the soap film spanned by closed boundary
+//! polylines, as a triangle mesh with a planar chart.
+//!
+//! Method:
+//! 1. **Boundaries.** Each loop is checked (finite, ≥ 3 distinct points, a
+//!    repeated closing point dropped) and resampled: every straight segment
+//!    is split into equal pieces, so the given vertices (corners) are kept
+//!    exactly and every boundary point lies on the polyline (a soap film's
+//!    boundary is the polyline itself). The coarsest mesh is made at
+//!    spacing h₀ = target × 2^k with the largest k ≤
+//!    [`FormFindOptions::max_refinements`] for which no given segment is
+//!    shorter than [`COARSE_SHORTEST`] × h₀ and each loop keeps at least
+//!    [`MIN_COARSE_LOOP_POINTS`] points (finely sampled curves, such as
+//!    circles with chords of about the target, get k = 0: one level).
+//! 2. **Initial mesh and chart.** If the loops projected onto their
+//!    best-fit plane (PCA of all boundary points, normal = least variance)
+//!    are simple, disjoint and nested as one outer loop around holes, the
+//!    planar domain is triangulated by a constrained Delaunay triangulation
+//!    (spade) refined to triangles of at most h₀²/2 and angles of at least
+//!    [`initial::CDT_MIN_ANGLE_DEG`] (input angles excepted); the chart is
+//!    the projection. Otherwise, with exactly two loops (two coaxial rings
+//!    project onto each other), a tube is lofted between them: both
+//!    resampled to one count, the second aligned to the first (the cyclic
+//!    shift and direction of least total distance), rows every ≈ h₀
+//!    between them, quads split along one diagonal; the chart is an annulus
+//!    (loop 0 on the inner circle, angle = 2π × arc-length fraction, radii
+//!    so that the mid circle is as long as the loops on average). Otherwise
+//!    a one-line error names the loops that cross, are not nested, or the
+//!    loop that intersects itself in projection. The interior starts at
+//!    the harmonic extension of the boundary with the chart's cotangent
+//!    weights.
+//! 3. **Pinkall–Polthier iteration** (Pinkall & Polthier 1993, *Computing
+//!    discrete minimal surfaces and their conjugates*): build the
+//!    cotangent Laplacian of the current mesh M_i, solve the Dirichlet
+//!    problem L(M_i) x = 0 for the interior positions with the boundary
+//!    fixed (faer's sparse Cholesky; the symbolic factorisation is made once
+//!    per level), until the relative area change of one step is below
+//!    [`FormFindOptions::area_tolerance`]. The cotangents are exact, obtuse
+//!    angles included: the matrix is the stiffness matrix of
+//!    piecewise-linear maps, positive definite with the boundary fixed on
+//!    any mesh without degenerate triangles, so the factorisation exists;
+//!    a degenerate triangle (sine below [`solve::DEGENERATE_SINE`]) or a
+//!    failed factorisation ends form finding with a one-line error. The
+//!    area never grows (area ≤ Dirichlet energy ≤ the previous area).
+//! 4. **Refinement.** After a level converges, every triangle is split 1 → 4
+//!    (midpoints in 3D and in the chart; boundary midpoints lie on the
+//!    straight boundary segments since the corners are coarse vertices)
+//!    and the iteration runs again, while the mean edge length exceeds
+//!    √2 × the target (the level nearest the target in log scale), at most
+//!    [`FormFindOptions::max_refinements`] times.
+//! 5. **Residual.** |H| at interior vertices from the cotangent mean
+//!    curvature normal 2H·n = (1/A_i) Σ_j ½(cot α_ij + cot β_ij)(x_i − x_j),
+//!    A_i the barycentric area; its maximum and its A_i-weighted mean.
+//!
+//! Orientation: triangles are counter-clockwise in the chart and the same
+//! vertex order is used in 3D. For a planar domain the normals point to
+//! the side from which the outer loop, in its given order, runs
+//! counter-clockwise (right-hand rule); for a loft they point along
+//! (direction from loop 0 to loop 1) × (loop 0's running direction), e.g.
+//! towards the axis for two coaxial rings both running counter-clockwise
+//! seen from above with loop 0 the lower.
+
+pub mod boundary;
+pub mod initial;
+pub mod refine;
+pub mod solve;
+
+use crate::error::{Error, Location, Result};
+use crate::mesh::TriMesh;
+use glam::{DVec2, DVec3};
+use std::path::Path;
+
+/// No given segment is shorter than this fraction of the coarsest spacing
+/// h₀: a shorter one would make the coarse mesh anisotropic there and end
+/// up with edges well below the target.
+pub const COARSE_SHORTEST: f64 = 0.75;
+
+/// Each loop keeps at least this many points on the coarsest mesh.
+pub const MIN_COARSE_LOOP_POINTS: usize = 8;
+
+/// A level whose smallest triangle angle falls below this has collapsed
+/// (a film pinching off, as a catenoid between rings too far apart):
+/// form finding stops with an error, degrees.
+pub const COLLAPSE_ANGLE_DEG: f64 = 1.0;
+
+/// Options of form finding.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormFindOptions {
+    /// Target edge length of the final mesh, mm (default 100).
+    pub target_edge_mm: f64,
+    /// Most 1 → 4 refinements after the coarsest mesh (default 6).
+    pub max_refinements: usize,
+    /// Most Pinkall–Polthier iterations per level (default 500).
+    pub max_iterations: usize,
+    /// A level has converged when one iteration changes the area by less
+    /// than this, relative (default 1e-7).
+    pub area_tolerance: f64,
+    /// Fraction of the way each interior vertex moves, after every
+    /// Pinkall–Polthier step, towards the area-weighted centroid of its
+    /// one-ring within its tangent plane (default 1; 0 = pure
+    /// Pinkall–Polthier, whose tangential drift can degrade triangles).
+    pub relaxation: f64,
+}
+
+impl Default for FormFindOptions {
+    fn default() -> Self {
+        FormFindOptions {
+            target_edge_mm: 100.0,
+            max_refinements: 6,
+            max_iterations: 500,
+            area_tolerance: 1e-7,
+            relaxation: 1.0,
+        }
+    }
+}
+
+impl FormFindOptions {
+    /// The defaults with another target edge length.
+    pub fn with_target_edge_mm(target_edge_mm: f64) -> Self {
+        FormFindOptions {
+            target_edge_mm,
+            ..Self::default()
+        }
+    }
+}
+
+/// How the initial mesh was made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InitialMesh {
+    /// A constrained Delaunay triangulation of the planar domain; the chart
+    /// is the projection onto the best-fit plane.
+    PlanarDomain,
+    /// A tube lofted between two loops; the chart is an annulus.
+    Loft,
+}
+
+/// What form finding did and how good the result is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormFindReport {
+    /// How the initial mesh was made.
+    pub initial: InitialMesh,
+    /// Pinkall–Polthier iterations, all levels.
+    pub iterations: usize,
+    /// Iterations per level, coarsest first.
+    pub iterations_per_level: Vec<usize>,
+    /// Whether every level met the area tolerance.
+    pub converged: bool,
+    /// Area of the initial (harmonic) coarse mesh, mm².
+    pub initial_area_mm2: f64,
+    /// Area of the result, mm².
+    pub area_mm2: f64,
+    /// Largest |H| at an interior vertex, 1/mm.
+    pub max_mean_curvature_per_mm: f64,
+    /// Area-weighted mean |H| over the interior vertices, 1/mm.
+    pub mean_mean_curvature_per_mm: f64,
+    /// 1 → 4 refinements made.
+    pub refinements: usize,
+    /// Vertices of the result.
+    pub vertices: usize,
+    /// Triangles of the result.
+    pub triangles: usize,
+    /// Mean edge length of the result, mm.
+    pub mean_edge_mm: f64,
+    /// Smallest triangle angle of the result, degrees.
+    pub min_angle_deg: f64,
+}
+
+/// The film: mesh, chart and report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormFound {
+    /// The mesh, triangles counter-clockwise (see the module doc for the side).
+    pub mesh: TriMesh,
+    /// A planar chart: one uv per vertex, mm-like scale, every triangle
+    /// counter-clockwise with positive area.
+    pub chart_uv: Vec<DVec2>,
+    /// What form finding did.
+    pub report: FormFindReport,
+}
+
+/// A mesh being form-found: positions, chart, triangles, fixed (boundary)
+/// vertices.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Film {
+    /// Positions, mm.
+    pub positions: Vec<DVec3>,
+    /// Chart, one uv per vertex.
+    pub chart: Vec<DVec2>,
+    /// Triangles, counter-clockwise in the chart.
+    pub triangles: Vec<[u32; 3]>,
+    /// Boundary vertices (kept in place).
+    pub fixed: Vec<bool>,
+}
+
+/// Form-find the soap film spanning `boundaries_mm` (closed polylines, last
+/// point not repeated; a repeated closing point is dropped). `path` is the
+/// spec file named in errors.
+pub fn form_find(
+    boundaries_mm: &[Vec<DVec3>],
+    opts: &FormFindOptions,
+    path: &Path,
+) -> Result<FormFound> {
+    check_options(opts, path)?;
+    let loops = boundary::clean_loops(boundaries_mm, path)?;
+    let frame = boundary::best_fit_frame(&loops);
+    let domain = match boundary::planar_domain(&loops, frame) {
+        Ok(d) => Some(d),
+        Err(_) if loops.len() == 2 => None,
+        Err(p) => {
+            return Err(Error::input(
+                path,
+                Location::Field(format!("boundaries[{}]", p.first_loop())),
+                p.message(),
+            ))
+        }
+    };
+    let lengths: Vec<Vec<f64>> = loops.iter().map(|l| boundary::segment_lengths(l)).collect();
+    let levels = coarse_levels(&lengths, opts);
+    let h0_mm = opts.target_edge_mm * f64::from(1u32 << levels);
+    let mut pieces: Vec<Vec<usize>> = lengths.iter().map(|l| boundary::pieces(l, h0_mm)).collect();
+    let (mut film, initial) = match &domain {
+        Some(d) => {
+            let film = initial::planar(&loops, &pieces, d, 0.5 * h0_mm * h0_mm).ok_or_else(|| {
+                Error::input(
+                    path,
+                    Location::Field("boundaries".into()),
+                    "the constrained Delaunay triangulation of the projected loops failed (points too close in projection)",
+                )
+            })?;
+            (film, InitialMesh::PlanarDomain)
+        }
+        None => {
+            let count = pieces
+                .iter()
+                .map(|p| p.iter().sum::<usize>())
+                .max()
+                .unwrap_or(0);
+            for (l, p) in pieces.iter_mut().enumerate() {
+                boundary::add_pieces(&lengths[l], p, count);
+            }
+            (initial::loft(&loops, &pieces, h0_mm), InitialMesh::Loft)
+        }
+    };
+    if let Some(t) = chart_inverted(&film) {
+        return Err(Error::input(
+            path,
+            Location::Field("boundaries".into()),
+            format!("the initial chart has an inverted triangle {t}: the loops are too close to each other for the target edge length"),
+        ));
+    }
+    // Harmonic extension with the chart's weights.
+    let chart3: Vec<DVec3> = film.chart.iter().map(|q| q.extend(0.0)).collect();
+    let mut dirichlet = solve::Dirichlet::new(&film);
+    film.positions = dirichlet
+        .solve(&film, &chart3, &film.positions)
+        .map_err(|e| failure(path, e, 0, 0))?;
+    let initial_area_mm2 = solve::area_mm2(&film, &film.positions);
+    let mut iterations_per_level = Vec::new();
+    let mut converged = true;
+    let mut refinements = 0;
+    loop {
+        let (its, ok) = iterate(&mut film, &mut dirichlet, opts)
+            .map_err(|(e, it)| failure(path, e, refinements, it))?;
+        iterations_per_level.push(its);
+        converged &= ok;
+        if refinements >= opts.max_refinements
+            || solve::mean_edge_mm(&film, &film.positions)
+                <= std::f64::consts::SQRT_2 * opts.target_edge_mm
+        {
+            break;
+        }
+        film = refine::split(&film);
+        dirichlet = solve::Dirichlet::new(&film);
+        refinements += 1;
+    }
+    let h = solve::mean_curvature(&film, &film.positions).ok_or_else(|| {
+        failure(
+            path,
+            solve::SolveFailure::NotPositiveDefinite,
+            refinements,
+            0,
+        )
+    })?;
+    let (max_h, mut sum_h, mut sum_a) = (h.iter().map(|p| p.0).fold(0.0, f64::max), 0.0, 0.0);
+    for &(hv, a) in &h {
+        sum_h += hv * a;
+        sum_a += a;
+    }
+    let report = FormFindReport {
+        initial,
+        iterations: iterations_per_level.iter().sum(),
+        iterations_per_level,
+        converged,
+        initial_area_mm2,
+        area_mm2: solve::area_mm2(&film, &film.positions),
+        max_mean_curvature_per_mm: max_h,
+        mean_mean_curvature_per_mm: if sum_a > 0.0 { sum_h / sum_a } else { 0.0 },
+        refinements,
+        vertices: film.positions.len(),
+        triangles: film.triangles.len(),
+        mean_edge_mm: solve::mean_edge_mm(&film, &film.positions),
+        min_angle_deg: solve::min_angle_deg(&film, &film.positions),
+    };
+    debug_assert!(chart_inverted(&film).is_none());
+    Ok(FormFound {
+        mesh: TriMesh {
+            positions_mm: film.positions,
+            triangles: film.triangles,
+        },
+        chart_uv: film.chart,
+        report,
+    })
+}
+
+fn check_options(opts: &FormFindOptions, path: &Path) -> Result<()> {
+    if !(opts.target_edge_mm.is_finite() && opts.target_edge_mm > 0.0) {
+        return Err(Error::input(
+            path,
+            Location::Field("target_edge_mm".into()),
+            format!(
+                "must be a positive length in mm, got {}",
+                opts.target_edge_mm
+            ),
+        ));
+    }
+    if !(opts.area_tolerance.is_finite() && opts.area_tolerance > 0.0) {
+        return Err(Error::input(
+            path,
+            Location::Field("area_tolerance".into()),
+            format!("must be a positive number, got {}", opts.area_tolerance),
+        ));
+    }
+    if opts.max_refinements > 12 {
+        return Err(Error::input(
+            path,
+            Location::Field("max_refinements".into()),
+            format!(
+                "at most 12 (each multiplies the triangles by 4), got {}",
+                opts.max_refinements
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The number of levels k below the target: the largest k ≤ the
+/// refinement limit with every segment at least [`COARSE_SHORTEST`] × h₀
+/// long and every loop at
+/// least [`MIN_COARSE_LOOP_POINTS`] points at spacing h₀.
+fn coarse_levels(lengths: &[Vec<f64>], opts: &FormFindOptions) -> usize {
+    let shortest = lengths
+        .iter()
+        .flatten()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    (1..=opts.max_refinements)
+        .rev()
+        .find(|&k| {
+            let h0 = opts.target_edge_mm * f64::from(1u32 << k);
+            shortest >= COARSE_SHORTEST * h0
+                && lengths.iter().all(|l| {
+                    boundary::pieces(l, h0).iter().sum::<usize>() >= MIN_COARSE_LOOP_POINTS
+                })
+        })
+        .unwrap_or(0)
+}
+
+/// The first triangle whose chart area is not positive.
+pub fn chart_inverted(film: &Film) -> Option<usize> {
+    film.triangles.iter().position(|t| {
+        let [a, b, c] = t.map(|v| film.chart[v as usize]);
+        let doubled_area = (b - a).perp_dot(c - a);
+        doubled_area.is_nan() || doubled_area <= 0.0
+    })
+}
+
+/// Pinkall–Polthier iterations on one level, each followed by a
+/// tangential relaxation, until one iteration changes the area by less
+/// than the tolerance, relative; then one more Pinkall–Polthier step
+/// without relaxation, so the level ends on the iteration's own map:
+/// (iterations, converged).
+fn iterate(
+    film: &mut Film,
+    dirichlet: &mut solve::Dirichlet,
+    opts: &FormFindOptions,
+) -> Result<(usize, bool), (solve::SolveFailure, usize)> {
+    let mut area = solve::area_mm2(film, &film.positions);
+    let mut converged = false;
+    let mut iterations = 0;
+    while iterations < opts.max_iterations {
+        iterations += 1;
+        let next = dirichlet
+            .solve(film, &film.positions, &film.positions)
+            .map_err(|e| (e, iterations))?;
+        film.positions = if opts.relaxation > 0.0 {
+            solve::relax(film, &next, opts.relaxation)
+        } else {
+            next
+        };
+        let min_angle = solve::min_angle_deg(film, &film.positions);
+        if min_angle < COLLAPSE_ANGLE_DEG {
+            return Err((solve::SolveFailure::Collapsed(min_angle), iterations));
+        }
+        let a = solve::area_mm2(film, &film.positions);
+        let change = (area - a).abs() / area.max(f64::MIN_POSITIVE);
+        area = a;
+        if change < opts.area_tolerance {
+            converged = true;
+            break;
+        }
+    }
+    if opts.relaxation > 0.0 {
+        iterations += 1;
+        film.positions = dirichlet
+            .solve(film, &film.positions, &film.positions)
+            .map_err(|e| (e, iterations))?;
+    }
+    Ok((iterations, converged))
+}
+
+fn failure(path: &Path, e: solve::SolveFailure, level: usize, iteration: usize) -> Error {
+    let what = match e {
+        solve::SolveFailure::Degenerate(t) => format!(
+            "form finding failed at refinement {level}, iteration {iteration}: triangle {t} degenerated (the film collapses, e.g. two rings too far apart for a stable catenoid)"
+        ),
+        solve::SolveFailure::Collapsed(angle) => format!(
+            "form finding failed at refinement {level}, iteration {iteration}: the film degenerates (a triangle angle of {angle:.2e}°), so no stable soap film spans these loops (e.g. two rings too far apart for a catenoid)"
+        ),
+        solve::SolveFailure::NotPositiveDefinite => format!(
+            "form finding failed at refinement {level}, iteration {iteration}: the cotangent Laplacian could not be factorised (degenerate triangles)"
+        ),
+    };
+    Error::input(path, Location::Field("boundaries".into()), what)
+}
+
+#[cfg(test)]
+mod tests;
