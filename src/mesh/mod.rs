@@ -2,9 +2,21 @@
 //!
 //! A [`TriMesh`] holds positions in mm and counter-clockwise triangles (seen
 //! from the side the normals point to). Mesh files are read into it
-//! (`read`), curvature tensors are estimated on it (`curvature`), form
-//! finding (`crate::minimal`) produces one with a planar chart, and
-//! tracing on meshes walks it through a chart (`surface`).
+//! (`read`: OBJ, PLY, STL), validated into an oriented, connected manifold
+//! with one-rings and boundary loops (`topology`: everything downstream uses
+//! its cleaned [`Topology::mesh`]), curvature tensors are estimated per
+//! vertex by fitting cubic jets (`curvature`), and the asymptotic net's
+//! extent and singular points (flat points, umbilics) are found from them
+//! (`singular`). Form finding (`crate::minimal`) produces a mesh with a
+//! planar chart, and tracing on meshes walks it through a chart (`surface`).
+//!
+//! ```text
+//! let mesh = read_mesh(path)?;
+//! let topo = Topology::build(&mesh, path)?;
+//! let jets = vertex_jets(topo.mesh(), &topo);
+//! let report = anticlastic_report(&topo, &jets);
+//! require_anticlastic(&report, path)?;
+//! ```
 
 use glam::DVec3;
 
