@@ -59,9 +59,9 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
                 found.mesh.triangles.len(),
                 r.iterations,
                 if r.converged { "" } else { " (not converged)" },
-                r.area_end_mm2 * 1e-6,
-                r.mean_curvature_mean_per_mm,
-                r.mean_curvature_max_per_mm,
+                r.area_mm2 * 1e-6,
+                r.mean_mean_curvature_per_mm,
+                r.max_mean_curvature_per_mm,
                 r.min_angle_deg,
             ));
             (found.mesh, Some(found.chart_uv), spec_path.to_path_buf())
@@ -78,22 +78,36 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
             (crate::mesh::read::read_mesh(&file)?, None, file)
         }
     };
-    let (mesh, topo) = crate::mesh::topology::build(&mesh, &named)?;
-    let curvatures = crate::mesh::curvature::vertex_curvatures(&mesh, &topo);
-    let report = crate::mesh::singular::anticlastic_report(&mesh, &curvatures);
+    let topo = crate::mesh::topology::Topology::build(&mesh, &named)?;
+    let mesh = topo.mesh().clone();
+    let jets = crate::mesh::curvature::vertex_jets(&mesh, &topo);
+    let report = crate::mesh::singular::anticlastic_report(&topo, &jets);
     crate::mesh::singular::require_anticlastic(&report, &named)?;
-    let warnings = report.warnings();
-    let singular = crate::mesh::singular::singularities(&mesh, &topo, &curvatures);
-    for s in &singular {
+    // Singular points are notes (with their index), the rest warnings.
+    let warnings: Vec<String> = report
+        .warnings()
+        .into_iter()
+        .filter(|w| !w.starts_with("flat point") && !w.starts_with("umbilic"))
+        .chain(topo.warnings())
+        .collect();
+    for s in &report.singularities {
+        let kind = match s.kind {
+            crate::mesh::singular::SingularKind::FlatPoint => "flat point",
+            crate::mesh::singular::SingularKind::Umbilic => "umbilic",
+        };
         notes.push(format!(
-            "singular point ({}, index {}) at ({:.1}, {:.1}, {:.1}) mm: the net changes valence there",
-            s.kind.as_str(),
+            "singular point ({kind}, index {}) at ({:.1}, {:.1}, {:.1}) mm: the net changes valence there",
             half_integer(s.index),
             s.position_mm.x,
             s.position_mm.y,
             s.position_mm.z
         ));
     }
+    let curvatures: Vec<crate::design::surface::Curvature> =
+        jets.iter().map(|j| j.curvature).collect();
+    // A film's chart is per vertex of the film; cleaning keeps a film's
+    // vertices (it has none unreferenced), which the count confirms.
+    let chart_uv = chart_uv.filter(|uv| uv.len() == mesh.positions_mm.len());
     let (uv, kind) = match chart_uv {
         Some(uv) => (uv, "the film's plan"),
         None => {
@@ -131,7 +145,7 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
             "mesh: {} vertices, {} triangles, charted by {kind}; K < 0 at {} of {} vertices",
             mesh.positions_mm.len(),
             mesh.triangles.len(),
-            report.anticlastic_vertices,
+            report.anticlastic,
             mesh.positions_mm.len()
         ),
     );
