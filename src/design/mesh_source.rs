@@ -154,7 +154,11 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
         Some(p) => {
             let p = DVec3::from_array(p);
             let (q, d) = surface.nearest_uv(p).ok_or_else(|| {
-                Error::input(spec_path, Location::Field("seed_mm".into()), "the mesh is empty")
+                Error::input(
+                    spec_path,
+                    Location::Field("seed_mm".into()),
+                    "the mesh is empty",
+                )
             })?;
             if d > spec.spacing_mm {
                 return Err(Error::input(

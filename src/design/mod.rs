@@ -113,7 +113,11 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
         }
         Ok(())
     };
-    only_for("mesh", spec.mesh.is_some() && spec.surface != SurfaceName::Mesh, "`surface: mesh`")?;
+    only_for(
+        "mesh",
+        spec.mesh.is_some() && spec.surface != SurfaceName::Mesh,
+        "`surface: mesh`",
+    )?;
     only_for(
         "boundaries_mm",
         spec.boundaries_mm.is_some() && spec.surface != SurfaceName::Minimal,
@@ -124,16 +128,28 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
         spec.film_edge_mm.is_some() && spec.surface != SurfaceName::Minimal,
         "`surface: minimal`",
     )?;
-    only_for("seed_mm", spec.seed_mm.is_some() && !is_mesh, "meshes and films (analytic surfaces take `seed: [u, v]`)")?;
+    only_for(
+        "seed_mm",
+        spec.seed_mm.is_some() && !is_mesh,
+        "meshes and films (analytic surfaces take `seed: [u, v]`)",
+    )?;
     only_for(
         "seed",
         spec.seed.is_some() && is_mesh,
         "analytic surfaces (a mesh has no parameters: give `seed_mm: [x, y, z]`)",
     )?;
-    only_for("scale_mm", spec.scale_mm.is_some() && is_mesh, "analytic surfaces (meshes and films are in mm)")?;
+    only_for(
+        "scale_mm",
+        spec.scale_mm.is_some() && is_mesh,
+        "analytic surfaces (meshes and films are in mm)",
+    )?;
     match spec.surface {
         SurfaceName::Mesh if spec.mesh.is_none() => {
-            return err("mesh", "`surface: mesh` needs `mesh: FILE` (an OBJ, PLY or STL triangle mesh in mm)".into());
+            return err(
+                "mesh",
+                "`surface: mesh` needs `mesh: FILE` (an OBJ, PLY or STL triangle mesh in mm)"
+                    .into(),
+            );
         }
         SurfaceName::Minimal if spec.boundaries_mm.is_none() => {
             return err("boundaries_mm", "`surface: minimal` needs `boundaries_mm`: one or more closed polylines of [x, y, z] points".into());
@@ -145,7 +161,10 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             return err("film_edge_mm", format!("must be positive, got {e}"));
         }
     }
-    if spec.seed_mm.is_some_and(|p| p.iter().any(|x| !x.is_finite())) {
+    if spec
+        .seed_mm
+        .is_some_and(|p| p.iter().any(|x| !x.is_finite()))
+    {
         return err("seed_mm", "must be three finite numbers".into());
     }
     let scale_mm = match (is_mesh, spec.scale_mm) {
@@ -154,7 +173,10 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
         (false, None) => return err("scale_mm", "required: mm per surface unit".into()),
     };
     if !is_mesh && spec.seed.is_none() {
-        return err("seed", "required: the seed point [u, v] in the surface's parameters".into());
+        return err(
+            "seed",
+            "required: the seed point [u, v] in the surface's parameters".into(),
+        );
     }
     if !(scale_mm.is_finite() && scale_mm > 0.0) {
         return err("scale_mm", format!("must be positive, got {scale_mm}"));
@@ -372,7 +394,8 @@ pub const RIGHT_ANGLE_SLACK_DEG: f64 = 1.0;
 /// beyond its self-intersections, a clip that keeps too much), not a
 /// crossing of the net.
 fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<String> {
-    if spec.net == Net::Asymptotic && matches!(spec.surface, SurfaceName::Hypar | SurfaceName::Mesh) {
+    if spec.net == Net::Asymptotic && matches!(spec.surface, SurfaceName::Hypar | SurfaceName::Mesh)
+    {
         return Vec::new();
     }
     let curves: Vec<crate::geom::curve::SmoothCurve> = net
@@ -401,6 +424,18 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
         return Vec::new();
     };
     let p = worst.position_world_mm;
+    if spec.surface.is_mesh() {
+        return vec![format!(
+            "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): on a soap film the families cross at right angles, so the film's curvature is estimated poorly there (near its rim the fits are one-sided, or the mesh is too coarse: lower film_edge_mm)",
+            off.len(),
+            worst.angle_deg,
+            net.curves[worst.a].id,
+            net.curves[worst.b].id,
+            p.x,
+            p.y,
+            p.z,
+        )];
+    }
     vec![format!(
         "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): the families of a {} net cross at right angles, so the surface passes through itself there; clip it{}",
         off.len(),
@@ -438,7 +473,11 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
             seed.x, seed.y, spec.surface
         )));
     }
-    let seed_field = if spec.surface.is_mesh() { "seed_mm" } else { "seed" };
+    let seed_field = if spec.surface.is_mesh() {
+        "seed_mm"
+    } else {
+        "seed"
+    };
     let seed_err = |what: String| Error::input(path, Location::Field(seed_field.into()), what);
     if !clip.contains(seed, surface.point(seed)) {
         let p = surface.point(seed);

@@ -363,7 +363,8 @@ mod tests {
             let l = square_loop(12);
             (0..l.len())
                 .map(|i| {
-                    m.positions_mm[l[i] as usize].distance(m.positions_mm[l[(i + 1) % l.len()] as usize])
+                    m.positions_mm[l[i] as usize]
+                        .distance(m.positions_mm[l[(i + 1) % l.len()] as usize])
                 })
                 .sum()
         };

@@ -170,4 +170,3 @@ pub fn invert(surface: &dyn lamella::design::surface::Surface, p: DVec3) -> DVec
     }
     q
 }
-
