@@ -284,10 +284,10 @@ fn validate(spec: &TraceSpec, path: &Path) -> Result<Option<ClipSpec>> {
             "a mesh or film has no parameters of its own: clip it in space (box, block, plane, polygon)".into(),
         );
     }
-    if spec.fill && !spec.periodic {
+    if spec.fill && !spec.periodic && !is_mesh {
         return err(
             "fill",
-            "filling gaps is for periodic designs (periodic: true)".into(),
+            "filling gaps is for periodic designs (periodic: true) and meshes and films".into(),
         );
     }
     if spec.periodic {
@@ -573,6 +573,60 @@ fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignRep
     let min_len = (spec.spacing_mm * 0.05).max(1.0);
     a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
     b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
+
+    // Fill: where the curves through the seed's two curves leave a family
+    // out (around a film's flat point, beyond a ring's band), seed more
+    // curves along the other family wherever no curve of this family
+    // passes within `FILL_GAP` spacings, for a few rounds.
+    if spec.fill {
+        let mut next_k = max_k as i64 + 1;
+        for _round in 0..FILL_ROUNDS {
+            let mut added = false;
+            for family_is_a in [true, false] {
+                let (parents, children, field) = if family_is_a {
+                    (&b_curves, &mut a_curves, fa)
+                } else {
+                    (&a_curves, &mut b_curves, fb)
+                };
+                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_world_mm));
+                let mut born = Vec::new();
+                for (_, parent) in parents.iter() {
+                    let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
+                    for i in 1..steps {
+                        let at = parent.uv_at(0.5 * d * i as f64);
+                        if index.nearest_distance(surface.point(at)) < FILL_GAP * d {
+                            continue;
+                        }
+                        let Ok(child) = trace(field, at) else {
+                            continue;
+                        };
+                        budget.check()?;
+                        if child.length_mm() >= min_len && child.uv.len() >= 2 {
+                            index.add(&child.points_world_mm);
+                            born.push((next_k, child));
+                            next_k += 1;
+                            if children.len() + born.len() > 2 * max_k + 1 {
+                                return Err(Error::input(
+                                    path,
+                                    Location::Field("fill".into()),
+                                    format!(
+                                        "filling needs more than {} curves of family {} (2 × max_curves_per_side + 1): raise spacing_mm or max_curves_per_side",
+                                        2 * max_k + 1,
+                                        if family_is_a { "A" } else { "B" }
+                                    ),
+                                ));
+                            }
+                        }
+                    }
+                }
+                added |= !born.is_empty();
+                children.extend(born);
+            }
+            if !added {
+                break;
+            }
+        }
+    }
 
     // Edges: trace the cut boundary along each face from the curve ends on it.
     let edges = trace_edges(

@@ -14,25 +14,33 @@ pub(crate) const FILL_GAP: f64 = 0.75;
 
 /// Nearest-sample distance queries over curves' points (an R-tree).
 pub(crate) struct PointIndex {
+    points: Vec<[f64; 3]>,
     tree: rstar::RTree<[f64; 3]>,
 }
 
 impl PointIndex {
     pub(crate) fn new<'a>(curves: impl Iterator<Item = &'a Vec<DVec3>>) -> PointIndex {
+        let points: Vec<[f64; 3]> = curves
+            .flat_map(|c| c.iter().filter(|p| p.is_finite()).map(|p| p.to_array()))
+            .collect();
         PointIndex {
-            tree: rstar::RTree::bulk_load(
-                curves
-                    .flat_map(|c| c.iter().map(|p| p.to_array()))
-                    .collect(),
-            ),
+            tree: rstar::RTree::bulk_load(points.clone()),
+            points,
         }
     }
     pub(crate) fn add(&mut self, points: &[DVec3]) {
-        for p in points {
-            self.tree.insert(p.to_array());
-        }
+        // Rebuilt in bulk rather than inserted one by one: rstar 0.12's
+        // insertion panics ("This is a bug in rstar") on some runs of
+        // coincident points, which a child traced along an existing curve
+        // makes. Non-finite points (none from a sound trace) are left out.
+        self.points
+            .extend(points.iter().filter(|p| p.is_finite()).map(|p| p.to_array()));
+        self.tree = rstar::RTree::bulk_load(self.points.clone());
     }
     pub(crate) fn nearest_distance(&self, p: DVec3) -> f64 {
+        if !p.is_finite() {
+            return 0.0;
+        }
         self.tree
             .nearest_neighbor(&p.to_array())
             .map_or(f64::INFINITY, |q| p.distance(DVec3::from_array(*q)))
