@@ -3,7 +3,7 @@
 //! Gaussian curvature of a saddle, a boundary with a hole.
 
 use glam::DVec3;
-use lamella::minimal::{form_find, FormFindOptions, FormFound, InitialMesh};
+use lamella::minimal::{form_find, FormFindOptions, FormFound, InitialMesh, Tangential};
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 
@@ -131,9 +131,11 @@ fn two_rings_span_the_catenoid() {
         "orders {order_max} {order_mean}"
     );
     assert!(fine.mean_h < coarse.mean_h && fine.max_h < coarse.max_h);
-    // The area within 10⁻⁵ of the closed form (its error has no clean
-    // order: it changes sign between the two resolutions).
-    assert!(coarse.area_rel.abs() < 1e-5 && fine.area_rel.abs() < 1e-5);
+    // The area within 2·10⁻⁵ of the closed form, converging too.
+    assert!(
+        coarse.area_rel.abs() < 2e-5 && order_area > 1.5,
+        "area order {order_area}"
+    );
 }
 
 /// Closest point of a triangle to `p` (Ericson, Real-Time Collision
@@ -284,6 +286,21 @@ fn a_boundary_with_a_hole_spans_a_ring_shaped_film() {
     )
     .expect("hole");
     eprintln!("hole: {:?}", f.report);
+    // The film is steep around the raised hole, so the chart (a projection)
+    // stretches triangles there; relaxing tangentially gives better ones.
+    let relaxed = form_find(
+        &[outer.clone(), hole.clone()],
+        &FormFindOptions {
+            tangential: Tangential::Relaxed,
+            ..FormFindOptions::with_target_edge_mm(40.0)
+        },
+        spec(),
+    )
+    .expect("hole, relaxed");
+    eprintln!("hole, relaxed: {:?}", relaxed.report);
+    assert!(relaxed.report.converged && chart_is_valid(&relaxed));
+    assert!(relaxed.report.min_angle_deg > f.report.min_angle_deg && f.report.min_angle_deg > 10.0);
+    assert!((relaxed.report.area_mm2 - f.report.area_mm2).abs() < 1e-4 * f.report.area_mm2);
     assert_eq!(f.report.initial, InitialMesh::PlanarDomain);
     assert!(f.report.converged);
     assert!(chart_is_valid(&f));

@@ -34,14 +34,21 @@
 //!    cotangent Laplacian of the current mesh M_i, solve the Dirichlet
 //!    problem L(M_i) x = 0 for the interior positions with the boundary
 //!    fixed (faer's sparse Cholesky; the symbolic factorisation is made once
-//!    per level), until the relative area change of one step is below
+//!    per level), until the relative area change of one iteration is below
 //!    [`FormFindOptions::area_tolerance`]. The cotangents are exact, obtuse
 //!    angles included: the matrix is the stiffness matrix of
 //!    piecewise-linear maps, positive definite with the boundary fixed on
 //!    any mesh without degenerate triangles, so the factorisation exists;
-//!    a degenerate triangle (sine below [`solve::DEGENERATE_SINE`]) or a
-//!    failed factorisation ends form finding with a one-line error. The
-//!    area never grows (area ≤ Dirichlet energy ≤ the previous area).
+//!    a degenerate triangle (sine below [`solve::DEGENERATE_SINE`]), a
+//!    failed factorisation or an angle below [`COLLAPSE_ANGLE_DEG`] (a film
+//!    pinching off) ends form finding with a one-line error. The step also
+//!    slides vertices along the surface, towards the vertex distribution of
+//!    least discrete area, which squeezes triangles; by default
+//!    ([`Tangential::Frozen`]) that part is dropped: each vertex moves along
+//!    its area-weighted normal only, so the distribution stays the chart's
+//!    and triangle shapes hold from level to level ([`Tangential`] has the
+//!    alternatives). Each level ends on one full step, so the mesh is the
+//!    iteration's own map of the one before.
 //! 4. **Refinement.** After a level converges, every triangle is split 1 → 4
 //!    (midpoints in 3D and in the chart; boundary midpoints lie on the
 //!    straight boundary segments since the corners are coarse vertices)
@@ -95,11 +102,30 @@ pub struct FormFindOptions {
     /// A level has converged when one iteration changes the area by less
     /// than this, relative (default 1e-7).
     pub area_tolerance: f64,
-    /// Fraction of the way each interior vertex moves, after every
-    /// Pinkall–Polthier step, towards the area-weighted centroid of its
-    /// one-ring within its tangent plane (default 1; 0 = pure
-    /// Pinkall–Polthier, whose tangential drift can degrade triangles).
-    pub relaxation: f64,
+    /// What happens to the tangential part of each Pinkall–Polthier step
+    /// (default [`Tangential::Frozen`]).
+    pub tangential: Tangential,
+}
+
+/// The tangential part of a Pinkall–Polthier step: the iteration slides
+/// vertices along the surface (towards the discrete minimum of area over
+/// the vertex distribution), which can squeeze triangles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tangential {
+    /// Dropped: every vertex moves along its area-weighted normal only, so
+    /// the vertex distribution stays that of the chart (harmonic on the
+    /// coarsest mesh, midpoints after each split) and triangle shapes do not
+    /// degrade from level to level.
+    Frozen,
+    /// Kept, then every interior vertex moves within its tangent plane to the
+    /// area-weighted centroid of its one-ring (better triangles where the
+    /// film is steep over its chart, e.g. around a raised hole; on other
+    /// films this local smoothing squeezes triangles a little more at each
+    /// level).
+    Relaxed,
+    /// Kept: plain Pinkall–Polthier (slow to meet the area tolerance on
+    /// coarse meshes).
+    Free,
 }
 
 impl Default for FormFindOptions {
@@ -109,7 +135,7 @@ impl Default for FormFindOptions {
             max_refinements: 6,
             max_iterations: 500,
             area_tolerance: 1e-7,
-            relaxation: 1.0,
+            tangential: Tangential::Frozen,
         }
     }
 }
@@ -373,11 +399,11 @@ pub fn chart_inverted(film: &Film) -> Option<usize> {
     })
 }
 
-/// Pinkall–Polthier iterations on one level, each followed by a
-/// tangential relaxation, until one iteration changes the area by less
-/// than the tolerance, relative; then one more Pinkall–Polthier step
-/// without relaxation, so the level ends on the iteration's own map:
-/// (iterations, converged).
+/// Pinkall–Polthier iterations on one level, their tangential part
+/// handled as `opts.tangential` says, until one iteration changes the area
+/// by less than the tolerance, relative; then (unless the mode is
+/// [`Tangential::Free`]) one full Pinkall–Polthier step, so the level ends
+/// on the iteration's own map: (iterations, converged).
 fn iterate(
     film: &mut Film,
     dirichlet: &mut solve::Dirichlet,
@@ -391,10 +417,10 @@ fn iterate(
         let next = dirichlet
             .solve(film, &film.positions, &film.positions)
             .map_err(|e| (e, iterations))?;
-        film.positions = if opts.relaxation > 0.0 {
-            solve::relax(film, &next, opts.relaxation)
-        } else {
-            next
+        film.positions = match opts.tangential {
+            Tangential::Frozen => solve::normal_only(film, &film.positions, &next),
+            Tangential::Relaxed => solve::relax(film, &next),
+            Tangential::Free => next,
         };
         let min_angle = solve::min_angle_deg(film, &film.positions);
         if min_angle < COLLAPSE_ANGLE_DEG {
@@ -408,7 +434,7 @@ fn iterate(
             break;
         }
     }
-    if opts.relaxation > 0.0 {
+    if opts.tangential != Tangential::Free {
         iterations += 1;
         film.positions = dirichlet
             .solve(film, &film.positions, &film.positions)
