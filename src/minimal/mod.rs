@@ -326,7 +326,14 @@ pub fn form_find(
         mean_edge_mm: solve::mean_edge_mm(&film, &film.positions),
         min_angle_deg: solve::min_angle_deg(&film, &film.positions),
     };
-    debug_assert!(chart_inverted(&film).is_none());
+    // Invariant: 1 → 4 splits keep every chart triangle positive.
+    if let Some(t) = chart_inverted(&film) {
+        return Err(Error::input(
+            path,
+            Location::Field("boundaries".into()),
+            format!("form finding produced an inverted chart triangle {t} (an internal error)"),
+        ));
+    }
     Ok(FormFound {
         mesh: TriMesh {
             positions_mm: film.positions,
