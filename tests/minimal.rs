@@ -458,3 +458,56 @@ fn a_six_point_spatial_boundary_spans_a_film() {
     let sums = angle_sums(&f);
     assert!(sums.iter().filter(|s| !s.is_nan()).all(|&s| s > TAU));
 }
+
+/// Two coaxial rings of different radii (1 m at z = −400, 0.9 m at
+/// z = +400 mm): their projections bound a thin steep annulus, so the film
+/// is lofted; it is the catenoid r = a cosh((z − z₀)/a) through both rings
+/// with its neck between them, a and z₀ found here by bisection.
+#[test]
+fn two_rings_of_different_radii_span_a_lopsided_catenoid() {
+    let (r1, r2, h) = (1000.0, 900.0, 400.0);
+    let z0 = |a: f64| -h + a * (r1 / a).acosh();
+    let f = |a: f64| a * ((h - z0(a)) / a).cosh() - r2;
+    // The stable root is the largest a: walk down from a = r2 to the first
+    // sign change, then bisect.
+    let mut hi = r2;
+    while f(hi - 1.0) > 0.0 {
+        hi -= 1.0;
+    }
+    let mut lo = hi - 1.0;
+    for _ in 0..100 {
+        let m = 0.5 * (lo + hi);
+        if f(m) > 0.0 {
+            hi = m;
+        } else {
+            lo = m;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    let z0 = z0(a);
+    assert!(z0 > -h && z0 < h);
+    let f = form_find(
+        &[ring(r1, -h, 126), ring(r2, h, 126)],
+        &FormFindOptions::with_target_edge_mm(50.0),
+        spec(),
+    )
+    .expect("lopsided catenoid");
+    assert_eq!(f.report.initial, InitialMesh::Loft);
+    assert!(f.report.converged && chart_is_valid(&f));
+    let d: Vec<f64> = f
+        .mesh
+        .positions_mm
+        .iter()
+        .map(|p| (p.truncate().length() - a * ((p.z - z0) / a).cosh()).abs())
+        .collect();
+    let (max, mean) = (
+        d.iter().copied().fold(0.0, f64::max),
+        d.iter().sum::<f64>() / d.len() as f64,
+    );
+    eprintln!(
+        "lopsided catenoid a = {a:.4} mm, z0 = {z0:.4} mm: |r − a cosh((z − z0)/a)| max {max:.4} mean {mean:.4} mm, min angle {:.1}°",
+        f.report.min_angle_deg
+    );
+    assert!(max < 0.05 && mean < 0.03);
+    assert!(f.report.min_angle_deg > 20.0);
+}

@@ -19,7 +19,10 @@
 //!    (spade) refined to triangles of at most h₀²/2 and angles of at least
 //!    [`initial::CDT_MIN_ANGLE_DEG`] (input angles excepted); the chart is
 //!    the projection. Otherwise, with exactly two loops (two coaxial rings
-//!    project onto each other), a tube is lofted between them: both
+//!    project onto each other), or with two loops bounding a steep annulus
+//!    (their heights over the plane differ by more than their equivalent
+//!    radii in it: the projection would squeeze the tube into a thin ring
+//!    of slivers), a tube is lofted between them: both
 //!    resampled to one count, the second aligned to the first (the cyclic
 //!    shift and direction of least total distance), rows every ≈ h₀
 //!    between them, quads split along one diagonal; the chart is an annulus
@@ -232,6 +235,7 @@ pub fn form_find(
     let loops = boundary::clean_loops(boundaries_mm, path)?;
     let frame = boundary::best_fit_frame(&loops);
     let domain = match boundary::planar_domain(&loops, frame) {
+        Ok(d) if loops.len() == 2 && boundary::steep_annulus(&loops, &d) => None,
         Ok(d) => Some(d),
         Err(_) if loops.len() == 2 => None,
         Err(p) => {
@@ -363,6 +367,13 @@ fn check_options(opts: &FormFindOptions, path: &Path) -> Result<()> {
             path,
             Location::Field("area_tolerance".into()),
             format!("must be a positive number, got {}", opts.area_tolerance),
+        ));
+    }
+    if opts.max_iterations == 0 {
+        return Err(Error::input(
+            path,
+            Location::Field("max_iterations".into()),
+            "must be at least 1",
         ));
     }
     if opts.max_refinements > 12 {
