@@ -60,7 +60,14 @@
 //!    [`FormFindOptions::max_refinements`] times.
 //! 5. **Residual.** |H| at interior vertices from the cotangent mean
 //!    curvature normal 2H·n = (1/A_i) Σ_j ½(cot α_ij + cot β_ij)(x_i − x_j),
-//!    A_i the barycentric area; its maximum and its A_i-weighted mean.
+//!    A_i the mixed Voronoi area (Meyer, Desbrun, Schröder & Barr 2003);
+//!    its maximum and its A_i-weighted mean. At a converged level it is the
+//!    discretisation's residual, not a convergence measure alone: it is
+//!    largest where the film's curvature is singular (around a convex
+//!    corner of the boundary as seen from the film, e.g. a raised hole's).
+//!
+//! Results are deterministic: the same input gives the same bits (spade's
+//! refinement and faer's sequential Cholesky have no randomness).
 //!
 //! Orientation: triangles are counter-clockwise in the chart and the same
 //! vertex order is used in 3D. For a planar domain the normals point to
