@@ -1,1 +1,117 @@
-fn main() {}
+//! Benchmark of form finding (issue 13): soap films of about 20,000
+//! triangles spanning the catenoid's two rings (R = 1 m, 0.8 m apart) and a
+//! six-point spatial boundary (three high, three low points on a 3 m
+//! circle), each in a fresh child process (its own peak memory).
+//!
+//!     cargo bench --bench minimal                 # both
+//!     cargo bench --bench minimal -- catenoid     # one case
+//!
+//! [`film`] returns the form-found film of a case, for benches that go on
+//! to trace on it.
+
+// The network helpers are not used here: the cases are made in code.
+#[allow(dead_code)]
+mod support;
+
+use glam::DVec3;
+use lamella::minimal::{form_find, FormFindOptions, FormFound};
+use std::f64::consts::TAU;
+use std::path::Path;
+use std::time::Instant;
+
+/// The cases: name, target edge length (mm) giving about 20,000 triangles.
+const CASES: [(&str, f64); 2] = [("catenoid", 22.5), ("six-point", 60.0)];
+
+/// The boundary loops of a case, coordinates rounded to 0.001 mm as a
+/// designer's export.
+fn boundaries(case: &str, target_mm: f64) -> Vec<Vec<DVec3>> {
+    let rounded = |p: DVec3| (p * 1000.0).round() / 1000.0;
+    match case {
+        "catenoid" => {
+            let n = (TAU * 1000.0 / target_mm).ceil() as usize;
+            [-400.0, 400.0]
+                .iter()
+                .map(|&z| {
+                    (0..n)
+                        .map(|i| {
+                            let t = TAU * i as f64 / n as f64;
+                            rounded(DVec3::new(1000.0 * t.cos(), 1000.0 * t.sin(), z))
+                        })
+                        .collect()
+                })
+                .collect()
+        }
+        _ => vec![(0..6)
+            .map(|i| {
+                let t = TAU * i as f64 / 6.0;
+                let z = if i % 2 == 0 { 1500.0 } else { 0.0 };
+                rounded(DVec3::new(3000.0 * t.cos(), 3000.0 * t.sin(), z))
+            })
+            .collect()],
+    }
+}
+
+/// The form-found film of a case.
+pub fn film(case: &str) -> FormFound {
+    let (_, target_mm) = CASES
+        .iter()
+        .find(|c| c.0 == case)
+        .copied()
+        .expect("known case");
+    form_find(
+        &boundaries(case, target_mm),
+        &FormFindOptions::with_target_edge_mm(target_mm),
+        Path::new(case),
+    )
+    .expect("form finding")
+}
+
+fn main() {
+    if let Some(case) = support::child_network() {
+        measure(&case.to_string_lossy());
+        return;
+    }
+    println!(
+        "{:>10} {:>9} {:>9} {:>8} {:>11} {:>10} {:>11} {:>11} {:>8} {:>9}",
+        "case",
+        "vertices",
+        "triangles",
+        "time s",
+        "iterations",
+        "levels",
+        "max |H|/mm",
+        "mean |H|/mm",
+        "min ang°",
+        "peak MiB"
+    );
+    let named: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| CASES.iter().any(|c| c.0 == a))
+        .collect();
+    for (case, _) in CASES {
+        if named.is_empty() || named.iter().any(|n| n == case) {
+            support::run_child(Path::new(case));
+        }
+    }
+}
+
+fn measure(case: &str) {
+    let t0 = Instant::now();
+    let f = film(case);
+    let secs = t0.elapsed().as_secs_f64();
+    let r = &f.report;
+    println!(
+        "{:>10} {:>9} {:>9} {:>8.3} {:>11} {:>10} {:>11.2e} {:>11.2e} {:>8.1} {:>9.0}",
+        case,
+        r.vertices,
+        r.triangles,
+        secs,
+        r.iterations,
+        r.iterations_per_level.len(),
+        r.max_mean_curvature_per_mm,
+        r.mean_mean_curvature_per_mm,
+        r.min_angle_deg,
+        support::peak_mib()
+    );
+    assert!(r.converged, "not converged: {r:?}");
+}

@@ -321,8 +321,12 @@ pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain,
     let outers: Vec<usize> = (0..n)
         .filter(|&i| (0..n).all(|j| j == i || !inside(i, j)))
         .collect();
-    if outers.len() != 1 {
-        return Err(DomainProblem::NotNested(outers[0], outers[1]));
+    match outers[..] {
+        [_] => {}
+        [a, b, ..] => return Err(DomainProblem::NotNested(a, b)),
+        // Disjoint simple loops always have an outermost one; rounding in
+        // the containment test aside.
+        [] => return Err(DomainProblem::NotNested(0, 1.min(n - 1))),
     }
     let outer = outers[0];
     for i in 0..n {
@@ -354,6 +358,21 @@ pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain,
         outer,
         reversed,
     })
+}
+
+/// Whether two loops bounding a planar annulus are better lofted: the
+/// difference of their mean heights over the plane exceeds the difference
+/// of their equivalent radii √(A/π) in it (the film rises more than 45° on
+/// average, so the projection squeezes it).
+pub fn steep_annulus(loops: &[Vec<DVec3>], domain: &PlanarDomain) -> bool {
+    let f = domain.frame;
+    let height =
+        |l: &[DVec3]| l.iter().map(|&p| (p - f.origin).dot(f.n)).sum::<f64>() / l.len() as f64;
+    let radius = |l: &[DVec3]| {
+        let q: Vec<DVec2> = l.iter().map(|&p| f.project(p)).collect();
+        (signed_area2(&q).abs() / 2.0 / std::f64::consts::PI).sqrt()
+    };
+    (height(&loops[0]) - height(&loops[1])).abs() > (radius(&loops[0]) - radius(&loops[1])).abs()
 }
 
 /// Crossing-number test of a point strictly inside or outside a polygon.

@@ -19,7 +19,10 @@
 //!    (spade) refined to triangles of at most h₀²/2 and angles of at least
 //!    [`initial::CDT_MIN_ANGLE_DEG`] (input angles excepted); the chart is
 //!    the projection. Otherwise, with exactly two loops (two coaxial rings
-//!    project onto each other), a tube is lofted between them: both
+//!    project onto each other), or with two loops bounding a steep annulus
+//!    (their heights over the plane differ by more than their equivalent
+//!    radii in it: the projection would squeeze the tube into a thin ring
+//!    of slivers), a tube is lofted between them: both
 //!    resampled to one count, the second aligned to the first (the cyclic
 //!    shift and direction of least total distance), rows every ≈ h₀
 //!    between them, quads split along one diagonal; the chart is an annulus
@@ -34,14 +37,21 @@
 //!    cotangent Laplacian of the current mesh M_i, solve the Dirichlet
 //!    problem L(M_i) x = 0 for the interior positions with the boundary
 //!    fixed (faer's sparse Cholesky; the symbolic factorisation is made once
-//!    per level), until the relative area change of one step is below
+//!    per level), until the relative area change of one iteration is below
 //!    [`FormFindOptions::area_tolerance`]. The cotangents are exact, obtuse
 //!    angles included: the matrix is the stiffness matrix of
 //!    piecewise-linear maps, positive definite with the boundary fixed on
 //!    any mesh without degenerate triangles, so the factorisation exists;
-//!    a degenerate triangle (sine below [`solve::DEGENERATE_SINE`]) or a
-//!    failed factorisation ends form finding with a one-line error. The
-//!    area never grows (area ≤ Dirichlet energy ≤ the previous area).
+//!    a degenerate triangle (sine below [`solve::DEGENERATE_SINE`]), a
+//!    failed factorisation or an angle below [`COLLAPSE_ANGLE_DEG`] (a film
+//!    pinching off) ends form finding with a one-line error. The step also
+//!    slides vertices along the surface, towards the vertex distribution of
+//!    least discrete area, which squeezes triangles; by default
+//!    ([`Tangential::Frozen`]) that part is dropped: each vertex moves along
+//!    its area-weighted normal only, so the distribution stays the chart's
+//!    and triangle shapes hold from level to level ([`Tangential`] has the
+//!    alternatives). Each level ends on one full step, so the mesh is the
+//!    iteration's own map of the one before.
 //! 4. **Refinement.** After a level converges, every triangle is split 1 → 4
 //!    (midpoints in 3D and in the chart; boundary midpoints lie on the
 //!    straight boundary segments since the corners are coarse vertices)
@@ -50,7 +60,14 @@
 //!    [`FormFindOptions::max_refinements`] times.
 //! 5. **Residual.** |H| at interior vertices from the cotangent mean
 //!    curvature normal 2H·n = (1/A_i) Σ_j ½(cot α_ij + cot β_ij)(x_i − x_j),
-//!    A_i the barycentric area; its maximum and its A_i-weighted mean.
+//!    A_i the mixed Voronoi area (Meyer, Desbrun, Schröder & Barr 2003);
+//!    its maximum and its A_i-weighted mean. At a converged level it is the
+//!    discretisation's residual, not a convergence measure alone: it is
+//!    largest where the film's curvature is singular (around a convex
+//!    corner of the boundary as seen from the film, e.g. a raised hole's).
+//!
+//! Results are deterministic: the same input gives the same bits (spade's
+//! refinement and faer's sequential Cholesky have no randomness).
 //!
 //! Orientation: triangles are counter-clockwise in the chart and the same
 //! vertex order is used in 3D. For a planar domain the normals point to
@@ -93,13 +110,35 @@ pub struct FormFindOptions {
     /// Most Pinkall–Polthier iterations per level (default 500).
     pub max_iterations: usize,
     /// A level has converged when one iteration changes the area by less
-    /// than this, relative (default 1e-7).
+    /// than this, relative (default 1e-10: on the catenoid the vertices
+    /// then sit within 1e-3 mm of where much tighter tolerances put them).
     pub area_tolerance: f64,
-    /// Fraction of the way each interior vertex moves, after every
-    /// Pinkall–Polthier step, towards the area-weighted centroid of its
-    /// one-ring within its tangent plane (default 1; 0 = pure
-    /// Pinkall–Polthier, whose tangential drift can degrade triangles).
-    pub relaxation: f64,
+    /// What happens to the tangential part of each Pinkall–Polthier step
+    /// (default [`Tangential::Frozen`]).
+    pub tangential: Tangential,
+}
+
+/// The tangential part of a Pinkall–Polthier step: the iteration slides
+/// vertices along the surface (towards the discrete minimum of area over
+/// the vertex distribution), which can squeeze triangles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tangential {
+    /// Dropped: every vertex moves along its area-weighted normal only, so
+    /// the vertex distribution stays that of the chart (harmonic on the
+    /// coarsest mesh, midpoints after each split) and triangle shapes do not
+    /// degrade from level to level.
+    Frozen,
+    /// Kept, then every interior vertex moves within its tangent plane to the
+    /// area-weighted centroid of its one-ring (better triangles where the
+    /// film is steep over its chart, e.g. around a raised hole; on other
+    /// films this local smoothing squeezes triangles a little more at each
+    /// level). The relaxation and the step's own slide pull against each
+    /// other, so the area changes stall near 1e-8 relative: use an
+    /// [`FormFindOptions::area_tolerance`] of 1e-7 or looser with it.
+    Relaxed,
+    /// Kept: plain Pinkall–Polthier (slow to meet the area tolerance on
+    /// coarse meshes).
+    Free,
 }
 
 impl Default for FormFindOptions {
@@ -108,8 +147,8 @@ impl Default for FormFindOptions {
             target_edge_mm: 100.0,
             max_refinements: 6,
             max_iterations: 500,
-            area_tolerance: 1e-7,
-            relaxation: 1.0,
+            area_tolerance: 1e-10,
+            tangential: Tangential::Frozen,
         }
     }
 }
@@ -203,6 +242,7 @@ pub fn form_find(
     let loops = boundary::clean_loops(boundaries_mm, path)?;
     let frame = boundary::best_fit_frame(&loops);
     let domain = match boundary::planar_domain(&loops, frame) {
+        Ok(d) if loops.len() == 2 && boundary::steep_annulus(&loops, &d) => None,
         Ok(d) => Some(d),
         Err(_) if loops.len() == 2 => None,
         Err(p) => {
@@ -300,7 +340,14 @@ pub fn form_find(
         mean_edge_mm: solve::mean_edge_mm(&film, &film.positions),
         min_angle_deg: solve::min_angle_deg(&film, &film.positions),
     };
-    debug_assert!(chart_inverted(&film).is_none());
+    // Invariant: 1 → 4 splits keep every chart triangle positive.
+    if let Some(t) = chart_inverted(&film) {
+        return Err(Error::input(
+            path,
+            Location::Field("boundaries".into()),
+            format!("form finding produced an inverted chart triangle {t} (an internal error)"),
+        ));
+    }
     Ok(FormFound {
         mesh: TriMesh {
             positions_mm: film.positions,
@@ -327,6 +374,13 @@ fn check_options(opts: &FormFindOptions, path: &Path) -> Result<()> {
             path,
             Location::Field("area_tolerance".into()),
             format!("must be a positive number, got {}", opts.area_tolerance),
+        ));
+    }
+    if opts.max_iterations == 0 {
+        return Err(Error::input(
+            path,
+            Location::Field("max_iterations".into()),
+            "must be at least 1",
         ));
     }
     if opts.max_refinements > 12 {
@@ -373,11 +427,11 @@ pub fn chart_inverted(film: &Film) -> Option<usize> {
     })
 }
 
-/// Pinkall–Polthier iterations on one level, each followed by a
-/// tangential relaxation, until one iteration changes the area by less
-/// than the tolerance, relative; then one more Pinkall–Polthier step
-/// without relaxation, so the level ends on the iteration's own map:
-/// (iterations, converged).
+/// Pinkall–Polthier iterations on one level, their tangential part
+/// handled as `opts.tangential` says, until one iteration changes the area
+/// by less than the tolerance, relative; then (unless the mode is
+/// [`Tangential::Free`]) one full Pinkall–Polthier step, so the level ends
+/// on the iteration's own map: (iterations, converged).
 fn iterate(
     film: &mut Film,
     dirichlet: &mut solve::Dirichlet,
@@ -391,10 +445,10 @@ fn iterate(
         let next = dirichlet
             .solve(film, &film.positions, &film.positions)
             .map_err(|e| (e, iterations))?;
-        film.positions = if opts.relaxation > 0.0 {
-            solve::relax(film, &next, opts.relaxation)
-        } else {
-            next
+        film.positions = match opts.tangential {
+            Tangential::Frozen => solve::normal_only(film, &film.positions, &next),
+            Tangential::Relaxed => solve::relax(film, &next),
+            Tangential::Free => next,
         };
         let min_angle = solve::min_angle_deg(film, &film.positions);
         if min_angle < COLLAPSE_ANGLE_DEG {
@@ -408,7 +462,7 @@ fn iterate(
             break;
         }
     }
-    if opts.relaxation > 0.0 {
+    if opts.tangential != Tangential::Free {
         iterations += 1;
         film.positions = dirichlet
             .solve(film, &film.positions, &film.positions)

@@ -147,13 +147,12 @@ impl Dirichlet {
     }
 }
 
-/// Tangential relaxation: every interior vertex moves towards the
-/// area-weighted centroid of its incident triangles' centroids, only
-/// within its tangent plane (the plane normal to the area-weighted vertex
-/// normal), by the fraction `step`. The move is tangent to first order; its
-/// normal error (curvature × move²) is removed by the next
-/// Pinkall–Polthier step.
-pub fn relax(film: &Film, x: &[DVec3], step: f64) -> Vec<DVec3> {
+/// Tangential relaxation: every interior vertex moves to the area-weighted
+/// centroid of its incident triangles' centroids projected into its
+/// tangent plane (normal to the area-weighted vertex normal). The move is
+/// tangent to first order; its normal error (curvature × move²) is removed
+/// by the next Pinkall–Polthier step.
+pub fn relax(film: &Film, x: &[DVec3]) -> Vec<DVec3> {
     let nv = x.len();
     let mut centroid = vec![DVec3::ZERO; nv];
     let mut weight = vec![0.0; nv];
@@ -177,7 +176,30 @@ pub fn relax(film: &Film, x: &[DVec3], step: f64) -> Vec<DVec3> {
             }
             let n = normal[v].normalize_or_zero();
             let d = centroid[v] / weight[v] - x[v];
-            x[v] + step * (d - n * n.dot(d))
+            x[v] + (d - n * n.dot(d))
+        })
+        .collect()
+}
+
+/// The step from `x` to `next` along the vertex normals of `x` only
+/// (area-weighted normals): the tangential part of the step is dropped.
+pub fn normal_only(film: &Film, x: &[DVec3], next: &[DVec3]) -> Vec<DVec3> {
+    let nv = x.len();
+    let mut normal = vec![DVec3::ZERO; nv];
+    for t in &film.triangles {
+        let p = t.map(|v| x[v as usize]);
+        let cross = (p[1] - p[0]).cross(p[2] - p[0]);
+        for &v in t {
+            normal[v as usize] += cross;
+        }
+    }
+    (0..nv)
+        .map(|v| {
+            if film.fixed[v] {
+                return x[v];
+            }
+            let n = normal[v].normalize_or_zero();
+            x[v] + n * n.dot(next[v] - x[v])
         })
         .collect()
 }
