@@ -6,8 +6,10 @@
 //!     cargo bench --bench minimal                 # both
 //!     cargo bench --bench minimal -- catenoid     # one case
 //!
-//! [`film`] returns the form-found film of a case, for benches that go on
-//! to trace on it.
+//! Then the asymptotic net is traced on each film as `lamella trace` does
+//! (a `surface: minimal` spec: 300 mm spacing, `fill`, 25 mm samples,
+//! 1e-4 mm tolerance): the time to estimate curvature and chart the film,
+//! and the time to trace, are printed after the form finding's.
 
 // The network helpers are not used here: the cases are made in code.
 #[allow(dead_code)]
@@ -84,6 +86,7 @@ fn main() {
         "min ang°",
         "peak MiB"
     );
+    println!("then per case: surface (topology, curvature, chart) s, trace s, curves, points");
     let named: Vec<String> = std::env::args()
         .skip(1)
         .filter(|a| CASES.iter().any(|c| c.0 == a))
@@ -114,4 +117,61 @@ fn measure(case: &str) {
         support::peak_mib()
     );
     assert!(r.converged, "not converged: {r:?}");
+    trace_on(case);
+}
+
+/// Trace the asymptotic net on a case's film through a `surface: minimal`
+/// spec, timing the surface (form finding again, subtracted) and the trace.
+fn trace_on(case: &str) {
+    let (_, target_mm) = CASES
+        .iter()
+        .find(|c| c.0 == case)
+        .copied()
+        .expect("known case");
+    let loops: Vec<String> = boundaries(case, target_mm)
+        .iter()
+        .map(|l| {
+            let pts: Vec<String> = l
+                .iter()
+                .map(|p| format!("[{}, {}, {}]", p.x, p.y, p.z))
+                .collect();
+            format!("  - [{}]", pts.join(", "))
+        })
+        .collect();
+    let seed = if case == "catenoid" {
+        "[910, 0, 0]"
+    } else {
+        "[600, 300, 750]"
+    };
+    let spec_text = format!(
+        "surface: minimal\nboundaries_mm:\n{}\nfilm_edge_mm: {target_mm}\nseed_mm: {seed}\nspacing_mm: 300\nfill: true\nsampling:\n  step_mm: 25\n  tolerance_mm: 1.0e-4\n",
+        loops.join("\n")
+    );
+    let dir = std::env::temp_dir().join(format!("lamella-bench-minimal-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(format!("{case}.trace.yaml"));
+    std::fs::write(&path, spec_text).expect("spec");
+    let spec = lamella::io::trace_spec::load(&path).expect("spec reads");
+    let t0 = Instant::now();
+    let _ = film(case);
+    let t_film = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let prepared = lamella::design::prepare_surface(&spec, &path).expect("surface");
+    let t_prepare = t1.elapsed().as_secs_f64();
+    drop(prepared);
+    let t2 = Instant::now();
+    let (net, report) = lamella::design::design(&spec, &path).expect("design");
+    let t_design = t2.elapsed().as_secs_f64();
+    let points: usize = net.curves.iter().map(|c| c.points.len()).sum();
+    println!(
+        "{:>10} surface {:.3} s, trace {:.3} s, {} A + {} B curves, {} points, peak {:.0} MiB",
+        case,
+        t_prepare - t_film,
+        t_design - t_prepare,
+        report.a_curves,
+        report.b_curves,
+        points,
+        support::peak_mib()
+    );
+    std::fs::remove_dir_all(dir).expect("clean up");
 }

@@ -264,7 +264,7 @@ fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
     // make 45° with the asymptotic lines on a minimal surface.
     let (mut s, p) = spec("enneper-4m");
     s.net = lamella::io::trace_spec::Net::Principal;
-    s.seed = [0.05, 0.02]; // the saddle itself is not umbilic, but keep off the axes
+    s.seed = Some([0.05, 0.02]); // the saddle itself is not umbilic, but keep off the axes
     let (raw, _) = design(&s, &p).unwrap();
     let (net, an) = run(raw);
     let ab: Vec<_> = an

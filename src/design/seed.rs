@@ -33,8 +33,12 @@ impl PointIndex {
         // insertion panics ("This is a bug in rstar") on some runs of
         // coincident points, which a child traced along an existing curve
         // makes. Non-finite points (none from a sound trace) are left out.
-        self.points
-            .extend(points.iter().filter(|p| p.is_finite()).map(|p| p.to_array()));
+        self.points.extend(
+            points
+                .iter()
+                .filter(|p| p.is_finite())
+                .map(|p| p.to_array()),
+        );
         self.tree = rstar::RTree::bulk_load(self.points.clone());
     }
     pub(crate) fn nearest_distance(&self, p: DVec3) -> f64 {

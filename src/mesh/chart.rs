@@ -114,6 +114,7 @@ pub fn projection(mesh: &TriMesh) -> Vec<DVec2> {
 
 /// Unit eigenvector of the smallest eigenvalue of a symmetric 3×3 matrix
 /// (Jacobi rotations; exact enough for a plane fit).
+#[allow(clippy::needless_range_loop)] // Jacobi rotations read as index algebra
 fn smallest_eigenvector(m: DMat3) -> DVec3 {
     let mut a = [
         [m.x_axis.x, m.y_axis.x, m.z_axis.x],
@@ -170,7 +171,7 @@ pub fn folded_triangle(mesh: &TriMesh, uv: &[DVec2]) -> Option<usize> {
     let floor = MIN_RELATIVE_AREA * total.abs() / mesh.triangles.len().max(1) as f64;
     mesh.triangles
         .iter()
-        .position(|t| !(chart_area(uv, *t) > floor))
+        .position(|t| chart_area(uv, *t).partial_cmp(&floor) != Some(std::cmp::Ordering::Greater))
 }
 
 /// Whether two boundary edges of the chart cross (the projection of a mesh

@@ -378,6 +378,7 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2]) -> Vec<Patch> {
 /// Solve a 5 × 5 system (three right-hand sides) by Gaussian elimination
 /// with partial pivoting; a singular system (a vertex with too few
 /// neighbours) drops the curvature terms it cannot determine.
+#[allow(clippy::needless_range_loop)] // elimination reads as index algebra
 fn solve5(mut a: [[f64; 5]; 5], mut b: [DVec3; 5]) -> [DVec3; 5] {
     let norm = a
         .iter()
@@ -408,7 +409,7 @@ fn solve5(mut a: [[f64; 5]; 5], mut b: [DVec3; 5]) -> [DVec3; 5] {
             for k in col..5 {
                 a[r][k] -= f * a[col][k];
             }
-            b[r] = b[r] - b[col] * f;
+            b[r] -= b[col] * f;
         }
     }
     let mut x = [DVec3::ZERO; 5];
