@@ -290,3 +290,72 @@ fn bad_meshes_get_one_line_errors() {
     }
     bad_mesh("sphere", &obj, &["m.obj", "no anticlastic region"]);
 }
+
+/// A spec in a folder with the Enneper sample mesh; the one-line error.
+fn bad_spec(name: &str, spec: &str, fragments: &[&str]) {
+    let dir = temp(name);
+    std::fs::copy(
+        root().join("samples/meshes/enneper-4m.obj"),
+        dir.join("m.obj"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("s.trace.yaml"), spec).unwrap();
+    let (ok, _, stderr) = lamella(&["trace", "s.trace.yaml", "--out", "net.yaml"], &dir);
+    assert!(!ok, "{name}: accepted");
+    assert_eq!(stderr.trim().lines().count(), 1, "{name}: {stderr}");
+    for f in fragments {
+        assert!(stderr.contains(f), "{name}: {stderr} lacks {f}");
+    }
+    assert!(!dir.join("net.yaml").exists());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn bad_mesh_and_film_specs_get_one_line_errors() {
+    let base = "spacing_mm: 300\n";
+    bad_spec(
+        "nomesh",
+        &format!("surface: mesh\n{base}"),
+        &["`mesh`", "OBJ, PLY or STL"],
+    );
+    bad_spec(
+        "nofile",
+        &format!("surface: mesh\nmesh: gone.obj\n{base}"),
+        &["`mesh`", "no such file"],
+    );
+    bad_spec(
+        "uvseed",
+        &format!("surface: mesh\nmesh: m.obj\nseed: [0, 0]\n{base}"),
+        &["`seed`", "seed_mm"],
+    );
+    bad_spec(
+        "scaled",
+        &format!("surface: mesh\nmesh: m.obj\nscale_mm: 1000\n{base}"),
+        &["`scale_mm`", "in mm"],
+    );
+    bad_spec(
+        "far",
+        &format!("surface: mesh\nmesh: m.obj\nseed_mm: [0, 0, 5000]\n{base}"),
+        &["`seed_mm`", "from the surface"],
+    );
+    bad_spec(
+        "uvclip",
+        &format!("surface: mesh\nmesh: m.obj\nclip:\n  parameters:\n    polygon: [[0, 0], [1, 0], [0, 1]]\n{base}"),
+        &["`clip`", "no parameters"],
+    );
+    bad_spec(
+        "noboundary",
+        &format!("surface: minimal\n{base}"),
+        &["`boundaries_mm`"],
+    );
+    bad_spec(
+        "twopoints",
+        &format!("surface: minimal\nboundaries_mm:\n  - [[0, 0, 0], [1000, 0, 0]]\n{base}"),
+        &["boundaries[0]"],
+    );
+    bad_spec(
+        "meshonanalytic",
+        &format!("surface: enneper\nscale_mm: 1000\nseed: [0, 0]\nmesh: m.obj\n{base}"),
+        &["`mesh`", "surface: mesh"],
+    );
+}
