@@ -995,6 +995,7 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     };
     sheets.retain(|s| !s.placements.is_empty());
     if !(coil && st.sizes[0].length_mm.is_none()) {
+        outline::place_bands(kit, &mut sheets, ctx.margin, ctx.gap, &ctx.rotations);
         outline::eliminate(kit, &mut sheets, ctx.margin, ctx.gap, &ctx.rotations);
     }
     sheets.sort_by_key(|s| s.size);

@@ -48,6 +48,9 @@ pub const MAX_ATTEMPTS: usize = 6;
 pub const MAX_TARGETS: usize = 8;
 /// Collision queries of one pass at most (a deterministic bound on its time).
 pub const MAX_QUERIES: u64 = 1_000_000;
+/// Collision queries of the edge-band pass at most; past it, the bands
+/// left each take a sheet of their own.
+pub const MAX_BAND_QUERIES: u64 = 1_500_000;
 
 /// What induces a hazard on a sheet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -256,6 +259,8 @@ struct Pass<'a> {
     areas: Vec<f64>,
     /// Collision queries made so far.
     queries: Cell<u64>,
+    /// Collision queries allowed.
+    limit: u64,
     /// Grown hazard polygons by (part, rotation), in the part's frame.
     hazards: PolyCache<(usize, u32)>,
     /// Grown polygons by (part, as a hazard), in the part's frame (those
@@ -269,7 +274,7 @@ struct Pass<'a> {
 
 impl Pass<'_> {
     fn exhausted(&self) -> bool {
-        self.queries.get() >= MAX_QUERIES
+        self.queries.get() >= self.limit
     }
 
     fn board(&self, s: &SheetNest) -> Option<Board> {
@@ -522,6 +527,7 @@ pub fn eliminate(
         rotations,
         areas: kit.parts.iter().map(net_area_mm2).collect(),
         queries: Cell::new(0),
+        limit: MAX_QUERIES,
         hazards: RefCell::new(HashMap::new()),
         shapes: RefCell::new(HashMap::new()),
         bases: RefCell::new(HashMap::new()),
@@ -564,6 +570,170 @@ pub fn eliminate(
         }
     }
     dropped
+}
+
+/// Part `i` placed on `b` with its turned outline's box lower-left corner
+/// at (x, y): the placement, registered on the board.
+fn put_on(
+    pass: &Pass,
+    b: &mut Board,
+    i: usize,
+    copy: u32,
+    sh: &Shape,
+    x: f64,
+    y: f64,
+) -> Option<Placement> {
+    let p = &pass.kit.parts[i];
+    let new = Placement {
+        part: i,
+        copy,
+        x_mm: x - sh.bbox.0,
+        y_mm: y - sh.bbox.1,
+        rotation_deg: sh.rot,
+    };
+    let n = b.placed.len();
+    pass.register(&mut b.engine, n, p, &new)?;
+    let o = placed_outline(p, &new);
+    let bb = bounds(&o);
+    b.placed.push((o, bb));
+    b.free -= pass.areas[i];
+    Some(new)
+}
+
+/// The edge-band pass: every edge band (`PartKind::EdgeStrip`) taken off
+/// the sheets and placed again by its true outline, longest first, on the
+/// first sheet where [`Pass::find`] gives it a place (the sheets as they
+/// are, then the sheets it left empty, in order), so bowed bands nest into
+/// each other's bows and into the lamella sheets' free space. Sheets left
+/// without a part are dropped. Where a band finds no place (or a jagua-rs
+/// polygon cannot be made) the sheets stay as they were. Past
+/// [`MAX_BAND_QUERIES`] each band left goes alone onto a sheet left empty,
+/// in its lower-left corner. Returns how many sheets were dropped.
+pub fn place_bands(
+    kit: &Kit,
+    sheets: &mut Vec<SheetNest>,
+    margin: f64,
+    gap: f64,
+    rotations: &[u32],
+) -> usize {
+    let is_band = |pl: &Placement| kit.parts[pl.part].kind == PartKind::EdgeStrip;
+    let mut bands: Vec<Placement> = sheets
+        .iter()
+        .flat_map(|s| s.placements.iter().filter(|pl| is_band(pl)).copied())
+        .collect();
+    if bands.is_empty() {
+        return 0;
+    }
+    let pass = Pass {
+        kit,
+        margin,
+        gap,
+        rotations,
+        areas: kit.parts.iter().map(net_area_mm2).collect(),
+        queries: Cell::new(0),
+        limit: MAX_BAND_QUERIES,
+        hazards: RefCell::new(HashMap::new()),
+        shapes: RefCell::new(HashMap::new()),
+        bases: RefCell::new(HashMap::new()),
+        surrogates: RefCell::new(HashMap::new()),
+    };
+    // Longest first (the outline's longer box side), ties by index.
+    let len = |pl: &Placement| {
+        let (x0, y0, x1, y1) = bounds(&kit.parts[pl.part].outline_part_mm);
+        (x1 - x0).max(y1 - y0)
+    };
+    bands.sort_by(|a, b| {
+        len(b)
+            .total_cmp(&len(a))
+            .then(a.part.cmp(&b.part))
+            .then(a.copy.cmp(&b.copy))
+    });
+    let mut work: Vec<SheetNest> = Vec::with_capacity(sheets.len());
+    let mut spare: Vec<SheetNest> = Vec::new();
+    for s in sheets.iter() {
+        let mut s = s.clone();
+        s.placements.retain(|pl| !is_band(pl));
+        if s.placements.is_empty() {
+            spare.push(s);
+        } else {
+            work.push(s);
+        }
+    }
+    let Some(mut boards) = work
+        .iter()
+        .map(|s| pass.board(s))
+        .collect::<Option<Vec<Board>>>()
+    else {
+        return 0;
+    };
+    // (part, sheet) where a copy of the part found no place: the later
+    // copies will not either (the sheet only fills up).
+    let mut failed: std::collections::HashSet<(usize, usize)> = Default::default();
+    for pl in bands {
+        let Some(shapes) = pass.shapes_of(pl.part) else {
+            return 0;
+        };
+        let area = pass.areas[pl.part];
+        let mut done = false;
+        for t in 0..work.len() {
+            if boards[t].free < area || failed.contains(&(pl.part, t)) {
+                continue;
+            }
+            if let Some((x, y, r)) = pass.find(&boards[t], &shapes, &work[t]) {
+                let Some(new) = put_on(&pass, &mut boards[t], pl.part, pl.copy, &shapes[r], x, y)
+                else {
+                    return 0;
+                };
+                work[t].placements.push(new);
+                done = true;
+                break;
+            }
+            failed.insert((pl.part, t));
+        }
+        if done {
+            continue;
+        }
+        // A sheet it left empty: the first that holds it.
+        for k in 0..spare.len() {
+            let s = &spare[k];
+            let Some(mut b) = pass.board(s) else {
+                return 0;
+            };
+            let at = if pass.exhausted() {
+                corner(&shapes, s, margin)
+            } else {
+                pass.find(&b, &shapes, s)
+            };
+            let Some((x, y, r)) = at else {
+                continue;
+            };
+            let Some(new) = put_on(&pass, &mut b, pl.part, pl.copy, &shapes[r], x, y) else {
+                return 0;
+            };
+            let mut s = spare.remove(k);
+            s.placements.push(new);
+            work.push(s);
+            boards.push(b);
+            done = true;
+            break;
+        }
+        if !done {
+            return 0;
+        }
+    }
+    let dropped = sheets.len() - work.len();
+    *sheets = work;
+    dropped
+}
+
+/// The lower-left corner of an empty sheet `s` for the first of `shapes`
+/// whose box fits its usable area: (x, y, rotation index).
+fn corner(shapes: &[Shape], s: &SheetNest, m: f64) -> Option<(f64, f64, usize)> {
+    let (lu, wu) = (s.length_mm - 2.0 * m, s.width_mm - 2.0 * m);
+    shapes
+        .iter()
+        .position(|sh| sh.bbox.2 - sh.bbox.0 <= lu + 1e-9 && sh.bbox.3 - sh.bbox.1 <= wu + 1e-9)
+        .map(|r| (m, m, r))
 }
 
 /// Places for every part of sheet `k` on the other sheets' boards (which
