@@ -150,18 +150,36 @@ pub fn distance(a: &[Point], b: &[Point], limit: f64) -> f64 {
         return f64::INFINITY;
     }
     let (na, nb) = (a.len(), b.len());
-    let bb = bounds(b);
+    let ba = bounds(a);
+    // b's segments near a's box, by their lowest x.
+    let mut segs: Vec<(f64, usize)> = Vec::new();
+    let mut span = 0.0f64;
+    for j in 0..nb {
+        let (r, s) = (b[j], b[(j + 1) % nb]);
+        if r.x.max(s.x) < ba.0 - limit
+            || r.x.min(s.x) > ba.2 + limit
+            || r.y.max(s.y) < ba.1 - limit
+            || r.y.min(s.y) > ba.3 + limit
+        {
+            continue;
+        }
+        segs.push((r.x.min(s.x), j));
+        span = span.max((r.x - s.x).abs());
+    }
+    segs.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1.cmp(&q.1)));
     let mut best = f64::INFINITY;
     for i in 0..na {
         let (p, q) = (a[i], a[(i + 1) % na]);
         let (x0, x1) = (p.x.min(q.x) - limit, p.x.max(q.x) + limit);
         let (y0, y1) = (p.y.min(q.y) - limit, p.y.max(q.y) + limit);
-        if x1 < bb.0 || x0 > bb.2 || y1 < bb.1 || y0 > bb.3 {
-            continue;
-        }
-        for j in 0..nb {
+        // Segments whose lowest x is in [x0 - span, x1].
+        let from = segs.partition_point(|e| e.0 < x0 - span);
+        for &(sx, j) in &segs[from..] {
+            if sx > x1 {
+                break;
+            }
             let (r, s) = (b[j], b[(j + 1) % nb]);
-            if r.x.max(s.x) < x0 || r.x.min(s.x) > x1 || r.y.max(s.y) < y0 || r.y.min(s.y) > y1 {
+            if r.x.max(s.x) < x0 || r.y.max(s.y) < y0 || r.y.min(s.y) > y1 {
                 continue;
             }
             best = best.min(segment_distance(p, q, r, s));
@@ -373,9 +391,19 @@ impl Pass<'_> {
     }
 
     /// The bottom-left free place of a part on `b`: (x, y, rotation index).
-    fn find(&self, b: &Board, shapes: &[Shape], s: &SheetNest) -> Option<(f64, f64, usize)> {
+    /// `rows_first`: the lowest y first, then the lowest x (edge bands,
+    /// stacked across the sheet); else the lowest x first.
+    fn find(
+        &self,
+        b: &Board,
+        shapes: &[Shape],
+        s: &SheetNest,
+        rows_first: bool,
+    ) -> Option<(f64, f64, usize)> {
         let m = self.margin;
         let (lu, wu) = (s.length_mm - 2.0 * m, s.width_mm - 2.0 * m);
+        // Lexicographic order of places: (major, minor).
+        let key = |x: f64, y: f64| if rows_first { (y, x) } else { (x, y) };
         let mut best: Option<(f64, f64, usize)> = None;
         for (r, shape) in shapes.iter().enumerate() {
             let (w, h) = (shape.bbox.2 - shape.bbox.0, shape.bbox.3 - shape.bbox.1);
@@ -388,21 +416,29 @@ impl Pass<'_> {
                 .max(1.0);
             let nx = ((x_max - m) / step).floor() as usize + 1;
             let ny = ((y_max - m) / step).floor() as usize + 1;
-            let mut found = None;
-            'scan: for i in 0..=nx {
-                let x = if i == nx {
-                    x_max
+            let at = |i: usize, n: usize, hi: f64| {
+                if i == n {
+                    hi
                 } else {
-                    (m + i as f64 * step).min(x_max)
+                    (m + i as f64 * step).min(hi)
+                }
+            };
+            let (n_major, n_minor) = if rows_first { (ny, nx) } else { (nx, ny) };
+            let mut found = None;
+            'scan: for i in 0..=n_major {
+                let major = if rows_first {
+                    at(i, ny, y_max)
+                } else {
+                    at(i, nx, x_max)
                 };
-                if best.is_some_and(|bb| x > bb.0 + 1e-9) {
+                if best.is_some_and(|bb| major > key(bb.0, bb.1).0 + 1e-9) {
                     break;
                 }
-                for j in 0..=ny {
-                    let y = if j == ny {
-                        y_max
+                for j in 0..=n_minor {
+                    let (x, y) = if rows_first {
+                        (at(j, nx, x_max), major)
                     } else {
-                        (m + j as f64 * step).min(y_max)
+                        (major, at(j, ny, y_max))
                     };
                     if self.free_at(b, shape, x, y) {
                         found = Some((x, y));
@@ -432,7 +468,8 @@ impl Pass<'_> {
                     }
                 }
             }
-            if best.is_none_or(|bb| x < bb.0 - 1e-9 || (x <= bb.0 + 1e-9 && y < bb.1 - 1e-9)) {
+            let (k, kb) = (key(x, y), best.map(|bb| key(bb.0, bb.1)));
+            if kb.is_none_or(|kb| k.0 < kb.0 - 1e-9 || (k.0 <= kb.0 + 1e-9 && k.1 < kb.1 - 1e-9)) {
                 best = Some((x, y, r));
             }
         }
@@ -450,7 +487,7 @@ impl Pass<'_> {
             .entry((i, hazard))
             .or_insert_with(|| {
                 let mut g = grown_poly(p, 0.5 * self.gap + SAFETY_MM, hazard)?;
-                if !hazard {
+                if !hazard && p.kind != PartKind::EdgeStrip {
                     let sur = SPSurrogateConfig {
                         n_pole_limits: [(8, 0.0), (4, 0.6), (2, 0.9)],
                         ff_pole_area_ratio: 0.6,
@@ -679,7 +716,7 @@ pub fn place_bands(
             if boards[t].free < area || failed.contains(&(pl.part, t)) {
                 continue;
             }
-            if let Some((x, y, r)) = pass.find(&boards[t], &shapes, &work[t]) {
+            if let Some((x, y, r)) = pass.find(&boards[t], &shapes, &work[t], true) {
                 let Some(new) = put_on(&pass, &mut boards[t], pl.part, pl.copy, &shapes[r], x, y)
                 else {
                     return 0;
@@ -702,7 +739,7 @@ pub fn place_bands(
             let at = if pass.exhausted() {
                 corner(&shapes, s, margin)
             } else {
-                pass.find(&b, &shapes, s)
+                pass.find(&b, &shapes, s, true)
             };
             let Some((x, y, r)) = at else {
                 continue;
@@ -722,6 +759,7 @@ pub fn place_bands(
         }
     }
     let dropped = sheets.len() - work.len();
+    eprintln!("DBG bands queries {}", pass.queries.get());
     *sheets = work;
     dropped
 }
@@ -818,7 +856,7 @@ fn try_empty(
             if b.free < area {
                 continue;
             }
-            let Some((x, y, r)) = pass.find(b, &shapes, &sheets[t]) else {
+            let Some((x, y, r)) = pass.find(b, &shapes, &sheets[t], false) else {
                 continue;
             };
             let sh = &shapes[r];
