@@ -46,6 +46,8 @@ pub const GRID_POINTS: f64 = 6000.0;
 pub const MAX_ATTEMPTS: usize = 6;
 /// Target sheets (most free area first) a part may move to at most.
 pub const MAX_TARGETS: usize = 8;
+/// Outline vertices tested against the lamellas' boxes before the engine.
+const PROBES: usize = 16;
 /// Collision queries of one pass at most (a deterministic bound on its time).
 pub const MAX_QUERIES: u64 = 1_000_000;
 /// Collision queries of the edge-band pass at most; past it, the bands
@@ -263,6 +265,9 @@ struct Board {
     engine: CDEngine<Haz>,
     /// True outlines (sheet frame) and their boxes.
     placed: Vec<(Vec<Point>, BBox)>,
+    /// The boxes of the lamellas on it (hazards as their grown boxes): a
+    /// part with an outline vertex inside one collides.
+    boxes: Vec<BBox>,
     /// Usable area less the parts' net area, mm².
     free: f64,
 }
@@ -317,12 +322,16 @@ impl Pass<'_> {
             config,
         );
         let mut placed = Vec::with_capacity(s.placements.len());
+        let mut boxes = Vec::new();
         let mut area = 0.0;
         for pl in &s.placements {
             let p = &self.kit.parts[pl.part];
             self.register(&mut engine, placed.len(), p, pl)?;
             let o = placed_outline(p, pl);
             let b = bounds(&o);
+            if p.kind == PartKind::Lamella {
+                boxes.push(b);
+            }
             placed.push((o, b));
             area += self.areas[pl.part];
         }
@@ -331,6 +340,7 @@ impl Pass<'_> {
         Some(Board {
             engine,
             placed,
+            boxes,
             free,
         })
     }
@@ -364,6 +374,15 @@ impl Pass<'_> {
         }
         self.queries.set(self.queries.get() + 1);
         let (tx, ty) = (x - shape.bbox.0, y - shape.bbox.1);
+        // A probe vertex inside a lamella's box: the engine would say so.
+        if shape.probes.iter().any(|q| {
+            let (px, py) = (q.x + tx, q.y + ty);
+            b.boxes
+                .iter()
+                .any(|bb| bb.0 <= px && px <= bb.2 && bb.1 <= py && py <= bb.3)
+        }) {
+            return false;
+        }
         let t = Transformation::from_translation((tx as f32, ty as f32));
         if let Some(sur) = shape.surrogate.as_ref() {
             if b.engine.detect_surrogate_collision(sur, &t, &NoFilter) {
@@ -521,7 +540,10 @@ impl Pass<'_> {
                     .cloned()
                     .flatten()
                     .map(|_| grown.surrogate().clone());
+                let step = outline.len().div_ceil(PROBES).max(1);
+                let probes = outline.iter().step_by(step).copied().collect();
                 Some(Shape {
+                    probes,
                     surrogate,
                     rot,
                     bbox: bounds(&outline),
@@ -539,6 +561,8 @@ struct Shape {
     rot: u32,
     outline: Vec<Point>,
     bbox: (f64, f64, f64, f64),
+    /// A few of the outline's vertices, for a quick test against lamellas.
+    probes: Vec<Point>,
     /// The outline grown by half the gap and [`SAFETY_MM`], for the engine.
     grown: SPolygon,
     /// Fail-fast poles of `grown`, if they could be made.
@@ -759,7 +783,6 @@ pub fn place_bands(
         }
     }
     let dropped = sheets.len() - work.len();
-    eprintln!("DBG bands queries {}", pass.queries.get());
     *sheets = work;
     dropped
 }
