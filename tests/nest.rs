@@ -249,6 +249,55 @@ fn two_bowed_bands_share_one_sheet_by_outline() {
     assert!(e.contains("closer than"), "{e}");
 }
 
+/// Ten copies of a strongly bowed band: by bounding box each takes a steel
+/// sheet of its own, and the sheet-elimination pass alone (at most six
+/// sheets tried) leaves at least four; placed by outline the bands stack
+/// like bananas. How many stack on one sheet, by hand: the copy above,
+/// shifted up by d, is clear of the one below where every point of its
+/// inner arc (radius r − w) is at least r + g from the lower centre, i.e.
+/// (r − w)² + d² + 2 d (r − w) cos θ ≥ (r + g)² at the arc's end angle θ
+/// (the smallest cos θ); so n = ⌊(usable width − box height) / d⌋ + 1 per
+/// sheet and ⌈10 / n⌉ sheets at most (here 5 a sheet, 2 sheets).
+#[test]
+fn bowed_bands_stack_by_outline_onto_few_sheets() {
+    use lamella::fabricate::{Kit, KitSummary};
+    let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
+    let m = steel.cutting.edge_margin_mm;
+    let z = &steel.stock.sizes[0];
+    let wu = z.usable_width_mm(m);
+    let (r, w, chord) = (1700.0, 90.0, 2800.0);
+    let mut band = bowed_band("E1", r, w, chord);
+    band.count = 10;
+    let h = band.height_mm;
+    assert!(2.0 * h + g > wu, "{h}");
+    // The method keeps the outlines up to 2 (SAFETY_MM + 2 SIMPLIFY_MM)
+    // more apart (its engine's polygons: grown, then simplified) and slides
+    // to within 0.05 mm.
+    use lamella::nest::outline::{SAFETY_MM, SIMPLIFY_MM};
+    let ge = g + 2.0 * (SAFETY_MM + 2.0 * SIMPLIFY_MM);
+    let c = (1.0 - (0.5 * chord / r).powi(2)).sqrt();
+    let (a, q) = (r - w, (r + ge).powi(2) - (r - w).powi(2));
+    let d = -a * c + ((a * c).powi(2) + q).sqrt() + 0.05;
+    let per_sheet = ((wu - h) / d).floor() as usize + 1;
+    let most = 10usize.div_ceil(per_sheet);
+    assert!(most < 4, "{d} {per_sheet}");
+    let kit = Kit {
+        parts: vec![band],
+        summary: KitSummary::default(),
+        warnings: Vec::new(),
+    };
+    let n = nest(&kit, &steel).unwrap();
+    assert_eq!(check_nest(&kit, &n, &steel), Ok(()));
+    pairwise_apart(&kit, &n, g, "stacked bands");
+    assert!(
+        n.summary.sheets_used <= most,
+        "{} > {most}",
+        n.summary.sheets_used
+    );
+    assert_eq!(nest(&kit, &steel).unwrap().sheets, n.sheets);
+}
+
 #[test]
 fn a_part_larger_than_the_stock_is_a_one_line_error() {
     let net = read_network(
