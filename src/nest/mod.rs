@@ -854,8 +854,9 @@ impl<'a> Ctx<'a> {
     /// The cheapest full nest over the sheet sizes: for each size as the
     /// first choice (best value first), the lane plan of [`Ctx::assign`],
     /// improved by [`Ctx::tail_variants`] while the whole nest gets
-    /// cheaper; ties go to fewer sheets, then the earlier candidate.
-    fn sheets(&self) -> Result<Placed> {
+    /// cheaper, then `finish`ed (the passes by true outline); ties go to
+    /// fewer sheets, then the earlier candidate.
+    fn sheets(&self, finish: &dyn Fn(&mut Vec<SheetNest>)) -> Result<Placed> {
         let all: Vec<usize> = (0..self.items.len()).collect();
         let total =
             |sheets: &[SheetNest]| -> f64 { sheets.iter().map(|s| self.sizes[s.size].cost).sum() };
@@ -908,6 +909,7 @@ impl<'a> Ctx<'a> {
                     break;
                 }
             }
+            finish(&mut nest.0);
             if best.as_ref().is_none_or(|b| better(&nest, b)) {
                 best = Some(nest);
             }
@@ -988,16 +990,19 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     let ctx = Ctx::new(kit, profile)?;
     let st = &profile.stock;
     let coil = st.is_coil();
+    // Each candidate nest: edge bands again by true outline, then sheets
+    // of small parts emptied into the others.
+    let finish = |sheets: &mut Vec<SheetNest>| {
+        sheets.retain(|s| !s.placements.is_empty());
+        outline::place_bands(kit, sheets, ctx.margin, ctx.gap, &ctx.rotations);
+        outline::eliminate(kit, sheets, ctx.margin, ctx.gap, &ctx.rotations);
+    };
     let (mut sheets, lanes_used) = if coil && st.sizes[0].length_mm.is_none() {
         ctx.coil()?
     } else {
-        ctx.sheets()?
+        ctx.sheets(&finish)?
     };
     sheets.retain(|s| !s.placements.is_empty());
-    if !(coil && st.sizes[0].length_mm.is_none()) {
-        outline::place_bands(kit, &mut sheets, ctx.margin, ctx.gap, &ctx.rotations);
-        outline::eliminate(kit, &mut sheets, ctx.margin, ctx.gap, &ctx.rotations);
-    }
     sheets.sort_by_key(|s| s.size);
     let m = ctx.margin;
     for (k, s) in sheets.iter_mut().enumerate() {
