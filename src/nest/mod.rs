@@ -10,9 +10,12 @@
 //! blocks, splice plates, washers, studs, edge strips) go by their bounding
 //! boxes, in an allowed rotation, onto a skyline of each sheet's free
 //! space (the lane tails first), first sheet with room, else a new sheet.
-//! Then [`outline::eliminate`] empties sheets holding no lamella into the
-//! free space of the others by the parts' true outlines, where all of a
-//! sheet's parts find a place.
+//! Then [`outline::place_bands`] places the edge bands again by their true
+//! outlines (stacked in each other's bows, into the lamella sheets' free
+//! width), and [`outline::eliminate`] empties sheets holding no lamella
+//! into the free space of the others by the parts' true outlines, where all
+//! of a sheet's parts find a place; with several sizes, on each
+//! first-choice candidate before the cheapest is chosen.
 //!
 //! Several sheet sizes: the cheapest nest (by price, else by stock area)
 //! over the sizes as first choice, each improved by repacking the

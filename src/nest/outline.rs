@@ -1,5 +1,11 @@
-//! Parts by their true outlines (issue 9): the sheet-elimination pass after
+//! Parts by their true outlines (issue 9): the edge-band pass
+//! ([`place_bands`]) and the sheet-elimination pass ([`eliminate`]) after
 //! the lane and skyline nest, and the true-shape distance `check_nest` uses.
+//!
+//! Edge bands are taken off the sheets and placed again, longest first, on
+//! the first sheet where the search (rows first: the lowest y, then the
+//! lowest x, slid to contact) finds a place, so bowed bands stack in each
+//! other's bows.
 //!
 //! For each sheet holding no lamella, fewest-filled first, every one of its
 //! parts is moved into the free space of the other sheets by its outline:
