@@ -808,10 +808,32 @@ fn killing_the_build_midway_leaves_the_output_as_it_was() {
 /// nest's cost.
 #[test]
 fn takeoff_prices_each_sheet_size() {
-    let out = scratch("mixed").join("kit");
-    // The full-size pavilion buys both sizes (scherk, once the outline pass
-    // empties its small sheet, only the large one).
-    ok(&build("schwarz-d-pavilion", "steel-1.5-mixed", &out, &[]));
+    let dir = scratch("mixed");
+    let out = dir.join("kit");
+    // The full-size pavilion needs 18 large sheets (once its edge bands
+    // nest by outline, the small size no longer pays); with at most 19
+    // large ones it buys both sizes.
+    let text = std::fs::read_to_string(root().join("profiles/steel-1.5-mixed.yaml"))
+        .expect("profile")
+        .replace(
+            "      price_per_unit: 95.0 ",
+            "      max_count: 19\n      price_per_unit: 95.0 ",
+        );
+    assert!(text.contains("max_count: 19"));
+    let profile = dir.join("mixed-limited.yaml");
+    std::fs::write(&profile, text).expect("write profile");
+    let out_s = out.to_string_lossy().into_owned();
+    ok(&lamella(
+        &[
+            "build",
+            "samples/schwarz-d-pavilion.yaml",
+            "--profile",
+            &profile.to_string_lossy(),
+            "--out",
+            &out_s,
+        ],
+        &[],
+    ));
     let plan = json(&out.join("plan.json"));
     let t = json(&out.join("takeoff.json"));
     let mut by_size: BTreeMap<String, (u64, f64)> = BTreeMap::new();

@@ -401,6 +401,14 @@ impl Pass<'_> {
             return false;
         }
         drop(moved);
+        self.confirm(b, shape, x, y)
+    }
+
+    /// Whether part `shape` at (x, y) (as in [`Pass::free_at`]) is at least
+    /// the gap from every part on `b`, in f64: by boxes, else by
+    /// [`distance`].
+    fn confirm(&self, b: &Board, shape: &Shape, x: f64, y: f64) -> bool {
+        let (tx, ty) = (x - shape.bbox.0, y - shape.bbox.1);
         let g = self.gap;
         let (w, h) = (shape.bbox.2 - shape.bbox.0, shape.bbox.3 - shape.bbox.1);
         let moved: Vec<Point> = shape
@@ -684,9 +692,16 @@ pub fn place_bands(
     rotations: &[u32],
 ) -> usize {
     let is_band = |pl: &Placement| kit.parts[pl.part].kind == PartKind::EdgeStrip;
-    let mut bands: Vec<Placement> = sheets
+    // Each band with the sheet it was on.
+    let mut bands: Vec<(usize, Placement)> = sheets
         .iter()
-        .flat_map(|s| s.placements.iter().filter(|pl| is_band(pl)).copied())
+        .enumerate()
+        .flat_map(|(k, s)| {
+            s.placements
+                .iter()
+                .filter(|pl| is_band(pl))
+                .map(move |&pl| (k, pl))
+        })
         .collect();
     if bands.is_empty() {
         return 0;
@@ -709,20 +724,23 @@ pub fn place_bands(
         let (x0, y0, x1, y1) = bounds(&kit.parts[pl.part].outline_part_mm);
         (x1 - x0).max(y1 - y0)
     };
-    bands.sort_by(|a, b| {
+    bands.sort_by(|(_, a), (_, b)| {
         len(b)
             .total_cmp(&len(a))
             .then(a.part.cmp(&b.part))
             .then(a.copy.cmp(&b.copy))
     });
     let mut work: Vec<SheetNest> = Vec::with_capacity(sheets.len());
-    let mut spare: Vec<SheetNest> = Vec::new();
-    for s in sheets.iter() {
+    // Where each sheet went: its index in `work`, if there.
+    let mut at_work: Vec<Option<usize>> = vec![None; sheets.len()];
+    let mut spare: Vec<(usize, SheetNest)> = Vec::new();
+    for (k, s) in sheets.iter().enumerate() {
         let mut s = s.clone();
         s.placements.retain(|pl| !is_band(pl));
         if s.placements.is_empty() {
-            spare.push(s);
+            spare.push((k, s));
         } else {
+            at_work[k] = Some(work.len());
             work.push(s);
         }
     }
@@ -736,7 +754,7 @@ pub fn place_bands(
     // (part, sheet) where a copy of the part found no place: the later
     // copies will not either (the sheet only fills up).
     let mut failed: std::collections::HashSet<(usize, usize)> = Default::default();
-    for pl in bands {
+    for (home, pl) in bands {
         let Some(shapes) = pass.shapes_of(pl.part) else {
             return 0;
         };
@@ -760,9 +778,26 @@ pub fn place_bands(
         if done {
             continue;
         }
+        // Back where the bounding-box nest had it, if that is still free.
+        if let (Some(t), Some(r)) = (
+            at_work[home],
+            shapes.iter().position(|sh| sh.rot == pl.rotation_deg),
+        ) {
+            let sh = &shapes[r];
+            let (x, y) = (pl.x_mm + sh.bbox.0, pl.y_mm + sh.bbox.1);
+            // (Its neighbours there may be just the gap away, closer than
+            // the engine's polygons allow: the f64 test alone.)
+            if pass.confirm(&boards[t], sh, x, y) {
+                let Some(new) = put_on(&pass, &mut boards[t], pl.part, pl.copy, sh, x, y) else {
+                    return 0;
+                };
+                work[t].placements.push(new);
+                continue;
+            }
+        }
         // A sheet it left empty: the first that holds it.
         for k in 0..spare.len() {
-            let s = &spare[k];
+            let s = &spare[k].1;
             let Some(mut b) = pass.board(s) else {
                 return 0;
             };
@@ -777,8 +812,9 @@ pub fn place_bands(
             let Some(new) = put_on(&pass, &mut b, pl.part, pl.copy, &shapes[r], x, y) else {
                 return 0;
             };
-            let mut s = spare.remove(k);
+            let (orig, mut s) = spare.remove(k);
             s.placements.push(new);
+            at_work[orig] = Some(work.len());
             work.push(s);
             boards.push(b);
             done = true;
