@@ -679,9 +679,11 @@ fn put_on(
 /// the sheets and placed again by its true outline, longest first, on the
 /// first sheet where [`Pass::find`] gives it a place (the sheets as they
 /// are, then the sheets it left empty, in order), so bowed bands nest into
-/// each other's bows and into the lamella sheets' free space. Sheets left
-/// without a part are dropped. Where a band finds no place (or a jagua-rs
-/// polygon cannot be made) the sheets stay as they were. Past
+/// each other's bows and into the lamella sheets' free space; a band the
+/// search finds no place for goes back to its old place where
+/// [`Pass::confirm`] allows. Sheets left without a part are dropped. Where
+/// a band finds no place (or a jagua-rs polygon cannot be made) the sheets
+/// stay as they were. Past
 /// [`MAX_BAND_QUERIES`] each band left goes alone onto a sheet left empty,
 /// in its lower-left corner. Returns how many sheets were dropped.
 pub fn place_bands(
