@@ -60,6 +60,15 @@ pub fn peak_mib() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// The load average over 1, 5 and 15 minutes (`/proc/loadavg`), as text.
+#[allow(dead_code)]
+pub fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|| "?".into())
+}
+
 /// The generated network file `name` (kept between runs), written by `make`
 /// (the network file's text) the first time it is asked for.
 pub fn generated(name: &str, make: impl FnOnce() -> String) -> PathBuf {

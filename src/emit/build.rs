@@ -86,8 +86,12 @@ pub struct BuildReport {
     pub out: PathBuf,
     /// Pages of assembly.pdf (0 when not written).
     pub assembly_pages: usize,
-    /// Time taken to draw and write assembly.pdf, s (not written anywhere).
-    pub assembly_s: f64,
+    /// Wall time per stage, in order, s (for the benchmark; not written
+    /// anywhere): `read`, `analyse`, `parts`, `nest`, `plan`, `write`
+    /// (the takeoff, then plan.json and the sheets side by side: their own
+    /// times follow as `write: plan.json` and `write: sheets`), `assembly`,
+    /// `commit`.
+    pub stages_s: Vec<(&'static str, f64)>,
 }
 
 impl BuildReport {
@@ -125,9 +129,11 @@ pub fn build(
             }
         }
     }
+    let mut clock = Clock::start();
     progress.set_message("reading");
     let profile = Profile::load(profile_path)?;
     let net = io::read_network(network, opts.read)?;
+    clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     progress.set_message("checking");
@@ -136,6 +142,7 @@ pub fn build(
     let governing = governing(&report);
     let overstressed = report.overstressed();
     let strips = an.lamella_strips().count();
+    clock.lap("analyse");
     let edges = net.curves.len() - strips;
     if overstressed > 0 && !opts.allow_overstress {
         return Ok(BuildReport {
@@ -159,7 +166,7 @@ pub fn build(
             files: Vec::new(),
             out: out.to_path_buf(),
             assembly_pages: 0,
-            assembly_s: 0.0,
+            stages_s: clock.stages,
         });
     }
     // Refuse a foreign plan.json or takeoff before the long work.
@@ -185,9 +192,11 @@ pub fn build(
         crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
     let nodes = an.topology.nodes.len();
     drop(an);
+    clock.lap("parts");
     warnings.extend(kit.warnings.iter().cloned());
     progress.set_message("nesting");
     let nest = crate::nest::nest(&kit, &profile)?;
+    clock.lap("nest");
     let takeoff = takeoff::takeoff(&net.name, &kit, &nest, &profile);
     plan::add_nest(&mut the_plan, &kit, &nest);
     let kinds = kit.summary.kinds.clone();
@@ -206,6 +215,7 @@ pub fn build(
     );
     drop(nest);
     drop(kit);
+    clock.lap("plan");
     progress.set_message("writing plan, takeoff and sheets");
     let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
@@ -216,9 +226,14 @@ pub fn build(
     progress.set_position(0);
     // plan.json streams out beside the sheets.
     let (plan_written, sheets_written) = rayon::join(
-        || staging.write_with("plan.json", |w| plan::write_json(&the_plan, w)),
         || {
-            (0..drawer.len())
+            let t = std::time::Instant::now();
+            let r = staging.write_with("plan.json", |w| plan::write_json(&the_plan, w));
+            (r, t.elapsed().as_secs_f64())
+        },
+        || {
+            let t = std::time::Instant::now();
+            let r = (0..drawer.len())
                 .into_par_iter()
                 .try_for_each(|i| -> Result<()> {
                     let sheet = drawer.sheet(i)?;
@@ -242,11 +257,15 @@ pub fn build(
                     )?;
                     progress.inc(1);
                     Ok(())
-                })
+                });
+            (r, t.elapsed().as_secs_f64())
         },
     );
-    plan_written?;
-    sheets_written?;
+    plan_written.0?;
+    sheets_written.0?;
+    clock.lap("write");
+    clock.part("write: plan.json", plan_written.1);
+    clock.part("write: sheets", sheets_written.1);
     let sheet_count = drawer.len();
     progress.set_message("drawing the assembly sheets");
     drop(drawer);
@@ -265,7 +284,6 @@ pub fn build(
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
-    let t0 = std::time::Instant::now();
     let (pdf, assembly_pages) =
         super::assembly::assembly_pdf_counted(&super::assembly::AssemblyInput {
             plan: &the_plan,
@@ -275,7 +293,7 @@ pub fn build(
             plan_path: &plan_target,
         })?;
     staging.write("assembly.pdf", &pdf)?;
-    let assembly_s = t0.elapsed().as_secs_f64();
+    clock.lap("assembly");
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     drop(curves);
     for i in 1..=sheet_count {
@@ -284,6 +302,7 @@ pub fn build(
     }
     progress.set_message("moving into place");
     staging.commit()?;
+    clock.lap("commit");
     Ok(BuildReport {
         network: network_name,
         profile: profile.name.clone(),
@@ -301,7 +320,7 @@ pub fn build(
         files,
         out: out.to_path_buf(),
         assembly_pages,
-        assembly_s,
+        stages_s: clock.stages,
     })
 }
 
@@ -317,4 +336,32 @@ fn governing(report: &CheckReport) -> Option<Governing> {
             governs: l.governs.as_str(),
         }
     })
+}
+
+/// Wall time per stage.
+struct Clock {
+    last: std::time::Instant,
+    stages: Vec<(&'static str, f64)>,
+}
+
+impl Clock {
+    fn start() -> Clock {
+        Clock {
+            last: std::time::Instant::now(),
+            stages: Vec::new(),
+        }
+    }
+
+    /// The time since the last lap, as `stage`.
+    fn lap(&mut self, stage: &'static str) {
+        let now = std::time::Instant::now();
+        self.stages
+            .push((stage, now.duration_since(self.last).as_secs_f64()));
+        self.last = now;
+    }
+
+    /// A part of the last stage, timed on its own.
+    fn part(&mut self, stage: &'static str, secs: f64) {
+        self.stages.push((stage, secs));
+    }
 }
