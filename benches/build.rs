@@ -87,10 +87,10 @@ fn measure(path: &Path) {
         .collect();
     let pdf_mib = mib(std::fs::metadata(out.join("assembly.pdf")).map_or(0, |m| m.len()));
     let assembly_s = r
-        .stages_s
+        .stages
         .iter()
-        .find(|(s, _)| *s == "assembly")
-        .map_or(0.0, |(_, t)| *t);
+        .find(|t| t.stage == "assembly")
+        .map_or(0.0, |t| t.wall_s);
     println!(
         "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10.0} {:>9.2} {:>10.0} {:>7} {:>8.1} {:>6.2}",
         r.strips / 2,
@@ -107,13 +107,17 @@ fn measure(path: &Path) {
     );
     println!("      MiB: {}", by_kind.join(", "));
     let stages: Vec<String> = r
-        .stages_s
+        .stages
         .iter()
-        .map(|(s, t)| format!("{s} {t:.2}"))
+        .map(|t| match t.cpu_s {
+            Some(cpu) => format!("{} {:.2} (cpu {cpu:.2})", t.stage, t.wall_s),
+            None => format!("{} {:.2}", t.stage, t.wall_s),
+        })
         .collect();
     println!("      s: {}", stages.join(", "));
+    let (user, sys) = support::cpu_s();
     println!(
-        "      load before {load0}, after {}",
+        "      cpu: user {user:.2} s, sys {sys:.2} s; load before {load0}, after {}",
         support::load_average()
     );
     let _ = std::fs::remove_dir_all(&out);

@@ -38,6 +38,18 @@ pub struct BuildOptions {
     pub paper: super::assembly::Paper,
 }
 
+/// The time one stage of a build took.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StageTime {
+    /// The stage.
+    pub stage: &'static str,
+    /// Wall time, s.
+    pub wall_s: f64,
+    /// CPU time of the whole process over the stage (all threads, user and
+    /// system), s, where the platform tells it.
+    pub cpu_s: Option<f64>,
+}
+
 /// The governing strip of the elastic check.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Governing {
@@ -86,12 +98,12 @@ pub struct BuildReport {
     pub out: PathBuf,
     /// Pages of assembly.pdf (0 when not written).
     pub assembly_pages: usize,
-    /// Wall time per stage, in order, s (for the benchmark; not written
+    /// Time per stage, in order (for the benchmark; not written
     /// anywhere): `read`, `analyse`, `parts`, `nest`, `plan`, `write`
     /// (the takeoff, then plan.json and the sheets side by side: their own
-    /// times follow as `write: plan.json` and `write: sheets`), `assembly`,
-    /// `commit`.
-    pub stages_s: Vec<(&'static str, f64)>,
+    /// wall times follow as `write: plan.json` and `write: sheets`),
+    /// `assembly`, `commit`.
+    pub stages: Vec<StageTime>,
 }
 
 impl BuildReport {
@@ -166,7 +178,7 @@ pub fn build(
             files: Vec::new(),
             out: out.to_path_buf(),
             assembly_pages: 0,
-            stages_s: clock.stages,
+            stages: clock.stages,
         });
     }
     // Refuse a foreign plan.json or takeoff before the long work.
@@ -320,7 +332,7 @@ pub fn build(
         files,
         out: out.to_path_buf(),
         assembly_pages,
-        stages_s: clock.stages,
+        stages: clock.stages,
     })
 }
 
@@ -338,16 +350,18 @@ fn governing(report: &CheckReport) -> Option<Governing> {
     })
 }
 
-/// Wall time per stage.
+/// Wall and CPU time per stage.
 struct Clock {
     last: std::time::Instant,
-    stages: Vec<(&'static str, f64)>,
+    last_cpu_s: Option<f64>,
+    stages: Vec<StageTime>,
 }
 
 impl Clock {
     fn start() -> Clock {
         Clock {
             last: std::time::Instant::now(),
+            last_cpu_s: process_cpu_s(),
             stages: Vec::new(),
         }
     }
@@ -355,13 +369,34 @@ impl Clock {
     /// The time since the last lap, as `stage`.
     fn lap(&mut self, stage: &'static str) {
         let now = std::time::Instant::now();
-        self.stages
-            .push((stage, now.duration_since(self.last).as_secs_f64()));
+        let cpu = process_cpu_s();
+        self.stages.push(StageTime {
+            stage,
+            wall_s: now.duration_since(self.last).as_secs_f64(),
+            cpu_s: cpu.zip(self.last_cpu_s).map(|(b, a)| b - a),
+        });
         self.last = now;
+        self.last_cpu_s = cpu;
     }
 
-    /// A part of the last stage, timed on its own.
-    fn part(&mut self, stage: &'static str, secs: f64) {
-        self.stages.push((stage, secs));
+    /// A part of the last stage, timed on its own (wall time only).
+    fn part(&mut self, stage: &'static str, wall_s: f64) {
+        self.stages.push(StageTime {
+            stage,
+            wall_s,
+            cpu_s: None,
+        });
     }
+}
+
+/// User and system CPU time of this process, all threads, s: from
+/// `/proc/self/stat` (Linux; clock ticks of 1/100 s), `None` elsewhere.
+fn process_cpu_s() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The fields after the command name (in parentheses, may hold spaces):
+    // utime and stime are the 12th and 13th.
+    let mut f = stat.rsplit_once(')')?.1.split_whitespace().skip(11);
+    let utime: f64 = f.next()?.parse().ok()?;
+    let stime: f64 = f.next()?.parse().ok()?;
+    Some((utime + stime) / 100.0)
 }
