@@ -357,12 +357,15 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
     bytes
 }
 
-/// zlib-compressed bytes (FlateDecode).
+/// zlib-compressed bytes (FlateDecode), at the fastest level: on a big
+/// kit's content streams level 6 took 4.5 times as long (2.0 s of CPU
+/// against 0.45 s for the 3,012 pages of the 200 × 200 benchmark) for a
+/// file 23 % smaller.
 fn deflate(bytes: &[u8]) -> Vec<u8> {
     use std::io::Write;
     let mut e = flate2::write::ZlibEncoder::new(
         Vec::with_capacity(bytes.len() / 4),
-        flate2::Compression::new(6),
+        flate2::Compression::new(1),
     );
     // Writing into a Vec cannot fail.
     let _ = e.write_all(bytes);
