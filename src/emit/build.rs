@@ -281,12 +281,8 @@ pub fn build(
     let sheet_count = drawer.len();
     progress.set_message("drawing the assembly sheets");
     drop(drawer);
-    // plan.json and the cutting files are written: the engraving strokes
-    // (the largest part of a big kit's plan) are not drawn in the assembly
-    // sheets, and the network's points live on as the overview's curves.
-    for p in the_plan.parts.iter_mut().flatten() {
-        p.engraving = Vec::new();
-    }
+    // plan.json and the cutting files are written: the network's points
+    // live on as the overview's curves.
     let network_name = net.name.clone();
     let curves: Vec<super::assembly::CurvePoints> = net
         .curves

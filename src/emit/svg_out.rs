@@ -7,7 +7,7 @@
 //! labels are in `ENGRAVE`). Written by hand with fixed decimals, so equal
 //! sheets give equal bytes.
 
-use super::drawing::{Layer, Shape, SheetDrawing, Vertex};
+use super::drawing::{Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS};
 use std::fmt::Write;
 
 /// Stroke width of every contour, mm.
@@ -130,9 +130,15 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
     }
 }
 
-/// A part's engraving strokes as one path of open subpaths.
+/// A part's engraving strokes as one path of open subpaths, relative
+/// after its first point: `M x y l dx dy dx dy … m dx dy l …`. The strokes'
+/// points lie on the engraving's grid of [`ENGRAVE_DECIMALS`] decimals
+/// ([`super::drawing`]), so every step is a whole number of grid units,
+/// written exactly: the positions it adds up to are the DXF's.
 fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
-    let mut any = false;
+    let scale = 10f64.powi(ENGRAVE_DECIMALS);
+    let unit = |v: f64| (v * scale).round() as i64;
+    let mut at: Option<(i64, i64)> = None;
     for sh in shapes {
         if let Shape::Polyline {
             layer: Layer::Engrave,
@@ -140,19 +146,55 @@ fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
             ..
         } = sh
         {
-            s.push_str(if any { " M" } else { r#"<path d="M"# });
-            any = true;
-            super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
-            s.push(' ');
-            super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
-            for pair in vertices.windows(2) {
-                segment(s, pair[0], pair[1], w);
+            let mut points = vertices.iter().map(|v| (unit(v.x_mm), -unit(v.y_mm)));
+            let Some(first) = points.next() else {
+                continue;
+            };
+            match at {
+                None => {
+                    s.push_str(r#"<path d="M"#);
+                    super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
+                    s.push(' ');
+                    super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
+                }
+                Some(last) => {
+                    s.push_str(" m");
+                    step(s, last, first);
+                }
             }
+            s.push_str(" l");
+            let mut last = first;
+            for (k, p) in points.enumerate() {
+                if k > 0 && p.0 - last.0 >= 0 {
+                    s.push(' ');
+                }
+                step(s, last, p);
+                last = p;
+            }
+            at = Some(last);
         }
     }
-    if any {
+    if at.is_some() {
         s.push_str("\"/>\n");
     }
+}
+
+/// The step from `a` to `b` in grid units (y already flipped) as `dx dy`,
+/// the space left out before a minus sign.
+fn step(s: &mut String, a: (i64, i64), b: (i64, i64)) {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    push_units(s, dx);
+    if dy >= 0 {
+        s.push(' ');
+    }
+    push_units(s, dy);
+}
+
+/// A whole number of engraving grid units as a decimal (`-0.75`, `12`).
+fn push_units(s: &mut String, units: i64) {
+    let scale = 10f64.powi(ENGRAVE_DECIMALS);
+    // units / scale is the double nearest the decimal: it prints exactly.
+    super::push_decimal(s, units as f64 / scale, ENGRAVE_DECIMALS as u32, false);
 }
 
 /// The segment from `a` to `b`: a line, or the arc of `a`'s bulge.
