@@ -249,6 +249,15 @@ impl<'a> Drawer<'a> {
 
     /// The drawing of sheet `i` (0-based).
     pub fn sheet(&self, i: usize) -> Result<SheetDrawing> {
+        self.draw(i, true)
+    }
+
+    /// The drawing of sheet `i` (0-based) without the engraving: the cuts.
+    pub fn sheet_cuts(&self, i: usize) -> Result<SheetDrawing> {
+        self.draw(i, false)
+    }
+
+    fn draw(&self, i: usize, engraving: bool) -> Result<SheetDrawing> {
         let s = &self.sheets[i];
         let placed = s
             .placements
@@ -263,7 +272,7 @@ impl<'a> Drawer<'a> {
                         ),
                     )
                 })?;
-                part_on_sheet(part, pl, self.half_kerf_mm, &self.font).map_err(|what| {
+                part_on_sheet(part, pl, self.half_kerf_mm, &self.font, engraving).map_err(|what| {
                     Error::output(
                         self.plan_path,
                         format!("sheet {}: part {} copy {}: {what}", s.id, pl.part, pl.copy),
@@ -368,6 +377,7 @@ fn part_on_sheet(
     pl: &PlanPlacement,
     half_kerf_mm: Option<f64>,
     font: &Font,
+    engraving: bool,
 ) -> std::result::Result<PartOnSheet, String> {
     if !matches!(pl.rotation_deg, 0 | 90 | 180 | 270) {
         return Err(format!(
@@ -415,22 +425,29 @@ fn part_on_sheet(
         ];
     }
     shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm)?);
-    for e in &part.engraving {
+    for e in part.engraving.iter().filter(|_| engraving) {
         font.strokes(e, |points| {
-            let vertices = merged(
-                points
-                    .map(|p| {
-                        let [x, y] = map(&p);
-                        [engrave_round(x), engrave_round(y)]
-                    })
-                    .collect(),
-                false,
-            );
+            // Placed, on the grid, consecutive equal points merged.
+            let mut vertices: Vec<Vertex> = Vec::with_capacity(points.size_hint().0);
+            for p in points {
+                let [x, y] = map(&p);
+                let v = Vertex {
+                    x_mm: engrave_round(x),
+                    y_mm: engrave_round(y),
+                    bulge: 0.0,
+                };
+                if vertices
+                    .last()
+                    .is_none_or(|q| (v.x_mm - q.x_mm).hypot(v.y_mm - q.y_mm) > MERGE_MM)
+                {
+                    vertices.push(v);
+                }
+            }
             if vertices.len() >= 2 {
                 shapes.push(Shape::Polyline {
                     layer: Layer::Engrave,
                     closed: false,
-                    vertices: straight(&vertices),
+                    vertices,
                 });
             }
         })?;

@@ -106,22 +106,26 @@ fn make_skeleton() -> Result<Skeleton, String> {
 /// The DXF text of one sheet.
 pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
     let sk = skeleton()?;
-    let shapes: usize = sheet.parts.iter().map(|p| p.shapes.len()).sum();
-    let mut body = String::with_capacity(200 * shapes + 1024);
-    let mut handle = sk.first_handle;
-    entity(&mut body, &sheet.outline(), &mut handle);
-    for part in &sheet.parts {
-        for shape in &part.shapes {
-            entity(&mut body, shape, &mut handle);
-        }
-    }
+    let outline = sheet.outline();
+    let shapes = || std::iter::once(&outline).chain(sheet.parts.iter().flat_map(|p| &p.shapes));
+    // The handles the entities take, and about the bytes they need.
+    let (count, bytes) = shapes().fold((0u64, 0usize), |(n, b), sh| {
+        let b = b + match sh {
+            Shape::Polyline { vertices, .. } => 100 + 32 * vertices.len(),
+            Shape::Circle { .. } => 130,
+        };
+        (n + 1, b)
+    });
     let mut out = String::with_capacity(
-        sk.before_seed.len() + sk.before_entities.len() + body.len() + sk.after_entities.len() + 16,
+        sk.before_seed.len() + sk.before_entities.len() + bytes + sk.after_entities.len() + 16,
     );
     out.push_str(&sk.before_seed);
-    let _ = write!(out, "{handle:X}");
+    let _ = write!(out, "{:X}", sk.first_handle + count);
     out.push_str(&sk.before_entities);
-    out.push_str(&body);
+    let mut handle = sk.first_handle;
+    for shape in shapes() {
+        entity(&mut out, shape, &mut handle);
+    }
     out.push_str(&sk.after_entities);
     Ok(out.into_bytes())
 }

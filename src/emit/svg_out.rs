@@ -22,7 +22,16 @@ const LABEL_MAX_MM: f64 = 40.0;
 /// The SVG text of one sheet; `title` names the project and sheet.
 pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
     let (l, w) = (sheet.length_mm, sheet.width_mm);
-    let mut s = String::with_capacity(4096 + 400 * sheet.parts.len());
+    let bytes: usize = sheet
+        .parts
+        .iter()
+        .flat_map(|p| &p.shapes)
+        .map(|sh| match sh {
+            Shape::Polyline { vertices, .. } => 24 + 16 * vertices.len(),
+            Shape::Circle { .. } => 60,
+        })
+        .sum();
+    let mut s = String::with_capacity(4096 + 200 * sheet.parts.len() + bytes);
     let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         s,
@@ -192,9 +201,13 @@ fn step(s: &mut String, a: (i64, i64), b: (i64, i64)) {
 
 /// A whole number of engraving grid units as a decimal (`-0.75`, `12`).
 fn push_units(s: &mut String, units: i64) {
-    let scale = 10f64.powi(ENGRAVE_DECIMALS);
-    // units / scale is the double nearest the decimal: it prints exactly.
-    super::push_decimal(s, units as f64 / scale, ENGRAVE_DECIMALS as u32, false);
+    super::push_scaled(
+        s,
+        units < 0,
+        units.unsigned_abs(),
+        ENGRAVE_DECIMALS as u32,
+        false,
+    );
 }
 
 /// The segment from `a` to `b`: a line, or the arc of `a`'s bulge.
