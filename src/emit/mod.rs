@@ -60,7 +60,7 @@ pub(crate) fn push_scaled(
     let mut n = scaled;
     let mut frac_digits = decimals;
     // Trailing zeros of the fraction are not written.
-    while frac_digits > 0 && n % 10 == 0 {
+    while frac_digits > 0 && n.is_multiple_of(10) {
         n /= 10;
         frac_digits -= 1;
     }
