@@ -89,7 +89,7 @@ fn measure(path: &Path) {
     let assembly_s = r
         .stages
         .iter()
-        .find(|t| t.stage == "assembly")
+        .find(|t| t.stage == "write: assembly.pdf")
         .map_or(0.0, |t| t.wall_s);
     println!(
         "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10.0} {:>9.2} {:>10.0} {:>7} {:>8.1} {:>6.2}",

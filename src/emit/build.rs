@@ -100,9 +100,9 @@ pub struct BuildReport {
     pub assembly_pages: usize,
     /// Time per stage, in order (for the benchmark; not written
     /// anywhere): `read`, `analyse`, `parts`, `nest`, `plan`, `write`
-    /// (the takeoff, then plan.json and the sheets side by side: their own
-    /// wall times follow as `write: plan.json` and `write: sheets`),
-    /// `assembly`, `commit`.
+    /// (the takeoff, then plan.json, the sheets and assembly.pdf side by
+    /// side: their own wall times follow as `write: plan.json`, `write:
+    /// sheets` and `write: assembly.pdf`), `commit`.
     pub stages: Vec<StageTime>,
 }
 
@@ -228,61 +228,16 @@ pub fn build(
     drop(nest);
     drop(kit);
     clock.lap("plan");
-    progress.set_message("writing plan, takeoff and sheets");
+    progress.set_message("writing plan, takeoff, sheets and assembly sheets");
     let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff::to_json(&takeoff).as_bytes())?;
     let kerf = opts.kerf_compensation.then_some(profile.cutting.kerf_mm);
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
-    progress.set_length(drawer.len() as u64);
-    progress.set_position(0);
-    // plan.json streams out beside the sheets.
-    let (plan_written, sheets_written) = rayon::join(
-        || {
-            let t = std::time::Instant::now();
-            let r = staging.write_with("plan.json", |w| plan::write_json(&the_plan, w));
-            (r, t.elapsed().as_secs_f64())
-        },
-        || {
-            let t = std::time::Instant::now();
-            let r = (0..drawer.len())
-                .into_par_iter()
-                .try_for_each(|i| -> Result<()> {
-                    let sheet = drawer.sheet(i)?;
-                    let stem = sheet.file_stem();
-                    let dxf = dxf_out::to_dxf(&sheet)
-                        .map_err(|e| Error::output(&out.join(format!("sheets/{stem}.dxf")), e))?;
-                    staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
-                    let title = format!(
-                        "{} — {}: sheet {} of {} ({}), {} × {} mm",
-                        net.name,
-                        profile.name,
-                        sheet.number,
-                        drawer.len(),
-                        sheet.id,
-                        sheet.length_mm,
-                        sheet.width_mm
-                    );
-                    staging.write(
-                        &format!("sheets/{stem}.svg"),
-                        svg_out::to_svg(&sheet, &title).as_bytes(),
-                    )?;
-                    progress.inc(1);
-                    Ok(())
-                });
-            (r, t.elapsed().as_secs_f64())
-        },
-    );
-    plan_written.0?;
-    sheets_written.0?;
-    clock.lap("write");
-    clock.part("write: plan.json", plan_written.1);
-    clock.part("write: sheets", sheets_written.1);
     let sheet_count = drawer.len();
-    progress.set_message("drawing the assembly sheets");
-    drop(drawer);
-    // plan.json and the cutting files are written: the network's points
-    // live on as the overview's curves.
+    progress.set_length(sheet_count as u64);
+    progress.set_position(0);
+    // The network's points live on as the overview's curves.
     let network_name = net.name.clone();
     let curves: Vec<super::assembly::CurvePoints> = net
         .curves
@@ -292,18 +247,82 @@ pub fn build(
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
-    let (pdf, assembly_pages) =
-        super::assembly::assembly_pdf_counted(&super::assembly::AssemblyInput {
-            plan: &the_plan,
-            takeoff: &takeoff,
-            curves: &curves,
-            paper: opts.paper,
-            plan_path: &plan_target,
-        })?;
-    staging.write("assembly.pdf", &pdf)?;
-    clock.lap("assembly");
-    let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
+    let timed = |f: &dyn Fn() -> Result<usize>| {
+        let t = std::time::Instant::now();
+        let r = f();
+        (r, t.elapsed().as_secs_f64())
+    };
+    // plan.json streams out on one thread while the sheets and the
+    // assembly sheets share the others (each deterministic on its own).
+    let (plan_written, (sheets_written, pdf_written)) = rayon::join(
+        || {
+            timed(&|| {
+                staging
+                    .write_with("plan.json", |w| plan::write_json(&the_plan, w))
+                    .map(|()| 0)
+            })
+        },
+        || {
+            rayon::join(
+                || {
+                    timed(&|| {
+                        (0..sheet_count)
+                            .into_par_iter()
+                            .try_for_each(|i| -> Result<()> {
+                                let sheet = drawer.sheet(i)?;
+                                let stem = sheet.file_stem();
+                                let dxf = dxf_out::to_dxf(&sheet).map_err(|e| {
+                                    Error::output(&out.join(format!("sheets/{stem}.dxf")), e)
+                                })?;
+                                staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
+                                let title = format!(
+                                    "{} — {}: sheet {} of {} ({}), {} × {} mm",
+                                    network_name,
+                                    profile.name,
+                                    sheet.number,
+                                    sheet_count,
+                                    sheet.id,
+                                    sheet.length_mm,
+                                    sheet.width_mm
+                                );
+                                staging.write(
+                                    &format!("sheets/{stem}.svg"),
+                                    svg_out::to_svg(&sheet, &title).as_bytes(),
+                                )?;
+                                progress.inc(1);
+                                Ok(())
+                            })
+                            .map(|()| sheet_count)
+                    })
+                },
+                || {
+                    timed(&|| {
+                        let (pdf, pages) = super::assembly::assembly_pdf_counted(
+                            &super::assembly::AssemblyInput {
+                                plan: &the_plan,
+                                takeoff: &takeoff,
+                                curves: &curves,
+                                paper: opts.paper,
+                                plan_path: &plan_target,
+                            },
+                        )?;
+                        staging.write("assembly.pdf", &pdf)?;
+                        Ok(pages)
+                    })
+                },
+            )
+        },
+    );
+    plan_written.0?;
+    sheets_written.0?;
+    let assembly_pages = pdf_written.0?;
+    clock.lap("write");
+    clock.part("write: plan.json", plan_written.1);
+    clock.part("write: sheets", sheets_written.1);
+    clock.part("write: assembly.pdf", pdf_written.1);
+    drop(drawer);
     drop(curves);
+    let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
