@@ -214,7 +214,7 @@ pub fn build(
     let kinds = kit.summary.kinds.clone();
     plan::add_parts_taking(&mut the_plan, &mut kit);
     let plan_target = out.join("plan.json");
-    if let Some(field) = io::finite::first_non_finite(&the_plan) {
+    if let Some(field) = plan::first_non_finite(&mut the_plan) {
         return Err(Error::output(
             &plan_target,
             format!("not written: {field} is not a finite number"),

@@ -140,13 +140,17 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
 }
 
 /// A part's engraving strokes as one path of open subpaths, relative
-/// after its first point: `M x y l dx dy dx dy … m dx dy l …`. The strokes'
-/// points lie on the engraving's grid of [`ENGRAVE_DECIMALS`] decimals
-/// ([`super::drawing`]), so every step is a whole number of grid units,
-/// written exactly: the positions it adds up to are the DXF's.
+/// after its first point: `M x y h dx v dy l dx dy … m dx dy …`
+/// (horizontal and vertical steps as `h` and `v`, a command letter only
+/// where it changes, no zero before a decimal point, no space before a
+/// minus sign). The strokes' points lie on the engraving's grid of
+/// [`ENGRAVE_DECIMALS`] decimals ([`super::drawing`]), so every step is a
+/// whole number of grid units, written exactly: the positions it adds up
+/// to are the DXF's.
 fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
     let scale = 10f64.powi(ENGRAVE_DECIMALS);
     let unit = |v: f64| (v * scale).round() as i64;
+    let mut path = RelativePath::new(s);
     let mut at: Option<(i64, i64)> = None;
     for sh in shapes {
         if let Shape::Polyline {
@@ -155,59 +159,126 @@ fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
             ..
         } = sh
         {
+            // Grid units, y down as SVG draws it.
             let mut points = vertices.iter().map(|v| (unit(v.x_mm), -unit(v.y_mm)));
             let Some(first) = points.next() else {
                 continue;
             };
             match at {
-                None => {
-                    s.push_str(r#"<path d="M"#);
-                    super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
-                    s.push(' ');
-                    super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
-                }
-                Some(last) => {
-                    s.push_str(" m");
-                    step(s, last, first);
-                }
+                None => path.start(vertices[0].x_mm, w - vertices[0].y_mm),
+                Some(last) => path.step(b'm', last, first),
             }
-            s.push_str(" l");
             let mut last = first;
-            for (k, p) in points.enumerate() {
-                if k > 0 && p.0 - last.0 >= 0 {
-                    s.push(' ');
-                }
-                step(s, last, p);
+            for p in points {
+                path.step(b'l', last, p);
                 last = p;
             }
             at = Some(last);
         }
     }
     if at.is_some() {
-        s.push_str("\"/>\n");
+        path.s.push_str("\"/>\n");
     }
 }
 
-/// The step from `a` to `b` in grid units (y already flipped) as `dx dy`,
-/// the space left out before a minus sign.
-fn step(s: &mut String, a: (i64, i64), b: (i64, i64)) {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    push_units(s, dx);
-    if dy >= 0 {
-        s.push(' ');
-    }
-    push_units(s, dy);
+/// An SVG path written with relative steps (see [`engraving`]).
+struct RelativePath<'a> {
+    s: &'a mut String,
+    /// The command the next numbers continue without a letter.
+    command: u8,
+    /// Whether a number was written last (a separator may be due).
+    after_number: bool,
+    scratch: String,
 }
 
-/// A whole number of engraving grid units as a decimal (`-0.75`, `12`).
-fn push_units(s: &mut String, units: i64) {
-    super::push_scaled(
-        s,
-        units < 0,
-        units.unsigned_abs(),
-        ENGRAVE_DECIMALS as u32,
-        false,
-    );
+impl<'a> RelativePath<'a> {
+    fn new(s: &'a mut String) -> RelativePath<'a> {
+        RelativePath {
+            s,
+            command: 0,
+            after_number: false,
+            scratch: String::with_capacity(24),
+        }
+    }
+
+    /// `<path d="M x y` (absolute, mm).
+    fn start(&mut self, x: f64, y: f64) {
+        self.s.push_str(r#"<path d="M"#);
+        super::push_decimal(self.s, x, DECIMALS, false);
+        self.s.push(' ');
+        super::push_decimal(self.s, y, DECIMALS, false);
+        // Numbers after an `M` pair would be absolute lines.
+        self.command = b'L';
+        self.after_number = true;
+    }
+
+    /// The step from `a` to `b` (grid units): a move (`m`), or a line as
+    /// `h`, `v` or `l`.
+    fn step(&mut self, kind: u8, a: (i64, i64), b: (i64, i64)) {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        match kind {
+            b'm' => {
+                self.letter(b'm');
+                self.number(dx);
+                self.number(dy);
+                // Pairs after an `m` pair are relative lines.
+                self.command = b'l';
+            }
+            _ if dy == 0 => {
+                self.letter(b'h');
+                self.number(dx);
+            }
+            _ if dx == 0 => {
+                self.letter(b'v');
+                self.number(dy);
+            }
+            _ => {
+                self.letter(b'l');
+                self.number(dx);
+                self.number(dy);
+            }
+        }
+    }
+
+    fn letter(&mut self, c: u8) {
+        if self.command != c || c == b'm' {
+            self.s.push(char::from(c));
+            self.command = c;
+            self.after_number = false;
+        }
+    }
+
+    /// A whole number of grid units as a decimal, without the zero before
+    /// the point (`-.75`, `.5`, `12`).
+    fn number(&mut self, units: i64) {
+        self.scratch.clear();
+        super::push_scaled(
+            &mut self.scratch,
+            units < 0,
+            units.unsigned_abs(),
+            ENGRAVE_DECIMALS as u32,
+            false,
+        );
+        let t = self.scratch.as_str();
+        let t = if let Some(rest) = t.strip_prefix("-0.") {
+            self.s.push('-');
+            self.s.push('.');
+            rest
+        } else if let Some(rest) = t.strip_prefix("0.") {
+            if self.after_number {
+                self.s.push(' ');
+            }
+            self.s.push('.');
+            rest
+        } else {
+            if self.after_number && !t.starts_with('-') {
+                self.s.push(' ');
+            }
+            t
+        };
+        self.s.push_str(t);
+        self.after_number = true;
+    }
 }
 
 /// The segment from `a` to `b`: a line, or the arc of `a`'s bulge.
@@ -255,6 +326,36 @@ mod tests {
         assert_eq!(num(0.1), "0.1");
         assert_eq!(num(-0.00001), "0");
         assert_eq!(num(12.345678), "12.3457");
+    }
+
+    /// Two strokes on a 100 mm wide sheet (SVG y = 100 − y): the first
+    /// point absolute, then a horizontal, a vertical and a slanted step, a
+    /// move to the second stroke and its step continuing the move's
+    /// implicit line; by hand.
+    #[test]
+    fn engraving_is_relative_and_compact() {
+        let v = |x_mm, y_mm| Vertex {
+            x_mm,
+            y_mm,
+            bulge: 0.0,
+        };
+        let stroke = |vertices| Shape::Polyline {
+            layer: Layer::Engrave,
+            closed: false,
+            vertices,
+        };
+        let shapes = [
+            stroke(vec![
+                v(10.0, 10.0),
+                v(12.5, 10.0),
+                v(12.5, 9.25),
+                v(11.75, 8.5),
+            ]),
+            stroke(vec![v(20.0, 10.0), v(19.5, 10.75)]),
+        ];
+        let mut s = String::new();
+        engraving(&mut s, &shapes, 100.0);
+        assert_eq!(s, "<path d=\"M10 90h2.5v.75l-.75 .75m8.25-1.5-.5-.75\"/>\n");
     }
 
     /// A half circle of radius 5 from (0, 0) to (10, 0) counter-clockwise

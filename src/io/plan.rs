@@ -867,25 +867,29 @@ fn engraving_font(parts: &[PlanPart]) -> PlanFont {
             .map(|s| s.iter().map(|p| [p.x, p.y]).collect())
             .collect(),
     };
-    let mut glyphs = std::collections::BTreeMap::new();
+    let mut chars = std::collections::BTreeSet::new();
     let mut marks = std::collections::BTreeMap::new();
     for e in parts.iter().flat_map(|p| &p.engraving) {
-        for c in e.text.iter().flat_map(|t| t.chars()) {
-            glyphs
-                .entry(c.to_string())
-                .or_insert_with(|| glyph(font::glyph_width(c), font::glyph_strokes(c)));
-        }
-        if e.mark.as_deref() == Some(ORIENTATION_MARK) {
-            marks
-                .entry(ORIENTATION_MARK.to_string())
-                .or_insert_with(|| {
-                    glyph(
-                        label::ORIENTATION_MARK_LENGTH,
-                        label::orientation_mark_strokes(1.0),
-                    )
-                });
+        chars.extend(e.text.iter().flat_map(|t| t.chars()));
+        if e.mark.as_deref() == Some(ORIENTATION_MARK) && marks.is_empty() {
+            marks.insert(
+                ORIENTATION_MARK.to_string(),
+                glyph(
+                    label::ORIENTATION_MARK_LENGTH,
+                    label::orientation_mark_strokes(1.0),
+                ),
+            );
         }
     }
+    let glyphs = chars
+        .into_iter()
+        .map(|c| {
+            (
+                c.to_string(),
+                glyph(font::glyph_width(c), font::glyph_strokes(c)),
+            )
+        })
+        .collect();
     PlanFont {
         name: font::NAME.into(),
         letter_spacing: font::LETTER_SPACING,
@@ -901,8 +905,10 @@ pub const ORIENTATION_MARK: &str = "orientation";
 /// a big kit and its plan copy are not both held whole. Call [`add_nest`]
 /// first (it names parts by the kit).
 pub fn add_parts_taking(plan: &mut Plan, kit: &mut crate::fabricate::Kit) {
+    use rayon::prelude::*;
     let parts = std::mem::take(&mut kit.parts);
-    plan.parts = Some(parts.into_iter().map(|p| plan_part(&p)).collect());
+    // In parallel, in order; each part freed where it is converted.
+    plan.parts = Some(parts.into_par_iter().map(|p| plan_part(&p)).collect());
     add_kit_summary(plan, kit);
 }
 
@@ -1053,6 +1059,23 @@ fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanChec
     }
 }
 
+/// The dotted path of a NaN or infinite number in `plan`, if any
+/// ([`crate::io::finite::first_non_finite`]): the first outside its parts,
+/// else the first in them (walked in parallel).
+pub fn first_non_finite(plan: &mut Plan) -> Option<String> {
+    use rayon::prelude::*;
+    let parts = plan.parts.take();
+    let rest = crate::io::finite::first_non_finite(plan);
+    plan.parts = parts;
+    rest.or_else(|| {
+        plan.parts.as_deref().and_then(|parts| {
+            parts.par_iter().enumerate().find_map_first(|(i, p)| {
+                crate::io::finite::first_non_finite(p).map(|f| format!("parts[{i}].{f}"))
+            })
+        })
+    })
+}
+
 /// Serialise a plan (pretty JSON, trailing newline).
 pub fn to_json(plan: &Plan) -> String {
     let mut out = Vec::new();
@@ -1091,4 +1114,55 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         Error::io(path, e)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(id: &str, length_mm: f64) -> PlanPart {
+        PlanPart {
+            id: id.into(),
+            kind: "washer".into(),
+            strip: None,
+            lamella: None,
+            count: 1,
+            length_mm,
+            height_mm: 10.0,
+            station_start_mm: None,
+            outline: vec![[0.0, 0.0], [length_mm, 0.0], [0.0, 10.0]],
+            holes: vec![],
+            engraving: vec![],
+            features: vec![],
+        }
+    }
+
+    /// The parts are walked in parallel, the rest as a whole walk would.
+    #[test]
+    fn non_finite_numbers_named_in_the_parts_and_outside() {
+        let mut plan: Plan = serde_json::from_value(serde_json::json!({
+            "schema": SCHEMA, "generator": "t", "units": "mm",
+            "network": {"name": "n", "source": "n.yaml", "file_units": "mm", "tolerance_mm": 0.5},
+            "summary": {"curves": 0, "nodes": 0, "total_length_mm": 0.0,
+                "shortest_node_to_node_mm": null, "longest_node_to_node_mm": null,
+                "max_normal_curvature_per_m": 0.0, "min_angle_deg": null, "max_angle_deg": null},
+            "strips": [], "nodes": [], "warnings": []
+        }))
+        .expect("plan");
+        plan.parts = Some((0..50).map(|i| part(&format!("P{i}"), 10.0)).collect());
+        assert_eq!(first_non_finite(&mut plan), None);
+        let parts = plan.parts.as_mut().expect("parts");
+        parts[40].outline[2][1] = f64::INFINITY;
+        parts[7].length_mm = f64::NAN;
+        assert_eq!(
+            first_non_finite(&mut plan).as_deref(),
+            Some("parts[7].length_mm")
+        );
+        plan.network.tolerance_mm = f64::NAN;
+        assert_eq!(
+            first_non_finite(&mut plan).as_deref(),
+            Some("network.tolerance_mm")
+        );
+        assert_eq!(plan.parts.as_ref().map(Vec::len), Some(50));
+    }
 }
