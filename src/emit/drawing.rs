@@ -37,7 +37,7 @@ pub const ENGRAVE_DECIMALS: i32 = 3;
 /// decimal, so writers print it exactly).
 pub fn engrave_round(x: f64) -> f64 {
     let scale = 10f64.powi(ENGRAVE_DECIMALS);
-    let r = (x * scale).round() / scale;
+    let r = super::round_to_i64(x * scale) as f64 / scale;
     if r == 0.0 {
         0.0
     } else {
@@ -133,6 +133,41 @@ pub enum Shape {
         /// Radius, mm.
         radius_mm: f64,
     },
+    /// Open polylines of one engraving (a text or a mark), kept together
+    /// (one allocation, not one per stroke): stroke k is
+    /// `vertices[ends[k − 1]..ends[k]]` (from 0 for the first), at least two
+    /// vertices each, straight segments.
+    Strokes {
+        /// Its operation.
+        layer: Layer,
+        /// Every stroke's vertices, one after the other.
+        vertices: Vec<Vertex>,
+        /// Where each stroke ends in `vertices`.
+        ends: Vec<usize>,
+    },
+}
+
+impl Shape {
+    /// The operation it belongs to.
+    pub fn layer(&self) -> Layer {
+        match self {
+            Shape::Polyline { layer, .. }
+            | Shape::Circle { layer, .. }
+            | Shape::Strokes { layer, .. } => *layer,
+        }
+    }
+}
+
+/// The strokes of a [`Shape::Strokes`]: its vertices split at its ends.
+pub fn strokes<'a>(
+    vertices: &'a [Vertex],
+    ends: &'a [usize],
+) -> impl Iterator<Item = &'a [Vertex]> {
+    ends.iter().scan(0, move |start, &end| {
+        let s = &vertices[*start..end];
+        *start = end;
+        Some(s)
+    })
 }
 
 /// One placed copy of a part.
@@ -426,9 +461,12 @@ fn part_on_sheet(
     }
     shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm)?);
     for e in part.engraving.iter().filter(|_| engraving) {
+        let mut vertices: Vec<Vertex> = Vec::new();
+        let mut ends: Vec<usize> = Vec::new();
         font.strokes(e, |points| {
-            // Placed, on the grid, consecutive equal points merged.
-            let mut vertices: Vec<Vertex> = Vec::with_capacity(points.size_hint().0);
+            // Placed, on the grid, consecutive equal points merged; a
+            // stroke left with one point is dropped.
+            let start = vertices.len();
             for p in points {
                 let [x, y] = map(&p);
                 let v = Vertex {
@@ -436,21 +474,27 @@ fn part_on_sheet(
                     y_mm: engrave_round(y),
                     bulge: 0.0,
                 };
-                if vertices
-                    .last()
-                    .is_none_or(|q| (v.x_mm - q.x_mm).hypot(v.y_mm - q.y_mm) > MERGE_MM)
+                if vertices.len() == start
+                    || (v.x_mm - vertices[vertices.len() - 1].x_mm)
+                        .hypot(v.y_mm - vertices[vertices.len() - 1].y_mm)
+                        > MERGE_MM
                 {
                     vertices.push(v);
                 }
             }
-            if vertices.len() >= 2 {
-                shapes.push(Shape::Polyline {
-                    layer: Layer::Engrave,
-                    closed: false,
-                    vertices,
-                });
+            if vertices.len() - start >= 2 {
+                ends.push(vertices.len());
+            } else {
+                vertices.truncate(start);
             }
         })?;
+        if !ends.is_empty() {
+            shapes.push(Shape::Strokes {
+                layer: Layer::Engrave,
+                vertices,
+                ends,
+            });
+        }
     }
     Ok(PartOnSheet {
         part: part.id.clone(),

@@ -15,7 +15,7 @@
 //! it four times slower than the rest of a big build together.
 //! Coordinates have 6 decimals (1 nm), bulges 10.
 
-use super::drawing::{Layer, Shape, SheetDrawing};
+use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex};
 use dxf::enums::{AcadVersion, DrawingUnits, Units};
 use dxf::tables::Layer as DxfLayer;
 use dxf::{Color, Drawing};
@@ -109,12 +109,13 @@ pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
     let outline = sheet.outline();
     let shapes = || std::iter::once(&outline).chain(sheet.parts.iter().flat_map(|p| &p.shapes));
     // The handles the entities take, and about the bytes they need.
-    let (count, bytes) = shapes().fold((0u64, 0usize), |(n, b), sh| {
-        let b = b + match sh {
-            Shape::Polyline { vertices, .. } => 100 + 32 * vertices.len(),
-            Shape::Circle { .. } => 130,
-        };
-        (n + 1, b)
+    let (count, bytes) = shapes().fold((0u64, 0usize), |(n, b), sh| match sh {
+        Shape::Polyline { vertices, .. } => (n + 1, b + 100 + 32 * vertices.len()),
+        Shape::Circle { .. } => (n + 1, b + 130),
+        Shape::Strokes { vertices, ends, .. } => (
+            n + ends.len() as u64,
+            b + 100 * ends.len() + 32 * vertices.len(),
+        ),
     });
     let mut out = String::with_capacity(
         sk.before_seed.len() + sk.before_entities.len() + bytes + sk.after_entities.len() + 16,
@@ -130,34 +131,22 @@ pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
     Ok(out.into_bytes())
 }
 
-/// One entity with its handle, in the group codes the dxf crate writes
-/// (integers without its padding).
+/// One entity with its handle (a [`Shape::Strokes`]: one per stroke), in
+/// the group codes the dxf crate writes (integers without its padding).
 fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
     match shape {
         Shape::Polyline {
             layer,
             closed,
             vertices,
+        } => polyline(s, *layer, *closed, vertices, handle),
+        Shape::Strokes {
+            layer,
+            vertices,
+            ends,
         } => {
-            let _ = write!(
-                s,
-                "  0\nLWPOLYLINE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbPolyline\n 90\n{}\n 70\n{}\n",
-                *handle,
-                layer.name(),
-                vertices.len(),
-                u8::from(*closed)
-            );
-            for v in vertices {
-                s.push_str(" 10\n");
-                super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
-                s.push_str("\n 20\n");
-                super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
-                s.push('\n');
-                if v.bulge != 0.0 {
-                    s.push_str(" 42\n");
-                    super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
-                    s.push('\n');
-                }
+            for stroke in strokes(vertices, ends) {
+                polyline(s, *layer, false, stroke, handle);
             }
         }
         Shape::Circle {
@@ -176,6 +165,31 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
             super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
             s.push_str("\n 30\n0.0\n 40\n");
             super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
+            s.push('\n');
+            *handle += 1;
+        }
+    }
+}
+
+/// One LWPOLYLINE with its handle.
+fn polyline(s: &mut String, layer: Layer, closed: bool, vertices: &[Vertex], handle: &mut u64) {
+    let _ = write!(
+        s,
+        "  0\nLWPOLYLINE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbPolyline\n 90\n{}\n 70\n{}\n",
+        *handle,
+        layer.name(),
+        vertices.len(),
+        u8::from(closed)
+    );
+    for v in vertices {
+        s.push_str(" 10\n");
+        super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
+        s.push_str("\n 20\n");
+        super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
+        s.push('\n');
+        if v.bulge != 0.0 {
+            s.push_str(" 42\n");
+            super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
             s.push('\n');
         }
     }

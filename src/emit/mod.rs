@@ -93,6 +93,17 @@ pub(crate) fn push_scaled(
     out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
 }
 
+/// `y` rounded to the nearest integer, halves away from zero (see
+/// [`round_half_away`]).
+pub(crate) fn round_to_i64(y: f64) -> i64 {
+    let r = round_half_away(y.abs()) as i64;
+    if y < 0.0 {
+        -r
+    } else {
+        r
+    }
+}
+
 /// `y` ≥ 0 rounded to the nearest integer, halves away from zero (as
 /// `f64::round`, which is a library call on baseline x86-64): `y − ⌊y⌋` is
 /// exact for a double.

@@ -7,7 +7,7 @@
 //! labels are in `ENGRAVE`). Written by hand with fixed decimals, so equal
 //! sheets give equal bytes.
 
-use super::drawing::{Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS};
+use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS};
 use std::fmt::Write;
 
 /// Stroke width of every contour, mm.
@@ -27,7 +27,9 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
         .iter()
         .flat_map(|p| &p.shapes)
         .map(|sh| match sh {
-            Shape::Polyline { vertices, .. } => 24 + 16 * vertices.len(),
+            Shape::Polyline { vertices, .. } | Shape::Strokes { vertices, .. } => {
+                24 + 16 * vertices.len()
+            }
             Shape::Circle { .. } => 60,
         })
         .sum();
@@ -92,9 +94,7 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
 }
 
 fn shape_layer(sh: &Shape) -> Layer {
-    match sh {
-        Shape::Polyline { layer, .. } | Shape::Circle { layer, .. } => *layer,
-    }
+    sh.layer()
 }
 
 fn shape(s: &mut String, sh: &Shape, w: f64) {
@@ -136,6 +136,19 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
             }
             s.push_str("\"/>\n");
         }
+        Shape::Strokes { vertices, ends, .. } => {
+            for stroke in strokes(vertices, ends) {
+                shape(
+                    s,
+                    &Shape::Polyline {
+                        layer: sh.layer(),
+                        closed: false,
+                        vertices: stroke.to_vec(),
+                    },
+                    w,
+                );
+            }
+        }
     }
 }
 
@@ -149,31 +162,35 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
 /// to are the DXF's.
 fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
     let scale = 10f64.powi(ENGRAVE_DECIMALS);
-    let unit = |v: f64| (v * scale).round() as i64;
+    let unit = |v: f64| super::round_to_i64(v * scale);
     let mut path = RelativePath::new(s);
     let mut at: Option<(i64, i64)> = None;
-    for sh in shapes {
-        if let Shape::Polyline {
-            layer: Layer::Engrave,
-            vertices,
-            ..
-        } = sh
-        {
-            // Grid units, y down as SVG draws it.
-            let mut points = vertices.iter().map(|v| (unit(v.x_mm), -unit(v.y_mm)));
-            let Some(first) = points.next() else {
-                continue;
-            };
-            match at {
-                None => path.start(vertices[0].x_mm, w - vertices[0].y_mm),
-                Some(last) => path.step(b'm', last, first),
+    let mut draw = |vertices: &[Vertex], path: &mut RelativePath| {
+        // Grid units, y down as SVG draws it.
+        let mut points = vertices.iter().map(|v| (unit(v.x_mm), -unit(v.y_mm)));
+        let Some(first) = points.next() else {
+            return;
+        };
+        match at {
+            None => path.start(vertices[0].x_mm, w - vertices[0].y_mm),
+            Some(last) => path.step(b'm', last, first),
+        }
+        let mut last = first;
+        for p in points {
+            path.step(b'l', last, p);
+            last = p;
+        }
+        at = Some(last);
+    };
+    for sh in shapes.iter().filter(|sh| sh.layer() == Layer::Engrave) {
+        match sh {
+            Shape::Polyline { vertices, .. } => draw(vertices, &mut path),
+            Shape::Strokes { vertices, ends, .. } => {
+                for stroke in strokes(vertices, ends) {
+                    draw(stroke, &mut path);
+                }
             }
-            let mut last = first;
-            for p in points {
-                path.step(b'l', last, p);
-                last = p;
-            }
-            at = Some(last);
+            Shape::Circle { .. } => {}
         }
     }
     if at.is_some() {
