@@ -268,30 +268,32 @@ pub fn build(
                     timed(&|| {
                         (0..sheet_count)
                             .into_par_iter()
-                            .try_for_each(|i| -> Result<()> {
-                                let sheet = drawer.sheet(i)?;
-                                let stem = sheet.file_stem();
-                                let dxf = dxf_out::to_dxf(&sheet).map_err(|e| {
-                                    Error::output(&out.join(format!("sheets/{stem}.dxf")), e)
-                                })?;
-                                staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
-                                let title = format!(
-                                    "{} — {}: sheet {} of {} ({}), {} × {} mm",
-                                    network_name,
-                                    profile.name,
-                                    sheet.number,
-                                    sheet_count,
-                                    sheet.id,
-                                    sheet.length_mm,
-                                    sheet.width_mm
-                                );
-                                staging.write(
-                                    &format!("sheets/{stem}.svg"),
-                                    svg_out::to_svg(&sheet, &title).as_bytes(),
-                                )?;
-                                progress.inc(1);
-                                Ok(())
-                            })
+                            // Each worker's text buffers serve sheet after sheet.
+                            .try_for_each_init(
+                                || (String::new(), String::new()),
+                                |(dxf, svg), i| -> Result<()> {
+                                    let sheet = drawer.sheet(i)?;
+                                    let stem = sheet.file_stem();
+                                    dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
+                                        Error::output(&out.join(format!("sheets/{stem}.dxf")), e)
+                                    })?;
+                                    staging.write(&format!("sheets/{stem}.dxf"), dxf.as_bytes())?;
+                                    let title = format!(
+                                        "{} — {}: sheet {} of {} ({}), {} × {} mm",
+                                        network_name,
+                                        profile.name,
+                                        sheet.number,
+                                        sheet_count,
+                                        sheet.id,
+                                        sheet.length_mm,
+                                        sheet.width_mm
+                                    );
+                                    svg_out::write_svg(&sheet, &title, svg);
+                                    staging.write(&format!("sheets/{stem}.svg"), svg.as_bytes())?;
+                                    progress.inc(1);
+                                    Ok(())
+                                },
+                            )
                             .map(|()| sheet_count)
                     })
                 },

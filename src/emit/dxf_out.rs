@@ -105,6 +105,14 @@ fn make_skeleton() -> Result<Skeleton, String> {
 
 /// The DXF text of one sheet.
 pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
+    let mut out = String::new();
+    write_dxf(sheet, &mut out)?;
+    Ok(out.into_bytes())
+}
+
+/// The DXF text of one sheet into `out` (cleared first; a buffer used
+/// again for the next sheet keeps its memory).
+pub fn write_dxf(sheet: &SheetDrawing, out: &mut String) -> Result<(), String> {
     let sk = skeleton()?;
     let outline = sheet.outline();
     let shapes = || std::iter::once(&outline).chain(sheet.parts.iter().flat_map(|p| &p.shapes));
@@ -117,7 +125,8 @@ pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
             b + 100 * ends.len() + 32 * vertices.len(),
         ),
     });
-    let mut out = String::with_capacity(
+    out.clear();
+    out.reserve(
         sk.before_seed.len() + sk.before_entities.len() + bytes + sk.after_entities.len() + 16,
     );
     out.push_str(&sk.before_seed);
@@ -125,10 +134,10 @@ pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
     out.push_str(&sk.before_entities);
     let mut handle = sk.first_handle;
     for shape in shapes() {
-        entity(&mut out, shape, &mut handle);
+        entity(out, shape, &mut handle);
     }
     out.push_str(&sk.after_entities);
-    Ok(out.into_bytes())
+    Ok(())
 }
 
 /// One entity with its handle (a [`Shape::Strokes`]: one per stroke), in

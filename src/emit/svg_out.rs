@@ -21,6 +21,14 @@ const LABEL_MAX_MM: f64 = 40.0;
 
 /// The SVG text of one sheet; `title` names the project and sheet.
 pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
+    let mut s = String::new();
+    write_svg(sheet, title, &mut s);
+    s
+}
+
+/// The SVG text of one sheet into `s` (cleared first; a buffer used again
+/// for the next sheet keeps its memory).
+pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut String) {
     let (l, w) = (sheet.length_mm, sheet.width_mm);
     let bytes: usize = sheet
         .parts
@@ -33,7 +41,8 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
             Shape::Circle { .. } => 60,
         })
         .sum();
-    let mut s = String::with_capacity(4096 + 200 * sheet.parts.len() + bytes);
+    s.clear();
+    s.reserve(4096 + 200 * sheet.parts.len() + bytes);
     let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         s,
@@ -53,15 +62,15 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
             num(STROKE_MM)
         );
         if layer == Layer::Sheet {
-            shape(&mut s, &sheet.outline(), w);
+            shape(s, &sheet.outline(), w);
         }
         for part in &sheet.parts {
             if layer == Layer::Engrave {
-                engraving(&mut s, &part.shapes, w);
+                engraving(s, &part.shapes, w);
                 continue;
             }
             for sh in part.shapes.iter().filter(|sh| shape_layer(sh) == layer) {
-                shape(&mut s, sh, w);
+                shape(s, sh, w);
             }
         }
         let _ = writeln!(s, "</g>");
@@ -90,7 +99,6 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
     }
     let _ = writeln!(s, "</g>");
     let _ = writeln!(s, "</svg>");
-    s
 }
 
 fn shape_layer(sh: &Shape) -> Layer {
