@@ -124,6 +124,10 @@ const DIGIT_PAIRS: &[u8; 200] = b"\
 /// `y` rounded to the nearest integer, halves away from zero (see
 /// [`round_half_away`]).
 pub(crate) fn round_to_i64(y: f64) -> i64 {
+    if !(y.abs() < 1e15) {
+        // Huge, infinite or NaN: the saturating cast of the library's rounding.
+        return y.round() as i64;
+    }
     let r = round_half_away(y.abs()) as i64;
     if y < 0.0 {
         -r
@@ -138,7 +142,7 @@ pub(crate) fn round_to_i64(y: f64) -> i64 {
 fn round_half_away(y: f64) -> u64 {
     let t = y as u64;
     if y - t as f64 >= 0.5 {
-        t + 1
+        t.saturating_add(1)
     } else {
         t
     }
