@@ -4,7 +4,9 @@
 //! stage from reading the network to the files moved into place (plan.json,
 //! takeoff, a DXF and an SVG per sheet, assembly.pdf; its pages, size and
 //! time in the last columns). Each size runs in a fresh child
-//! process so its peak memory (VmHWM) is its own.
+//! process so its peak memory (VmHWM) is its own. Under each size's line:
+//! the MiB written per kind of file, the wall time per stage, and the load
+//! average before and after (other work on the machine slows the build).
 //!
 //!     cargo bench --bench build            # all sizes
 //!     cargo bench --bench build -- 400     # one size
@@ -50,6 +52,7 @@ fn measure(path: &Path) {
     let profile = Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
     let out = path.with_extension("build");
     let _ = std::fs::remove_dir_all(&out);
+    let load0 = support::load_average();
     let t0 = Instant::now();
     let r = build(
         path,
@@ -60,13 +63,34 @@ fn measure(path: &Path) {
     )
     .expect("build");
     let secs = t0.elapsed().as_secs_f64();
-    let bytes: u64 = r
-        .files
+    let size = |f: &String| std::fs::metadata(out.join(f)).map_or(0, |m| m.len());
+    let bytes: u64 = r.files.iter().map(size).sum();
+    let mib = |b: u64| b as f64 / (1024.0 * 1024.0);
+    let kinds = [
+        ("plan.json", "plan.json"),
+        ("dxf", ".dxf"),
+        ("svg", ".svg"),
+        ("pdf", ".pdf"),
+        ("takeoff", "takeoff."),
+    ];
+    let by_kind: Vec<String> = kinds
         .iter()
-        .map(|f| std::fs::metadata(out.join(f)).map_or(0, |m| m.len()))
-        .sum();
-    let pdf_mib = std::fs::metadata(out.join("assembly.pdf")).map_or(0, |m| m.len()) as f64
-        / (1024.0 * 1024.0);
+        .map(|(name, ends)| {
+            let b: u64 = r
+                .files
+                .iter()
+                .filter(|f| f.ends_with(ends) || f.starts_with(ends))
+                .map(size)
+                .sum();
+            format!("{name} {:.1}", mib(b))
+        })
+        .collect();
+    let pdf_mib = mib(std::fs::metadata(out.join("assembly.pdf")).map_or(0, |m| m.len()));
+    let assembly_s = r
+        .stages
+        .iter()
+        .find(|t| t.stage == "write: assembly.pdf")
+        .map_or(0.0, |t| t.wall_s);
     println!(
         "{:>5} {:>8} {:>9} {:>7} {:>9} {:>10.0} {:>9.2} {:>10.0} {:>7} {:>8.1} {:>6.2}",
         r.strips / 2,
@@ -74,12 +98,27 @@ fn measure(path: &Path) {
         r.takeoff.totals.pieces,
         r.sheets_used,
         r.files.len(),
-        bytes as f64 / (1024.0 * 1024.0),
+        mib(bytes),
         secs,
         support::peak_mib(),
         r.assembly_pages,
         pdf_mib,
-        r.assembly_s
+        assembly_s
+    );
+    println!("      MiB: {}", by_kind.join(", "));
+    let stages: Vec<String> = r
+        .stages
+        .iter()
+        .map(|t| match t.cpu_s {
+            Some(cpu) => format!("{} {:.2} (cpu {cpu:.2})", t.stage, t.wall_s),
+            None => format!("{} {:.2}", t.stage, t.wall_s),
+        })
+        .collect();
+    println!("      s: {}", stages.join(", "));
+    let (user, sys) = support::cpu_s();
+    println!(
+        "      cpu: user {user:.2} s, sys {sys:.2} s; load before {load0}, after {}",
+        support::load_average()
     );
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -113,6 +113,56 @@ fn dedup(mut v: Vec<[f64; 2]>, closed: bool) -> Vec<[f64; 2]> {
     v
 }
 
+/// The strokes of one plan.json engraving, part frame, mm: its text's
+/// glyphs (or its mark) from the plan's `engraving_font`, by the schema's
+/// rule (README, plan.json).
+fn engraving_strokes(font: &Value, e: &Value) -> Vec<Vec<[f64; 2]>> {
+    let at = pt(&e["at_mm"]);
+    let h = e["height_mm"].as_f64().expect("height");
+    let set = |g: &Value, x: f64| -> Vec<Vec<[f64; 2]>> {
+        g["strokes"]
+            .as_array()
+            .expect("strokes")
+            .iter()
+            .map(|s| {
+                s.as_array()
+                    .expect("stroke")
+                    .iter()
+                    .map(|q| {
+                        let q = pt(q);
+                        [at[0] + (x + q[0]) * h, at[1] + q[1] * h]
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    match (e["text"].as_str(), e["mark"].as_str()) {
+        (Some(text), None) => {
+            let spacing = font["letter_spacing"].as_f64().expect("spacing");
+            let mut x = 0.0;
+            let mut out = Vec::new();
+            for c in text.chars() {
+                let g = &font["glyphs"][c.to_string()];
+                assert!(g.is_object(), "no glyph for {c:?}");
+                out.extend(set(g, x));
+                x += g["width"].as_f64().expect("width") + spacing;
+            }
+            out
+        }
+        (None, Some(mark)) => {
+            let g = &font["marks"][mark];
+            assert!(g.is_object(), "no mark {mark:?}");
+            set(g, 0.0)
+        }
+        _ => panic!("an engraving is neither a text nor a mark: {e}"),
+    }
+}
+
+/// A sheet coordinate of the engraving: rounded to 1 µm.
+fn grid(v: f64) -> f64 {
+    (v * 1000.0).round() / 1000.0
+}
+
 enum Ent {
     Poly {
         layer: String,
@@ -203,28 +253,19 @@ fn dxf_matches_plan(out: &Path) -> usize {
                 pl["y_mm"].as_f64().expect("y"),
             );
             let map = |v: &Value| placed(pt(v), rot, tx, ty);
-            let holes: Vec<([f64; 2], f64)> = part["features"]
-                .as_array()
-                .expect("features")
-                .iter()
-                .filter(|f| f["kind"] == "hole")
-                .map(|f| {
-                    (
-                        pt(&f["center_mm"]),
-                        0.5 * f["width_mm"].as_f64().expect("w"),
-                    )
-                })
-                .collect();
-            for hole in part["holes"].as_array().expect("holes") {
-                let pts: Vec<[f64; 2]> = hole.as_array().expect("hole").iter().map(pt).collect();
-                let circle = holes.iter().find(|(c, r)| {
-                    pts.iter()
-                        .all(|p| ((p[0] - c[0]).hypot(p[1] - c[1]) - r).abs() <= 1e-3)
-                });
-                match (it.next(), circle) {
-                    (Some(Ent::Circle { layer, c, r }), Some((fc, fr))) => {
+            // Round holes: the hole features, as circles, in feature order.
+            for f in part["features"].as_array().expect("features") {
+                if f["kind"] != "hole" {
+                    continue;
+                }
+                let (fc, fr) = (
+                    pt(&f["center_mm"]),
+                    0.5 * f["width_mm"].as_f64().expect("w"),
+                );
+                match it.next() {
+                    Some(Ent::Circle { layer, c, r }) => {
                         assert_eq!(layer, "CUT-INNER");
-                        let want = placed(*fc, rot, tx, ty);
+                        let want = placed(fc, rot, tx, ty);
                         assert!(
                             close_to(&[*c], &[want], 1e-6),
                             "{}: circle {c:?} vs {want:?}",
@@ -232,15 +273,20 @@ fn dxf_matches_plan(out: &Path) -> usize {
                         );
                         assert!((r - fr).abs() <= 1e-6);
                     }
-                    (
-                        Some(Ent::Poly {
-                            layer,
-                            closed,
-                            pts: got,
-                            ..
-                        }),
-                        None,
-                    ) => {
+                    _ => panic!("{}: part {} hole out of order", path.display(), part["id"]),
+                }
+                checked += 1;
+            }
+            // Other inner contours.
+            for hole in part["holes"].as_array().expect("holes") {
+                let pts: Vec<[f64; 2]> = hole.as_array().expect("hole").iter().map(pt).collect();
+                match it.next() {
+                    Some(Ent::Poly {
+                        layer,
+                        closed,
+                        pts: got,
+                        ..
+                    }) => {
                         assert_eq!(layer, "CUT-INNER");
                         assert!(closed);
                         let want =
@@ -285,9 +331,21 @@ fn dxf_matches_plan(out: &Path) -> usize {
                 _ => panic!("{}: part {} outline missing", path.display(), part["id"]),
             }
             checked += 1;
-            for stroke in part["engraving"].as_array().expect("engraving") {
+            let strokes = part["engraving"]
+                .as_array()
+                .expect("engraving")
+                .iter()
+                .flat_map(|e| engraving_strokes(&plan["engraving_font"], e));
+            for stroke in strokes {
+                // Placed, then on the engraving's 1 µm grid.
                 let want = dedup(
-                    stroke.as_array().expect("stroke").iter().map(map).collect(),
+                    stroke
+                        .iter()
+                        .map(|p| {
+                            let [x, y] = placed(*p, rot, tx, ty);
+                            [grid(x), grid(y)]
+                        })
+                        .collect(),
                     false,
                 );
                 if want.len() < 2 {
@@ -554,13 +612,23 @@ fn takeoff_sums_the_plan() {
         let net_m2: f64 = of_kind
             .iter()
             .map(|p| {
+                // Round holes are the hole features, cut as circles.
+                let round: f64 = p["features"]
+                    .as_array()
+                    .expect("f")
+                    .iter()
+                    .filter(|f| f["kind"] == "hole")
+                    .map(|f| {
+                        std::f64::consts::PI * (0.5 * f["width_mm"].as_f64().expect("d")).powi(2)
+                    })
+                    .sum();
                 let holes: f64 = p["holes"]
                     .as_array()
                     .expect("h")
                     .iter()
                     .map(|h| area(h).abs())
                     .sum();
-                (area(&p["outline"]) - holes) * p["count"].as_f64().expect("n") * 1e-6
+                (area(&p["outline"]) - round - holes) * p["count"].as_f64().expect("n") * 1e-6
             })
             .sum();
         assert_eq!(line["count"].as_u64(), Some(count), "{kind}");

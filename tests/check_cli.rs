@@ -100,7 +100,7 @@ fn passing_network_exits_0_and_writes_the_check_into_plan_json() {
     assert_eq!(plan["check"]["passes"], true);
     // The node fields of `nodes` stay as they were.
     assert!(strip["nodes"][0]["station_mm"].is_number());
-    assert_eq!(plan["schema"], "lamella-plan/2");
+    assert_eq!(plan["schema"], "lamella-plan/3");
     std::fs::remove_dir_all(dir).unwrap();
 }
 

@@ -387,7 +387,7 @@ fn sample_network_succeeds() {
     assert!(!stderr.contains("error"), "stderr: {stderr}");
     let text = std::fs::read_to_string(out.join("plan.json")).expect("plan.json written");
     let plan: serde_json::Value = serde_json::from_str(&text).expect("plan.json is JSON");
-    assert_eq!(plan["schema"], "lamella-plan/2");
+    assert_eq!(plan["schema"], "lamella-plan/3");
     assert_eq!(plan["units"], "mm");
     assert_eq!(plan["network"]["source"], "hypar-small.yaml");
     assert!(plan["summary"]["nodes"].as_u64().expect("node count") > 0);

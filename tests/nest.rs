@@ -192,7 +192,7 @@ fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part:
         station_start_mm: Some(0.0),
         outline_part_mm: v,
         holes_part_mm: Vec::new(),
-        engraving_part_mm: Vec::new(),
+        engraving: Vec::new(),
         features: Vec::new(),
     }
 }
@@ -391,7 +391,7 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
                         Point::new(0.0, h),
                     ],
                     holes_part_mm: Vec::new(),
-                    engraving_part_mm: Vec::new(),
+                    engraving: Vec::new(),
                     features: Vec::new(),
                 }
             })

@@ -68,7 +68,7 @@ fn lamellas(parts: &[(f64, u32)]) -> Kit {
                 Point::new(0.0, 50.0),
             ],
             holes_part_mm: Vec::new(),
-            engraving_part_mm: Vec::new(),
+            engraving: Vec::new(),
             features: Vec::new(),
         })
         .collect();

@@ -363,7 +363,7 @@ fn every_profile_builds_every_sample_or_says_why() {
                             Ok(()),
                             "{profile} on {sample}"
                         );
-                        assert!(!part.engraving_part_mm.is_empty(), "{} unlabelled", part.id);
+                        assert!(!part.engraving.is_empty(), "{} unlabelled", part.id);
                     }
                     assert!(kit.warnings.is_empty(), "{:?}", kit.warnings);
                     // Every lamella part within the stock's usable length;

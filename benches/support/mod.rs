@@ -60,6 +60,32 @@ pub fn peak_mib() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// The load average over 1, 5 and 15 minutes (`/proc/loadavg`), as text.
+#[allow(dead_code)]
+pub fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|| "?".into())
+}
+
+/// User and system CPU time of this process so far, s (`/proc/self/stat`,
+/// clock ticks of 1/100 s): unlike wall time, hardly changed by other work
+/// on the machine.
+#[allow(dead_code)]
+pub fn cpu_s() -> (f64, f64) {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the command name in parentheses (which may hold spaces).
+    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+    let f: Vec<f64> = rest
+        .split_whitespace()
+        .map(|x| x.parse().unwrap_or(f64::NAN))
+        .collect();
+    // utime and stime are fields 14 and 15 of the line, 11 and 12 from the state.
+    let tick = |i: usize| f.get(i).copied().unwrap_or(f64::NAN) / 100.0;
+    (tick(11), tick(12))
+}
+
 /// The generated network file `name` (kept between runs), written by `make`
 /// (the network file's text) the first time it is asked for.
 pub fn generated(name: &str, make: impl FnOnce() -> String) -> PathBuf {

@@ -246,26 +246,33 @@ pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
         .par_iter()
         .map(|s| {
             let smooth = &an.curves[s.curve];
-            let lamellas: Vec<LamellaCheck> = profile
-                .lamella_offsets(s.family)
+            let offsets = profile.lamella_offsets(s.family);
+            let scans: Vec<_> = offsets
+                .iter()
+                .map(|&off| scan(an, s.curve, off, profile))
+                .collect();
+            // Every lamella's line and governing station from one pass of
+            // frames along the strip.
+            let curve_stations: Vec<f64> =
+                scans.iter().map(|sc| s.samples[sc.1].station_mm).collect();
+            let lines = LamellaLine::with_stations_many(s, smooth, &offsets, &curve_stations);
+            let lamellas: Vec<LamellaCheck> = scans
                 .into_iter()
-                .map(|off| {
-                    let (u, i, stresses, kmax, tmax) = scan(an, s.curve, off, profile);
-                    let curve_station = s.samples[i].station_mm;
-                    let (line, on_line) =
-                        LamellaLine::with_stations(s, smooth, off, &[curve_station]);
-                    LamellaCheck {
+                .zip(lines)
+                .enumerate()
+                .map(
+                    |(k, ((u, _, stresses, kmax, tmax), (line, on_line)))| LamellaCheck {
                         line,
                         utilization: u,
-                        governing_station_mm: on_line[0],
-                        governing_curve_station_mm: curve_station,
+                        governing_station_mm: on_line[k],
+                        governing_curve_station_mm: curve_stations[k],
                         governs: stresses.governs(),
                         stresses,
                         min_bending_radius_mm: (kmax > s.straight_curvature_per_mm())
                             .then(|| 1.0 / kmax),
                         max_twist_deg_per_m: tmax.to_degrees() * 1000.0,
-                    }
-                })
+                    },
+                )
                 .collect();
             let worst = (0..lamellas.len())
                 .max_by(|&a, &b| {

@@ -38,6 +38,18 @@ pub struct BuildOptions {
     pub paper: super::assembly::Paper,
 }
 
+/// The time one stage of a build took.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StageTime {
+    /// The stage.
+    pub stage: &'static str,
+    /// Wall time, s.
+    pub wall_s: f64,
+    /// CPU time of the whole process over the stage (all threads, user and
+    /// system), s, where the platform tells it.
+    pub cpu_s: Option<f64>,
+}
+
 /// The governing strip of the elastic check.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Governing {
@@ -86,8 +98,12 @@ pub struct BuildReport {
     pub out: PathBuf,
     /// Pages of assembly.pdf (0 when not written).
     pub assembly_pages: usize,
-    /// Time taken to draw and write assembly.pdf, s (not written anywhere).
-    pub assembly_s: f64,
+    /// Time per stage, in order (for the benchmark; not written
+    /// anywhere): `read`, `analyse`, `parts`, `nest`, `plan`, `write`
+    /// (the takeoff, then plan.json, the sheets and assembly.pdf side by
+    /// side: their own wall times follow as `write: plan.json`, `write:
+    /// sheets` and `write: assembly.pdf`), `commit`.
+    pub stages: Vec<StageTime>,
 }
 
 impl BuildReport {
@@ -125,9 +141,11 @@ pub fn build(
             }
         }
     }
+    let mut clock = Clock::start();
     progress.set_message("reading");
     let profile = Profile::load(profile_path)?;
     let net = io::read_network(network, opts.read)?;
+    clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     progress.set_message("checking");
@@ -136,6 +154,7 @@ pub fn build(
     let governing = governing(&report);
     let overstressed = report.overstressed();
     let strips = an.lamella_strips().count();
+    clock.lap("analyse");
     let edges = net.curves.len() - strips;
     if overstressed > 0 && !opts.allow_overstress {
         return Ok(BuildReport {
@@ -159,7 +178,7 @@ pub fn build(
             files: Vec::new(),
             out: out.to_path_buf(),
             assembly_pages: 0,
-            assembly_s: 0.0,
+            stages: clock.stages,
         });
     }
     // Refuse a foreign plan.json or takeoff before the long work.
@@ -185,15 +204,17 @@ pub fn build(
         crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
     let nodes = an.topology.nodes.len();
     drop(an);
+    clock.lap("parts");
     warnings.extend(kit.warnings.iter().cloned());
     progress.set_message("nesting");
     let nest = crate::nest::nest(&kit, &profile)?;
+    clock.lap("nest");
     let takeoff = takeoff::takeoff(&net.name, &kit, &nest, &profile);
     plan::add_nest(&mut the_plan, &kit, &nest);
     let kinds = kit.summary.kinds.clone();
     plan::add_parts_taking(&mut the_plan, &mut kit);
     let plan_target = out.join("plan.json");
-    if let Some(field) = io::finite::first_non_finite(&the_plan) {
+    if let Some(field) = plan::first_non_finite(&mut the_plan) {
         return Err(Error::output(
             &plan_target,
             format!("not written: {field} is not a finite number"),
@@ -206,56 +227,17 @@ pub fn build(
     );
     drop(nest);
     drop(kit);
-    progress.set_message("writing plan, takeoff and sheets");
+    clock.lap("plan");
+    progress.set_message("writing plan, takeoff, sheets and assembly sheets");
     let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff::to_json(&takeoff).as_bytes())?;
     let kerf = opts.kerf_compensation.then_some(profile.cutting.kerf_mm);
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
-    progress.set_length(drawer.len() as u64);
-    progress.set_position(0);
-    // plan.json streams out beside the sheets.
-    let (plan_written, sheets_written) = rayon::join(
-        || staging.write_with("plan.json", |w| plan::write_json(&the_plan, w)),
-        || {
-            (0..drawer.len())
-                .into_par_iter()
-                .try_for_each(|i| -> Result<()> {
-                    let sheet = drawer.sheet(i)?;
-                    let stem = sheet.file_stem();
-                    let dxf = dxf_out::to_dxf(&sheet)
-                        .map_err(|e| Error::output(&out.join(format!("sheets/{stem}.dxf")), e))?;
-                    staging.write(&format!("sheets/{stem}.dxf"), &dxf)?;
-                    let title = format!(
-                        "{} — {}: sheet {} of {} ({}), {} × {} mm",
-                        net.name,
-                        profile.name,
-                        sheet.number,
-                        drawer.len(),
-                        sheet.id,
-                        sheet.length_mm,
-                        sheet.width_mm
-                    );
-                    staging.write(
-                        &format!("sheets/{stem}.svg"),
-                        svg_out::to_svg(&sheet, &title).as_bytes(),
-                    )?;
-                    progress.inc(1);
-                    Ok(())
-                })
-        },
-    );
-    plan_written?;
-    sheets_written?;
     let sheet_count = drawer.len();
-    progress.set_message("drawing the assembly sheets");
-    drop(drawer);
-    // plan.json and the cutting files are written: the engraving strokes
-    // (the largest part of a big kit's plan) are not drawn in the assembly
-    // sheets, and the network's points live on as the overview's curves.
-    for p in the_plan.parts.iter_mut().flatten() {
-        p.engraving = Vec::new();
-    }
+    progress.set_length(sheet_count as u64);
+    progress.set_position(0);
+    // The network's points live on as the overview's curves.
     let network_name = net.name.clone();
     let curves: Vec<super::assembly::CurvePoints> = net
         .curves
@@ -265,25 +247,91 @@ pub fn build(
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
-    let t0 = std::time::Instant::now();
-    let (pdf, assembly_pages) =
-        super::assembly::assembly_pdf_counted(&super::assembly::AssemblyInput {
-            plan: &the_plan,
-            takeoff: &takeoff,
-            curves: &curves,
-            paper: opts.paper,
-            plan_path: &plan_target,
-        })?;
-    staging.write("assembly.pdf", &pdf)?;
-    let assembly_s = t0.elapsed().as_secs_f64();
-    let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
+    let timed = |f: &dyn Fn() -> Result<usize>| {
+        let t = std::time::Instant::now();
+        let r = f();
+        (r, t.elapsed().as_secs_f64())
+    };
+    // plan.json streams out on one thread while the sheets and the
+    // assembly sheets share the others (each deterministic on its own).
+    let (plan_written, (sheets_written, pdf_written)) = rayon::join(
+        || {
+            timed(&|| {
+                staging
+                    .write_with("plan.json", |w| plan::write_json(&the_plan, w))
+                    .map(|()| 0)
+            })
+        },
+        || {
+            rayon::join(
+                || {
+                    timed(&|| {
+                        (0..sheet_count)
+                            .into_par_iter()
+                            // Each worker's text buffers serve sheet after sheet.
+                            .try_for_each_init(
+                                || (String::new(), String::new()),
+                                |(dxf, svg), i| -> Result<()> {
+                                    let sheet = drawer.sheet(i)?;
+                                    let stem = sheet.file_stem();
+                                    dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
+                                        Error::output(&out.join(format!("sheets/{stem}.dxf")), e)
+                                    })?;
+                                    staging.write(&format!("sheets/{stem}.dxf"), dxf.as_bytes())?;
+                                    let title = format!(
+                                        "{} — {}: sheet {} of {} ({}), {} × {} mm",
+                                        network_name,
+                                        profile.name,
+                                        sheet.number,
+                                        sheet_count,
+                                        sheet.id,
+                                        sheet.length_mm,
+                                        sheet.width_mm
+                                    );
+                                    svg_out::write_svg(&sheet, &title, svg);
+                                    staging.write(&format!("sheets/{stem}.svg"), svg.as_bytes())?;
+                                    progress.inc(1);
+                                    Ok(())
+                                },
+                            )
+                            .map(|()| sheet_count)
+                    })
+                },
+                || {
+                    timed(&|| {
+                        let (pdf, pages) = super::assembly::assembly_pdf_counted(
+                            &super::assembly::AssemblyInput {
+                                plan: &the_plan,
+                                takeoff: &takeoff,
+                                curves: &curves,
+                                paper: opts.paper,
+                                plan_path: &plan_target,
+                            },
+                        )?;
+                        staging.write("assembly.pdf", &pdf)?;
+                        Ok(pages)
+                    })
+                },
+            )
+        },
+    );
+    plan_written.0?;
+    sheets_written.0?;
+    let assembly_pages = pdf_written.0?;
+    clock.lap("write");
+    clock.part("write: plan.json", plan_written.1);
+    clock.part("write: sheets", sheets_written.1);
+    clock.part("write: assembly.pdf", pdf_written.1);
+    drop(drawer);
     drop(curves);
+    let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
     }
     progress.set_message("moving into place");
     staging.commit()?;
+    clock.lap("commit");
     Ok(BuildReport {
         network: network_name,
         profile: profile.name.clone(),
@@ -301,7 +349,7 @@ pub fn build(
         files,
         out: out.to_path_buf(),
         assembly_pages,
-        assembly_s,
+        stages: clock.stages,
     })
 }
 
@@ -317,4 +365,55 @@ fn governing(report: &CheckReport) -> Option<Governing> {
             governs: l.governs.as_str(),
         }
     })
+}
+
+/// Wall and CPU time per stage.
+struct Clock {
+    last: std::time::Instant,
+    last_cpu_s: Option<f64>,
+    stages: Vec<StageTime>,
+}
+
+impl Clock {
+    fn start() -> Clock {
+        Clock {
+            last: std::time::Instant::now(),
+            last_cpu_s: process_cpu_s(),
+            stages: Vec::new(),
+        }
+    }
+
+    /// The time since the last lap, as `stage`.
+    fn lap(&mut self, stage: &'static str) {
+        let now = std::time::Instant::now();
+        let cpu = process_cpu_s();
+        self.stages.push(StageTime {
+            stage,
+            wall_s: now.duration_since(self.last).as_secs_f64(),
+            cpu_s: cpu.zip(self.last_cpu_s).map(|(b, a)| b - a),
+        });
+        self.last = now;
+        self.last_cpu_s = cpu;
+    }
+
+    /// A part of the last stage, timed on its own (wall time only).
+    fn part(&mut self, stage: &'static str, wall_s: f64) {
+        self.stages.push(StageTime {
+            stage,
+            wall_s,
+            cpu_s: None,
+        });
+    }
+}
+
+/// User and system CPU time of this process, all threads, s: from
+/// `/proc/self/stat` (Linux; clock ticks of 1/100 s), `None` elsewhere.
+fn process_cpu_s() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The fields after the command name (in parentheses, may hold spaces):
+    // utime and stime are the 12th and 13th.
+    let mut f = stat.rsplit_once(')')?.1.split_whitespace().skip(11);
+    let utime: f64 = f.next()?.parse().ok()?;
+    let stime: f64 = f.next()?.parse().ok()?;
+    Some((utime + stime) / 100.0)
 }

@@ -6,17 +6,23 @@
 //! can hold every cutting file to plan.json exactly: a part's outline, holes
 //! and engraving are turned by the placement's quarter turn about the part
 //! origin (exact: coordinates are swapped and negated, no cosines), then
-//! moved by its translation.
+//! moved by its translation. The engraving's strokes are its texts and marks
+//! set in plan.json's `engraving_font`, and once placed on the sheet are
+//! rounded to [`ENGRAVE_DECIMALS`] decimals (1 µm, far below any engraving
+//! tool's resolution; the cuts keep every decimal of plan.json).
 //!
-//! Per part, in cutting order: inner contours (round holes as circles, other
-//! holes as closed polylines), then the outer contour, then the engraving
-//! (open polylines). Consecutive points closer than [`MERGE_MM`] are merged
-//! so no segment has zero length. With kerf compensation, outer contours are
+//! Per part, in cutting order: inner contours (the round holes, its `hole`
+//! features, as circles in feature order, then the other inner contours as
+//! closed polylines), then the outer contour, then the engraving (open
+//! polylines). Consecutive points closer than [`MERGE_MM`] are merged so no
+//! segment has zero length. With kerf compensation, outer contours are
 //! offset out and inner contours in by half the kerf (cavalier_contours,
 //! round joins: convex corners become arcs, written as bulges).
 
 use crate::error::{Error, Result};
-use crate::io::plan::{Plan, PlanPart, PlanPlacement, PlanSheet};
+use crate::io::plan::{
+    Plan, PlanEngraving, PlanFont, PlanGlyph, PlanPart, PlanPlacement, PlanSheet,
+};
 use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
 use std::collections::HashMap;
 use std::path::Path;
@@ -24,9 +30,20 @@ use std::path::Path;
 /// Points of a contour closer than this are one point, mm.
 pub const MERGE_MM: f64 = 1e-6;
 
-/// A hole polyline whose vertices all lie within this of a hole feature's
-/// circle is written as that circle, mm (plan.json rounds to 1e-4 mm).
-const CIRCLE_MATCH_MM: f64 = 1e-3;
+/// Decimals of the engraving's sheet coordinates (1 µm).
+pub const ENGRAVE_DECIMALS: i32 = 3;
+
+/// `x` rounded to [`ENGRAVE_DECIMALS`] decimals (the nearest double to the
+/// decimal, so writers print it exactly).
+pub fn engrave_round(x: f64) -> f64 {
+    let scale = 10f64.powi(ENGRAVE_DECIMALS);
+    let r = super::round_to_i64(x * scale) as f64 / scale;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
 
 /// The operation a shape belongs to: a DXF layer, an SVG group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -116,6 +133,41 @@ pub enum Shape {
         /// Radius, mm.
         radius_mm: f64,
     },
+    /// Open polylines of one engraving (a text or a mark), kept together
+    /// (one allocation, not one per stroke): stroke k is
+    /// `vertices[ends[k − 1]..ends[k]]` (from 0 for the first), at least two
+    /// vertices each, straight segments.
+    Strokes {
+        /// Its operation.
+        layer: Layer,
+        /// Every stroke's vertices, one after the other.
+        vertices: Vec<Vertex>,
+        /// Where each stroke ends in `vertices`.
+        ends: Vec<usize>,
+    },
+}
+
+impl Shape {
+    /// The operation it belongs to.
+    pub fn layer(&self) -> Layer {
+        match self {
+            Shape::Polyline { layer, .. }
+            | Shape::Circle { layer, .. }
+            | Shape::Strokes { layer, .. } => *layer,
+        }
+    }
+}
+
+/// The strokes of a [`Shape::Strokes`]: its vertices split at its ends.
+pub fn strokes<'a>(
+    vertices: &'a [Vertex],
+    ends: &'a [usize],
+) -> impl Iterator<Item = &'a [Vertex]> {
+    ends.iter().scan(0, move |start, &end| {
+        let s = &vertices[*start..end];
+        *start = end;
+        Some(s)
+    })
 }
 
 /// One placed copy of a part.
@@ -191,6 +243,7 @@ pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2]
 pub struct Drawer<'a> {
     sheets: &'a [PlanSheet],
     by_id: HashMap<&'a str, &'a PlanPart>,
+    font: Font<'a>,
     half_kerf_mm: Option<f64>,
     plan_path: &'a Path,
 }
@@ -213,6 +266,7 @@ impl<'a> Drawer<'a> {
         Ok(Drawer {
             sheets,
             by_id: parts.iter().map(|p| (p.id.as_str(), p)).collect(),
+            font: Font::new(plan.engraving_font.as_ref()),
             half_kerf_mm: kerf_compensation_mm.map(|k| 0.5 * k),
             plan_path,
         })
@@ -230,6 +284,15 @@ impl<'a> Drawer<'a> {
 
     /// The drawing of sheet `i` (0-based).
     pub fn sheet(&self, i: usize) -> Result<SheetDrawing> {
+        self.draw(i, true)
+    }
+
+    /// The drawing of sheet `i` (0-based) without the engraving: the cuts.
+    pub fn sheet_cuts(&self, i: usize) -> Result<SheetDrawing> {
+        self.draw(i, false)
+    }
+
+    fn draw(&self, i: usize, engraving: bool) -> Result<SheetDrawing> {
         let s = &self.sheets[i];
         let placed = s
             .placements
@@ -244,7 +307,7 @@ impl<'a> Drawer<'a> {
                         ),
                     )
                 })?;
-                part_on_sheet(part, pl, self.half_kerf_mm).map_err(|what| {
+                part_on_sheet(part, pl, self.half_kerf_mm, &self.font, engraving).map_err(|what| {
                     Error::output(
                         self.plan_path,
                         format!("sheet {}: part {} copy {}: {what}", s.id, pl.part, pl.copy),
@@ -272,11 +335,84 @@ pub fn sheet_drawings(
     (0..d.len()).map(|i| d.sheet(i)).collect()
 }
 
+/// The plan's engraving font, by character.
+#[derive(Debug)]
+struct Font<'a> {
+    letter_spacing: f64,
+    glyphs: HashMap<char, &'a PlanGlyph>,
+    marks: HashMap<&'a str, &'a PlanGlyph>,
+}
+
+impl<'a> Font<'a> {
+    fn new(font: Option<&'a PlanFont>) -> Font<'a> {
+        let Some(f) = font else {
+            return Font {
+                letter_spacing: 0.0,
+                glyphs: HashMap::new(),
+                marks: HashMap::new(),
+            };
+        };
+        Font {
+            letter_spacing: f.letter_spacing,
+            glyphs: f
+                .glyphs
+                .iter()
+                .filter_map(|(k, g)| {
+                    let mut cs = k.chars();
+                    match (cs.next(), cs.next()) {
+                        (Some(c), None) => Some((c, g)),
+                        _ => None,
+                    }
+                })
+                .collect(),
+            marks: f.marks.iter().map(|(k, g)| (k.as_str(), g)).collect(),
+        }
+    }
+
+    /// Calls `stroke` with the part-frame points of every stroke of `e`
+    /// (plan.json's rule: `at` + height × (x_k + gx, gy)).
+    fn strokes(
+        &self,
+        e: &PlanEngraving,
+        mut stroke: impl FnMut(&mut dyn Iterator<Item = [f64; 2]>),
+    ) -> std::result::Result<(), String> {
+        let ([ax, ay], h) = (e.at_mm, e.height_mm);
+        match (&e.text, &e.mark) {
+            (Some(text), None) => {
+                let mut x = 0.0;
+                for c in text.chars() {
+                    let g = self.glyphs.get(&c).ok_or_else(|| {
+                        format!("engraving {text:?}: the engraving font has no glyph for {c:?}")
+                    })?;
+                    for s in &g.strokes {
+                        stroke(&mut s.iter().map(|q| [ax + (x + q[0]) * h, ay + q[1] * h]));
+                    }
+                    x += g.width + self.letter_spacing;
+                }
+                Ok(())
+            }
+            (None, Some(mark)) => {
+                let g = self
+                    .marks
+                    .get(mark.as_str())
+                    .ok_or_else(|| format!("the engraving font has no mark {mark:?}"))?;
+                for s in &g.strokes {
+                    stroke(&mut s.iter().map(|q| [ax + q[0] * h, ay + q[1] * h]));
+                }
+                Ok(())
+            }
+            _ => Err("an engraving is neither a text nor a mark".into()),
+        }
+    }
+}
+
 /// One placed part's shapes; the error is what is wrong with it.
 fn part_on_sheet(
     part: &PlanPart,
     pl: &PlanPlacement,
     half_kerf_mm: Option<f64>,
+    font: &Font,
+    engraving: bool,
 ) -> std::result::Result<PartOnSheet, String> {
     if !matches!(pl.rotation_deg, 0 | 90 | 180 | 270) {
         return Err(format!(
@@ -285,39 +421,28 @@ fn part_on_sheet(
         ));
     }
     let map = |p: &[f64; 2]| place(*p, pl.rotation_deg, pl.x_mm, pl.y_mm);
-    let mut shapes = Vec::with_capacity(part.holes.len() + 1 + part.engraving.len());
-    let hole_features: Vec<([f64; 2], f64)> = part
-        .features
-        .iter()
-        .filter(|f| f.kind == "hole")
-        .map(|f| (f.center_mm, 0.5 * f.width_mm))
-        .collect();
-    for hole in &part.holes {
-        let circle = hole_features.iter().find(|(c, r)| {
-            hole.iter()
-                .all(|p| ((p[0] - c[0]).hypot(p[1] - c[1]) - r).abs() <= CIRCLE_MATCH_MM)
-        });
-        match circle {
-            Some(&(c, r)) => {
-                let radius_mm = r - half_kerf_mm.unwrap_or(0.0);
-                if radius_mm <= MERGE_MM {
-                    return Err(format!(
-                        "a {:.3} mm hole closes up under kerf compensation",
-                        2.0 * r
-                    ));
-                }
-                shapes.push(Shape::Circle {
-                    layer: Layer::CutInner,
-                    center_mm: map(&c),
-                    radius_mm,
-                });
-            }
-            None => shapes.push(contour(
-                Layer::CutInner,
-                hole.iter().map(map).collect(),
-                half_kerf_mm,
-            )?),
+    let mut shapes = Vec::with_capacity(part.features.len() + part.holes.len() + 1);
+    for f in part.features.iter().filter(|f| f.kind == "hole") {
+        let r = 0.5 * f.width_mm;
+        let radius_mm = r - half_kerf_mm.unwrap_or(0.0);
+        if radius_mm <= MERGE_MM {
+            return Err(format!(
+                "a {:.3} mm hole closes up under kerf compensation",
+                2.0 * r
+            ));
         }
+        shapes.push(Shape::Circle {
+            layer: Layer::CutInner,
+            center_mm: map(&f.center_mm),
+            radius_mm,
+        });
+    }
+    for hole in &part.holes {
+        shapes.push(contour(
+            Layer::CutInner,
+            hole.iter().map(map).collect(),
+            half_kerf_mm,
+        )?);
     }
     let outline: Vec<[f64; 2]> = part.outline.iter().map(map).collect();
     let mut bbox_mm = [
@@ -335,13 +460,39 @@ fn part_on_sheet(
         ];
     }
     shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm)?);
-    for stroke in &part.engraving {
-        let vertices = merged(stroke.iter().map(map).collect(), false);
-        if vertices.len() >= 2 {
-            shapes.push(Shape::Polyline {
+    for e in part.engraving.iter().filter(|_| engraving) {
+        let mut vertices: Vec<Vertex> = Vec::new();
+        let mut ends: Vec<usize> = Vec::new();
+        font.strokes(e, |points| {
+            // Placed, on the grid, consecutive equal points merged; a
+            // stroke left with one point is dropped.
+            let start = vertices.len();
+            for p in points {
+                let [x, y] = map(&p);
+                let v = Vertex {
+                    x_mm: engrave_round(x),
+                    y_mm: engrave_round(y),
+                    bulge: 0.0,
+                };
+                if vertices.len() == start
+                    || (v.x_mm - vertices[vertices.len() - 1].x_mm)
+                        .hypot(v.y_mm - vertices[vertices.len() - 1].y_mm)
+                        > MERGE_MM
+                {
+                    vertices.push(v);
+                }
+            }
+            if vertices.len() - start >= 2 {
+                ends.push(vertices.len());
+            } else {
+                vertices.truncate(start);
+            }
+        })?;
+        if !ends.is_empty() {
+            shapes.push(Shape::Strokes {
                 layer: Layer::Engrave,
-                closed: false,
-                vertices: straight(&vertices),
+                vertices,
+                ends,
             });
         }
     }

@@ -15,7 +15,7 @@
 //! it four times slower than the rest of a big build together.
 //! Coordinates have 6 decimals (1 nm), bulges 10.
 
-use super::drawing::{Layer, Shape, SheetDrawing};
+use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex};
 use dxf::enums::{AcadVersion, DrawingUnits, Units};
 use dxf::tables::Layer as DxfLayer;
 use dxf::{Color, Drawing};
@@ -105,55 +105,57 @@ fn make_skeleton() -> Result<Skeleton, String> {
 
 /// The DXF text of one sheet.
 pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
-    let sk = skeleton()?;
-    let shapes: usize = sheet.parts.iter().map(|p| p.shapes.len()).sum();
-    let mut body = String::with_capacity(200 * shapes + 1024);
-    let mut handle = sk.first_handle;
-    entity(&mut body, &sheet.outline(), &mut handle);
-    for part in &sheet.parts {
-        for shape in &part.shapes {
-            entity(&mut body, shape, &mut handle);
-        }
-    }
-    let mut out = String::with_capacity(
-        sk.before_seed.len() + sk.before_entities.len() + body.len() + sk.after_entities.len() + 16,
-    );
-    out.push_str(&sk.before_seed);
-    let _ = write!(out, "{handle:X}");
-    out.push_str(&sk.before_entities);
-    out.push_str(&body);
-    out.push_str(&sk.after_entities);
+    let mut out = String::new();
+    write_dxf(sheet, &mut out)?;
     Ok(out.into_bytes())
 }
 
-/// One entity with its handle, in the group codes the dxf crate writes
-/// (integers without its padding).
+/// The DXF text of one sheet into `out` (cleared first; a buffer used
+/// again for the next sheet keeps its memory).
+pub fn write_dxf(sheet: &SheetDrawing, out: &mut String) -> Result<(), String> {
+    let sk = skeleton()?;
+    let outline = sheet.outline();
+    let shapes = || std::iter::once(&outline).chain(sheet.parts.iter().flat_map(|p| &p.shapes));
+    // The handles the entities take, and about the bytes they need.
+    let (count, bytes) = shapes().fold((0u64, 0usize), |(n, b), sh| match sh {
+        Shape::Polyline { vertices, .. } => (n + 1, b + 100 + 32 * vertices.len()),
+        Shape::Circle { .. } => (n + 1, b + 130),
+        Shape::Strokes { vertices, ends, .. } => (
+            n + ends.len() as u64,
+            b + 100 * ends.len() + 32 * vertices.len(),
+        ),
+    });
+    out.clear();
+    out.reserve(
+        sk.before_seed.len() + sk.before_entities.len() + bytes + sk.after_entities.len() + 16,
+    );
+    out.push_str(&sk.before_seed);
+    let _ = write!(out, "{:X}", sk.first_handle + count);
+    out.push_str(&sk.before_entities);
+    let mut handle = sk.first_handle;
+    for shape in shapes() {
+        entity(out, shape, &mut handle);
+    }
+    out.push_str(&sk.after_entities);
+    Ok(())
+}
+
+/// One entity with its handle (a [`Shape::Strokes`]: one per stroke), in
+/// the group codes the dxf crate writes (integers without its padding).
 fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
     match shape {
         Shape::Polyline {
             layer,
             closed,
             vertices,
+        } => polyline(s, *layer, *closed, vertices, handle),
+        Shape::Strokes {
+            layer,
+            vertices,
+            ends,
         } => {
-            let _ = write!(
-                s,
-                "  0\nLWPOLYLINE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbPolyline\n 90\n{}\n 70\n{}\n",
-                *handle,
-                layer.name(),
-                vertices.len(),
-                u8::from(*closed)
-            );
-            for v in vertices {
-                s.push_str(" 10\n");
-                super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
-                s.push_str("\n 20\n");
-                super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
-                s.push('\n');
-                if v.bulge != 0.0 {
-                    s.push_str(" 42\n");
-                    super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
-                    s.push('\n');
-                }
+            for stroke in strokes(vertices, ends) {
+                polyline(s, *layer, false, stroke, handle);
             }
         }
         Shape::Circle {
@@ -172,6 +174,31 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
             super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
             s.push_str("\n 30\n0.0\n 40\n");
             super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
+            s.push('\n');
+            *handle += 1;
+        }
+    }
+}
+
+/// One LWPOLYLINE with its handle.
+fn polyline(s: &mut String, layer: Layer, closed: bool, vertices: &[Vertex], handle: &mut u64) {
+    let _ = write!(
+        s,
+        "  0\nLWPOLYLINE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbPolyline\n 90\n{}\n 70\n{}\n",
+        *handle,
+        layer.name(),
+        vertices.len(),
+        u8::from(closed)
+    );
+    for v in vertices {
+        s.push_str(" 10\n");
+        super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
+        s.push_str("\n 20\n");
+        super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
+        s.push('\n');
+        if v.bulge != 0.0 {
+            s.push_str(" 42\n");
+            super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
             s.push('\n');
         }
     }

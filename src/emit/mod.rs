@@ -25,39 +25,127 @@ pub mod takeoff;
 /// network's ±10 km, far inside i64 at 9 decimals.
 pub(crate) fn push_decimal(out: &mut String, x: f64, decimals: u32, keep_point: bool) {
     let decimals = decimals.min(9);
-    let scale = 10u64.pow(decimals);
-    let scaled = (x.abs() * scale as f64).round() as u64;
-    let (int, mut frac) = (scaled / scale, scaled % scale);
-    if x < 0.0 && scaled != 0 {
-        out.push('-');
-    }
-    push_digits(out, int, 1);
-    if frac == 0 {
-        if keep_point {
-            out.push_str(".0");
-        }
-        return;
-    }
-    let mut width = decimals as usize;
-    while frac % 10 == 0 {
-        frac /= 10;
-        width -= 1;
-    }
-    out.push('.');
-    push_digits(out, frac, width);
+    let scaled = round_half_away(x.abs() * POW10[decimals as usize] as f64);
+    push_scaled(out, x < 0.0, scaled, decimals, keep_point);
 }
 
-/// Append `n` in decimal, zero-padded to at least `width` digits.
-fn push_digits(out: &mut String, mut n: u64, width: usize) {
-    let mut buf = [b'0'; 20];
+/// Powers of ten up to 10⁹.
+const POW10: [u64; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
+
+/// Append `scaled` units of 10^−`decimals` (negative when `negative`, but
+/// never `-0`) as [`push_decimal`] writes numbers. The digits are made
+/// right to left in a buffer, two at a time, with divisions by constants
+/// only (the serial chain of divisions was most of formatting a big kit),
+/// and appended at once.
+pub(crate) fn push_scaled(
+    out: &mut String,
+    negative: bool,
+    scaled: u64,
+    decimals: u32,
+    keep_point: bool,
+) {
+    // 20 digits, the point, a zero and the sign at most.
+    let mut buf = [0u8; 24];
     let mut i = buf.len();
-    while n > 0 || buf.len() - i < width {
-        i -= 1;
-        buf[i] = b'0' + (n % 10) as u8;
-        n /= 10;
+    let mut n = scaled;
+    let mut frac_digits = decimals;
+    // Trailing zeros of the fraction are not written (three at a time
+    // first: coordinates on a 1 µm grid written with 6 decimals).
+    while frac_digits >= 3 && n.is_multiple_of(1000) {
+        n /= 1000;
+        frac_digits -= 3;
     }
-    // ASCII digits only.
+    while frac_digits > 0 && n.is_multiple_of(10) {
+        n /= 10;
+        frac_digits -= 1;
+    }
+    if frac_digits > 0 {
+        let mut left = frac_digits;
+        while left >= 2 {
+            let d = (n % 100) as usize;
+            n /= 100;
+            i -= 2;
+            buf[i..i + 2].copy_from_slice(&DIGIT_PAIRS[2 * d..2 * d + 2]);
+            left -= 2;
+        }
+        if left == 1 {
+            i -= 1;
+            buf[i] = b'0' + (n % 10) as u8;
+            n /= 10;
+        }
+        i -= 1;
+        buf[i] = b'.';
+    } else if keep_point {
+        i -= 2;
+        buf[i] = b'.';
+        buf[i + 1] = b'0';
+    }
+    while n >= 100 {
+        let d = (n % 100) as usize;
+        n /= 100;
+        i -= 2;
+        buf[i..i + 2].copy_from_slice(&DIGIT_PAIRS[2 * d..2 * d + 2]);
+    }
+    if n >= 10 {
+        let d = n as usize;
+        i -= 2;
+        buf[i..i + 2].copy_from_slice(&DIGIT_PAIRS[2 * d..2 * d + 2]);
+    } else {
+        i -= 1;
+        buf[i] = b'0' + n as u8;
+    }
+    if negative && scaled != 0 {
+        i -= 1;
+        buf[i] = b'-';
+    }
+    // ASCII only.
     out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
+}
+
+/// "00" to "99".
+const DIGIT_PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
+/// `y` rounded to the nearest integer, halves away from zero (see
+/// [`round_half_away`]).
+pub(crate) fn round_to_i64(y: f64) -> i64 {
+    if !(y.abs() < 1e15) {
+        // Huge, infinite or NaN: the saturating cast of the library's rounding.
+        return y.round() as i64;
+    }
+    let r = round_half_away(y.abs()) as i64;
+    if y < 0.0 {
+        -r
+    } else {
+        r
+    }
+}
+
+/// `y` ≥ 0 rounded to the nearest integer, halves away from zero (as
+/// `f64::round`, which is a library call on baseline x86-64): `y − ⌊y⌋` is
+/// exact for a double.
+fn round_half_away(y: f64) -> u64 {
+    let t = y as u64;
+    if y - t as f64 >= 0.5 {
+        t.saturating_add(1)
+    } else {
+        t
+    }
 }
 
 #[cfg(test)]
@@ -98,5 +186,26 @@ mod tests {
         }
         assert_eq!(d(3.0, 6, true), "3.0");
         assert_eq!(d(0.05, 1, false), "0.1");
+        assert_eq!(d(-2.5, 0, false), "-3");
+        assert_eq!(d(0.4999999999999999, 0, false), "0");
+        assert_eq!(d(-1234567.123456789, 9, false), "-1234567.123456789");
+        assert_eq!(d(1500.0, 4, false), "1500");
+        assert_eq!(d(0.0, 6, true), "0.0");
+        assert_eq!(d(-0.0, 6, false), "0");
+        assert_eq!(d(2766.9, 6, true), "2766.9");
+        assert_eq!(d(10.000001, 6, true), "10.000001");
+        assert_eq!(d(1523.5, 6, true), "1523.5");
+        assert_eq!(d(7.0, 3, false), "7");
+        assert_eq!(d(99.99, 2, false), "99.99");
+        assert_eq!(d(-0.001, 3, false), "-0.001");
+        assert_eq!(d(12.3456789, 9, false), "12.3456789");
+        // Every value of a grid, against the standard library.
+        for k in -30000i64..30000 {
+            let x = k as f64 / 1000.0;
+            let std = format!("{x:.3}");
+            let std = std.trim_end_matches('0').trim_end_matches('.');
+            let std = if std == "-0" { "0" } else { std };
+            assert_eq!(d(x, 6, false), std, "{k}");
+        }
     }
 }

@@ -7,7 +7,7 @@
 //! labels are in `ENGRAVE`). Written by hand with fixed decimals, so equal
 //! sheets give equal bytes.
 
-use super::drawing::{Layer, Shape, SheetDrawing, Vertex};
+use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS};
 use std::fmt::Write;
 
 /// Stroke width of every contour, mm.
@@ -21,8 +21,28 @@ const LABEL_MAX_MM: f64 = 40.0;
 
 /// The SVG text of one sheet; `title` names the project and sheet.
 pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
+    let mut s = String::new();
+    write_svg(sheet, title, &mut s);
+    s
+}
+
+/// The SVG text of one sheet into `s` (cleared first; a buffer used again
+/// for the next sheet keeps its memory).
+pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut String) {
     let (l, w) = (sheet.length_mm, sheet.width_mm);
-    let mut s = String::with_capacity(4096 + 400 * sheet.parts.len());
+    let bytes: usize = sheet
+        .parts
+        .iter()
+        .flat_map(|p| &p.shapes)
+        .map(|sh| match sh {
+            Shape::Polyline { vertices, .. } | Shape::Strokes { vertices, .. } => {
+                24 + 16 * vertices.len()
+            }
+            Shape::Circle { .. } => 60,
+        })
+        .sum();
+    s.clear();
+    s.reserve(4096 + 200 * sheet.parts.len() + bytes);
     let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         s,
@@ -42,15 +62,15 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
             num(STROKE_MM)
         );
         if layer == Layer::Sheet {
-            shape(&mut s, &sheet.outline(), w);
+            shape(s, &sheet.outline(), w);
         }
         for part in &sheet.parts {
             if layer == Layer::Engrave {
-                engraving(&mut s, &part.shapes, w);
+                engraving(s, &part.shapes, w);
                 continue;
             }
             for sh in part.shapes.iter().filter(|sh| shape_layer(sh) == layer) {
-                shape(&mut s, sh, w);
+                shape(s, sh, w);
             }
         }
         let _ = writeln!(s, "</g>");
@@ -79,13 +99,10 @@ pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
     }
     let _ = writeln!(s, "</g>");
     let _ = writeln!(s, "</svg>");
-    s
 }
 
 fn shape_layer(sh: &Shape) -> Layer {
-    match sh {
-        Shape::Polyline { layer, .. } | Shape::Circle { layer, .. } => *layer,
-    }
+    sh.layer()
 }
 
 fn shape(s: &mut String, sh: &Shape, w: f64) {
@@ -127,31 +144,165 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
             }
             s.push_str("\"/>\n");
         }
-    }
-}
-
-/// A part's engraving strokes as one path of open subpaths.
-fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
-    let mut any = false;
-    for sh in shapes {
-        if let Shape::Polyline {
-            layer: Layer::Engrave,
-            vertices,
-            ..
-        } = sh
-        {
-            s.push_str(if any { " M" } else { r#"<path d="M"# });
-            any = true;
-            super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
-            s.push(' ');
-            super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
-            for pair in vertices.windows(2) {
-                segment(s, pair[0], pair[1], w);
+        Shape::Strokes { vertices, ends, .. } => {
+            for stroke in strokes(vertices, ends) {
+                shape(
+                    s,
+                    &Shape::Polyline {
+                        layer: sh.layer(),
+                        closed: false,
+                        vertices: stroke.to_vec(),
+                    },
+                    w,
+                );
             }
         }
     }
-    if any {
-        s.push_str("\"/>\n");
+}
+
+/// A part's engraving strokes as one path of open subpaths, relative
+/// after its first point: `M x y h dx v dy l dx dy … m dx dy …`
+/// (horizontal and vertical steps as `h` and `v`, a command letter only
+/// where it changes, no zero before a decimal point, no space before a
+/// minus sign). The strokes' points lie on the engraving's grid of
+/// [`ENGRAVE_DECIMALS`] decimals ([`super::drawing`]), so every step is a
+/// whole number of grid units, written exactly: the positions it adds up
+/// to are the DXF's.
+fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
+    let scale = 10f64.powi(ENGRAVE_DECIMALS);
+    let unit = |v: f64| super::round_to_i64(v * scale);
+    let mut path = RelativePath::new(s);
+    let mut at: Option<(i64, i64)> = None;
+    let mut draw = |vertices: &[Vertex], path: &mut RelativePath| {
+        // Grid units, y down as SVG draws it.
+        let mut points = vertices.iter().map(|v| (unit(v.x_mm), -unit(v.y_mm)));
+        let Some(first) = points.next() else {
+            return;
+        };
+        match at {
+            None => path.start(vertices[0].x_mm, w - vertices[0].y_mm),
+            Some(last) => path.step(b'm', last, first),
+        }
+        let mut last = first;
+        for p in points {
+            path.step(b'l', last, p);
+            last = p;
+        }
+        at = Some(last);
+    };
+    for sh in shapes.iter().filter(|sh| sh.layer() == Layer::Engrave) {
+        match sh {
+            Shape::Polyline { vertices, .. } => draw(vertices, &mut path),
+            Shape::Strokes { vertices, ends, .. } => {
+                for stroke in strokes(vertices, ends) {
+                    draw(stroke, &mut path);
+                }
+            }
+            Shape::Circle { .. } => {}
+        }
+    }
+    if at.is_some() {
+        path.s.push_str("\"/>\n");
+    }
+}
+
+/// An SVG path written with relative steps (see [`engraving`]).
+struct RelativePath<'a> {
+    s: &'a mut String,
+    /// The command the next numbers continue without a letter.
+    command: u8,
+    /// Whether a number was written last (a separator may be due).
+    after_number: bool,
+    scratch: String,
+}
+
+impl<'a> RelativePath<'a> {
+    fn new(s: &'a mut String) -> RelativePath<'a> {
+        RelativePath {
+            s,
+            command: 0,
+            after_number: false,
+            scratch: String::with_capacity(24),
+        }
+    }
+
+    /// `<path d="M x y` (absolute, mm).
+    fn start(&mut self, x: f64, y: f64) {
+        self.s.push_str(r#"<path d="M"#);
+        super::push_decimal(self.s, x, DECIMALS, false);
+        self.s.push(' ');
+        super::push_decimal(self.s, y, DECIMALS, false);
+        // Numbers after an `M` pair would be absolute lines.
+        self.command = b'L';
+        self.after_number = true;
+    }
+
+    /// The step from `a` to `b` (grid units): a move (`m`), or a line as
+    /// `h`, `v` or `l`.
+    fn step(&mut self, kind: u8, a: (i64, i64), b: (i64, i64)) {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        match kind {
+            b'm' => {
+                self.letter(b'm');
+                self.number(dx);
+                self.number(dy);
+                // Pairs after an `m` pair are relative lines.
+                self.command = b'l';
+            }
+            _ if dy == 0 => {
+                self.letter(b'h');
+                self.number(dx);
+            }
+            _ if dx == 0 => {
+                self.letter(b'v');
+                self.number(dy);
+            }
+            _ => {
+                self.letter(b'l');
+                self.number(dx);
+                self.number(dy);
+            }
+        }
+    }
+
+    fn letter(&mut self, c: u8) {
+        if self.command != c || c == b'm' {
+            self.s.push(char::from(c));
+            self.command = c;
+            self.after_number = false;
+        }
+    }
+
+    /// A whole number of grid units as a decimal, without the zero before
+    /// the point (`-.75`, `.5`, `12`).
+    fn number(&mut self, units: i64) {
+        self.scratch.clear();
+        super::push_scaled(
+            &mut self.scratch,
+            units < 0,
+            units.unsigned_abs(),
+            ENGRAVE_DECIMALS as u32,
+            false,
+        );
+        let t = self.scratch.as_str();
+        let t = if let Some(rest) = t.strip_prefix("-0.") {
+            self.s.push('-');
+            self.s.push('.');
+            rest
+        } else if let Some(rest) = t.strip_prefix("0.") {
+            if self.after_number {
+                self.s.push(' ');
+            }
+            self.s.push('.');
+            rest
+        } else {
+            if self.after_number && !t.starts_with('-') {
+                self.s.push(' ');
+            }
+            t
+        };
+        self.s.push_str(t);
+        self.after_number = true;
     }
 }
 
@@ -200,6 +351,36 @@ mod tests {
         assert_eq!(num(0.1), "0.1");
         assert_eq!(num(-0.00001), "0");
         assert_eq!(num(12.345678), "12.3457");
+    }
+
+    /// Two strokes on a 100 mm wide sheet (SVG y = 100 − y): the first
+    /// point absolute, then a horizontal, a vertical and a slanted step, a
+    /// move to the second stroke and its step continuing the move's
+    /// implicit line; by hand.
+    #[test]
+    fn engraving_is_relative_and_compact() {
+        let v = |x_mm, y_mm| Vertex {
+            x_mm,
+            y_mm,
+            bulge: 0.0,
+        };
+        let stroke = |vertices| Shape::Polyline {
+            layer: Layer::Engrave,
+            closed: false,
+            vertices,
+        };
+        let shapes = [
+            stroke(vec![
+                v(10.0, 10.0),
+                v(12.5, 10.0),
+                v(12.5, 9.25),
+                v(11.75, 8.5),
+            ]),
+            stroke(vec![v(20.0, 10.0), v(19.5, 10.75)]),
+        ];
+        let mut s = String::new();
+        engraving(&mut s, &shapes, 100.0);
+        assert_eq!(s, "<path d=\"M10 90h2.5v.75l-.75 .75m8.25-1.5-.5-.75\"/>\n");
     }
 
     /// A half circle of radius 5 from (0, 0) to (10, 0) counter-clockwise

@@ -383,7 +383,7 @@ fn edge_piece(
         station_start_mm: Some(from_mm),
         outline_part_mm: outline,
         holes_part_mm: holes,
-        engraving_part_mm: Vec::new(),
+        engraving: Vec::new(),
         features,
     })
 }
@@ -726,7 +726,7 @@ mod tests {
         assert_eq!(part.kind, PartKind::EdgeStrip);
         assert_eq!(part.strip.as_deref(), Some("edge03"));
         assert_eq!(part.station_start_mm, Some(-a));
-        assert!(part.engraving_part_mm.is_empty());
+        assert!(part.engraving.is_empty());
         let o = &part.outline_part_mm;
         assert!(signed_area_mm2(o) > 0.0);
         assert!(is_simple(o) && simple_brute_force(o));

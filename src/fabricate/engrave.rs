@@ -12,7 +12,7 @@
 
 use super::font;
 use super::label::{self, LabelSize, Placer};
-use super::part::{FeatureKind, Part, PartKind, SlotEdge};
+use super::part::{Engraved, Engraving, FeatureKind, Part, PartKind, SlotEdge};
 use kurbo::Point;
 
 /// The largest cap height of a lamella's id, mm.
@@ -128,13 +128,13 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         }
         b
     };
-    let mut strokes: Vec<Vec<Point>> = Vec::new();
-    let put = |text_strokes: Vec<Vec<Point>>, x0: f64, y0: f64, strokes: &mut Vec<Vec<Point>>| {
-        strokes.extend(text_strokes.into_iter().map(|s| {
-            s.into_iter()
-                .map(|q| Point::new(q.x + x0, q.y + y0))
-                .collect()
-        }));
+    let mut engraving: Vec<Engraving> = Vec::new();
+    let put = |what: Engraved, height_mm: f64, x0: f64, y0: f64, out: &mut Vec<Engraving>| {
+        out.push(Engraving {
+            what,
+            at_part_mm: Point::new(x0, y0),
+            height_mm,
+        });
     };
     // Place a box of `width(th)` at heights from `max_h` down; returns
     // (centre x, cap height, bottom y).
@@ -184,7 +184,13 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         match place(&width, x, &reach, CROSSING_HEIGHT_MM, &taken, widest) {
             Some((cx, th, y0)) => {
                 let w = width(th);
-                put(font::text_strokes(&id, th), cx - 0.5 * w, y0, &mut strokes);
+                put(
+                    Engraved::Text(id.clone()),
+                    th,
+                    cx - 0.5 * w,
+                    y0,
+                    &mut engraving,
+                );
                 widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
             }
             None => missing.push(format!(
@@ -202,17 +208,24 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
     match place(&width, want, &far, ID_HEIGHT_MM, &taken, widest) {
         Some((cx, th, y0)) => {
             let w = width(th);
-            put(font::text_strokes(&id, th), cx - 0.5 * w, y0, &mut strokes);
+            put(
+                Engraved::Text(id.clone()),
+                th,
+                cx - 0.5 * w,
+                y0,
+                &mut engraving,
+            );
             widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
             let mark_w = |mh: f64| label::ORIENTATION_MARK_LENGTH * mh;
             let at = cx + 0.5 * w + c + mark_w(th);
             match place(&mark_w, at, &far, th, &taken, widest) {
                 Some((mx, mh, my)) => {
                     put(
-                        label::orientation_mark_strokes(mh),
+                        Engraved::OrientationMark,
+                        mh,
                         mx - 0.5 * mark_w(mh),
                         my,
-                        &mut strokes,
+                        &mut engraving,
                     );
                 }
                 None => missing.push(format!("{}: no room for the orientation mark", p.id)),
@@ -220,7 +233,7 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         }
         None => missing.push(format!("{}: no room to engrave its id", p.id)),
     }
-    p.engraving_part_mm = strokes;
+    p.engraving = engraving;
     missing
 }
 
@@ -252,7 +265,7 @@ fn engrave_other(p: &mut Part, c: f64) -> Option<String> {
     }
     for a in anchors {
         if let Some(l) = placer.text(&p.id, a, &size) {
-            p.engraving_part_mm = l.strokes_part_mm;
+            p.engraving = vec![l.engraving];
             return None;
         }
     }

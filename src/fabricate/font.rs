@@ -22,6 +22,9 @@
 
 use kurbo::Point;
 
+/// The font's name (plan.json's `engraving_font.name`).
+pub const NAME: &str = "lamella single-stroke";
+
 /// The gap between two glyph boxes, as a fraction of the cap height.
 pub const LETTER_SPACING: f64 = 0.2;
 

@@ -12,7 +12,7 @@
 
 use kurbo::{Point, Rect};
 
-use super::part::{signed_area_mm2, Part};
+use super::part::{signed_area_mm2, FeatureKind, Part, ROUND_HOLE_MM};
 
 // ---------------------------------------------------------------------------
 // Predicates
@@ -364,6 +364,16 @@ pub fn holes_are_simple_cw_inside(part: &Part) -> Result<(), String> {
 /// outline and hole edge (segment-to-segment distance) and crosses none.
 /// Assumes the outline and holes pass their own checks.
 pub fn engraving_inside_and_clear(part: &Part, clearance_mm: f64) -> Result<(), String> {
+    strokes_inside_and_clear(part, &part.engraving_strokes(), clearance_mm)
+}
+
+/// [`engraving_inside_and_clear`] for the open polylines `strokes` (part
+/// frame, mm) on `part`.
+pub fn strokes_inside_and_clear(
+    part: &Part,
+    strokes: &[Vec<Point>],
+    clearance_mm: f64,
+) -> Result<(), String> {
     let cuts: Vec<Edge> = ring_edges(0, &part.outline_part_mm)
         .chain(
             part.holes_part_mm
@@ -372,7 +382,7 @@ pub fn engraving_inside_and_clear(part: &Part, clearance_mm: f64) -> Result<(), 
                 .flat_map(|(k, h)| ring_edges(k + 1, h)),
         )
         .collect();
-    for (s, line) in part.engraving_part_mm.iter().enumerate() {
+    for (s, line) in strokes.iter().enumerate() {
         if line.is_empty() {
             return Err(format!("part {}: engraving {s} has no points", part.id));
         }
@@ -424,12 +434,37 @@ pub fn engraving_inside_and_clear(part: &Part, clearance_mm: f64) -> Result<(), 
     Ok(())
 }
 
-/// All three checks: [`outline_is_closed_simple_ccw`],
-/// [`holes_are_simple_cw_inside`], [`engraving_inside_and_clear`] with
-/// `clearance_mm` (kerf and part spacing, mm); the first failure.
+/// Every `hole` feature is a round hole: some hole polygon has every
+/// vertex on the feature's circle (within [`ROUND_HOLE_MM`]). plan.json writes round
+/// holes as their features only, and the cutting files cut them as circles.
+pub fn hole_features_are_holes(part: &Part) -> Result<(), String> {
+    for (i, f) in part.features.iter().enumerate() {
+        if f.kind != FeatureKind::Hole {
+            continue;
+        }
+        let r = 0.5 * f.width_mm;
+        let found = part.holes_part_mm.iter().any(|h| {
+            h.iter()
+                .all(|q| (q.distance(f.center_part_mm) - r).abs() <= ROUND_HOLE_MM)
+        });
+        if !found {
+            return Err(format!(
+                "part {}: hole feature {i} at ({:.4}, {:.4}), {:.4} mm, has no hole on its circle",
+                part.id, f.center_part_mm.x, f.center_part_mm.y, f.width_mm
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// All four checks: [`outline_is_closed_simple_ccw`],
+/// [`holes_are_simple_cw_inside`], [`hole_features_are_holes`],
+/// [`engraving_inside_and_clear`] with `clearance_mm` (kerf and part
+/// spacing, mm); the first failure.
 pub fn check_part(part: &Part, clearance_mm: f64) -> Result<(), String> {
     outline_is_closed_simple_ccw(part)?;
     holes_are_simple_cw_inside(part)?;
+    hole_features_are_holes(part)?;
     engraving_inside_and_clear(part, clearance_mm)
 }
 
@@ -442,7 +477,7 @@ mod tests {
         Point::new(x, y)
     }
 
-    fn part(outline: Vec<Point>, holes: Vec<Vec<Point>>, engraving: Vec<Vec<Point>>) -> Part {
+    fn part(outline: Vec<Point>, holes: Vec<Vec<Point>>) -> Part {
         Part {
             id: "T1".into(),
             kind: PartKind::Lamella,
@@ -454,7 +489,7 @@ mod tests {
             station_start_mm: None,
             outline_part_mm: outline,
             holes_part_mm: holes,
-            engraving_part_mm: engraving,
+            engraving: Vec::new(),
             features: vec![],
         }
     }
@@ -568,8 +603,9 @@ mod tests {
             vec![p(10.0, 10.0), p(40.0, 10.0), p(40.0, 20.0)],
             vec![p(60.0, 30.0)],
         ];
-        let part = part(notched(), vec![hole], engraving);
+        let part = part(notched(), vec![hole]);
         assert_eq!(check_part(&part, 0.5), Ok(()));
+        assert_eq!(strokes_inside_and_clear(&part, &engraving, 0.5), Ok(()));
     }
 
     #[test]
@@ -578,25 +614,25 @@ mod tests {
         // Clockwise.
         let mut cw = ok.clone();
         cw.reverse();
-        let e = outline_is_closed_simple_ccw(&part(cw, vec![], vec![])).unwrap_err();
+        let e = outline_is_closed_simple_ccw(&part(cw, vec![])).unwrap_err();
         assert!(e.contains("T1") && e.contains("counter-clockwise"), "{e}");
         // Repeated closing point.
         let mut closed = ok.clone();
         closed.push(ok[0]);
-        let e = outline_is_closed_simple_ccw(&part(closed, vec![], vec![])).unwrap_err();
+        let e = outline_is_closed_simple_ccw(&part(closed, vec![])).unwrap_err();
         assert!(e.contains("repeat"), "{e}");
         // Too few.
-        let e = outline_is_closed_simple_ccw(&part(ok[..2].to_vec(), vec![], vec![])).unwrap_err();
+        let e = outline_is_closed_simple_ccw(&part(ok[..2].to_vec(), vec![])).unwrap_err();
         assert!(e.contains("< 3"), "{e}");
         // A bow tie.
         let bow = vec![p(0.0, 0.0), p(10.0, 10.0), p(10.0, 0.0), p(0.0, 10.0)];
-        let e = outline_is_closed_simple_ccw(&part(bow, vec![], vec![])).unwrap_err();
+        let e = outline_is_closed_simple_ccw(&part(bow, vec![])).unwrap_err();
         assert!(e.contains("not simple"), "{e}");
         // A notch so deep it touches the bottom edge (touching, not crossing).
         let mut deep = ok.clone();
         deep[8] = p(101.5, 0.0);
         deep[9] = p(98.5, 0.0);
-        let e = outline_is_closed_simple_ccw(&part(deep, vec![], vec![])).unwrap_err();
+        let e = outline_is_closed_simple_ccw(&part(deep, vec![])).unwrap_err();
         assert!(e.contains("not simple"), "{e}");
         // A spike: an edge folding back over its neighbour.
         let spike = vec![
@@ -606,7 +642,7 @@ mod tests {
             p(10.0, 5.0),
             p(0.0, 10.0),
         ];
-        let e = outline_is_closed_simple_ccw(&part(spike, vec![], vec![])).unwrap_err();
+        let e = outline_is_closed_simple_ccw(&part(spike, vec![])).unwrap_err();
         assert!(e.contains("not simple"), "{e}");
         // A vertex touching a non-adjacent edge.
         let pinch = vec![
@@ -616,7 +652,7 @@ mod tests {
             p(5.0, 0.0),
             p(0.0, 10.0),
         ];
-        assert!(outline_is_closed_simple_ccw(&part(pinch, vec![], vec![])).is_err());
+        assert!(outline_is_closed_simple_ccw(&part(pinch, vec![])).is_err());
         // A collinear middle point is fine.
         let mid = vec![
             p(0.0, 0.0),
@@ -625,27 +661,20 @@ mod tests {
             p(10.0, 10.0),
             p(0.0, 10.0),
         ];
-        assert_eq!(
-            outline_is_closed_simple_ccw(&part(mid, vec![], vec![])),
-            Ok(())
-        );
+        assert_eq!(outline_is_closed_simple_ccw(&part(mid, vec![])), Ok(()));
         // A triangle, and a degenerate (flat) one.
         let tri = vec![p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)];
-        assert_eq!(
-            outline_is_closed_simple_ccw(&part(tri, vec![], vec![])),
-            Ok(())
-        );
+        assert_eq!(outline_is_closed_simple_ccw(&part(tri, vec![])), Ok(()));
         let flat = vec![p(0.0, 0.0), p(1.0, 0.0), p(2.0, 0.0)];
-        assert!(outline_is_closed_simple_ccw(&part(flat, vec![], vec![])).is_err());
+        assert!(outline_is_closed_simple_ccw(&part(flat, vec![])).is_err());
     }
 
     #[test]
     fn hole_faults_are_named() {
         let outline = notched();
         let c = |x: f64, y: f64, r: f64| circle_cw(p(x, y), r, ARC_TOLERANCE_MM);
-        let check = |holes: Vec<Vec<Point>>| {
-            holes_are_simple_cw_inside(&part(outline.clone(), holes, vec![]))
-        };
+        let check =
+            |holes: Vec<Vec<Point>>| holes_are_simple_cw_inside(&part(outline.clone(), holes));
         assert_eq!(check(vec![c(150.0, 25.0, 3.0), c(50.0, 25.0, 3.0)]), Ok(()));
         // Counter-clockwise.
         let mut ccw = c(150.0, 25.0, 3.0);
@@ -679,7 +708,7 @@ mod tests {
             p(99.0, 50.0),
             p(0.0, 50.0),
         ];
-        let e = holes_are_simple_cw_inside(&part(outline2, vec![sq], vec![])).unwrap_err();
+        let e = holes_are_simple_cw_inside(&part(outline2, vec![sq])).unwrap_err();
         assert!(e.contains("crosses"), "{e}");
         // Two overlapping holes, two touching, one inside another.
         let e = check(vec![c(150.0, 25.0, 3.0), c(154.0, 25.0, 3.0)]).unwrap_err();
@@ -702,7 +731,7 @@ mod tests {
     fn engraving_faults_are_named() {
         let hole = circle_cw(p(150.0, 25.0), 3.0, ARC_TOLERANCE_MM);
         let check = |eng: Vec<Vec<Point>>, c: f64| {
-            engraving_inside_and_clear(&part(notched(), vec![hole.clone()], eng), c)
+            strokes_inside_and_clear(&part(notched(), vec![hole.clone()]), &eng, c)
         };
         assert_eq!(check(vec![vec![p(10.0, 1.0), p(90.0, 1.0)]], 0.9), Ok(()));
         // Too close to the bottom edge.
@@ -762,7 +791,7 @@ mod tests {
     fn large_outlines_are_fast() {
         for (name, outline) in [("star", star(2000)), ("comb", comb(500))] {
             assert!(outline.len() >= 2000);
-            let part = part(outline, vec![], vec![]);
+            let part = part(outline, vec![]);
             let t = std::time::Instant::now();
             assert_eq!(outline_is_closed_simple_ccw(&part), Ok(()), "{name}");
             let dt = t.elapsed();
@@ -774,6 +803,6 @@ mod tests {
         let mut bad = comb(500);
         let n = bad.len();
         bad[n - 3].y = -1.0; // the last notch cuts through the bottom edge
-        assert!(outline_is_closed_simple_ccw(&part(bad, vec![], vec![])).is_err());
+        assert!(outline_is_closed_simple_ccw(&part(bad, vec![])).is_err());
     }
 }

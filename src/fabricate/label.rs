@@ -19,6 +19,7 @@ use kurbo::{Point, Rect, Vec2};
 
 use super::font;
 use super::invariants::{point_in_polygon, segment_meets_rect};
+use super::part::{Engraved, Engraving};
 
 /// How large an engraving may be and how far it may move to fit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,6 +53,9 @@ pub const DEFAULT_SEARCH_HEIGHTS: f64 = 10.0;
 /// An engraving placed on a part.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlacedLabel {
+    /// What it is, where and how high (its strokes are
+    /// `engraving.strokes()`, the same as `strokes_part_mm`).
+    pub engraving: Engraving,
     /// The strokes, open polylines, part frame, mm.
     pub strokes_part_mm: Vec<Vec<Point>>,
     /// The height it was set at, mm.
@@ -138,7 +142,7 @@ impl<'a> Placer<'a> {
         anchor: Point,
         size: &LabelSize,
         width: impl Fn(f64) -> f64,
-        strokes: impl Fn(f64) -> Vec<Vec<Point>>,
+        what: Engraved,
     ) -> Option<PlacedLabel> {
         let LabelSize {
             max_height_mm: max,
@@ -177,12 +181,15 @@ impl<'a> Placer<'a> {
                 let origin = base + Vec2::new(shift, 0.0);
                 let rect = Rect::new(origin.x, origin.y, origin.x + w, origin.y + h);
                 if self.clear_among(rect, &edges) {
-                    let strokes_part_mm = strokes(h)
-                        .into_iter()
-                        .map(|s| s.into_iter().map(|p| p + origin.to_vec2()).collect())
-                        .collect();
+                    let engraving = Engraving {
+                        what,
+                        at_part_mm: origin,
+                        height_mm: h,
+                    };
+                    let strokes_part_mm = engraving.strokes();
                     self.taken.push(rect);
                     return Some(PlacedLabel {
+                        engraving,
                         strokes_part_mm,
                         height_mm: h,
                         bbox_part_mm: rect,
@@ -204,7 +211,7 @@ impl<'a> Placer<'a> {
             anchor,
             size,
             |h| font::text_width_mm(text, h),
-            |h| font::text_strokes(text, h),
+            Engraved::Text(text.to_string()),
         )
     }
 
@@ -215,7 +222,7 @@ impl<'a> Placer<'a> {
             anchor,
             size,
             |h| ORIENTATION_MARK_LENGTH * h,
-            orientation_mark_strokes,
+            Engraved::OrientationMark,
         )
     }
 }
@@ -246,20 +253,27 @@ pub const ORIENTATION_MARK_LENGTH: f64 = 2.0;
 /// edge, +y). Turned over or end for end, the tick points down or the arrow
 /// backwards, so a part cannot be mounted flipped unnoticed.
 pub fn orientation_mark_strokes(height_mm: f64) -> Vec<Vec<Point>> {
-    let h = height_mm;
-    let len = ORIENTATION_MARK_LENGTH * h;
-    // The shaft at 0.3 h, the head 0.6 h tall and 0.45 h long.
-    let a = 0.3 * h;
-    let back = len - 0.45 * h;
-    vec![vec![
-        Point::new(0.0, h),
-        Point::new(0.0, a),
-        Point::new(len, a),
-        Point::new(back, 2.0 * a),
-        Point::new(back, 0.0),
-        Point::new(len, a),
-    ]]
+    ORIENTATION_MARK
+        .iter()
+        .map(|s| {
+            s.iter()
+                .map(|&(x, y)| Point::new(x * height_mm, y * height_mm))
+                .collect()
+        })
+        .collect()
 }
+
+/// The orientation mark at height 1 ([`orientation_mark_strokes`]),
+/// [`ORIENTATION_MARK_LENGTH`] long: the shaft at 0.3, the head 0.6 tall
+/// and 0.45 long.
+pub const ORIENTATION_MARK: [&[(f64, f64)]; 1] = [&[
+    (0.0, 1.0),
+    (0.0, 0.3),
+    (2.0, 0.3),
+    (1.55, 0.6),
+    (1.55, 0.0),
+    (2.0, 0.3),
+]];
 
 /// Places `text` on the part with this outline and these holes (part frame,
 /// mm): centred on `anchor` or shifted along x up to
@@ -299,7 +313,7 @@ pub fn orientation_mark(
 
 #[cfg(test)]
 mod tests {
-    use super::super::invariants::{check_part, segments_intersect};
+    use super::super::invariants::{check_part, segments_intersect, strokes_inside_and_clear};
     use super::super::part::{circle_cw, Part, PartKind, ARC_TOLERANCE_MM};
     use super::*;
 
@@ -346,10 +360,14 @@ mod tests {
             station_start_mm: Some(0.0),
             outline_part_mm: outline,
             holes_part_mm: holes,
-            engraving_part_mm: engraving,
+            engraving: Vec::new(),
             features: vec![],
         };
         assert_eq!(check_part(&part, CLEARANCE), Ok(()));
+        assert_eq!(
+            strokes_inside_and_clear(&part, &engraving, CLEARANCE),
+            Ok(())
+        );
     }
 
     fn bbox(strokes: &[Vec<Point>]) -> Rect {

@@ -638,7 +638,7 @@ fn lamella_part(
         station_start_mm: Some(station_start_mm),
         outline_part_mm: outline,
         holes_part_mm: holes,
-        engraving_part_mm: Vec::new(),
+        engraving: Vec::new(),
         features,
     })
 }

@@ -193,7 +193,7 @@ fn rectangle_part(
             .iter()
             .map(|&(c, d, _)| circle_cw(c, 0.5 * d, ARC_TOLERANCE_MM))
             .collect(),
-        engraving_part_mm: Vec::new(),
+        engraving: Vec::new(),
         features: holes
             .iter()
             .map(|&(c, d, u)| Feature {
@@ -212,12 +212,17 @@ fn rectangle_part(
     }
 }
 
-/// Net area of a part (outline less holes), mm².
+/// Net area of a part (outline less holes), mm²: a round hole (on a
+/// `hole` feature's circle, [`part::round_hole`]) takes its circle's area,
+/// as it is cut; any other hole its polygon's.
 pub fn net_area_mm2(p: &Part) -> f64 {
     signed_area_mm2(&p.outline_part_mm)
         - p.holes_part_mm
             .iter()
-            .map(|h| signed_area_mm2(h).abs())
+            .map(|h| match part::round_hole(p, h) {
+                Some(f) => std::f64::consts::PI * (0.5 * f.width_mm).powi(2),
+                None => signed_area_mm2(h).abs(),
+            })
             .sum::<f64>()
 }
 

@@ -5,7 +5,8 @@
 //! height from the bottom edge (the top edge on the +normal side). Outlines
 //! are closed polylines (the last point joins the first, not repeated),
 //! counter-clockwise; holes clockwise and inside the outline; engraving is
-//! open single-stroke polylines.
+//! texts and marks set in the single-stroke font ([`Engraving`]), each
+//! drawn as open polylines.
 
 use kurbo::Point;
 
@@ -144,11 +145,77 @@ pub struct Part {
     pub outline_part_mm: Vec<Point>,
     /// Closed holes, clockwise, inside the outline, part frame, mm.
     pub holes_part_mm: Vec<Vec<Point>>,
-    /// Open single-stroke engraving polylines, part frame, mm.
-    pub engraving_part_mm: Vec<Vec<Point>>,
+    /// What is engraved, in the order it was placed (its strokes:
+    /// [`Part::engraving_strokes`]).
+    pub engraving: Vec<Engraving>,
     /// Slots and holes, by x.
     pub features: Vec<Feature>,
 }
+
+impl Part {
+    /// Every engraving's open single-stroke polylines, part frame, mm.
+    pub fn engraving_strokes(&self) -> Vec<Vec<Point>> {
+        self.engraving.iter().flat_map(Engraving::strokes).collect()
+    }
+}
+
+/// What an engraving draws.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Engraved {
+    /// A text in the single-stroke font ([`super::font`]).
+    Text(String),
+    /// The orientation mark ([`super::label::orientation_mark_strokes`]).
+    OrientationMark,
+}
+
+/// One engraving on a part: a text or the orientation mark at a height,
+/// its box's lower left at `at_part_mm`. Its strokes are the font's (or the
+/// mark's) at that height moved there: `at + (x, y)` for every stroke
+/// point (x, y) drawn at the height with the box's lower left at the origin.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Engraving {
+    /// A text or the mark.
+    pub what: Engraved,
+    /// The lower left of its box (the text's baseline start), part frame, mm.
+    pub at_part_mm: Point,
+    /// Cap height of a text, whole height of the mark, mm.
+    pub height_mm: f64,
+}
+
+impl Engraving {
+    /// The strokes at the origin (box from (0, 0)), mm.
+    pub fn strokes_at_origin(&self) -> Vec<Vec<Point>> {
+        match &self.what {
+            Engraved::Text(t) => super::font::text_strokes(t, self.height_mm),
+            Engraved::OrientationMark => super::label::orientation_mark_strokes(self.height_mm),
+        }
+    }
+
+    /// The open polylines, part frame, mm.
+    pub fn strokes(&self) -> Vec<Vec<Point>> {
+        let o = self.at_part_mm.to_vec2();
+        self.strokes_at_origin()
+            .into_iter()
+            .map(|s| s.into_iter().map(|q| q + o).collect())
+            .collect()
+    }
+}
+
+/// The `hole` feature whose circle `hole` (a polygon of `part`) lies on,
+/// every vertex within [`ROUND_HOLE_MM`]: the round hole it stands for.
+pub fn round_hole<'a>(part: &'a Part, hole: &[Point]) -> Option<&'a Feature> {
+    part.features.iter().find(|f| {
+        let r = 0.5 * f.width_mm;
+        f.kind == FeatureKind::Hole
+            && hole
+                .iter()
+                .all(|q| (q.distance(f.center_part_mm) - r).abs() <= ROUND_HOLE_MM)
+    })
+}
+
+/// How far a round hole's polygon vertices may stray from the circle, mm
+/// ([`circle_cw`] puts them on it).
+pub const ROUND_HOLE_MM: f64 = 1e-6;
 
 /// Signed area of a closed polyline (positive counter-clockwise), mm².
 pub fn signed_area_mm2(poly: &[Point]) -> f64 {

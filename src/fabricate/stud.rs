@@ -141,7 +141,7 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
             Point::new(0.0, side),
         ],
         holes_part_mm: vec![hb, ha],
-        engraving_part_mm: Vec::new(),
+        engraving: Vec::new(),
         features: vec![fb, fa],
     };
     Ok(Some(StudCut {
@@ -187,7 +187,7 @@ mod tests {
                 assert!((q.distance(f.center_part_mm) - 2.0).abs() < 1e-9);
             }
         }
-        assert!(s.engraving_part_mm.is_empty());
+        assert!(s.engraving.is_empty());
         // 2000 mm bars, 0.3 mm kerf: 16 × 120 + 15 × 0.3 = 1924.5 ≤ 2000 < 17 × 120 + 16 × 0.3.
         assert_eq!(cut.per_bar, 16);
         assert_eq!(cut.bars, 3);

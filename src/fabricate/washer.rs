@@ -151,7 +151,7 @@ pub fn washer_part(
         station_start_mm: None,
         outline_part_mm: star.iter().map(|p| *p + shift).collect(),
         holes_part_mm: vec![circle_cw(centre, 0.5 * hole_diameter_mm, ARC_TOLERANCE_MM)],
-        engraving_part_mm: Vec::new(),
+        engraving: Vec::new(),
         features: vec![Feature {
             kind: FeatureKind::Hole,
             hole_use: Some(HoleUse::Node),
@@ -354,7 +354,7 @@ mod tests {
         assert_eq!(counts, [4, 4, 2]);
         let w60 = &parts[2];
         assert_eq!(w60.kind, PartKind::Washer);
-        assert!(w60.engraving_part_mm.is_empty());
+        assert!(w60.engraving.is_empty());
         // Drawn at the class angle, arms along 0, 60, 180, 240 from the hole.
         let c = w60.features[0].center_part_mm;
         let want = [0.0, 60.0, 180.0, 240.0];

@@ -1,13 +1,18 @@
-//! A JSON layout for big plans: objects indented one key per line as
-//! `to_string_pretty` does, but arrays of numbers, strings and arrays on one
-//! line (`"outline": [[0.0, 0.0], [3000.0, 0.0], …]`). A kit's outlines and
-//! engraving are most of plan.json; one number per line made it three times
-//! larger and no easier to read.
+//! A JSON layout for big plans: an object that holds other objects is
+//! indented one key per line as `to_string_pretty` does; an object that
+//! holds none (a node, a feature, a placement) is written on one line
+//! (`{"node": 0, "crossing": "B00", "station_mm": 0.0}`), and arrays of
+//! numbers, strings and arrays stay on one line (`"outline": [[0.0, 0.0],
+//! [3000.0, 0.0], …]`). A kit's records are most of plan.json: one key per
+//! line made it half indentation, one number per line three times larger,
+//! and neither easier to read.
 //!
 //! An array learns that it holds objects only when the first one begins,
-//! so the separator before each element is held back until then.
+//! so the separator before each element is held back until then; an object
+//! learns that it holds another only when that one begins, so it is kept
+//! on one line in a buffer until then, and laid out key per line if so.
 
-use serde_json::ser::{CompactFormatter, Formatter};
+use serde_json::ser::{CharEscape, CompactFormatter, Formatter};
 use std::io::{self, Write};
 
 /// One open array or object.
@@ -20,10 +25,23 @@ enum Frame {
     Object { keys: bool },
 }
 
+/// The innermost open object while it holds no object: its text so far,
+/// on one line, without its braces.
+#[derive(Debug, Default)]
+struct Line {
+    /// Where it sits in the stack (the stack's length once it is pushed).
+    depth: usize,
+    /// `"key": value, "key": value…`
+    text: Vec<u8>,
+    /// Where each key starts in `text`.
+    keys: Vec<usize>,
+}
+
 /// The formatter (see the module doc).
 #[derive(Debug, Default)]
 pub struct PlanFormatter {
     stack: Vec<Frame>,
+    line: Option<Line>,
 }
 
 /// What is about to be written into an array.
@@ -33,14 +51,53 @@ enum Next {
     Other,
 }
 
-impl PlanFormatter {
-    fn indent<W: ?Sized + Write>(&self, w: &mut W, depth: usize) -> io::Result<()> {
-        for _ in 0..depth {
-            w.write_all(b"  ")?;
+/// Where output goes: the one-line buffer of the open leaf object, if any,
+/// else the writer.
+enum Out<'a, W: ?Sized> {
+    Line(&'a mut Vec<u8>),
+    Writer(&'a mut W),
+}
+
+impl<W: ?Sized + Write> Write for Out<'_, W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        match self {
+            Out::Line(l) => l.write(buf),
+            Out::Writer(w) => w.write(buf),
         }
-        Ok(())
     }
 
+    fn write_all(&mut self, buf: &[u8]) -> io::Result<()> {
+        match self {
+            Out::Line(l) => l.write_all(buf),
+            Out::Writer(w) => w.write_all(buf),
+        }
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        match self {
+            Out::Line(_) => Ok(()),
+            Out::Writer(w) => w.flush(),
+        }
+    }
+}
+
+macro_rules! out {
+    ($self:ident, $w:ident) => {
+        &mut match $self.line.as_mut() {
+            Some(l) => Out::Line(&mut l.text),
+            None => Out::Writer($w),
+        }
+    };
+}
+
+fn indent<W: ?Sized + Write>(w: &mut W, depth: usize) -> io::Result<()> {
+    for _ in 0..depth {
+        w.write_all(b"  ")?;
+    }
+    Ok(())
+}
+
+impl PlanFormatter {
     /// Pay the separator an array owes before its next element.
     fn pay<W: ?Sized + Write>(&mut self, w: &mut W, next: Next) -> io::Result<()> {
         let depth = self.stack.len();
@@ -49,14 +106,33 @@ impl PlanFormatter {
                 if next == Next::Object {
                     *objects = true;
                 }
-                if *objects {
-                    w.write_all(if first { b"\n" } else { b",\n" })?;
-                    return self.indent(w, depth);
+                let objects = *objects;
+                let out = out!(self, w);
+                if objects {
+                    out.write_all(if first { b"\n" } else { b",\n" })?;
+                    return indent(out, depth);
                 }
                 if !first {
-                    w.write_all(b", ")?;
+                    out.write_all(b", ")?;
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// The leaf object being buffered holds an object after all: write it
+    /// key per line so far (its last key's value is still open).
+    fn unfold<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        let Some(line) = self.line.take() else {
+            return Ok(());
+        };
+        w.write_all(b"{")?;
+        for (k, &start) in line.keys.iter().enumerate() {
+            // Keys after the first follow a `, ` in the one-line text.
+            let end = line.keys.get(k + 1).map_or(line.text.len(), |&e| e - 2);
+            w.write_all(if k == 0 { b"\n" } else { b",\n" })?;
+            indent(w, line.depth)?;
+            w.write_all(&line.text[start..end])?;
         }
         Ok(())
     }
@@ -66,7 +142,7 @@ macro_rules! scalar {
     ($($name:ident: $t:ty),*) => {$(
         fn $name<W: ?Sized + Write>(&mut self, w: &mut W, v: $t) -> io::Result<()> {
             self.pay(w, Next::Other)?;
-            CompactFormatter.$name(w, v)
+            CompactFormatter.$name(out!(self, w), v)
         }
     )*};
 }
@@ -74,7 +150,7 @@ macro_rules! scalar {
 impl Formatter for PlanFormatter {
     fn write_null<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
         self.pay(w, Next::Other)?;
-        w.write_all(b"null")
+        out!(self, w).write_all(b"null")
     }
 
     scalar!(write_bool: bool, write_i8: i8, write_i16: i16, write_i32: i32, write_i64: i64,
@@ -83,7 +159,46 @@ impl Formatter for PlanFormatter {
 
     fn begin_string<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
         self.pay(w, Next::Other)?;
-        w.write_all(b"\"")
+        out!(self, w).write_all(b"\"")
+    }
+
+    fn end_string<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        out!(self, w).write_all(b"\"")
+    }
+
+    fn write_string_fragment<W: ?Sized + Write>(
+        &mut self,
+        w: &mut W,
+        fragment: &str,
+    ) -> io::Result<()> {
+        out!(self, w).write_all(fragment.as_bytes())
+    }
+
+    fn write_char_escape<W: ?Sized + Write>(
+        &mut self,
+        w: &mut W,
+        escape: CharEscape,
+    ) -> io::Result<()> {
+        CompactFormatter.write_char_escape(out!(self, w), escape)
+    }
+
+    fn write_byte_array<W: ?Sized + Write>(&mut self, w: &mut W, value: &[u8]) -> io::Result<()> {
+        self.begin_array(w)?;
+        for (i, b) in value.iter().enumerate() {
+            self.begin_array_value(w, i == 0)?;
+            self.write_u8(w, *b)?;
+            self.end_array_value(w)?;
+        }
+        self.end_array(w)
+    }
+
+    fn write_raw_fragment<W: ?Sized + Write>(
+        &mut self,
+        w: &mut W,
+        fragment: &str,
+    ) -> io::Result<()> {
+        self.pay(w, Next::Other)?;
+        out!(self, w).write_all(fragment.as_bytes())
     }
 
     fn begin_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
@@ -92,15 +207,18 @@ impl Formatter for PlanFormatter {
             objects: false,
             owed: None,
         });
-        w.write_all(b"[")
+        out!(self, w).write_all(b"[")
     }
 
     fn end_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        if let Some(Frame::Array { objects: true, .. }) = self.stack.pop() {
-            w.write_all(b"\n")?;
-            self.indent(w, self.stack.len())?;
+        let frame = self.stack.pop();
+        let depth = self.stack.len();
+        let out = out!(self, w);
+        if let Some(Frame::Array { objects: true, .. }) = frame {
+            out.write_all(b"\n")?;
+            indent(out, depth)?;
         }
-        w.write_all(b"]")
+        out.write_all(b"]")
     }
 
     fn begin_array_value<W: ?Sized + Write>(&mut self, _w: &mut W, first: bool) -> io::Result<()> {
@@ -115,15 +233,28 @@ impl Formatter for PlanFormatter {
     }
 
     fn begin_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        // The object being buffered holds this one: it is not a leaf.
+        self.unfold(w)?;
         self.pay(w, Next::Object)?;
         self.stack.push(Frame::Object { keys: false });
-        w.write_all(b"{")
+        self.line = Some(Line {
+            depth: self.stack.len(),
+            ..Line::default()
+        });
+        Ok(())
     }
 
     fn end_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        if let Some(Frame::Object { keys: true }) = self.stack.pop() {
+        let frame = self.stack.pop();
+        if let Some(line) = self.line.take() {
+            // A leaf: on one line.
+            w.write_all(b"{")?;
+            w.write_all(&line.text)?;
+            return w.write_all(b"}");
+        }
+        if let Some(Frame::Object { keys: true }) = frame {
             w.write_all(b"\n")?;
-            self.indent(w, self.stack.len())?;
+            indent(w, self.stack.len())?;
         }
         w.write_all(b"}")
     }
@@ -132,8 +263,15 @@ impl Formatter for PlanFormatter {
         if let Some(Frame::Object { keys }) = self.stack.last_mut() {
             *keys = true;
         }
+        if let Some(line) = self.line.as_mut() {
+            if !first {
+                line.text.extend_from_slice(b", ");
+            }
+            line.keys.push(line.text.len());
+            return Ok(());
+        }
         w.write_all(if first { b"\n" } else { b",\n" })?;
-        self.indent(w, self.stack.len())
+        indent(w, self.stack.len())
     }
 
     fn end_object_key<W: ?Sized + Write>(&mut self, _w: &mut W) -> io::Result<()> {
@@ -141,7 +279,7 @@ impl Formatter for PlanFormatter {
     }
 
     fn begin_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        w.write_all(b": ")
+        out!(self, w).write_all(b": ")
     }
 
     fn end_object_value<W: ?Sized + Write>(&mut self, _w: &mut W) -> io::Result<()> {
@@ -163,36 +301,68 @@ pub fn write<T: serde::Serialize + ?Sized, W: Write + ?Sized>(
 mod tests {
     use super::*;
 
+    fn layout(v: &serde_json::Value) -> String {
+        let mut out = Vec::new();
+        write(v, &mut out).expect("write");
+        let text = String::from_utf8(out).expect("utf8");
+        // The same value reads back.
+        let back: serde_json::Value = serde_json::from_str(&text).expect("json");
+        assert_eq!(&back, v);
+        text
+    }
+
     #[test]
-    fn objects_indent_and_number_arrays_stay_on_one_line() {
+    fn leaf_objects_and_number_arrays_stay_on_one_line() {
         let v = serde_json::json!({
             "schema": "x",
-            "parts": [{"id": "A", "outline": [[0.0, 0.0], [1.5, 0.0]], "holes": []}, {"id": "B"}],
+            "parts": [
+                {"id": "A", "outline": [[0.0, 0.0], [1.5, 0.0]], "holes": [], "features": [
+                    {"kind": "hole", "at": [1.0, 2.0], "use": null},
+                    {"kind": "slot", "at": [3.0, 4.0], "use": "a \"quoted\" \\ name"}
+                ], "z": 1},
+                {"id": "B"}
+            ],
             "empty": {},
-            "names": ["a", "b"]
+            "names": ["a", "b"],
+            "nested": {"inner": {"k": 1}, "after": [1, 2]}
         });
-        let mut out = Vec::new();
-        write(&v, &mut out).expect("write");
-        let text = String::from_utf8(out).expect("utf8");
         let want = r#"{
   "empty": {},
   "names": ["a", "b"],
+  "nested": {
+    "after": [1, 2],
+    "inner": {"k": 1}
+  },
   "parts": [
     {
+      "features": [
+        {"at": [1.0, 2.0], "kind": "hole", "use": null},
+        {"at": [3.0, 4.0], "kind": "slot", "use": "a \"quoted\" \\ name"}
+      ],
       "holes": [],
       "id": "A",
-      "outline": [[0.0, 0.0], [1.5, 0.0]]
+      "outline": [[0.0, 0.0], [1.5, 0.0]],
+      "z": 1
     },
-    {
-      "id": "B"
-    }
+    {"id": "B"}
   ],
   "schema": "x"
 }
 "#;
-        assert_eq!(text, want);
-        // The same value reads back.
-        let back: serde_json::Value = serde_json::from_str(&text).expect("json");
-        assert_eq!(back, v);
+        assert_eq!(layout(&v), want);
+    }
+
+    #[test]
+    fn an_object_of_objects_in_an_array_of_arrays() {
+        let v = serde_json::json!([[{"a": {"b": []}}], [1, [2, {"c": 3}]]]);
+        let want = r#"[[
+    {
+      "a": {"b": []}
+    }
+  ], [1, [2,
+      {"c": 3}
+    ]]]
+"#;
+        assert_eq!(layout(&v), want);
     }
 }

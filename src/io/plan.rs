@@ -1,4 +1,4 @@
-//! plan.json, schema `lamella-plan/2`: the single source of truth every later
+//! plan.json, schema `lamella-plan/3`: the single source of truth every later
 //! output is drawn from. Later stages add fields; they never rename these.
 //! Numbers are rounded to fixed precision so the file is byte-stable.
 
@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The schema name written into every plan; later stages add fields, never rename.
-pub const SCHEMA: &str = "lamella-plan/2";
+pub const SCHEMA: &str = "lamella-plan/3";
 
 /// The whole plan.json: what the network is, every strip and node, the
 /// warnings and, after `check`, the profile and the verdict. Lengths in mm,
@@ -21,7 +21,7 @@ pub const SCHEMA: &str = "lamella-plan/2";
 /// rounded to fixed decimals (lengths 4, angles 6) so equal inputs give equal bytes.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Plan {
-    /// Always [`SCHEMA`] (`lamella-plan/2`).
+    /// Always [`SCHEMA`] (`lamella-plan/3`).
     pub schema: String,
     /// `lamella` and the version that wrote the file.
     pub generator: String,
@@ -49,6 +49,10 @@ pub struct Plan {
     /// Counts by kind, lamella length and mass (added by `parts`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parts_summary: Option<PlanKitSummary>,
+    /// The single-stroke font the parts' engraving is set in: every
+    /// character and mark engraved (added by `parts`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub engraving_font: Option<PlanFont>,
     /// The sheets the parts are nested on (added by `nest`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sheets: Option<Vec<PlanSheet>>,
@@ -241,8 +245,10 @@ pub struct PlanStockUse {
     pub cost: Option<f64>,
 }
 
-/// One part in plan.json: part-local mm, outline counter-clockwise, holes
-/// clockwise, engraving open polylines.
+/// One part in plan.json: part-local mm, outline counter-clockwise; round
+/// holes are its `hole` features (cut as circles), other inner contours
+/// its `holes`, clockwise; engraving texts and marks in the plan's
+/// [`PlanFont`].
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanPart {
     /// Unique part id (also engraved).
@@ -263,12 +269,56 @@ pub struct PlanPart {
     pub station_start_mm: Option<f64>,
     /// Closed outline, counter-clockwise, [x, y] mm.
     pub outline: Vec<[f64; 2]>,
-    /// Closed holes, clockwise, [x, y] mm.
+    /// Closed inner contours other than the round holes (those are the
+    /// `hole` features), clockwise, [x, y] mm.
     pub holes: Vec<Vec<[f64; 2]>>,
-    /// Open single-stroke engraving polylines, [x, y] mm.
-    pub engraving: Vec<Vec<[f64; 2]>>,
+    /// Texts and marks engraved, in the plan's `engraving_font`.
+    pub engraving: Vec<PlanEngraving>,
     /// Slots and holes, by x.
     pub features: Vec<PlanFeature>,
+}
+
+/// One engraving of a part: a text or a mark of the plan's
+/// [`PlanFont`] at `height_mm`, its box's lower left at `at_mm`. The k-th
+/// glyph of a text starts at x_k (x_0 = 0, x_(k+1) = x_k + (width_k +
+/// letter_spacing)); each stroke point (gx, gy) of it is engraved at
+/// `at_mm` + `height_mm` × (x_k + gx, gy); a mark's at `at_mm` +
+/// `height_mm` × (gx, gy).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanEngraving {
+    /// The text, if a text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub text: Option<String>,
+    /// The mark (`orientation`), if a mark.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mark: Option<String>,
+    /// Lower left of its box (a text's baseline start), part frame, mm.
+    pub at_mm: [f64; 2],
+    /// Cap height of a text, whole height of a mark, mm.
+    pub height_mm: f64,
+}
+
+/// The single-stroke engraving font, as far as the plan's parts use it.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFont {
+    /// The font's name.
+    pub name: String,
+    /// The gap between two glyph boxes, in cap heights.
+    pub letter_spacing: f64,
+    /// Every character engraved (a character without a glyph of its own
+    /// has the fallback box), by character.
+    pub glyphs: std::collections::BTreeMap<String, PlanGlyph>,
+    /// Every mark engraved, by name (`orientation`).
+    pub marks: std::collections::BTreeMap<String, PlanGlyph>,
+}
+
+/// A glyph or mark at height 1: its box is [0, width] × [0, 1].
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanGlyph {
+    /// Width, in heights.
+    pub width: f64,
+    /// Open polylines, [x, y] in heights.
+    pub strokes: Vec<Vec<[f64; 2]>>,
 }
 
 /// A slot or hole of a part.
@@ -733,6 +783,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         check,
         parts: None,
         parts_summary: None,
+        engraving_font: None,
         sheets: None,
         nesting: None,
         flat: None,
@@ -806,17 +857,65 @@ pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
     add_kit_summary(plan, kit);
 }
 
+/// The font entry of every character and mark the parts engrave.
+fn engraving_font(parts: &[PlanPart]) -> PlanFont {
+    use crate::fabricate::{font, label};
+    let glyph = |width: f64, strokes: Vec<Vec<kurbo::Point>>| PlanGlyph {
+        width,
+        strokes: strokes
+            .iter()
+            .map(|s| s.iter().map(|p| [p.x, p.y]).collect())
+            .collect(),
+    };
+    let mut chars = std::collections::BTreeSet::new();
+    let mut marks = std::collections::BTreeMap::new();
+    for e in parts.iter().flat_map(|p| &p.engraving) {
+        chars.extend(e.text.iter().flat_map(|t| t.chars()));
+        if e.mark.as_deref() == Some(ORIENTATION_MARK) && marks.is_empty() {
+            marks.insert(
+                ORIENTATION_MARK.to_string(),
+                glyph(
+                    label::ORIENTATION_MARK_LENGTH,
+                    label::orientation_mark_strokes(1.0),
+                ),
+            );
+        }
+    }
+    let glyphs = chars
+        .into_iter()
+        .map(|c| {
+            (
+                c.to_string(),
+                glyph(font::glyph_width(c), font::glyph_strokes(c)),
+            )
+        })
+        .collect();
+    PlanFont {
+        name: font::NAME.into(),
+        letter_spacing: font::LETTER_SPACING,
+        glyphs,
+        marks,
+    }
+}
+
+/// The name of the orientation mark in plan.json.
+pub const ORIENTATION_MARK: &str = "orientation";
+
 /// [`add_parts`], taking the kit's parts: each is freed once converted, so
 /// a big kit and its plan copy are not both held whole. Call [`add_nest`]
 /// first (it names parts by the kit).
 pub fn add_parts_taking(plan: &mut Plan, kit: &mut crate::fabricate::Kit) {
+    use rayon::prelude::*;
     let parts = std::mem::take(&mut kit.parts);
-    plan.parts = Some(parts.into_iter().map(|p| plan_part(&p)).collect());
+    // In parallel, in order; each part freed where it is converted.
+    plan.parts = Some(parts.into_par_iter().map(|p| plan_part(&p)).collect());
     add_kit_summary(plan, kit);
 }
 
-/// One part as plan.json writes it (rounded).
+/// One part as plan.json writes it (rounded); its round holes only as
+/// its `hole` features.
 fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
+    use crate::fabricate::part::{round_hole, Engraved};
     let pt = |p: &kurbo::Point| [round(p.x, MM), round(p.y, MM)];
     let poly = |v: &[kurbo::Point]| v.iter().map(pt).collect::<Vec<_>>();
     PlanPart {
@@ -829,8 +928,28 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
         height_mm: round(p.height_mm, MM),
         station_start_mm: p.station_start_mm.map(|s| round(s, MM)),
         outline: poly(&p.outline_part_mm),
-        holes: p.holes_part_mm.iter().map(|h| poly(h)).collect(),
-        engraving: p.engraving_part_mm.iter().map(|e| poly(e)).collect(),
+        holes: p
+            .holes_part_mm
+            .iter()
+            .filter(|h| round_hole(p, h).is_none())
+            .map(|h| poly(h))
+            .collect(),
+        engraving: p
+            .engraving
+            .iter()
+            .map(|e| {
+                let (text, mark) = match &e.what {
+                    Engraved::Text(t) => (Some(t.clone()), None),
+                    Engraved::OrientationMark => (None, Some(ORIENTATION_MARK.to_string())),
+                };
+                PlanEngraving {
+                    text,
+                    mark,
+                    at_mm: pt(&e.at_part_mm),
+                    height_mm: round(e.height_mm, MM),
+                }
+            })
+            .collect(),
         features: p
             .features
             .iter()
@@ -861,6 +980,7 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
 }
 
 fn add_kit_summary(plan: &mut Plan, kit: &crate::fabricate::Kit) {
+    plan.engraving_font = plan.parts.as_deref().map(engraving_font);
     plan.parts_summary = Some(PlanKitSummary {
         kinds: kit
             .summary
@@ -939,6 +1059,23 @@ fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanChec
     }
 }
 
+/// The dotted path of a NaN or infinite number in `plan`, if any
+/// ([`crate::io::finite::first_non_finite`]): the first outside its parts,
+/// else the first in them (walked in parallel).
+pub fn first_non_finite(plan: &mut Plan) -> Option<String> {
+    use rayon::prelude::*;
+    let parts = plan.parts.take();
+    let rest = crate::io::finite::first_non_finite(plan);
+    plan.parts = parts;
+    rest.or_else(|| {
+        plan.parts.as_deref().and_then(|parts| {
+            parts.par_iter().enumerate().find_map_first(|(i, p)| {
+                crate::io::finite::first_non_finite(p).map(|f| format!("parts[{i}].{f}"))
+            })
+        })
+    })
+}
+
 /// Serialise a plan (pretty JSON, trailing newline).
 pub fn to_json(plan: &Plan) -> String {
     let mut out = Vec::new();
@@ -977,4 +1114,55 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         Error::io(path, e)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(id: &str, length_mm: f64) -> PlanPart {
+        PlanPart {
+            id: id.into(),
+            kind: "washer".into(),
+            strip: None,
+            lamella: None,
+            count: 1,
+            length_mm,
+            height_mm: 10.0,
+            station_start_mm: None,
+            outline: vec![[0.0, 0.0], [length_mm, 0.0], [0.0, 10.0]],
+            holes: vec![],
+            engraving: vec![],
+            features: vec![],
+        }
+    }
+
+    /// The parts are walked in parallel, the rest as a whole walk would.
+    #[test]
+    fn non_finite_numbers_named_in_the_parts_and_outside() {
+        let mut plan: Plan = serde_json::from_value(serde_json::json!({
+            "schema": SCHEMA, "generator": "t", "units": "mm",
+            "network": {"name": "n", "source": "n.yaml", "file_units": "mm", "tolerance_mm": 0.5},
+            "summary": {"curves": 0, "nodes": 0, "total_length_mm": 0.0,
+                "shortest_node_to_node_mm": null, "longest_node_to_node_mm": null,
+                "max_normal_curvature_per_m": 0.0, "min_angle_deg": null, "max_angle_deg": null},
+            "strips": [], "nodes": [], "warnings": []
+        }))
+        .expect("plan");
+        plan.parts = Some((0..50).map(|i| part(&format!("P{i}"), 10.0)).collect());
+        assert_eq!(first_non_finite(&mut plan), None);
+        let parts = plan.parts.as_mut().expect("parts");
+        parts[40].outline[2][1] = f64::INFINITY;
+        parts[7].length_mm = f64::NAN;
+        assert_eq!(
+            first_non_finite(&mut plan).as_deref(),
+            Some("parts[7].length_mm")
+        );
+        plan.network.tolerance_mm = f64::NAN;
+        assert_eq!(
+            first_non_finite(&mut plan).as_deref(),
+            Some("network.tolerance_mm")
+        );
+        assert_eq!(plan.parts.as_ref().map(Vec::len), Some(50));
+    }
 }

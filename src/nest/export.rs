@@ -161,7 +161,7 @@ mod tests {
             station_start_mm: None,
             outline_part_mm: outline,
             holes_part_mm: Vec::new(),
-            engraving_part_mm: Vec::new(),
+            engraving: Vec::new(),
             features,
         }
     }

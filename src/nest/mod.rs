@@ -1008,13 +1008,11 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     sheets.retain(|s| !s.placements.is_empty());
     sheets.sort_by_key(|s| s.size);
     let m = ctx.margin;
+    // Once per part, not per copy placed.
+    let areas: Vec<f64> = kit.parts.iter().map(net_area_mm2).collect();
     for (k, s) in sheets.iter_mut().enumerate() {
         s.id = format!("S{:02}", k + 1);
-        s.part_area_mm2 = s
-            .placements
-            .iter()
-            .map(|pl| net_area_mm2(&kit.parts[pl.part]))
-            .sum();
+        s.part_area_mm2 = s.placements.iter().map(|pl| areas[pl.part]).sum();
         if coil {
             // Cut to the length used, in whole steps.
             let used = s

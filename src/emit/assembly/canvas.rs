@@ -4,7 +4,7 @@
 //! line width, font) emitted only when it changes and consecutive text
 //! kept in one text object, so big pages stay small.
 
-use crate::emit::push_decimal;
+use crate::emit::{push_decimal, push_scaled};
 
 /// Points per millimetre.
 const PT_PER_MM: f64 = 72.0 / 25.4;
@@ -60,7 +60,7 @@ pub struct Canvas {
 
 /// Millimetres to tenths of a point (0.035 mm, finer than print).
 fn hpt(mm: f64) -> i64 {
-    (mm * PT_PER_MM * 10.0).round() as i64
+    crate::emit::round_to_i64(mm * PT_PER_MM * 10.0)
 }
 
 impl Canvas {
@@ -86,7 +86,7 @@ impl Canvas {
     }
 
     fn num(&mut self, tenths: i64) {
-        push_decimal(&mut self.out, tenths as f64 / 10.0, 1, false);
+        push_scaled(&mut self.out, tenths < 0, tenths.unsigned_abs(), 1, false);
         self.out.push(' ');
     }
 

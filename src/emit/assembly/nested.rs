@@ -22,7 +22,7 @@ pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<Page>> 
     (0..drawer.len())
         .into_par_iter()
         .map(|i| {
-            let sheet = drawer.sheet(i)?;
+            let sheet = drawer.sheet_cuts(i)?;
             let meta = &sheets[i];
             let den = (sheet.length_mm / frame.width_mm())
                 .max(sheet.width_mm / (frame.height_mm() - SUB_MM));
