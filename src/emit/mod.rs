@@ -124,7 +124,7 @@ const DIGIT_PAIRS: &[u8; 200] = b"\
 /// `y` rounded to the nearest integer, halves away from zero (see
 /// [`round_half_away`]).
 pub(crate) fn round_to_i64(y: f64) -> i64 {
-    if !(y.abs() < 1e15) {
+    if y.is_nan() || y.abs() >= 1e15 {
         // Huge, infinite or NaN: the saturating cast of the library's rounding.
         return y.round() as i64;
     }
