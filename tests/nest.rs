@@ -30,7 +30,7 @@ fn every_buildable_kit_nests_within_the_rules() {
             let n = nest(&kit, &p).unwrap();
             assert_eq!(check_nest(&kit, &n, &p), Ok(()), "{sample} {profile}");
             let s = &n.summary;
-            assert!(s.sheets_used >= s.lower_bound_sheets, "{sample} {profile}");
+            keeps(s, promise(sample, profile), &format!("{sample} {profile}"));
             assert!(s.utilization > 0.0 && s.utilization <= 1.0);
             // Independently: parts on a sheet pairwise at least the gap
             // apart, by their boxes or else by their true outlines.
@@ -42,6 +42,102 @@ fn every_buildable_kit_nests_within_the_rules() {
         }
     }
     assert_eq!(nested, 18);
+}
+
+/// What the README's nesting table promises for a shipped sample × profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Promise {
+    /// Sheets used equal the lower bound.
+    AtBound,
+    /// Above the bound, at most this many sheets (the table says why).
+    AtMost(usize),
+    /// The parts stage refuses the kit (the table says what), with this in
+    /// its message.
+    PartsRefuse(&'static str),
+}
+
+/// The README's table (sample, then steel-1.5, poplar-ply-4, beech-veneer).
+const PROFILES: [&str; 3] = ["steel-1.5", "poplar-ply-4", "beech-veneer"];
+const TABLE: [(&str, [Promise; 3]); 12] = {
+    use Promise::{AtBound as B, AtMost, PartsRefuse};
+    [
+        ("enneper-4m", [B, B, B]),
+        ("mesh-enneper", [B, B, B]),
+        ("catenoid", [AtMost(2), B, AtMost(2)]),
+        ("scherk", [B, B, B]),
+        ("schwarz-d-patch", [B, B, B]),
+        ("hypar-small", [B, B, B]),
+        ("film-oculus", [PartsRefuse("slots leave"), B, B]),
+        ("film-rings", [B, B, B]),
+        ("film-saddle", [AtMost(4), B, B]),
+        ("film-three-peaks", [AtMost(4), B, B]),
+        (
+            "schwarz-d-pavilion-1to5",
+            [
+                PartsRefuse("no room for a 160 mm splice plate"),
+                PartsRefuse("no room for a 200 mm splice plate"),
+                AtMost(5),
+            ],
+        ),
+        ("schwarz-d-pavilion", [AtMost(18), AtMost(27), AtMost(20)]),
+    ]
+};
+
+/// Issue 9's last point: on every shipped sample with each profile the nest
+/// keeps its rules and uses the lower bound's sheets, or no more than the
+/// README's table says (where it names why one more is needed), or the
+/// parts stage refuses the kit as the table says. The samples the other
+/// tests here nest already are left to them (the table's promise for those
+/// is checked there).
+#[test]
+fn every_shipped_sample_keeps_the_readme_table() {
+    let mut checked = 0;
+    for (sample, promises) in TABLE {
+        if common::BUILDABLE_SAMPLES.contains(&sample) {
+            continue;
+        }
+        let (net, an) = common::analysed_sample(sample);
+        for (profile, promise) in PROFILES.iter().zip(promises) {
+            if sample == "schwarz-d-pavilion-1to5" && *profile == "beech-veneer" {
+                continue;
+            }
+            let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+            let what = format!("{sample} {profile}");
+            match (fabricate(&net, &an, &p), promise) {
+                (Err(e), Promise::PartsRefuse(msg)) => {
+                    assert!(e.to_string().contains(msg), "{what}: {e}");
+                }
+                (Err(e), _) => panic!("{what}: {e}"),
+                (Ok(_), Promise::PartsRefuse(_)) => panic!("{what}: parts made"),
+                (Ok(kit), promise) => {
+                    let n = nest(&kit, &p).unwrap();
+                    assert_eq!(check_nest(&kit, &n, &p), Ok(()), "{what}");
+                    keeps(&n.summary, promise, &what);
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 17);
+}
+
+/// The table's promise for `sample` × `profile`.
+fn promise(sample: &str, profile: &str) -> Promise {
+    let (_, ps) = TABLE.iter().find(|(s, _)| *s == sample).unwrap();
+    ps[PROFILES.iter().position(|p| *p == profile).unwrap()]
+}
+
+/// The summary keeps the promise (never fewer sheets than the bound).
+fn keeps(s: &lamella::nest::NestSummary, promise: Promise, what: &str) {
+    assert!(s.sheets_used >= s.lower_bound_sheets, "{what}");
+    match promise {
+        Promise::AtBound => assert_eq!(
+            s.sheets_used, s.lower_bound_sheets,
+            "{what}: above the bound, and the README does not say why"
+        ),
+        Promise::AtMost(n) => assert!(s.sheets_used <= n, "{what}: {} > {n}", s.sheets_used),
+        Promise::PartsRefuse(_) => panic!("{what}: nested, but the table says parts refuse"),
+    }
 }
 
 /// A placed part's outline in sheet coordinates (independent of the crate's).
@@ -150,8 +246,12 @@ fn the_small_pavilion_nests_within_the_rules_by_outline() {
     assert_eq!(check_nest(&kit, &n, &p), Ok(()));
     let g = p.cutting.kerf_mm + p.cutting.part_spacing_mm;
     pairwise_apart(&kit, &n, g, "pavilion-1to5 veneer");
-    // By bounding box it took 9 sheets; by outline no more than 5.
-    assert!(n.summary.sheets_used <= 5, "{}", n.summary.sheets_used);
+    // By bounding box it took 9 sheets; by outline no more than the table's.
+    keeps(
+        &n.summary,
+        promise("schwarz-d-pavilion-1to5", "beech-veneer"),
+        "pavilion-1to5 veneer",
+    );
     assert_eq!(nest(&kit, &p).unwrap().sheets, n.sheets);
 }
 
