@@ -37,6 +37,7 @@
 
 pub mod binpack;
 pub mod export;
+pub mod lattice;
 pub mod outline;
 
 use crate::error::{Error, Result};
@@ -343,6 +344,10 @@ struct Ctx<'a> {
     item_len: Vec<f64>,
     /// Other parts, largest bounding box first.
     others: Vec<usize>,
+    /// Per part: lattice blocks of its copies, largest first, for star
+    /// washers that pack denser with their arms interleaved
+    /// ([`lattice`]); empty for every other part.
+    blocks: Vec<Vec<lattice::Block>>,
 }
 
 /// Sheets and the number of lamella lanes on them.
@@ -465,6 +470,11 @@ impl<'a> Ctx<'a> {
             (x1 - x0) * (y1 - y0)
         };
         others.sort_by(|&a, &b| area(b).total_cmp(&area(a)).then(a.cmp(&b)));
+        let blocks = kit
+            .parts
+            .iter()
+            .map(|p| lattice_blocks(p, g, &rotations, &sizes))
+            .collect();
         Ok(Ctx {
             kit,
             profile,
@@ -478,6 +488,7 @@ impl<'a> Ctx<'a> {
             items,
             item_len,
             others,
+            blocks,
         })
     }
 
@@ -690,7 +701,8 @@ impl<'a> Ctx<'a> {
         for &i in &self.others {
             let p = &self.kit.parts[i];
             let mut first_sheet = 0;
-            for copy in 0..p.count {
+            let blocked = self.place_blocks(i, &mut sheets, &mut skylines, &mut left)?;
+            for copy in blocked..p.count {
                 let mut k = first_sheet;
                 loop {
                     if k == skylines.len() {
@@ -745,6 +757,61 @@ impl<'a> Ctx<'a> {
         }
         let lanes = plan.iter().map(|s| s.lanes.len()).sum();
         Ok((sheets, lanes))
+    }
+
+    /// Part `i`'s copies in its lattice blocks ([`lattice`]), each block
+    /// by its box onto the skylines like a part: the largest block (or
+    /// the part of it the copies left fill) that fits, on the first sheet
+    /// with room, else on a new sheet. Returns how many copies it placed
+    /// (0 for a part without blocks; fewer than all only where no block
+    /// fits a bare sheet, and the rest then go one by one).
+    fn place_blocks(
+        &self,
+        i: usize,
+        sheets: &mut Vec<SheetNest>,
+        skylines: &mut Vec<Skyline>,
+        left: &mut [usize],
+    ) -> Result<u32> {
+        let menu = &self.blocks[i];
+        let p = &self.kit.parts[i];
+        let (m, g) = (self.margin, self.gap);
+        let mut copy = 0u32;
+        let mut k = 0usize;
+        while copy < p.count && !menu.is_empty() {
+            if k == skylines.len() {
+                let Some(s) = self.new_size_for(i, left) else {
+                    return Err(self.shortfall_others(i, copy, sheets));
+                };
+                left[s] -= 1;
+                sheets.push(self.new_sheet(s));
+                let z = &self.sizes[s];
+                skylines.push(Skyline::new(m, m + z.wu, m));
+            }
+            let z = &self.sizes[sheets[k].size];
+            let rest = (p.count - copy) as usize;
+            let fit = menu.iter().find_map(|b| {
+                let n = b.len().min(rest);
+                let (w, ht) = b.extent_mm(n);
+                skylines[k]
+                    .fit(w, ht, g, m + z.lu, m + z.wu)
+                    .map(|(x, y)| (b, n, w, ht, x, y))
+            });
+            match fit {
+                Some((b, n, w, ht, x, y)) => {
+                    skylines[k].raise(y, y + ht + g, x + w + g);
+                    for c in &b.corners_mm[..n] {
+                        sheets[k]
+                            .placements
+                            .push(place_at(i, p, copy, 0, x + c.x, y + c.y));
+                        copy += 1;
+                    }
+                }
+                // No block fits even a bare sheet: the rest one by one.
+                None if skylines[k].is_bare(m) && k + 1 == skylines.len() => break,
+                None => k += 1,
+            }
+        }
+        Ok(copy)
     }
 
     /// Copy `copy` of part `i` onto a skyline of size `z`, in the rotation
@@ -937,6 +1004,44 @@ impl<'a> Ctx<'a> {
 
 /// Whether an item fits a lane of capacity `cap` (to the bin packing's
 /// tolerance).
+/// Largest side of a lattice block, mm: big enough to pack densely, small
+/// enough for the lamella sheets' lane tails and the bands' leftovers.
+const BLOCK_SIDES_MM: [f64; 4] = [400.0, 300.0, 200.0, 150.0];
+
+/// Fewest copies of a star washer worth packing in lattice blocks.
+const MIN_BLOCK_COPIES: u32 = 4;
+
+/// Lattice blocks of part `p`'s copies, largest first: only for star
+/// washers with enough copies, where the profile allows them unturned
+/// and the lattice beats boxes ([`lattice::star_lattice`]); a block
+/// side no larger than every size's usable width and length.
+fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<lattice::Block> {
+    if p.kind != PartKind::Washer || p.count < MIN_BLOCK_COPIES || !rotations.contains(&0) {
+        return Vec::new();
+    }
+    let Some(lat) = lattice::star_lattice(&p.outline_part_mm, gap) else {
+        return Vec::new();
+    };
+    let (x0, y0, x1, y1) = bbox(p);
+    let (w, h) = (x1 - x0, y1 - y0);
+    let room = sizes
+        .iter()
+        .map(|z| z.lu.min(z.wu))
+        .fold(f64::INFINITY, f64::min);
+    BLOCK_SIDES_MM
+        .iter()
+        .filter(|&&side| side <= room)
+        .map(|&side| lattice::block(&lat, w, h, side, side))
+        // A block must hold more than boxes would in its square.
+        .filter(|b| {
+            let by_boxes = (((b.extent_mm(b.len()).0 + gap) / (w + gap)).floor()
+                * ((b.extent_mm(b.len()).1 + gap) / (h + gap)).floor())
+                as usize;
+            b.len() > by_boxes
+        })
+        .collect()
+}
+
 fn fits(item: f64, cap: f64) -> bool {
     item <= cap * (1.0 + binpack::FIT_TOLERANCE)
 }
