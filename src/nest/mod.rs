@@ -296,6 +296,52 @@ impl Skyline {
     }
 }
 
+impl Skyline {
+    /// The place (x, y) for a box w × ht with `gap` above it, within
+    /// x ≤ x_max and y + ht ≤ y_max, that wastes least: the free area left
+    /// of it that it shadows (its level less the skyline's, over its
+    /// height and the gap), with that area; ties by lower x, then y.
+    fn fit_least_waste(
+        &self,
+        w: f64,
+        ht: f64,
+        gap: f64,
+        x_max: f64,
+        y_max: f64,
+    ) -> Option<(f64, f64, f64)> {
+        let mut best: Option<(f64, f64, f64)> = None;
+        let n = self.segs.len();
+        for i in 0..n {
+            let s = self.segs[i].0;
+            if s + ht > y_max + 1e-9 {
+                break;
+            }
+            let top = (s + ht + gap).min(self.y_hi);
+            let mut x = f64::NEG_INFINITY;
+            let mut shadow = Vec::new();
+            for (k, &(start, level)) in self.segs[i..].iter().enumerate() {
+                if start >= top - 1e-9 {
+                    break;
+                }
+                let end = self.segs.get(i + k + 1).map_or(self.y_hi, |q| q.0).min(top);
+                x = x.max(level);
+                shadow.push((end - start, level));
+            }
+            if x + w > x_max + 1e-9 {
+                continue;
+            }
+            let waste: f64 = shadow.iter().map(|&(len, level)| len * (x - level)).sum();
+            let better = best.is_none_or(|(bx, by, bw)| {
+                waste < bw - 1e-6 || (waste <= bw + 1e-6 && (x, s) < (bx, by))
+            });
+            if better {
+                best = Some((x, s, waste));
+            }
+        }
+        best
+    }
+}
+
 /// One stock size as the nest sees it.
 #[derive(Debug, Clone)]
 struct Size {
@@ -760,9 +806,11 @@ impl<'a> Ctx<'a> {
     }
 
     /// Part `i`'s copies in its lattice blocks ([`lattice`]), each block
-    /// by its box onto the skylines like a part: the largest block (or
-    /// the part of it the copies left fill) that fits, on the first sheet
-    /// with room, else on a new sheet. Returns how many copies it placed
+    /// by its box onto the skylines like a part: of the blocks (or the
+    /// part of one the copies left fill) that fit the first sheet with
+    /// room, the one whose box and the free area it shadows on its left
+    /// are least per copy, where that waste is least; else on a new
+    /// sheet. Returns how many copies it placed
     /// (0 for a part without blocks; fewer than all only where no block
     /// fits a bare sheet, and the rest then go one by one).
     fn place_blocks(
@@ -789,13 +837,23 @@ impl<'a> Ctx<'a> {
             }
             let z = &self.sizes[sheets[k].size];
             let rest = (p.count - copy) as usize;
-            let fit = menu.iter().find_map(|b| {
+            // The block and place that waste least per copy: the free
+            // area a block shadows on its left counts with its own box.
+            let mut fit: Option<(&lattice::Block, usize, f64, f64, f64, f64)> = None;
+            let mut best_cost = f64::INFINITY;
+            for b in menu {
                 let n = b.len().min(rest);
                 let (w, ht) = b.extent_mm(n);
-                skylines[k]
-                    .fit(w, ht, g, m + z.lu, m + z.wu)
-                    .map(|(x, y)| (b, n, w, ht, x, y))
-            });
+                if let Some((x, y, waste)) =
+                    skylines[k].fit_least_waste(w, ht, g, m + z.lu, m + z.wu)
+                {
+                    let cost = (waste + (w + g) * (ht + g)) / n as f64;
+                    if cost < best_cost - 1e-9 {
+                        best_cost = cost;
+                        fit = Some((b, n, w, ht, x, y));
+                    }
+                }
+            }
             match fit {
                 Some((b, n, w, ht, x, y)) => {
                     skylines[k].raise(y, y + ht + g, x + w + g);
@@ -1004,17 +1062,28 @@ impl<'a> Ctx<'a> {
 
 /// Whether an item fits a lane of capacity `cap` (to the bin packing's
 /// tolerance).
-/// Largest side of a lattice block, mm: big enough to pack densely, small
-/// enough for the lamella sheets' lane tails and the bands' leftovers.
-const BLOCK_SIDES_MM: [f64; 4] = [400.0, 300.0, 200.0, 150.0];
+/// Lattice blocks tried, width (along the sheet) × height, mm, largest
+/// first: squares big enough to pack densely on bare stock, and long low
+/// blocks for the lamella sheets' lane tails (a strip of height H holds
+/// about (H − 90)/2973 washers per mm by the lattice against 1/93.2 by
+/// boxes, so from about 125 mm up the lattice wins there too).
+const BLOCKS_MM: [(f64, f64); 8] = [
+    (400.0, 400.0),
+    (800.0, 200.0),
+    (800.0, 150.0),
+    (300.0, 300.0),
+    (400.0, 200.0),
+    (400.0, 150.0),
+    (200.0, 200.0),
+    (150.0, 150.0),
+];
 
 /// Fewest copies of a star washer worth packing in lattice blocks.
 const MIN_BLOCK_COPIES: u32 = 4;
 
 /// Lattice blocks of part `p`'s copies, largest first: only for star
 /// washers with enough copies, where the profile allows them unturned
-/// and the lattice beats boxes ([`lattice::star_lattice`]); a block
-/// side no larger than every size's usable width and length.
+/// and the lattice beats boxes ([`lattice::star_lattice`]).
 fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<lattice::Block> {
     if p.kind != PartKind::Washer || p.count < MIN_BLOCK_COPIES || !rotations.contains(&0) {
         return Vec::new();
@@ -1024,14 +1093,16 @@ fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<
     };
     let (x0, y0, x1, y1) = bbox(p);
     let (w, h) = (x1 - x0, y1 - y0);
-    let room = sizes
+    // Every block fits every size's usable sheet.
+    let (room_x, room_y) = sizes
         .iter()
-        .map(|z| z.lu.min(z.wu))
-        .fold(f64::INFINITY, f64::min);
-    BLOCK_SIDES_MM
+        .fold((f64::INFINITY, f64::INFINITY), |(x, y), z| {
+            (x.min(z.lu), y.min(z.wu))
+        });
+    BLOCKS_MM
         .iter()
-        .filter(|&&side| side <= room)
-        .map(|&side| lattice::block(&lat, w, h, side, side))
+        .filter(|&&(bw, bh)| bw <= room_x && bh <= room_y)
+        .map(|&(bw, bh)| lattice::block(&lat, w, h, bw, bh))
         // A block must hold more than boxes would in its square.
         .filter(|b| {
             let by_boxes = (((b.extent_mm(b.len()).0 + gap) / (w + gap)).floor()
