@@ -15,7 +15,7 @@
 //!
 //! The formula is only a candidate: [`star_lattice`] accepts a lattice
 //! only once the true outlines of every neighbour that could come near
-//! (|a|, |b| ≤ 3) keep at least the gap (plus 1 µm, so plan.json's
+//! keep at least the gap (plus 1 µm, so plan.json's
 //! rounding of the placements cannot close it), by the same
 //! polygon-to-polygon distance `check_nest` uses. A [`Block`] is the
 //! copies of the lattice whose boxes fit a rectangle; the nest places
@@ -146,26 +146,35 @@ fn star_arms(outline: &[Point]) -> Option<(Point, Vec2, Vec2, f64, f64)> {
 }
 
 /// Whether copies of `outline` on lattice `lat` keep `gap` from each other:
-/// every neighbour a·u + b·v, |a|, |b| ≤ 3, whose box comes within the gap
-/// is held to the true outlines' distance.
+/// every neighbour a·u + b·v whose box comes within the gap of the
+/// original's is held to the true outlines' distance. Those neighbours lie
+/// in the rectangle |x| < w + gap, |y| < h + gap (w × h the part's box),
+/// whose lattice coordinates are bounded by its corners', so the range
+/// below holds them all, however skewed the lattice.
 pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap: f64) -> bool {
     let (x0, y0, x1, y1) = bounds(outline);
-    let (bw, bh) = (x1 - x0, y1 - y0);
-    // A reduced lattice's neighbours within the part's reach have small
-    // coefficients; beyond |a|, |b| = 3 the boxes are apart (checked).
-    for a in -3i32..=3 {
-        for b in -3i32..=3 {
+    let (rx, ry) = (x1 - x0 + gap, y1 - y0 + gap);
+    let det = lat.u.cross(lat.v);
+    if det.abs() < 1e-9 {
+        return false;
+    }
+    let (mut a_max, mut b_max) = (0.0f64, 0.0f64);
+    for c in [Vec2::new(rx, ry), Vec2::new(rx, -ry)] {
+        a_max = a_max.max((c.cross(lat.v) / det).abs());
+        b_max = b_max.max((lat.u.cross(c) / det).abs());
+    }
+    let (na, nb) = (a_max.ceil() as i64, b_max.ceil() as i64);
+    if na > 64 || nb > 64 {
+        return false;
+    }
+    for a in -na..=na {
+        for b in -nb..=nb {
             if (a, b) == (0, 0) {
                 continue;
             }
-            let t = lat.u * f64::from(a) + lat.v * f64::from(b);
-            if t.x.abs() >= bw + gap || t.y.abs() >= bh + gap {
+            let t = lat.u * a as f64 + lat.v * b as f64;
+            if t.x.abs() >= rx || t.y.abs() >= ry {
                 continue;
-            }
-            if a.abs() == 3 || b.abs() == 3 {
-                // A neighbour this far that still overlaps by box: the
-                // lattice is too skewed for this check to be complete.
-                return false;
             }
             let moved: Vec<Point> = outline.iter().map(|&q| q + t).collect();
             if outline::distance(outline, &moved, gap) < gap {

@@ -294,9 +294,7 @@ impl Skyline {
         }
         best
     }
-}
 
-impl Skyline {
     /// The place (x, y) for a box w × ht with `gap` above it, within
     /// x ≤ x_max and y + ht ≤ y_max, that wastes least: the free area left
     /// of it that it shadows (its level less the skyline's, over its
