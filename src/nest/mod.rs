@@ -388,7 +388,7 @@ struct Ctx<'a> {
     item_len: Vec<f64>,
     /// Other parts, largest bounding box first.
     others: Vec<usize>,
-    /// Per part: lattice blocks of its copies, largest first, for star
+    /// Per part: the lattice blocks its copies may go in, for star
     /// washers that pack denser with their arms interleaved
     /// ([`lattice`]); empty for every other part.
     blocks: Vec<Vec<lattice::Block>>,
@@ -804,13 +804,13 @@ impl<'a> Ctx<'a> {
     }
 
     /// Part `i`'s copies in its lattice blocks ([`lattice`]), each block
-    /// by its box onto the skylines like a part: of the blocks (or the
-    /// part of one the copies left fill) that fit the first sheet with
-    /// room, the one whose box and the free area it shadows on its left
-    /// are least per copy, where that waste is least; else on a new
-    /// sheet. Returns how many copies it placed
-    /// (0 for a part without blocks; fewer than all only where no block
-    /// fits a bare sheet, and the rest then go one by one).
+    /// by its box onto the skylines like a part, on the first sheet where
+    /// one fits (else a new sheet): of the blocks (or the first rows of
+    /// one, for the last copies) the one, and the place, whose box plus
+    /// the free area it shadows on its left is least per copy. Returns
+    /// how many copies it placed: 0 for a part without blocks, fewer than
+    /// all only where no block fits a bare sheet (the rest then go one by
+    /// one).
     fn place_blocks(
         &self,
         i: usize,
@@ -1058,10 +1058,7 @@ impl<'a> Ctx<'a> {
     }
 }
 
-/// Whether an item fits a lane of capacity `cap` (to the bin packing's
-/// tolerance).
-/// Lattice blocks tried, width (along the sheet) × height, mm, largest
-/// first: squares big enough to pack densely on bare stock, and long low
+/// Lattice blocks tried, width (along the sheet) × height, mm: squares big enough to pack densely on bare stock, and long low
 /// blocks for the lamella sheets' lane tails (a strip of height H holds
 /// about (H − 90)/2973 washers per mm by the lattice against 1/93.2 by
 /// boxes, so from about 125 mm up the lattice wins there too).
@@ -1079,7 +1076,7 @@ const BLOCKS_MM: [(f64, f64); 8] = [
 /// Fewest copies of a star washer worth packing in lattice blocks.
 const MIN_BLOCK_COPIES: u32 = 4;
 
-/// Lattice blocks of part `p`'s copies, largest first: only for star
+/// Lattice blocks of part `p`'s copies: only for star
 /// washers with enough copies, where the profile allows them unturned
 /// and the lattice beats boxes ([`lattice::star_lattice`]).
 fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<lattice::Block> {
@@ -1111,6 +1108,8 @@ fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<
         .collect()
 }
 
+/// Whether an item fits a lane of capacity `cap` (to the bin packing's
+/// tolerance).
 fn fits(item: f64, cap: f64) -> bool {
     item <= cap * (1.0 + binpack::FIT_TOLERANCE)
 }
