@@ -1421,3 +1421,35 @@ pub fn check_nest(kit: &Kit, nest: &Nest, profile: &Profile) -> std::result::Res
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Skyline;
+
+    /// A skyline over y ∈ [0, 300): levels 100 on [0, 100), 0 on
+    /// [100, 200) (a free notch), 150 on [200, 300). A 50 × 100 box with
+    /// no gap: the lowest-x rule (`fit`) puts it into the notch at x = 0
+    /// with nothing shadowed; one 150 high cannot use the notch alone, and
+    /// of its places the least shadow is at y = 0 (x = 100: the notch's
+    /// 100 × 50 = 5000 mm² shadowed) against y = 100 (x = 150: 100 × 150
+    /// = 15,000 mm²), by hand.
+    #[test]
+    fn least_waste_prefers_the_place_that_shadows_least() {
+        let mut sky = Skyline::new(0.0, 300.0, 0.0);
+        sky.raise(0.0, 100.0, 100.0);
+        sky.raise(200.0, 300.0, 150.0);
+        assert_eq!(sky.fit(50.0, 100.0, 0.0, 1000.0, 300.0), Some((0.0, 100.0)));
+        assert_eq!(
+            sky.fit_least_waste(50.0, 100.0, 0.0, 1000.0, 300.0),
+            Some((0.0, 100.0, 0.0))
+        );
+        let (x, y, waste) = sky
+            .fit_least_waste(50.0, 150.0, 0.0, 1000.0, 300.0)
+            .expect("a place");
+        assert_eq!((x, y), (100.0, 0.0));
+        assert!((waste - 5000.0).abs() < 1e-9, "{waste}");
+        // Nothing fits past x_max or above y_max.
+        assert_eq!(sky.fit_least_waste(950.0, 150.0, 0.0, 1000.0, 300.0), None);
+        assert_eq!(sky.fit_least_waste(10.0, 301.0, 0.0, 1000.0, 300.0), None);
+    }
+}
