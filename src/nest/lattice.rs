@@ -23,7 +23,7 @@
 //! Deterministic: no search over floating-point ties, copies in (y, x)
 //! order.
 
-use super::outline;
+use super::outline::{self, bounds};
 use kurbo::{Point, Vec2};
 
 /// Extra clearance beyond the gap, mm: plan.json rounds placements to
@@ -80,18 +80,6 @@ impl Block {
     pub fn is_empty(&self) -> bool {
         self.corners_mm.is_empty()
     }
-}
-
-fn bounds(poly: &[Point]) -> (f64, f64, f64, f64) {
-    poly.iter().fold(
-        (
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), q| (a.min(q.x), b.min(q.y), c.max(q.x), d.max(q.y)),
-    )
 }
 
 /// The star's arms read off its outline: (centre, the two arm directions,

@@ -268,26 +268,37 @@ impl Skyline {
         self.segs = out;
     }
 
+    /// The places for a box ht high with `gap` above it and y + ht ≤
+    /// y_max, one at each segment start s: (s, the level over
+    /// [s, s + ht + gap) — the segments from s on that start inside it, a
+    /// window, not the whole skyline — and the index past the window).
+    fn windows(
+        &self,
+        ht: f64,
+        gap: f64,
+        y_max: f64,
+    ) -> impl Iterator<Item = (f64, f64, std::ops::Range<usize>)> + '_ {
+        (0..self.segs.len())
+            .map(|i| (i, self.segs[i].0))
+            .take_while(move |&(_, s)| s + ht <= y_max + 1e-9)
+            .map(move |(i, s)| {
+                let top = (s + ht + gap).min(self.y_hi);
+                let end = i + self.segs[i..]
+                    .iter()
+                    .take_while(|seg| seg.0 < top - 1e-9)
+                    .count();
+                let x = self.segs[i..end]
+                    .iter()
+                    .fold(f64::NEG_INFINITY, |x, seg| x.max(seg.1));
+                (s, x, i..end)
+            })
+    }
+
     /// Lowest place (x, y) for a box w × ht with `gap` above it, within
     /// x ≤ x_max and y + ht ≤ y_max: candidates at segment starts.
     fn fit(&self, w: f64, ht: f64, gap: f64, x_max: f64, y_max: f64) -> Option<(f64, f64)> {
         let mut best: Option<(f64, f64)> = None;
-        let n = self.segs.len();
-        for i in 0..n {
-            let s = self.segs[i].0;
-            if s + ht > y_max + 1e-9 {
-                break;
-            }
-            // The level over [s, s + ht + gap): the segments from i on that
-            // start inside it (a window, not the whole skyline).
-            let top = (s + ht + gap).min(self.y_hi);
-            let mut x = f64::NEG_INFINITY;
-            for &(start, level) in &self.segs[i..] {
-                if start >= top - 1e-9 {
-                    break;
-                }
-                x = x.max(level);
-            }
+        for (s, x, _) in self.windows(ht, gap, y_max) {
             if x + w <= x_max + 1e-9 && best.is_none_or(|b| x < b.0 - 1e-9) {
                 best = Some((x, s));
             }
@@ -308,27 +319,17 @@ impl Skyline {
         y_max: f64,
     ) -> Option<(f64, f64, f64)> {
         let mut best: Option<(f64, f64, f64)> = None;
-        let n = self.segs.len();
-        for i in 0..n {
-            let s = self.segs[i].0;
-            if s + ht > y_max + 1e-9 {
-                break;
-            }
-            let top = (s + ht + gap).min(self.y_hi);
-            let mut x = f64::NEG_INFINITY;
-            let mut shadow = Vec::new();
-            for (k, &(start, level)) in self.segs[i..].iter().enumerate() {
-                if start >= top - 1e-9 {
-                    break;
-                }
-                let end = self.segs.get(i + k + 1).map_or(self.y_hi, |q| q.0).min(top);
-                x = x.max(level);
-                shadow.push((end - start, level));
-            }
+        for (s, x, window) in self.windows(ht, gap, y_max) {
             if x + w > x_max + 1e-9 {
                 continue;
             }
-            let waste: f64 = shadow.iter().map(|&(len, level)| len * (x - level)).sum();
+            let top = (s + ht + gap).min(self.y_hi);
+            let waste: f64 = window
+                .map(|k| {
+                    let end = self.segs.get(k + 1).map_or(self.y_hi, |q| q.0).min(top);
+                    (end - self.segs[k].0) * (x - self.segs[k].1)
+                })
+                .sum();
             let better = best.is_none_or(|(bx, by, bw)| {
                 waste < bw - 1e-6 || (waste <= bw + 1e-6 && (x, s) < (bx, by))
             });

@@ -81,7 +81,7 @@ impl HazardEntity for Haz {
 }
 
 /// Bounding box (x0, y0, x1, y1) of points.
-fn bounds(v: &[Point]) -> (f64, f64, f64, f64) {
+pub(crate) fn bounds(v: &[Point]) -> (f64, f64, f64, f64) {
     v.iter().fold(
         (
             f64::INFINITY,
