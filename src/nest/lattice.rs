@@ -36,16 +36,16 @@ const MIN_GAIN: f64 = 1.2;
 /// Two lattice vectors, part frame, mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lattice {
-    /// First basis vector.
-    pub u: Vec2,
-    /// Second basis vector.
-    pub v: Vec2,
+    /// First basis vector, mm.
+    pub u_mm: Vec2,
+    /// Second basis vector, mm.
+    pub v_mm: Vec2,
 }
 
 impl Lattice {
     /// The area of one cell, mm².
     pub fn cell_mm2(&self) -> f64 {
-        self.u.cross(self.v).abs()
+        self.u_mm.cross(self.v_mm).abs()
     }
 }
 
@@ -139,17 +139,18 @@ fn star_arms(outline: &[Point]) -> Option<(Point, Vec2, Vec2, f64, f64)> {
 /// in the rectangle |x| < w + gap, |y| < h + gap (w × h the part's box),
 /// whose lattice coordinates are bounded by its corners', so the range
 /// below holds them all, however skewed the lattice.
-pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap: f64) -> bool {
+pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap_mm: f64) -> bool {
+    let gap = gap_mm;
     let (x0, y0, x1, y1) = bounds(outline);
     let (rx, ry) = (x1 - x0 + gap, y1 - y0 + gap);
-    let det = lat.u.cross(lat.v);
+    let det = lat.u_mm.cross(lat.v_mm);
     if det.abs() < 1e-9 {
         return false;
     }
     let (mut a_max, mut b_max) = (0.0f64, 0.0f64);
     for c in [Vec2::new(rx, ry), Vec2::new(rx, -ry)] {
-        a_max = a_max.max((c.cross(lat.v) / det).abs());
-        b_max = b_max.max((lat.u.cross(c) / det).abs());
+        a_max = a_max.max((c.cross(lat.v_mm) / det).abs());
+        b_max = b_max.max((lat.u_mm.cross(c) / det).abs());
     }
     let (na, nb) = (a_max.ceil() as i64, b_max.ceil() as i64);
     if na > 64 || nb > 64 {
@@ -160,7 +161,7 @@ pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap: f64) -> bool {
             if (a, b) == (0, 0) {
                 continue;
             }
-            let t = lat.u * a as f64 + lat.v * b as f64;
+            let t = lat.u_mm * a as f64 + lat.v_mm * b as f64;
             if t.x.abs() >= rx || t.y.abs() >= ry {
                 continue;
             }
@@ -176,7 +177,8 @@ pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap: f64) -> bool {
 /// The interleaved lattice of a four-armed star `outline` (part frame)
 /// whose copies keep `gap` apart, when it is valid and packs at least
 /// [`MIN_GAIN`] times denser than boxes `gap` apart; else `None`.
-pub fn star_lattice(outline: &[Point], gap: f64) -> Option<Lattice> {
+pub fn star_lattice(outline: &[Point], gap_mm: f64) -> Option<Lattice> {
+    let gap = gap_mm;
     let (_, e1, e2, w, l) = star_arms(outline)?;
     let sin = e1.cross(e2).abs();
     let cos = e1.dot(e2).abs();
@@ -193,7 +195,7 @@ pub fn star_lattice(outline: &[Point], gap: f64) -> Option<Lattice> {
     for slack in [0.0, 0.25, 0.5, 1.0, 2.0] {
         let u = e1 * (alpha + slack) + e2 * (beta + slack);
         let v = e2 * (alpha + slack) - e1 * (beta + slack);
-        let lat = Lattice { u, v };
+        let lat = Lattice { u_mm: u, v_mm: v };
         if lat.cell_mm2() * MIN_GAIN > box_cell {
             return None;
         }
@@ -205,11 +207,12 @@ pub fn star_lattice(outline: &[Point], gap: f64) -> Option<Lattice> {
     None
 }
 
-/// The copies of a part (bounding box `part_w` × `part_h`, lower left at
-/// the lattice point) on `lat` whose boxes fit a `w` × `h` rectangle, for
+/// The copies of a part (bounding box `part_w_mm` × `part_h_mm`, lower left
+/// at the lattice point) on `lat` whose boxes fit a `w_mm` × `h_mm` rectangle, for
 /// the lattice offset (of 16 tried) that fits the most.
-pub fn block(lat: &Lattice, part_w: f64, part_h: f64, w: f64, h: f64) -> Block {
-    let (xs, ys) = (w - part_w, h - part_h);
+pub fn block(lat: &Lattice, part_w_mm: f64, part_h_mm: f64, w_mm: f64, h_mm: f64) -> Block {
+    let (part_w, part_h) = (part_w_mm, part_h_mm);
+    let (xs, ys) = (w_mm - part_w, h_mm - part_h);
     let mut best: Vec<Point> = Vec::new();
     if xs < 0.0 || ys < 0.0 {
         return Block {
@@ -218,9 +221,9 @@ pub fn block(lat: &Lattice, part_w: f64, part_h: f64, w: f64, h: f64) -> Block {
             part_h_mm: part_h,
         };
     }
-    let det = lat.u.cross(lat.v);
+    let det = lat.u_mm.cross(lat.v_mm);
     // Lattice coordinates of a point: p = a u + b v.
-    let coords = |p: Vec2| (p.cross(lat.v) / det, lat.u.cross(p) / det);
+    let coords = |p: Vec2| (p.cross(lat.v_mm) / det, lat.u_mm.cross(p) / det);
     let corners = [
         Vec2::new(0.0, 0.0),
         Vec2::new(xs, 0.0),
@@ -240,11 +243,12 @@ pub fn block(lat: &Lattice, part_w: f64, part_h: f64, w: f64, h: f64) -> Block {
     const K: i32 = 4;
     for i in 0..K {
         for j in 0..K {
-            let o = lat.u * (f64::from(i) / f64::from(K)) + lat.v * (f64::from(j) / f64::from(K));
+            let o =
+                lat.u_mm * (f64::from(i) / f64::from(K)) + lat.v_mm * (f64::from(j) / f64::from(K));
             let mut pts: Vec<Point> = Vec::new();
             for a in (a0.floor() as i64 - 1)..=(a1.ceil() as i64 + 1) {
                 for b in (b0.floor() as i64 - 1)..=(b1.ceil() as i64 + 1) {
-                    let p = o + lat.u * a as f64 + lat.v * b as f64;
+                    let p = o + lat.u_mm * a as f64 + lat.v_mm * b as f64;
                     if p.x >= -1e-9 && p.y >= -1e-9 && p.x <= xs + 1e-9 && p.y <= ys + 1e-9 {
                         pts.push(Point::new(p.x.max(0.0), p.y.max(0.0)));
                     }
@@ -293,15 +297,23 @@ mod tests {
         let lat = star_lattice(&star, gap).expect("a lattice");
         let g = gap + SAFETY_MM;
         let (a, b) = (9.6 + g, 45.0 + 4.8 + g);
-        assert!((lat.u - Vec2::new(a, b)).hypot() < 1e-9, "{:?}", lat.u);
-        assert!((lat.v - Vec2::new(-b, a)).hypot() < 1e-9, "{:?}", lat.v);
+        assert!(
+            (lat.u_mm - Vec2::new(a, b)).hypot() < 1e-9,
+            "{:?}",
+            lat.u_mm
+        );
+        assert!(
+            (lat.v_mm - Vec2::new(-b, a)).hypot() < 1e-9,
+            "{:?}",
+            lat.v_mm
+        );
         assert!((lat.cell_mm2() - (a * a + b * b)).abs() < 1e-6);
         // By hand: the copy at u has its bottom arm tip w/2 + g above the
         // original's horizontal bar, i.e. exactly g clear of it.
-        let d = outline::distance(&star, &moved(&star, lat.u), 10.0);
+        let d = outline::distance(&star, &moved(&star, lat.u_mm), 10.0);
         assert!((d - g).abs() < 1e-9, "{d}");
         // Half a millimetre closer along u and they collide or come too near.
-        let closer = lat.u * (1.0 - 0.5 / lat.u.hypot());
+        let closer = lat.u_mm * (1.0 - 0.5 / lat.u_mm.hypot());
         assert!(outline::distance(&star, &moved(&star, closer), 10.0) < gap);
     }
 
@@ -319,7 +331,7 @@ mod tests {
                     if (a, b) == (0, 0) {
                         continue;
                     }
-                    let t = lat.u * f64::from(a) + lat.v * f64::from(b);
+                    let t = lat.u_mm * f64::from(a) + lat.v_mm * f64::from(b);
                     let d = outline::distance(&star, &moved(&star, t), gap);
                     assert!(d >= gap, "{angle}°: ({a}, {b}) at {d}");
                 }
