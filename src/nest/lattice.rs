@@ -47,6 +47,12 @@ impl Lattice {
     pub fn cell_mm2(&self) -> f64 {
         self.u_mm.cross(self.v_mm).abs()
     }
+
+    /// Lattice coordinates (a, b) of a point p = a·u + b·v, mm in.
+    fn coords(&self, p_mm: Vec2) -> (f64, f64) {
+        let det = self.u_mm.cross(self.v_mm);
+        (p_mm.cross(self.v_mm) / det, self.u_mm.cross(p_mm) / det)
+    }
 }
 
 /// Copies of one part in a rectangle: the lower-left corners of their
@@ -82,10 +88,10 @@ impl Block {
     }
 }
 
-/// The star's arms read off its outline: (centre, the two arm directions,
-/// arm width, centre-to-tip length), or `None` when the outline is not a
+/// The star's arms read off its outline: (the two arm directions, arm
+/// width, centre-to-tip length), or `None` when the outline is not a
 /// centrally symmetric four-armed star with square tips.
-fn star_arms(outline: &[Point]) -> Option<(Point, Vec2, Vec2, f64, f64)> {
+fn star_arms(outline: &[Point]) -> Option<(Vec2, Vec2, f64, f64)> {
     let n = outline.len();
     if n != 12 {
         return None;
@@ -130,7 +136,7 @@ fn star_arms(outline: &[Point]) -> Option<(Point, Vec2, Vec2, f64, f64)> {
     }) {
         return None;
     }
-    Some((c, e1, e2, w, l))
+    Some((e1, e2, w, l))
 }
 
 /// Whether copies of `outline` on lattice `lat` keep `gap` from each other:
@@ -140,17 +146,16 @@ fn star_arms(outline: &[Point]) -> Option<(Point, Vec2, Vec2, f64, f64)> {
 /// whose lattice coordinates are bounded by its corners', so the range
 /// below holds them all, however skewed the lattice.
 pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap_mm: f64) -> bool {
-    let gap = gap_mm;
     let (x0, y0, x1, y1) = bounds(outline);
-    let (rx, ry) = (x1 - x0 + gap, y1 - y0 + gap);
-    let det = lat.u_mm.cross(lat.v_mm);
-    if det.abs() < 1e-9 {
+    let (rx, ry) = (x1 - x0 + gap_mm, y1 - y0 + gap_mm);
+    if lat.cell_mm2() < 1e-9 {
         return false;
     }
     let (mut a_max, mut b_max) = (0.0f64, 0.0f64);
     for c in [Vec2::new(rx, ry), Vec2::new(rx, -ry)] {
-        a_max = a_max.max((c.cross(lat.v_mm) / det).abs());
-        b_max = b_max.max((lat.u_mm.cross(c) / det).abs());
+        let (a, b) = lat.coords(c);
+        a_max = a_max.max(a.abs());
+        b_max = b_max.max(b.abs());
     }
     let (na, nb) = (a_max.ceil() as i64, b_max.ceil() as i64);
     if na > 64 || nb > 64 {
@@ -166,7 +171,7 @@ pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap_mm: f64) -> bool {
                 continue;
             }
             let moved: Vec<Point> = outline.iter().map(|&q| q + t).collect();
-            if outline::distance(outline, &moved, gap) < gap {
+            if outline::distance(outline, &moved, gap_mm) < gap_mm {
                 return false;
             }
         }
@@ -178,18 +183,17 @@ pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap_mm: f64) -> bool {
 /// whose copies keep `gap` apart, when it is valid and packs at least
 /// [`MIN_GAIN`] times denser than boxes `gap` apart; else `None`.
 pub fn star_lattice(outline: &[Point], gap_mm: f64) -> Option<Lattice> {
-    let gap = gap_mm;
-    let (_, e1, e2, w, l) = star_arms(outline)?;
+    let (e1, e2, w, l) = star_arms(outline)?;
     let sin = e1.cross(e2).abs();
     let cos = e1.dot(e2).abs();
     if sin < 0.5 {
         return None;
     }
-    let g = gap + SAFETY_MM;
+    let g = gap_mm + SAFETY_MM;
     let alpha = (w + g) / sin;
     let beta = (l * sin + 0.5 * w * (1.0 + cos) + g) / sin;
     let (x0, y0, x1, y1) = bounds(outline);
-    let box_cell = (x1 - x0 + gap) * (y1 - y0 + gap);
+    let box_cell = (x1 - x0 + gap_mm) * (y1 - y0 + gap_mm);
     // The formula's lattice, then with a little slack should a corner of
     // an oblique star come closer than the bars' model says.
     for slack in [0.0, 0.25, 0.5, 1.0, 2.0] {
@@ -200,7 +204,7 @@ pub fn star_lattice(outline: &[Point], gap_mm: f64) -> Option<Lattice> {
             return None;
         }
         // Held to half the safety: the formula's contacts are at exactly g.
-        if lattice_clear(outline, &lat, gap + 0.5 * SAFETY_MM) {
+        if lattice_clear(outline, &lat, gap_mm + 0.5 * SAFETY_MM) {
             return Some(lat);
         }
     }
@@ -211,19 +215,16 @@ pub fn star_lattice(outline: &[Point], gap_mm: f64) -> Option<Lattice> {
 /// at the lattice point) on `lat` whose boxes fit a `w_mm` × `h_mm` rectangle, for
 /// the lattice offset (of 16 tried) that fits the most.
 pub fn block(lat: &Lattice, part_w_mm: f64, part_h_mm: f64, w_mm: f64, h_mm: f64) -> Block {
-    let (part_w, part_h) = (part_w_mm, part_h_mm);
-    let (xs, ys) = (w_mm - part_w, h_mm - part_h);
+    // The lattice points' room: the rectangle less one part's box.
+    let (xs, ys) = (w_mm - part_w_mm, h_mm - part_h_mm);
     let mut best: Vec<Point> = Vec::new();
     if xs < 0.0 || ys < 0.0 {
         return Block {
             corners_mm: best,
-            part_w_mm: part_w,
-            part_h_mm: part_h,
+            part_w_mm,
+            part_h_mm,
         };
     }
-    let det = lat.u_mm.cross(lat.v_mm);
-    // Lattice coordinates of a point: p = a u + b v.
-    let coords = |p: Vec2| (p.cross(lat.v_mm) / det, lat.u_mm.cross(p) / det);
     let corners = [
         Vec2::new(0.0, 0.0),
         Vec2::new(xs, 0.0),
@@ -237,7 +238,7 @@ pub fn block(lat: &Lattice, part_w_mm: f64, part_h_mm: f64, w_mm: f64, h_mm: f64
         f64::NEG_INFINITY,
     );
     for c in corners {
-        let (a, b) = coords(c);
+        let (a, b) = lat.coords(c);
         (a0, a1, b0, b1) = (a0.min(a), a1.max(a), b0.min(b), b1.max(b));
     }
     const K: i32 = 4;
@@ -273,8 +274,8 @@ pub fn block(lat: &Lattice, part_w_mm: f64, part_h_mm: f64, w_mm: f64, h_mm: f64
     corners_mm.sort_by(|p, q| p.y.total_cmp(&q.y).then(p.x.total_cmp(&q.x)));
     Block {
         corners_mm,
-        part_w_mm: part_w,
-        part_h_mm: part_h,
+        part_w_mm,
+        part_h_mm,
     }
 }
 

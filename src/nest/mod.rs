@@ -1101,9 +1101,9 @@ fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<
         .map(|&(bw, bh)| lattice::block(&lat, w, h, bw, bh))
         // A block must hold more than boxes would in its square.
         .filter(|b| {
-            let by_boxes = (((b.extent_mm(b.len()).0 + gap) / (w + gap)).floor()
-                * ((b.extent_mm(b.len()).1 + gap) / (h + gap)).floor())
-                as usize;
+            let (bw, bh) = b.extent_mm(b.len());
+            let by_boxes =
+                (((bw + gap) / (w + gap)).floor() * ((bh + gap) / (h + gap)).floor()) as usize;
             b.len() > by_boxes
         })
         .collect()
