@@ -95,3 +95,10 @@ pub fn generated(name: &str, make: impl FnOnce() -> String) -> PathBuf {
     }
     path
 }
+
+/// Flush the file system (`sync`): what earlier runs wrote or deleted is on
+/// the disk before the next measurement starts.
+#[allow(dead_code)]
+pub fn sync_disk() {
+    let _ = Command::new("sync").status();
+}

@@ -247,21 +247,33 @@ pub fn build(
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
-    let timed = |f: &dyn Fn() -> Result<usize>| {
+    fn timed<T>(f: &dyn Fn() -> Result<T>) -> (Result<T>, f64) {
         let t = std::time::Instant::now();
         let r = f();
         (r, t.elapsed().as_secs_f64())
+    }
+    let timed_sections =
+        |input: &super::assembly::AssemblyInput| timed(&|| super::assembly::sections(input));
+    let assembly_input = super::assembly::AssemblyInput {
+        plan: &the_plan,
+        takeoff: &takeoff,
+        curves: &curves,
+        paper: opts.paper,
+        plan_path: &plan_target,
     };
-    // plan.json streams out on one thread while the sheets and the
-    // assembly sheets share the others (each deterministic on its own).
-    let (plan_written, (sheets_written, pdf_written)) = rayon::join(
-        || {
-            timed(&|| {
-                staging
-                    .write_with("plan.json", |w| plan::write_json(&the_plan, w))
-                    .map(|()| 0)
-            })
-        },
+    let frame = super::assembly::Frame::of(opts.paper);
+    // With kerf compensation the cutting files are offset; the nested
+    // sheets' pages stay nominal, drawn apart.
+    let nominal = match kerf {
+        Some(_) => Some(Drawer::new(&the_plan, None, &plan_target)?),
+        None => None,
+    };
+    let sheets_meta = the_plan.sheets.as_deref().unwrap_or_default();
+    // plan.json streams out on one thread while the sheets (each drawn once
+    // for its DXF, its SVG and its page of the assembly sheets) and the
+    // other assembly pages share the others (each deterministic on its own).
+    let (plan_written, (sheets_written, sections)) = rayon::join(
+        || timed(&|| staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))),
         || {
             rayon::join(
                 || {
@@ -269,9 +281,9 @@ pub fn build(
                         (0..sheet_count)
                             .into_par_iter()
                             // Each worker's text buffers serve sheet after sheet.
-                            .try_for_each_init(
+                            .map_init(
                                 || (String::new(), String::new()),
-                                |(dxf, svg), i| -> Result<()> {
+                                |(dxf, svg), i| -> Result<super::assembly::SealedPage> {
                                     let sheet = drawer.sheet(i)?;
                                     let stem = sheet.file_stem();
                                     dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
@@ -290,38 +302,43 @@ pub fn build(
                                     );
                                     svg_out::write_svg(&sheet, &title, svg);
                                     staging.write(&format!("sheets/{stem}.svg"), svg.as_bytes())?;
+                                    let page = match &nominal {
+                                        Some(d) => super::assembly::nested::page(
+                                            &d.sheet_cuts(i)?,
+                                            &sheets_meta[i],
+                                            sheet_count,
+                                            &frame,
+                                        ),
+                                        None => super::assembly::nested::page(
+                                            &sheet,
+                                            &sheets_meta[i],
+                                            sheet_count,
+                                            &frame,
+                                        ),
+                                    };
                                     progress.inc(1);
-                                    Ok(())
+                                    Ok(page)
                                 },
                             )
-                            .map(|()| sheet_count)
+                            .collect::<Result<Vec<_>>>()
                     })
                 },
-                || {
-                    timed(&|| {
-                        let (pdf, pages) = super::assembly::assembly_pdf_counted(
-                            &super::assembly::AssemblyInput {
-                                plan: &the_plan,
-                                takeoff: &takeoff,
-                                curves: &curves,
-                                paper: opts.paper,
-                                plan_path: &plan_target,
-                            },
-                        )?;
-                        staging.write("assembly.pdf", &pdf)?;
-                        Ok(pages)
-                    })
-                },
+                || timed_sections(&assembly_input),
             )
         },
     );
     plan_written.0?;
-    sheets_written.0?;
-    let assembly_pages = pdf_written.0?;
+    let nested = sheets_written.0?;
+    let t = std::time::Instant::now();
+    let (pdf, assembly_pages) = super::assembly::assemble(&assembly_input, sections.0?, nested);
+    staging.write("assembly.pdf", &pdf)?;
+    drop(pdf);
+    let pdf_s = sections.1 + t.elapsed().as_secs_f64();
     clock.lap("write");
     clock.part("write: plan.json", plan_written.1);
     clock.part("write: sheets", sheets_written.1);
-    clock.part("write: assembly.pdf", pdf_written.1);
+    // The sections apart from the sheets as nested, then the document.
+    clock.part("write: assembly.pdf", pdf_s);
     drop(drawer);
     drop(curves);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();

@@ -174,6 +174,40 @@ impl Page {
     }
 }
 
+/// A page drawn and compressed, waiting for its number: its drawing is
+/// one content stream (FlateDecode) wrapped in `q … Q`, so the heading and
+/// title block written after it as a second stream start from the default
+/// graphics state. Pages are sealed as they are drawn, so a big kit's
+/// drawings are never all held uncompressed at once.
+#[derive(Debug)]
+pub struct SealedPage {
+    /// The section (`Strip sheets`, …), also in the title block.
+    pub section: &'static str,
+    /// The heading at the top.
+    pub heading: String,
+    /// The drawing scale `1:n`, or `None` (not to scale).
+    pub scale: Option<u32>,
+    /// The drawing's content stream, zlib-compressed.
+    pub body_deflated: Vec<u8>,
+}
+
+impl Page {
+    /// The page with its drawing compressed (see [`SealedPage`]).
+    pub fn seal(self) -> SealedPage {
+        let content = self.canvas.into_content();
+        let mut wrapped = Vec::with_capacity(content.len() + 4);
+        wrapped.extend_from_slice(b"q\n");
+        wrapped.extend_from_slice(&content);
+        wrapped.extend_from_slice(b"Q\n");
+        SealedPage {
+            section: self.section,
+            heading: self.heading,
+            scale: self.scale,
+            body_deflated: deflate(&wrapped),
+        }
+    }
+}
+
 /// The section names, in the document's order.
 pub const SECTIONS: [&str; 9] = [
     "Cover",
@@ -194,13 +228,30 @@ pub fn assembly_pdf(input: &AssemblyInput) -> Result<Vec<u8>> {
 
 /// [`assembly_pdf`] and its page count.
 pub fn assembly_pdf_counted(input: &AssemblyInput) -> Result<(Vec<u8>, usize)> {
-    let pages = pages(input)?;
-    let n = pages.len();
-    Ok((write_pdf(input, pages), n))
+    let frame = Frame::of(input.paper);
+    let (sections, nested) = rayon::join(
+        || sections(input),
+        || nested::pages(input.plan, &frame, input.plan_path),
+    );
+    Ok(assemble(input, sections?, nested?))
 }
 
-/// Every page, numbered order, not yet titled.
-pub fn pages(input: &AssemblyInput) -> Result<Vec<Page>> {
+/// Every section but the sheets as nested, drawn and sealed: `lamella
+/// build` draws each stock sheet once for its cutting files and its page
+/// ([`nested::page`]), and [`assemble`] puts the two together.
+#[derive(Debug)]
+pub struct Sections {
+    overview: Vec<SealedPage>,
+    order: Vec<SealedPage>,
+    strips: Vec<SealedPage>,
+    nodes: Vec<SealedPage>,
+    blocks: Vec<SealedPage>,
+    takeoff: SealedPage,
+    check: Vec<SealedPage>,
+}
+
+/// The sections of the assembly sheets other than the sheets as nested.
+pub fn sections(input: &AssemblyInput) -> Result<Sections> {
     let plan = input.plan;
     let frame = Frame::of(input.paper);
     let (Some(_), Some(_)) = (&plan.parts, &plan.sheets) else {
@@ -209,48 +260,66 @@ pub fn pages(input: &AssemblyInput) -> Result<Vec<Page>> {
             "the plan has no parts or no sheets: the assembly sheets need a built kit",
         ));
     };
+    let seal =
+        |pages: Vec<Page>| -> Vec<SealedPage> { pages.into_par_iter().map(Page::seal).collect() };
     // The heavy sections in parallel; each is deterministic on its own.
-    let ((overview, order), ((strip_pages, tables), (nested, check))) = rayon::join(
+    let ((overview, order), (strips, (nodes, blocks, takeoff, check))) = rayon::join(
         || {
-            (
-                overview::pages(input, &frame),
-                tables::order_pages(plan, &frame),
-            )
+            let mut order = tables::order_pages(plan, &frame);
+            order.extend(overview::flat_page(plan, &frame));
+            (seal(overview::pages(input, &frame)), seal(order))
         },
         || {
             rayon::join(
+                || strips::pages(plan, &frame),
                 || {
-                    rayon::join(
-                        || strips::pages(plan, &frame),
-                        || {
-                            (
-                                tables::node_pages(plan, &frame),
-                                tables::block_pages(plan, &frame),
-                                tables::takeoff_page(input.takeoff, &frame),
-                            )
-                        },
-                    )
-                },
-                || {
-                    rayon::join(
-                        || nested::pages(plan, &frame, input.plan_path),
-                        || tables::check_pages(plan, &frame),
+                    (
+                        seal(tables::node_pages(plan, &frame)),
+                        seal(tables::block_pages(plan, &frame)),
+                        tables::takeoff_page(input.takeoff, &frame).seal(),
+                        seal(tables::check_pages(plan, &frame)),
                     )
                 },
             )
         },
     );
-    let (nodes, blocks, takeoff) = tables;
-    let mut order = order;
-    order.extend(overview::flat_page(plan, &frame));
-    let sections: Vec<Vec<Page>> = vec![
+    Ok(Sections {
         overview,
         order,
-        strip_pages,
+        strips,
+        nodes,
+        blocks,
+        takeoff,
+        check,
+    })
+}
+
+/// The document: the cover (with its contents) first, then the sections
+/// with the sheets as nested (`nested`, in nest order) before the elastic
+/// check; every page titled. Returns the PDF's bytes and its page count.
+pub fn assemble(
+    input: &AssemblyInput,
+    sections: Sections,
+    nested: Vec<SealedPage>,
+) -> (Vec<u8>, usize) {
+    let frame = Frame::of(input.paper);
+    let Sections {
+        overview,
+        order,
+        strips,
+        nodes,
+        blocks,
+        takeoff,
+        check,
+    } = sections;
+    let sections: Vec<Vec<SealedPage>> = vec![
+        overview,
+        order,
+        strips,
         nodes,
         blocks,
         vec![takeoff],
-        nested?,
+        nested,
         check,
     ];
     // Contents: the first page of every section (the cover is page 1).
@@ -262,13 +331,14 @@ pub fn pages(input: &AssemblyInput) -> Result<Vec<Page>> {
         }
         n += s.len();
     }
-    let mut out = vec![tables::cover_page(input, &frame, &first)];
-    out.extend(sections.into_iter().flatten());
-    Ok(out)
+    let mut pages = vec![tables::cover_page(input, &frame, &first).seal()];
+    pages.extend(sections.into_iter().flatten());
+    let count = pages.len();
+    (write_pdf(input, pages), count)
 }
 
 /// Title every page (heading, title block, page i of N) and write the PDF.
-fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
+fn write_pdf(input: &AssemblyInput, pages: Vec<SealedPage>) -> Vec<u8> {
     let plan = input.plan;
     let frame = Frame::of(input.paper);
     let total = pages.len();
@@ -279,13 +349,16 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
         .map(|p| p.name.clone())
         .unwrap_or_default();
     let (w, h) = input.paper.size_mm();
-    // Each page's content stream, compressed, in parallel.
-    let contents: Vec<Vec<u8>> = pages
+    // Each page's drawing and then its title (heading, title block, page i
+    // of N), compressed, in parallel.
+    let contents: Vec<[Vec<u8>; 2]> = pages
         .into_par_iter()
         .enumerate()
-        .map(|(i, mut page)| {
+        .map(|(i, page)| {
+            let mut c = Canvas::new();
             title(
-                &mut page,
+                &mut c,
+                &page,
                 &frame,
                 &project,
                 &profile,
@@ -293,7 +366,7 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
                 total,
                 input.paper,
             );
-            deflate(&page.canvas.into_content())
+            [page.body_deflated, deflate(&c.into_content())]
         })
         .collect();
     // printpdf makes the document (page tree, the built-in fonts as shared
@@ -334,14 +407,13 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
     // Each page's stand-in stream is replaced where it is, so no object is
     // left unreferenced: lopdf's prune and renumber passes look up every
     // reference in a list (quadratic; 1.7 s of CPU for 11,414 pages).
-    for ((_, page_id), content) in lo.get_pages().into_iter().zip(contents) {
-        let stream = lopdf::Stream::new(
-            lopdf::Dictionary::from_iter(vec![(
-                "Filter",
-                lopdf::Object::Name(b"FlateDecode".to_vec()),
-            )]),
-            content,
-        );
+    let flate = || {
+        lopdf::Dictionary::from_iter(vec![(
+            "Filter",
+            lopdf::Object::Name(b"FlateDecode".to_vec()),
+        )])
+    };
+    for ((_, page_id), [body, heading]) in lo.get_pages().into_iter().zip(contents) {
         let stand_in = match lo.get_object(page_id) {
             Ok(lopdf::Object::Dictionary(d)) => d
                 .get(b"Contents")
@@ -350,16 +422,23 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
                 .filter(|id| matches!(lo.get_object(*id), Ok(lopdf::Object::Stream(_)))),
             _ => None,
         };
-        match stand_in {
+        let body_id = match stand_in {
             Some(id) => {
-                lo.objects.insert(id, lopdf::Object::Stream(stream));
+                lo.objects
+                    .insert(id, lopdf::Object::Stream(lopdf::Stream::new(flate(), body)));
+                id
             }
-            None => {
-                let id = lo.add_object(stream);
-                if let Ok(lopdf::Object::Dictionary(d)) = lo.get_object_mut(page_id) {
-                    d.set("Contents", lopdf::Object::Reference(id));
-                }
-            }
+            None => lo.add_object(lopdf::Stream::new(flate(), body)),
+        };
+        let heading_id = lo.add_object(lopdf::Stream::new(flate(), heading));
+        if let Ok(lopdf::Object::Dictionary(d)) = lo.get_object_mut(page_id) {
+            d.set(
+                "Contents",
+                lopdf::Object::Array(vec![
+                    lopdf::Object::Reference(body_id),
+                    lopdf::Object::Reference(heading_id),
+                ]),
+            );
         }
     }
     // printpdf's trailer /ID is random: a stable one from the content.
@@ -375,6 +454,9 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<Page>) -> Vec<u8> {
 /// zlib-compressed bytes (FlateDecode), at the fastest level: at level 6
 /// the assembly sheets of the 200 × 200 benchmark (3,012 pages) took 3.7 s
 /// of CPU, at level 1 1.7 s, for a file 30 % larger (22.8 MiB, not 17.5).
+/// flate2's zlib-rs backend (zlib-ng's quick strategy at level 1) takes
+/// half the CPU of miniz_oxide's level 1 for a file about 18 % larger
+/// (the 400 × 400 kit's: 110 MiB, not 93).
 fn deflate(bytes: &[u8]) -> Vec<u8> {
     use std::io::Write;
     let mut e = flate2::write::ZlibEncoder::new(
@@ -403,8 +485,10 @@ fn stable_id(project: &str, pages: usize, parts: usize) -> String {
 }
 
 /// The heading and the title block.
+#[allow(clippy::too_many_arguments)]
 fn title(
-    page: &mut Page,
+    c: &mut Canvas,
+    page: &SealedPage,
     frame: &Frame,
     project: &str,
     profile: &str,
@@ -412,7 +496,6 @@ fn title(
     total: usize,
     paper: Paper,
 ) {
-    let c = &mut page.canvas;
     let (x0, x1) = (frame.x0_mm, frame.x1_mm);
     let top = frame.page_h_mm - MARGIN_MM;
     c.fill(BLACK);

@@ -5,10 +5,10 @@
 //! (too fine at these scales); outlines are thinned to 0.1 mm on paper.
 
 use super::canvas::{self, Align, BLACK, GREY};
-use super::{fixed, standard_scale, Frame, Page};
-use crate::emit::drawing::{Drawer, Layer, Shape};
+use super::{fixed, standard_scale, Frame, Page, SealedPage};
+use crate::emit::drawing::{Drawer, Layer, Shape, SheetDrawing};
 use crate::error::Result;
-use crate::io::plan::Plan;
+use crate::io::plan::{Plan, PlanSheet};
 use rayon::prelude::*;
 use std::path::Path;
 
@@ -16,123 +16,134 @@ use std::path::Path;
 const SUB_MM: f64 = 8.0;
 
 /// One page per sheet, in nest order.
-pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<Page>> {
+pub fn pages(plan: &Plan, frame: &Frame, plan_path: &Path) -> Result<Vec<SealedPage>> {
     let drawer = Drawer::new(plan, None, plan_path)?;
     let sheets = plan.sheets.as_deref().unwrap_or_default();
     (0..drawer.len())
         .into_par_iter()
         .map(|i| {
-            let sheet = drawer.sheet_cuts(i)?;
-            let meta = &sheets[i];
-            let den = (sheet.length_mm / frame.width_mm())
-                .max(sheet.width_mm / (frame.height_mm() - SUB_MM));
-            let scale = standard_scale(den);
-            let s = 1.0 / f64::from(scale);
-            let mut page = Page::new(
-                "Sheets as nested",
-                format!("Sheet {} of {}: {}", sheet.number, drawer.len(), sheet.id),
-                Some(scale),
-            );
-            let c = &mut page.canvas;
-            c.fill(BLACK);
-            c.text(
-                [frame.x0_mm, frame.y1_mm - 4.0],
-                8.0,
-                false,
-                Align::Left,
-                0.0,
-                &format!(
-                    "stock sheet {} mm, {} parts, utilisation {} %; file sheets/{}.dxf",
-                    meta.stock,
-                    sheet.parts.len(),
-                    fixed(100.0 * meta.utilization, 1),
-                    sheet.file_stem()
-                ),
-            );
-            let ox = frame.x0_mm;
-            let oy = frame.y1_mm - SUB_MM - sheet.width_mm * s;
-            let map = |x: f64, y: f64| [ox + x * s, oy + y * s];
-            c.stroke(GREY);
-            c.width(0.3);
-            c.rect(ox, oy, sheet.length_mm * s, sheet.width_mm * s, false, true);
-            for part in &sheet.parts {
-                for sh in &part.shapes {
-                    match sh {
-                        Shape::Polyline {
-                            layer,
-                            closed,
-                            vertices,
-                        } if *layer != Layer::Engrave => {
-                            c.stroke(if *layer == Layer::CutOuter {
-                                BLACK
-                            } else {
-                                GREY
-                            });
-                            c.width(if *layer == Layer::CutOuter { 0.15 } else { 0.1 });
-                            let mut pts: Vec<[f64; 2]> = Vec::with_capacity(vertices.len());
-                            for v in vertices {
-                                let p = map(v.x_mm, v.y_mm);
-                                if pts.last().is_none_or(|q: &[f64; 2]| {
-                                    (p[0] - q[0]).hypot(p[1] - q[1]) >= 0.1
-                                }) {
-                                    pts.push(p);
-                                }
-                            }
-                            c.polyline(&pts, *closed);
-                        }
-                        Shape::Circle {
-                            center_mm,
-                            radius_mm,
-                            ..
-                        } => {
-                            c.stroke(GREY);
-                            c.width(0.1);
-                            c.circle(
-                                map(center_mm[0], center_mm[1]),
-                                (radius_mm * s).max(0.15),
-                                false,
-                            );
-                        }
-                        _ => {}
-                    }
-                }
-            }
-            // Labels: as large as fits the part's box, 4 to 8 pt.
-            c.fill([0.1, 0.1, 0.5]);
-            for part in &sheet.parts {
-                let [x0, y0, x1, y1] = part.bbox_mm;
-                let (bw, bh) = ((x1 - x0) * s, (y1 - y0) * s);
-                let text = canvas::winansi(&part.part);
-                let w1 = canvas::text_width_mm(&text, 1.0, false);
-                let size = (0.85 * bw / w1)
-                    .min(0.6 * bh / canvas::cap_mm(1.0))
-                    .clamp(4.0, 8.0);
-                let at = map(0.5 * (x0 + x1), 0.5 * (y0 + y1));
-                // A part much taller than wide is labelled upright.
-                if bh > 2.0 * bw && bw < w1 * 4.0 {
-                    let size = (0.85 * bh / w1)
-                        .min(0.6 * bw / canvas::cap_mm(1.0))
-                        .clamp(4.0, 8.0);
-                    c.text(
-                        [at[0] + 0.5 * canvas::cap_mm(size), at[1]],
-                        size,
-                        false,
-                        Align::Center,
-                        90.0,
-                        &text,
-                    );
-                } else {
-                    c.text(
-                        [at[0], at[1] - 0.5 * canvas::cap_mm(size)],
-                        size,
-                        false,
-                        Align::Center,
-                        0.0,
-                        &text,
-                    );
-                }
-            }
-            Ok(page)
+            Ok(page(
+                &drawer.sheet_cuts(i)?,
+                &sheets[i],
+                drawer.len(),
+                frame,
+            ))
         })
         .collect()
+}
+
+/// The page of one stock sheet, `sheet` drawn from the plan's sheet `meta`
+/// (nominal: without kerf compensation) of `count` sheets. Engraving in
+/// the drawing, if any, is left out.
+pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame) -> SealedPage {
+    let den =
+        (sheet.length_mm / frame.width_mm()).max(sheet.width_mm / (frame.height_mm() - SUB_MM));
+    let scale = standard_scale(den);
+    let s = 1.0 / f64::from(scale);
+    let mut page = Page::new(
+        "Sheets as nested",
+        format!("Sheet {} of {}: {}", sheet.number, count, sheet.id),
+        Some(scale),
+    );
+    let c = &mut page.canvas;
+    c.fill(BLACK);
+    c.text(
+        [frame.x0_mm, frame.y1_mm - 4.0],
+        8.0,
+        false,
+        Align::Left,
+        0.0,
+        &format!(
+            "stock sheet {} mm, {} parts, utilisation {} %; file sheets/{}.dxf",
+            meta.stock,
+            sheet.parts.len(),
+            fixed(100.0 * meta.utilization, 1),
+            sheet.file_stem()
+        ),
+    );
+    let ox = frame.x0_mm;
+    let oy = frame.y1_mm - SUB_MM - sheet.width_mm * s;
+    let map = |x: f64, y: f64| [ox + x * s, oy + y * s];
+    c.stroke(GREY);
+    c.width(0.3);
+    c.rect(ox, oy, sheet.length_mm * s, sheet.width_mm * s, false, true);
+    for part in &sheet.parts {
+        for sh in &part.shapes {
+            match sh {
+                Shape::Polyline {
+                    layer,
+                    closed,
+                    vertices,
+                } if *layer != Layer::Engrave => {
+                    c.stroke(if *layer == Layer::CutOuter {
+                        BLACK
+                    } else {
+                        GREY
+                    });
+                    c.width(if *layer == Layer::CutOuter { 0.15 } else { 0.1 });
+                    let mut pts: Vec<[f64; 2]> = Vec::with_capacity(vertices.len());
+                    for v in vertices {
+                        let p = map(v.x_mm, v.y_mm);
+                        if pts
+                            .last()
+                            .is_none_or(|q: &[f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]) >= 0.1)
+                        {
+                            pts.push(p);
+                        }
+                    }
+                    c.polyline(&pts, *closed);
+                }
+                Shape::Circle {
+                    center_mm,
+                    radius_mm,
+                    ..
+                } => {
+                    c.stroke(GREY);
+                    c.width(0.1);
+                    c.circle(
+                        map(center_mm[0], center_mm[1]),
+                        (radius_mm * s).max(0.15),
+                        false,
+                    );
+                }
+                _ => {}
+            }
+        }
+    }
+    // Labels: as large as fits the part's box, 4 to 8 pt.
+    c.fill([0.1, 0.1, 0.5]);
+    for part in &sheet.parts {
+        let [x0, y0, x1, y1] = part.bbox_mm;
+        let (bw, bh) = ((x1 - x0) * s, (y1 - y0) * s);
+        let text = canvas::winansi(&part.part);
+        let w1 = canvas::text_width_mm(&text, 1.0, false);
+        let size = (0.85 * bw / w1)
+            .min(0.6 * bh / canvas::cap_mm(1.0))
+            .clamp(4.0, 8.0);
+        let at = map(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        // A part much taller than wide is labelled upright.
+        if bh > 2.0 * bw && bw < w1 * 4.0 {
+            let size = (0.85 * bh / w1)
+                .min(0.6 * bw / canvas::cap_mm(1.0))
+                .clamp(4.0, 8.0);
+            c.text(
+                [at[0] + 0.5 * canvas::cap_mm(size), at[1]],
+                size,
+                false,
+                Align::Center,
+                90.0,
+                &text,
+            );
+        } else {
+            c.text(
+                [at[0], at[1] - 0.5 * canvas::cap_mm(size)],
+                size,
+                false,
+                Align::Center,
+                0.0,
+                &text,
+            );
+        }
+    }
+    page.seal()
 }

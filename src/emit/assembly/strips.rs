@@ -21,7 +21,7 @@
 //! along the tick; labels too close to read are moved right along a leader.
 
 use super::canvas::{Align, Canvas, BLACK, BLUE, GREY};
-use super::{mm0, Frame, Page};
+use super::{mm0, Frame, Page, SealedPage};
 use crate::io::plan::{Plan, PlanPart};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -87,7 +87,7 @@ struct Lamella<'a> {
 }
 
 /// Every strip's pages, in strip order.
-pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
+pub fn pages(plan: &Plan, frame: &Frame) -> Vec<SealedPage> {
     let Some(parts) = &plan.parts else {
         return Vec::new();
     };
@@ -211,7 +211,7 @@ fn strip_pages(
     layout: &StripLayout,
     frame: &Frame,
     block: Option<(f64, f64)>,
-) -> Vec<Page> {
+) -> Vec<SealedPage> {
     let pages = paginate(strips, layout, frame);
     pages
         .par_iter()
@@ -257,7 +257,7 @@ fn strip_pages(
                 draw_row(c, &st.strip.id, &st.lamellas[i], r, top, layout, frame, block);
                 top -= layout.row_height_mm;
             }
-            page
+            page.seal()
         })
         .collect()
 }
