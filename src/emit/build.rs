@@ -330,10 +330,13 @@ pub fn build(
     plan_written.0?;
     let nested = sheets_written.0?;
     let t = std::time::Instant::now();
-    let (pdf, assembly_pages) = super::assembly::assemble(&assembly_input, sections.0?, nested);
-    staging.write("assembly.pdf", &pdf)?;
-    drop(pdf);
-    let pdf_s = sections.1 + t.elapsed().as_secs_f64();
+    let (sections, sections_s) = (sections.0?, sections.1);
+    let mut assembly_pages = 0;
+    staging.write_with("assembly.pdf", |w| {
+        assembly_pages = super::assembly::assemble_into(&assembly_input, sections, nested, w)?;
+        Ok(())
+    })?;
+    let pdf_s = sections_s + t.elapsed().as_secs_f64();
     clock.lap("write");
     clock.part("write: plan.json", plan_written.1);
     clock.part("write: sheets", sheets_written.1);

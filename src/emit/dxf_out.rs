@@ -163,12 +163,11 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
             center_mm,
             radius_mm,
         } => {
-            let _ = write!(
-                s,
-                "  0\nCIRCLE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbCircle\n 10\n",
-                *handle,
-                layer.name()
-            );
+            s.push_str("  0\nCIRCLE\n  5\n");
+            push_hex(s, *handle);
+            s.push_str("\n100\nAcDbEntity\n  8\n");
+            s.push_str(layer.name());
+            s.push_str("\n100\nAcDbCircle\n 10\n");
             super::push_decimal(s, center_mm[0], COORD_DECIMALS, true);
             s.push_str("\n 20\n");
             super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
@@ -180,16 +179,34 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
     }
 }
 
+/// `n` in upper-case hexadecimal, as DXF handles are written.
+fn push_hex(s: &mut String, n: u64) {
+    const DIGITS: &[u8; 16] = b"0123456789ABCDEF";
+    let mut buf = [0u8; 16];
+    let mut i = buf.len();
+    let mut n = n;
+    loop {
+        i -= 1;
+        buf[i] = DIGITS[(n & 0xF) as usize];
+        n >>= 4;
+        if n == 0 {
+            break;
+        }
+    }
+    s.extend(buf[i..].iter().map(|&b| char::from(b)));
+}
+
 /// One LWPOLYLINE with its handle.
 fn polyline(s: &mut String, layer: Layer, closed: bool, vertices: &[Vertex], handle: &mut u64) {
-    let _ = write!(
-        s,
-        "  0\nLWPOLYLINE\n  5\n{:X}\n100\nAcDbEntity\n  8\n{}\n100\nAcDbPolyline\n 90\n{}\n 70\n{}\n",
-        *handle,
-        layer.name(),
-        vertices.len(),
-        u8::from(closed)
-    );
+    // Pieces pushed one by one: `write!`'s formatting machinery was a
+    // tenth of writing the engraving's many short polylines.
+    s.push_str("  0\nLWPOLYLINE\n  5\n");
+    push_hex(s, *handle);
+    s.push_str("\n100\nAcDbEntity\n  8\n");
+    s.push_str(layer.name());
+    s.push_str("\n100\nAcDbPolyline\n 90\n");
+    super::push_scaled(s, false, vertices.len() as u64, 0, false);
+    s.push_str(if closed { "\n 70\n1\n" } else { "\n 70\n0\n" });
     for v in vertices {
         s.push_str(" 10\n");
         super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
@@ -203,4 +220,30 @@ fn polyline(s: &mut String, layer: Layer, closed: bool, vertices: &[Vertex], han
         }
     }
     *handle += 1;
+}
+
+#[cfg(test)]
+mod hex_tests {
+    use super::push_hex;
+
+    #[test]
+    fn handles_are_written_as_the_standard_upper_hex() {
+        for n in [
+            0u64,
+            1,
+            9,
+            10,
+            15,
+            16,
+            255,
+            256,
+            0x1A2B,
+            0xFFFF_FFFF,
+            u64::MAX,
+        ] {
+            let mut s = String::from("x");
+            push_hex(&mut s, n);
+            assert_eq!(s, format!("x{n:X}"), "{n}");
+        }
+    }
 }

@@ -302,6 +302,20 @@ pub fn assemble(
     sections: Sections,
     nested: Vec<SealedPage>,
 ) -> (Vec<u8>, usize) {
+    let mut bytes = Vec::new();
+    // Writing into a Vec cannot fail.
+    let count = assemble_into(input, sections, nested, &mut bytes).unwrap_or(0);
+    (bytes, count)
+}
+
+/// [`assemble`], streamed into `w` (a big kit's PDF is not held twice);
+/// returns the page count.
+pub fn assemble_into(
+    input: &AssemblyInput,
+    sections: Sections,
+    nested: Vec<SealedPage>,
+    w: &mut dyn std::io::Write,
+) -> std::io::Result<usize> {
     let frame = Frame::of(input.paper);
     let Sections {
         overview,
@@ -334,11 +348,16 @@ pub fn assemble(
     let mut pages = vec![tables::cover_page(input, &frame, &first).seal()];
     pages.extend(sections.into_iter().flatten());
     let count = pages.len();
-    (write_pdf(input, pages), count)
+    write_pdf(input, pages, w)?;
+    Ok(count)
 }
 
 /// Title every page (heading, title block, page i of N) and write the PDF.
-fn write_pdf(input: &AssemblyInput, pages: Vec<SealedPage>) -> Vec<u8> {
+fn write_pdf(
+    input: &AssemblyInput,
+    pages: Vec<SealedPage>,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
     let plan = input.plan;
     let frame = Frame::of(input.paper);
     let total = pages.len();
@@ -445,10 +464,7 @@ fn write_pdf(input: &AssemblyInput, pages: Vec<SealedPage>) -> Vec<u8> {
     let id = stable_id(&project, total, plan.parts.as_ref().map_or(0, Vec::len));
     let s = || lopdf::Object::String(id.as_bytes().to_vec(), lopdf::StringFormat::Hexadecimal);
     lo.trailer.set("ID", lopdf::Object::Array(vec![s(), s()]));
-    let mut bytes = Vec::new();
-    // Writing into a Vec cannot fail.
-    let _ = lo.save_to(&mut bytes);
-    bytes
+    lo.save_to(&mut &mut *out)
 }
 
 /// zlib-compressed bytes (FlateDecode), at the fastest level: at level 6
