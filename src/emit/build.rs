@@ -272,61 +272,76 @@ pub fn build(
     // plan.json streams out on one thread while the sheets (each drawn once
     // for its DXF, its SVG and its page of the assembly sheets) and the
     // other assembly pages share the others (each deterministic on its own).
-    let (plan_written, (sheets_written, sections)) = rayon::join(
-        || timed(&|| staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))),
-        || {
-            rayon::join(
-                || {
-                    timed(&|| {
-                        (0..sheet_count)
-                            .into_par_iter()
-                            // Each worker's text buffers serve sheet after sheet.
-                            .map_init(
-                                || (String::new(), String::new()),
-                                |(dxf, svg), i| -> Result<super::assembly::SealedPage> {
-                                    let sheet = drawer.sheet(i)?;
-                                    let stem = sheet.file_stem();
-                                    dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
-                                        Error::output(&out.join(format!("sheets/{stem}.dxf")), e)
-                                    })?;
-                                    staging.write(&format!("sheets/{stem}.dxf"), dxf.as_bytes())?;
-                                    let title = format!(
-                                        "{} — {}: sheet {} of {} ({}), {} × {} mm",
-                                        network_name,
-                                        profile.name,
-                                        sheet.number,
-                                        sheet_count,
-                                        sheet.id,
-                                        sheet.length_mm,
-                                        sheet.width_mm
-                                    );
-                                    svg_out::write_svg(&sheet, &title, svg);
-                                    staging.write(&format!("sheets/{stem}.svg"), svg.as_bytes())?;
-                                    let page = match &nominal {
-                                        Some(d) => super::assembly::nested::page(
-                                            &d.sheet_cuts(i)?,
-                                            &sheets_meta[i],
+    //
+    // Big files are written past the page cache (`direct`), and a direct
+    // write waits for the disk: one thread more than the cores keeps them
+    // busy formatting meanwhile.
+    let write_pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(rayon::current_num_threads() + 1)
+        .build()
+        .map_err(|e| Error::output(out, format!("cannot start the writer threads: {e}")))?;
+    let (plan_written, (sheets_written, sections)) = write_pool.install(|| {
+        rayon::join(
+            || timed(&|| staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))),
+            || {
+                rayon::join(
+                    || {
+                        timed(&|| {
+                            (0..sheet_count)
+                                .into_par_iter()
+                                // Each worker's text buffers serve sheet after sheet.
+                                .map_init(
+                                    || (String::new(), String::new()),
+                                    |(dxf, svg), i| -> Result<super::assembly::SealedPage> {
+                                        let sheet = drawer.sheet(i)?;
+                                        let stem = sheet.file_stem();
+                                        dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
+                                            Error::output(
+                                                &out.join(format!("sheets/{stem}.dxf")),
+                                                e,
+                                            )
+                                        })?;
+                                        staging
+                                            .write(&format!("sheets/{stem}.dxf"), dxf.as_bytes())?;
+                                        let title = format!(
+                                            "{} — {}: sheet {} of {} ({}), {} × {} mm",
+                                            network_name,
+                                            profile.name,
+                                            sheet.number,
                                             sheet_count,
-                                            &frame,
-                                        ),
-                                        None => super::assembly::nested::page(
-                                            &sheet,
-                                            &sheets_meta[i],
-                                            sheet_count,
-                                            &frame,
-                                        ),
-                                    };
-                                    progress.inc(1);
-                                    Ok(page)
-                                },
-                            )
-                            .collect::<Result<Vec<_>>>()
-                    })
-                },
-                || timed_sections(&assembly_input),
-            )
-        },
-    );
+                                            sheet.id,
+                                            sheet.length_mm,
+                                            sheet.width_mm
+                                        );
+                                        svg_out::write_svg(&sheet, &title, svg);
+                                        staging
+                                            .write(&format!("sheets/{stem}.svg"), svg.as_bytes())?;
+                                        let page = match &nominal {
+                                            Some(d) => super::assembly::nested::page(
+                                                &d.sheet_cuts(i)?,
+                                                &sheets_meta[i],
+                                                sheet_count,
+                                                &frame,
+                                            ),
+                                            None => super::assembly::nested::page(
+                                                &sheet,
+                                                &sheets_meta[i],
+                                                sheet_count,
+                                                &frame,
+                                            ),
+                                        };
+                                        progress.inc(1);
+                                        Ok(page)
+                                    },
+                                )
+                                .collect::<Result<Vec<_>>>()
+                        })
+                    },
+                    || timed_sections(&assembly_input),
+                )
+            },
+        )
+    });
     plan_written.0?;
     let nested = sheets_written.0?;
     let t = std::time::Instant::now();

@@ -193,7 +193,7 @@ fn push_hex(s: &mut String, n: u64) {
             break;
         }
     }
-    s.extend(buf[i..].iter().map(|&b| char::from(b)));
+    s.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
 }
 
 /// One LWPOLYLINE with its handle.

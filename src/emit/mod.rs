@@ -5,12 +5,14 @@
 //! * [`dxf_out`], [`svg_out`]: one cutting file per sheet in each format;
 //! * [`takeoff`]: parts, stock, hardware and totals as CSV and JSON;
 //! * [`assembly`]: the assembly sheets, `assembly.pdf`;
+//! * [`direct`]: big files written past the page cache;
 //! * [`outdir`]: staging beside the output directory, moved into place
 //!   only once complete;
 //! * [`build`]: `lamella build`, every stage from the network to the files.
 
 pub mod assembly;
 pub mod build;
+pub mod direct;
 pub mod drawing;
 pub mod dxf_out;
 pub mod outdir;
@@ -109,9 +111,9 @@ pub(crate) fn push_scaled(
         i -= 1;
         buf[i] = b'-';
     }
-    // ASCII only: pushed as chars, without `from_utf8`'s validation (a
-    // call per number, 2–3 % of writing a big kit).
-    out.extend(buf[i..].iter().map(|&b| char::from(b)));
+    // ASCII only (pushing the bytes as chars one by one is slower than
+    // validating them once).
+    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
 }
 
 /// "00" to "99".

@@ -96,7 +96,7 @@ impl Staging {
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
         }
-        std::fs::write(&path, bytes).map_err(|e| Error::io(&self.dir.join(rel), e))?;
+        super::direct::write_file(&path, bytes).map_err(|e| Error::io(&self.dir.join(rel), e))?;
         self.files
             .lock()
             .map_err(|_| Error::output(&self.dir, "a writer thread failed"))?
@@ -104,7 +104,8 @@ impl Staging {
         Ok(())
     }
 
-    /// Stage `rel` with what `write` streams into it (buffered).
+    /// Stage `rel` with what `write` streams into it (buffered, or past
+    /// the page cache: [`super::direct`]).
     pub fn write_with(
         &self,
         rel: &str,
@@ -114,10 +115,10 @@ impl Staging {
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
         }
-        let file = std::fs::File::create(&path).map_err(|e| Error::io(&self.dir.join(rel), e))?;
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+        let mut w =
+            super::direct::Writer::create(&path).map_err(|e| Error::io(&self.dir.join(rel), e))?;
         write(&mut w)
-            .and_then(|()| std::io::Write::flush(&mut w))
+            .and_then(|()| w.finish())
             .map_err(|e| Error::io(&self.dir.join(rel), e))?;
         self.files
             .lock()
