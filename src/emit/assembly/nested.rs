@@ -6,7 +6,7 @@
 
 use super::canvas::{self, Align, BLACK, GREY};
 use super::{fixed, standard_scale, Frame, Page, SealedPage};
-use crate::emit::drawing::{Drawer, Layer, Shape, SheetDrawing};
+use crate::emit::drawing::{within, Drawer, Layer, Shape, SheetDrawing};
 use crate::error::Result;
 use crate::io::plan::{Plan, PlanSheet};
 use rayon::prelude::*;
@@ -86,7 +86,7 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
                         let p = map(v.x_mm, v.y_mm);
                         if pts
                             .last()
-                            .is_none_or(|q: &[f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]) >= 0.1)
+                            .is_none_or(|q: &[f64; 2]| !within(p[0] - q[0], p[1] - q[1], 0.1))
                         {
                             pts.push(p);
                         }
