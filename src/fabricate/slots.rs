@@ -140,7 +140,10 @@ impl Crossing {
         let (s_a, c) = (self.offset_mm, self.crossing_offset_mm);
         for gamma in [1.0, -1.0] {
             let k = 0.5 * eps * gamma * t_a;
-            for (a, b) in [(s_a - k, c + 0.5 * eps * t_b), (s_a + k, c - 0.5 * eps * t_b)] {
+            for (a, b) in [
+                (s_a - k, c + 0.5 * eps * t_b),
+                (s_a + k, c - 0.5 * eps * t_b),
+            ] {
                 if b != 0.0 {
                     let cos = a / b;
                     if cos * gamma >= 0.0 && cos.abs() <= 1.0 {
@@ -219,7 +222,26 @@ pub fn node_slots(
     range_rad: (f64, f64),
     clearance_mm: f64,
 ) -> Vec<SlotSpan> {
-    let sweep = SweepRange::new(range_rad);
+    node_slots_in(
+        thickness_mm,
+        crossing_thickness_mm,
+        offset_mm,
+        crossing_offsets_mm,
+        &SweepRange::new(range_rad),
+        clearance_mm,
+    )
+}
+
+/// [`node_slots`] over a sweep whose ends' trigonometry is taken (once per
+/// joint, for every lamella there).
+pub fn node_slots_in(
+    thickness_mm: f64,
+    crossing_thickness_mm: f64,
+    offset_mm: f64,
+    crossing_offsets_mm: &[f64],
+    sweep: &SweepRange,
+    clearance_mm: f64,
+) -> Vec<SlotSpan> {
     let mut spans: Vec<SlotSpan> = crossing_offsets_mm
         .iter()
         .enumerate()
@@ -230,7 +252,7 @@ pub fn node_slots(
                 offset_mm,
                 crossing_offset_mm: s_b,
             };
-            let (lo, hi) = c.swept_in_mm(&sweep);
+            let (lo, hi) = c.swept_in_mm(sweep);
             let mut crossing_lamellas = [false; 2];
             crossing_lamellas[k.min(1)] = true;
             SlotSpan {
@@ -241,19 +263,25 @@ pub fn node_slots(
         })
         .collect();
     spans.sort_by(|a, b| a.lo_mm.total_cmp(&b.lo_mm));
-    let mut merged: Vec<SlotSpan> = Vec::with_capacity(spans.len());
-    for s in spans {
-        match merged.last_mut() {
+    // Merged in place: each span joins the last kept one it overlaps.
+    let mut kept: usize = 0;
+    for i in 0..spans.len() {
+        let s = spans[i];
+        match kept.checked_sub(1).map(|k| &mut spans[k]) {
             Some(m) if s.lo_mm <= m.hi_mm => {
                 m.hi_mm = m.hi_mm.max(s.hi_mm);
                 for k in 0..2 {
                     m.crossing_lamellas[k] |= s.crossing_lamellas[k];
                 }
             }
-            _ => merged.push(s),
+            _ => {
+                spans[kept] = s;
+                kept += 1;
+            }
         }
     }
-    merged
+    spans.truncate(kept);
+    spans
 }
 
 #[cfg(test)]
@@ -406,8 +434,16 @@ mod tests {
             let c = Crossing {
                 thickness_mm: uniform(0.5, 12.0),
                 crossing_thickness_mm: uniform(0.5, 12.0),
-                offset_mm: if case % 5 == 0 { 0.0 } else { uniform(-15.0, 15.0) },
-                crossing_offset_mm: if case % 7 == 0 { 0.0 } else { uniform(-15.0, 15.0) },
+                offset_mm: if case % 5 == 0 {
+                    0.0
+                } else {
+                    uniform(-15.0, 15.0)
+                },
+                crossing_offset_mm: if case % 7 == 0 {
+                    0.0
+                } else {
+                    uniform(-15.0, 15.0)
+                },
             };
             let angle = uniform(-179.0, 179.0);
             let range = if case % 3 == 0 {
