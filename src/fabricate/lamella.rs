@@ -46,18 +46,18 @@ pub struct StripParts {
 
 /// A crossing of this strip with another A/B strip, seen from this strip.
 #[derive(Debug, Clone)]
-struct Crossing {
+struct Crossing<'a> {
     /// Index into the strip's node list.
     k: usize,
     /// Node id (plan.json).
     node_id: usize,
     /// Crossing strip's id.
-    crossing_id: String,
+    crossing_id: &'a str,
     /// Signed angle from this strip's direction to the crossing one's,
     /// about the node normal, degrees.
     angle_deg: f64,
     /// The crossing strip's lamella offsets (by lamella number).
-    crossing_offsets_mm: Vec<f64>,
+    crossing_offsets_mm: &'a [f64],
 }
 
 /// Signed angle (degrees) from direction `a` to direction `b` about `n`.
@@ -88,35 +88,40 @@ pub fn strip_parts(
     let offsets = profile.lamella_offsets(strip.family);
     let interlocking = profile.joint.system == JointSystem::Interlocking;
 
+    // The lamella offsets of either family, taken once.
+    let dy_of = |family| -> Vec<f64> {
+        profile
+            .lamella_offsets(family)
+            .iter()
+            .map(|o| o.dy_mm)
+            .collect()
+    };
+    let (dy_a, dy_b) = (dy_of(Family::A), dy_of(Family::B));
     // The A×B crossings, with the angle seen from this strip.
-    let crossings: Vec<Crossing> = strip
-        .nodes
-        .iter()
-        .enumerate()
-        .filter_map(|(k, cn)| {
-            let other = &net.curves[cn.crossing];
-            if other.family == Family::Edge {
-                return None;
-            }
-            let node = &topo.nodes[cn.node];
-            let (mine, theirs) = if node.a == i {
-                (node.tangent_a_world, node.tangent_b_world)
+    let mut crossings: Vec<Crossing> = Vec::with_capacity(strip.nodes.len());
+    crossings.extend(strip.nodes.iter().enumerate().filter_map(|(k, cn)| {
+        let other = &net.curves[cn.crossing];
+        if other.family == Family::Edge {
+            return None;
+        }
+        let node = &topo.nodes[cn.node];
+        let (mine, theirs) = if node.a == i {
+            (node.tangent_a_world, node.tangent_b_world)
+        } else {
+            (node.tangent_b_world, node.tangent_a_world)
+        };
+        Some(Crossing {
+            k,
+            node_id: node.id,
+            crossing_id: &other.id,
+            angle_deg: signed_angle_deg(mine, theirs, node.normal_world),
+            crossing_offsets_mm: if other.family == Family::A {
+                &dy_a
             } else {
-                (node.tangent_b_world, node.tangent_a_world)
-            };
-            Some(Crossing {
-                k,
-                node_id: node.id,
-                crossing_id: other.id.clone(),
-                angle_deg: signed_angle_deg(mine, theirs, node.normal_world),
-                crossing_offsets_mm: profile
-                    .lamella_offsets(other.family)
-                    .iter()
-                    .map(|o| o.dy_mm)
-                    .collect(),
-            })
+                &dy_b
+            },
         })
-        .collect();
+    }));
 
     // Slots of every lamella at every crossing (relative to the node's
     // station on that lamella's line).
@@ -169,7 +174,7 @@ pub fn strip_parts(
                             t,
                             t,
                             o.dy_mm,
-                            &c.crossing_offsets_mm,
+                            c.crossing_offsets_mm,
                             sweep,
                             profile.joint.slot_clearance_mm,
                         ),
@@ -467,7 +472,7 @@ pub fn strip_parts(
                     kind: FeatureKind::Slot,
                     hole_use: None,
                     node: Some(c.node_id),
-                    crossing: Some(c.crossing_id.clone()),
+                    crossing: Some(c.crossing_id.to_string()),
                     center_part_mm: Point::new(
                         node_line + s.centre_mm(),
                         if edge == SlotEdge::Top {
@@ -509,7 +514,7 @@ pub fn strip_parts(
                     d,
                     HoleUse::Node,
                     Some(c.node_id),
-                    Some(c.crossing_id.clone()),
+                    Some(c.crossing_id.to_string()),
                 );
             }
         }
