@@ -3,7 +3,8 @@
 //! 160,000 nodes): read, analyse,
 //! then fabricate every part for the steel prototype's profile (doubled
 //! lamellas with swept slots, shear blocks, splices, star washers, edge-less
-//! grid) including the engraving, then nest them onto its sheets. Each size runs in a fresh child process so
+//! grid) including the engraving, then nest them onto its sheets (wall
+//! time, and the process's CPU time, user + system, per stage). Each size runs in a fresh child process so
 //! its peak memory (VmHWM) is its own.
 //!
 //!     cargo bench --bench parts            # all sizes
@@ -28,14 +29,16 @@ fn main() {
     }
     let sizes = support::sizes();
     println!(
-        "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>8} {:>7} {:>7} {:>6} {:>10}",
+        "{:>5} {:>8} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>8} {:>7} {:>7} {:>6} {:>10}",
         "n",
         "nodes",
         "parts",
         "pieces",
         "analyse s",
         "fabricate s",
+        "cpu s",
         "nest s",
+        "cpu s",
         "sheets",
         "bound",
         "util",
@@ -56,22 +59,28 @@ fn measure(path: &Path) {
     let t0 = Instant::now();
     let net = io::read_network(path, ReadOptions::default()).expect("read");
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analyze");
-    let t1 = Instant::now();
+    let cpu = || {
+        let (user, sys) = support::cpu_s();
+        user + sys
+    };
+    let (t1, c1) = (Instant::now(), cpu());
     let kit = fabricate(&net, &an, &profile).expect("fabricate");
-    let t2 = Instant::now();
+    let (t2, c2) = (Instant::now(), cpu());
     let nested = lamella::nest::nest(&kit, &profile).expect("nest");
-    let t3 = Instant::now();
+    let (t3, c3) = (Instant::now(), cpu());
     let pieces: u64 = kit.parts.iter().map(|p| u64::from(p.count)).sum();
     std::hint::black_box(&kit);
     println!(
-        "{:>5} {:>8} {:>9} {:>9} {:>9.3} {:>10.3} {:>8.3} {:>7} {:>7} {:>6.3} {:>10.0}",
+        "{:>5} {:>8} {:>9} {:>9} {:>9.3} {:>10.3} {:>8.2} {:>8.3} {:>8.2} {:>7} {:>7} {:>6.3} {:>10.0}",
         net.curves.len() / 2,
         an.topology.nodes.len(),
         kit.parts.len(),
         pieces,
         (t1 - t0).as_secs_f64(),
         (t2 - t1).as_secs_f64(),
+        c2 - c1,
         (t3 - t2).as_secs_f64(),
+        c3 - c2,
         nested.summary.sheets_used,
         nested.summary.lower_bound_sheets,
         nested.summary.utilization,

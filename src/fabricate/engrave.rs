@@ -165,27 +165,29 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         widest_taken
     };
     // Crossing ids beside slots and node holes, in x order.
-    let mut marks: Vec<(f64, String, Option<usize>)> = p
+    let mut marks: Vec<(f64, &str, Option<usize>)> = p
         .features
         .iter()
         .filter(|f| f.kind == FeatureKind::Slot || f.hole_use == Some(super::part::HoleUse::Node))
         .filter_map(|f| {
             f.crossing
-                .clone()
+                .as_deref()
                 .map(|id| (f.center_part_mm.x, id, f.node))
         })
         .collect();
     marks.sort_by(|a, b| a.0.total_cmp(&b.0));
     marks.dedup_by(|a, b| a.1 == b.1 && a.2 == b.2);
+    // One per mark, the id and the orientation mark.
+    engraving.reserve_exact(marks.len() + 2);
     let mut widest = 0.0;
     for (x, id, node) in marks {
-        let width = |th: f64| font::text_width_mm(&id, th);
+        let width = |th: f64| font::text_width_mm(id, th);
         let reach = |w: f64| CROSSING_SEARCH_WIDTHS * w + 10.0;
         match place(&width, x, &reach, CROSSING_HEIGHT_MM, &taken, widest) {
             Some((cx, th, y0)) => {
                 let w = width(th);
                 put(
-                    Engraved::Text(id.clone()),
+                    Engraved::Text(id.to_string()),
                     th,
                     cx - 0.5 * w,
                     y0,

@@ -10,9 +10,9 @@
 
 use super::blocks;
 use super::part::{
-    circle_cw, Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge, ARC_TOLERANCE_MM,
+    CircleCw, Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge, ARC_TOLERANCE_MM,
 };
-use super::slots::{node_slots, range_between_rad, sweep_range_rad, SlotSpan};
+use super::slots::{node_slots_in, range_between_rad, sweep_range_rad, SlotSpan, SweepRange};
 use crate::analysis::model::LamellaLine;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
@@ -46,18 +46,18 @@ pub struct StripParts {
 
 /// A crossing of this strip with another A/B strip, seen from this strip.
 #[derive(Debug, Clone)]
-struct Crossing {
+struct Crossing<'a> {
     /// Index into the strip's node list.
     k: usize,
     /// Node id (plan.json).
     node_id: usize,
     /// Crossing strip's id.
-    crossing_id: String,
+    crossing_id: &'a str,
     /// Signed angle from this strip's direction to the crossing one's,
     /// about the node normal, degrees.
     angle_deg: f64,
     /// The crossing strip's lamella offsets (by lamella number).
-    crossing_offsets_mm: Vec<f64>,
+    crossing_offsets_mm: &'a [f64],
 }
 
 /// Signed angle (degrees) from direction `a` to direction `b` about `n`.
@@ -88,35 +88,40 @@ pub fn strip_parts(
     let offsets = profile.lamella_offsets(strip.family);
     let interlocking = profile.joint.system == JointSystem::Interlocking;
 
+    // The lamella offsets of either family, taken once.
+    let dy_of = |family| -> Vec<f64> {
+        profile
+            .lamella_offsets(family)
+            .iter()
+            .map(|o| o.dy_mm)
+            .collect()
+    };
+    let (dy_a, dy_b) = (dy_of(Family::A), dy_of(Family::B));
     // The A×B crossings, with the angle seen from this strip.
-    let crossings: Vec<Crossing> = strip
-        .nodes
-        .iter()
-        .enumerate()
-        .filter_map(|(k, cn)| {
-            let other = &net.curves[cn.crossing];
-            if other.family == Family::Edge {
-                return None;
-            }
-            let node = &topo.nodes[cn.node];
-            let (mine, theirs) = if node.a == i {
-                (node.tangent_a_world, node.tangent_b_world)
+    let mut crossings: Vec<Crossing> = Vec::with_capacity(strip.nodes.len());
+    crossings.extend(strip.nodes.iter().enumerate().filter_map(|(k, cn)| {
+        let other = &net.curves[cn.crossing];
+        if other.family == Family::Edge {
+            return None;
+        }
+        let node = &topo.nodes[cn.node];
+        let (mine, theirs) = if node.a == i {
+            (node.tangent_a_world, node.tangent_b_world)
+        } else {
+            (node.tangent_b_world, node.tangent_a_world)
+        };
+        Some(Crossing {
+            k,
+            node_id: node.id,
+            crossing_id: &other.id,
+            angle_deg: signed_angle_deg(mine, theirs, node.normal_world),
+            crossing_offsets_mm: if other.family == Family::A {
+                &dy_a
             } else {
-                (node.tangent_b_world, node.tangent_a_world)
-            };
-            Some(Crossing {
-                k,
-                node_id: node.id,
-                crossing_id: other.id.clone(),
-                angle_deg: signed_angle_deg(mine, theirs, node.normal_world),
-                crossing_offsets_mm: profile
-                    .lamella_offsets(other.family)
-                    .iter()
-                    .map(|o| o.dy_mm)
-                    .collect(),
-            })
+                &dy_b
+            },
         })
-        .collect();
+    }));
 
     // Slots of every lamella at every crossing (relative to the node's
     // station on that lamella's line).
@@ -143,6 +148,15 @@ pub fn strip_parts(
         Some(&r) => range_between_rad(c.angle_deg - turn_sign * r, c.angle_deg),
         None => sweep_range_rad(c.angle_deg, tolerance),
     };
+    // Each crossing's sweep (its ends' trigonometry), shared by the lamellas.
+    let sweeps: Vec<SweepRange> = if interlocking {
+        crossings
+            .iter()
+            .map(|c| SweepRange::new(range_of(c)))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let slots: Vec<Vec<(usize, Vec<SlotSpan>)>> = offsets
         .iter()
         .map(|o| {
@@ -151,16 +165,17 @@ pub fn strip_parts(
             }
             crossings
                 .iter()
+                .zip(&sweeps)
                 .enumerate()
-                .map(|(ci, c)| {
+                .map(|(ci, (c, sweep))| {
                     (
                         ci,
-                        node_slots(
+                        node_slots_in(
                             t,
                             t,
                             o.dy_mm,
-                            &c.crossing_offsets_mm,
-                            range_of(c),
+                            c.crossing_offsets_mm,
+                            sweep,
                             profile.joint.slot_clearance_mm,
                         ),
                     )
@@ -424,10 +439,25 @@ pub fn strip_parts(
     wanted.extend(&cuts);
     wanted.extend(&splice_holes);
     let lines = LamellaLine::with_stations_many(strip, smooth, &offsets, &wanted);
+    // The round holes' polygons, one per diameter, their trigonometry taken once.
+    let mut circles: Vec<CircleCw> = Vec::new();
     for (j, (o, (line, on_line))) in offsets.iter().zip(lines).enumerate() {
         let (b_line, rest) = on_line.split_at(block_stations.len());
         let (cut_line, hole_line) = rest.split_at(cuts.len());
-        let mut features: Vec<Feature> = Vec::new();
+        let slot_count: usize = slots[j].iter().map(|(_, spans)| spans.len()).sum();
+        let node_holes = if node_hole_mm.is_some() {
+            crossings.len()
+        } else {
+            0
+        };
+        let block_holes = if block.is_some() { b_line.len() } else { 0 };
+        let splice_holes = if profile.splice.is_some() {
+            hole_line.len()
+        } else {
+            0
+        };
+        let mut features: Vec<Feature> =
+            Vec::with_capacity(slot_count + node_holes + block_holes + splice_holes);
         let edge = if strip.family == Family::A {
             SlotEdge::Top
         } else {
@@ -442,7 +472,7 @@ pub fn strip_parts(
                     kind: FeatureKind::Slot,
                     hole_use: None,
                     node: Some(c.node_id),
-                    crossing: Some(c.crossing_id.clone()),
+                    crossing: Some(c.crossing_id.to_string()),
                     center_part_mm: Point::new(
                         node_line + s.centre_mm(),
                         if edge == SlotEdge::Top {
@@ -484,7 +514,7 @@ pub fn strip_parts(
                     d,
                     HoleUse::Node,
                     Some(c.node_id),
-                    Some(c.crossing_id.clone()),
+                    Some(c.crossing_id.to_string()),
                 );
             }
         }
@@ -515,27 +545,46 @@ pub fn strip_parts(
         bounds.extend_from_slice(cut_line);
         bounds.push(line.length_mm + allowance);
         let pieces = bounds.len() - 1;
-        for p in 0..pieces {
+        // Each feature goes to the piece [start, end) that holds its
+        // station (none when outside them all), in the order made, moved.
+        let piece_of = |f: &Feature| {
+            let s = f.station_mm.unwrap_or(f64::NAN);
+            let p = bounds.partition_point(|&b| b <= s);
+            (1..=pieces).contains(&p).then(|| p - 1)
+        };
+        let mut per_piece: Vec<Vec<Feature>> = {
+            let mut counts = vec![0usize; pieces];
+            for f in &features {
+                if let Some(p) = piece_of(f) {
+                    counts[p] += 1;
+                }
+            }
+            counts.into_iter().map(Vec::with_capacity).collect()
+        };
+        for mut f in features {
+            if let Some(p) = piece_of(&f) {
+                f.center_part_mm.x -= bounds[p];
+                per_piece[p].push(f);
+            }
+        }
+        for (p, mine) in per_piece.into_iter().enumerate() {
             let (start, end) = (bounds[p], bounds[p + 1]);
             let id = if pieces == 1 {
                 format!("{}-{}", strip.id, o.number)
             } else {
                 format!("{}-{}.{}", strip.id, o.number, p + 1)
             };
-            let mine: Vec<Feature> = features
-                .iter()
-                .filter(|f| {
-                    let s = f.station_mm.unwrap_or(f64::NAN);
-                    s >= start && s < end
-                })
-                .map(|f| {
-                    let mut f = f.clone();
-                    f.center_part_mm.x -= start;
-                    f
-                })
-                .collect();
-            let part = lamella_part(id, &strip.id, o.number, start, end - start, h, mine)
-                .map_err(|(node, what)| fail(node, what))?;
+            let part = lamella_part(
+                id,
+                &strip.id,
+                o.number,
+                start,
+                end - start,
+                h,
+                mine,
+                &mut circles,
+            )
+            .map_err(|(node, what)| fail(node, what))?;
             out.lamellas.push(part);
         }
     }
@@ -543,9 +592,11 @@ pub fn strip_parts(
 }
 
 /// One lamella piece: the rectangle length × h with its slots notched from
-/// their edges and its holes; features sorted by x. Err (node, what) when a
-/// slot runs past an end or two slots leave less than 1 mm of
-/// material between them.
+/// their edges and its holes (their polygons from `circles`, one per
+/// diameter, added to as new ones come); features sorted by x. Err (node,
+/// what) when a slot runs past an end or two slots leave less than 1 mm
+/// of material between them.
+#[allow(clippy::too_many_arguments)]
 fn lamella_part(
     id: String,
     strip: &str,
@@ -554,18 +605,23 @@ fn lamella_part(
     length_mm: f64,
     h: f64,
     mut features: Vec<Feature>,
+    circles: &mut Vec<CircleCw>,
 ) -> std::result::Result<Part, (Option<usize>, String)> {
     features.sort_by(|a, b| a.center_part_mm.x.total_cmp(&b.center_part_mm.x));
     // Minimum material between two notches on one edge, mm (a laser keeps
     // a 1 mm web whole; thinner ones burn through).
     let min_web = 1.0;
-    let mut outline = vec![Point::new(0.0, 0.0)];
-    let notches = |edge: SlotEdge| -> Vec<&Feature> {
+    let notches = |edge: SlotEdge| {
         features
             .iter()
-            .filter(|f| f.kind == FeatureKind::Slot && f.edge == Some(edge))
-            .collect()
+            .filter(move |f| f.kind == FeatureKind::Slot && f.edge == Some(edge))
     };
+    let slots = features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Slot && f.edge.is_some())
+        .count();
+    let mut outline = Vec::with_capacity(5 + 4 * slots);
+    outline.push(Point::new(0.0, 0.0));
     for edge in [SlotEdge::Bottom, SlotEdge::Top] {
         let mut last_end = 0.0;
         for f in notches(edge) {
@@ -609,7 +665,7 @@ fn lamella_part(
     }
     outline.push(Point::new(length_mm, 0.0));
     outline.push(Point::new(length_mm, h));
-    for f in notches(SlotEdge::Top).into_iter().rev() {
+    for f in notches(SlotEdge::Top).rev() {
         let (x0, x1) = (
             f.center_part_mm.x - 0.5 * f.width_mm,
             f.center_part_mm.x + 0.5 * f.width_mm,
@@ -625,7 +681,17 @@ fn lamella_part(
     let holes = features
         .iter()
         .filter(|f| f.kind == FeatureKind::Hole)
-        .map(|f| circle_cw(f.center_part_mm, 0.5 * f.width_mm, ARC_TOLERANCE_MM))
+        .map(|f| {
+            let r = 0.5 * f.width_mm;
+            let k = match circles.iter().position(|c| c.radius_mm == r) {
+                Some(k) => k,
+                None => {
+                    circles.push(CircleCw::new(r, ARC_TOLERANCE_MM));
+                    circles.len() - 1
+                }
+            };
+            circles[k].at(f.center_part_mm)
+        })
         .collect();
     Ok(Part {
         id,

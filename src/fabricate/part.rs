@@ -232,17 +232,45 @@ pub fn signed_area_mm2(poly: &[Point]) -> f64 {
 /// Points on a circle, clockwise, so that no chord strays more than
 /// `tolerance_mm` from the arc (at least 8).
 pub fn circle_cw(center: Point, radius_mm: f64, tolerance_mm: f64) -> Vec<Point> {
-    let half_angle = (1.0 - (tolerance_mm / radius_mm).min(1.0)).acos();
-    let n = ((std::f64::consts::PI / half_angle.max(1e-6)).ceil() as usize).clamp(8, 720);
-    (0..n)
-        .map(|k| {
-            let a = -std::f64::consts::TAU * k as f64 / n as f64;
-            Point::new(
-                center.x + radius_mm * a.cos(),
-                center.y + radius_mm * a.sin(),
-            )
-        })
-        .collect()
+    CircleCw::new(radius_mm, tolerance_mm).at(center)
+}
+
+/// [`circle_cw`] for one radius and tolerance, its trigonometry taken once
+/// for every circle of that size: the points' offsets from the centre.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CircleCw {
+    /// The radius, mm.
+    pub radius_mm: f64,
+    /// r·(cos a, sin a) for every point, clockwise from a = 0, mm.
+    offsets_mm: Vec<(f64, f64)>,
+}
+
+impl CircleCw {
+    /// The circle of `radius_mm` whose chords stray at most `tolerance_mm`
+    /// from the arc (at least 8 points).
+    pub fn new(radius_mm: f64, tolerance_mm: f64) -> Self {
+        let half_angle = (1.0 - (tolerance_mm / radius_mm).min(1.0)).acos();
+        let n = ((std::f64::consts::PI / half_angle.max(1e-6)).ceil() as usize).clamp(8, 720);
+        let offsets_mm = (0..n)
+            .map(|k| {
+                let a = -std::f64::consts::TAU * k as f64 / n as f64;
+                (radius_mm * a.cos(), radius_mm * a.sin())
+            })
+            .collect();
+        Self {
+            radius_mm,
+            offsets_mm,
+        }
+    }
+
+    /// The points around `center`: exactly [`circle_cw`]'s (centre plus
+    /// the same offset, rounded once).
+    pub fn at(&self, center: Point) -> Vec<Point> {
+        self.offsets_mm
+            .iter()
+            .map(|&(dx, dy)| Point::new(center.x + dx, center.y + dy))
+            .collect()
+    }
 }
 
 /// Largest distance a circle's polyline strays from the arc, mm.
@@ -261,6 +289,29 @@ mod tests {
         assert!(4.5 * (1.0 - (std::f64::consts::PI / n).cos()) <= ARC_TOLERANCE_MM);
         for p in &c {
             assert!((p.distance(Point::new(3.0, 4.0)) - 4.5).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_shared_circle_gives_the_direct_points() {
+        // The offsets taken once, added to each centre: bit for bit the
+        // points computed directly, r·cos a added to the centre.
+        for r in [0.5, 3.0, 3.5, 4.5, 6.5, 40.0] {
+            let shared = CircleCw::new(r, ARC_TOLERANCE_MM);
+            for centre in [
+                Point::new(0.0, 0.0),
+                Point::new(1234.567, 25.0),
+                Point::new(-3.1, 7.7),
+            ] {
+                let got = shared.at(centre);
+                let n = got.len();
+                for (k, q) in got.iter().enumerate() {
+                    let a = -std::f64::consts::TAU * k as f64 / n as f64;
+                    assert_eq!(q.x.to_bits(), (centre.x + r * a.cos()).to_bits());
+                    assert_eq!(q.y.to_bits(), (centre.y + r * a.sin()).to_bits());
+                }
+                assert_eq!(got, circle_cw(centre, r, ARC_TOLERANCE_MM));
+            }
         }
     }
 }

@@ -393,6 +393,8 @@ struct Ctx<'a> {
     /// washers that pack denser with their arms interleaved
     /// ([`lattice`]); empty for every other part.
     blocks: Vec<Vec<lattice::Block>>,
+    /// Per part: its net area, mm² (`net_area_mm2`, taken once).
+    areas: Vec<f64>,
 }
 
 /// Sheets and the number of lamella lanes on them.
@@ -534,6 +536,7 @@ impl<'a> Ctx<'a> {
             item_len,
             others,
             blocks,
+            areas: kit.parts.iter().map(net_area_mm2).collect(),
         })
     }
 
@@ -952,10 +955,10 @@ impl<'a> Ctx<'a> {
     fn shortfall_others(&self, part: usize, copy: u32, sheets: &[SheetNest]) -> Error {
         let pos = self.others.iter().position(|&i| i == part).unwrap_or(0);
         let mut copies = u64::from(self.kit.parts[part].count - copy);
-        let mut area = copies as f64 * net_area_mm2(&self.kit.parts[part]);
+        let mut area = copies as f64 * self.areas[part];
         for &i in &self.others[pos + 1..] {
             copies += u64::from(self.kit.parts[i].count);
-            area += f64::from(self.kit.parts[i].count) * net_area_mm2(&self.kit.parts[i]);
+            area += f64::from(self.kit.parts[i].count) * self.areas[i];
         }
         self.fail_stock(format!(
             "the count limits ({}) do not hold the kit: after {} sheet(s), {copies} part \
@@ -1171,8 +1174,8 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     // of small parts emptied into the others.
     let finish = |sheets: &mut Vec<SheetNest>| {
         sheets.retain(|s| !s.placements.is_empty());
-        outline::place_bands(kit, sheets, ctx.margin, ctx.gap, &ctx.rotations);
-        outline::eliminate(kit, sheets, ctx.margin, ctx.gap, &ctx.rotations);
+        outline::place_bands(kit, &ctx.areas, sheets, ctx.margin, ctx.gap, &ctx.rotations);
+        outline::eliminate(kit, &ctx.areas, sheets, ctx.margin, ctx.gap, &ctx.rotations);
     };
     let (mut sheets, lanes_used) = if coil && st.sizes[0].length_mm.is_none() {
         ctx.coil()?
@@ -1183,7 +1186,7 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     sheets.sort_by_key(|s| s.size);
     let m = ctx.margin;
     // Once per part, not per copy placed.
-    let areas: Vec<f64> = kit.parts.iter().map(net_area_mm2).collect();
+    let areas = &ctx.areas;
     for (k, s) in sheets.iter_mut().enumerate() {
         s.id = format!("S{:02}", k + 1);
         s.part_area_mm2 = s.placements.iter().map(|pl| areas[pl.part]).sum();
@@ -1244,7 +1247,8 @@ fn summarize(
     let total_area: f64 = kit
         .parts
         .iter()
-        .map(|p| net_area_mm2(p) * f64::from(p.count))
+        .zip(&ctx.areas)
+        .map(|(p, a)| a * f64::from(p.count))
         .sum();
     let lane_sizes: Vec<&Size> = ctx.sizes.iter().filter(|z| z.lanes > 0).collect();
     let max_area = ctx.sizes.iter().map(|z| z.lu * z.wu).fold(0.0, f64::max);

@@ -24,7 +24,7 @@
 use super::export::grown_outline;
 use super::{placed_bbox, rotate, Placement, SheetNest};
 use crate::fabricate::part::{Part, PartKind};
-use crate::fabricate::{net_area_mm2, Kit};
+use crate::fabricate::Kit;
 use jagua_rs::collision_detection::hazards::filter::NoFilter;
 use jagua_rs::collision_detection::hazards::{Hazard, HazardEntity};
 use jagua_rs::collision_detection::{CDEConfig, CDEngine};
@@ -588,8 +588,10 @@ struct Shape {
 /// The sheet-elimination pass: sheets of non-lamella parts, fewest-filled
 /// first, emptied into the free space of the others by true outline where
 /// every part finds a place; returns how many sheets were dropped.
+/// `areas`: every part's net area by index (`fabricate::net_area_mm2`).
 pub fn eliminate(
     kit: &Kit,
+    areas: &[f64],
     sheets: &mut Vec<SheetNest>,
     margin: f64,
     gap: f64,
@@ -600,7 +602,7 @@ pub fn eliminate(
         margin,
         gap,
         rotations,
-        areas: kit.parts.iter().map(net_area_mm2).collect(),
+        areas: areas.to_vec(),
         queries: Cell::new(0),
         limit: MAX_QUERIES,
         hazards: RefCell::new(HashMap::new()),
@@ -686,8 +688,10 @@ fn put_on(
 /// stay as they were. Past
 /// [`MAX_BAND_QUERIES`] each band left goes alone onto a sheet left empty,
 /// in its lower-left corner. Returns how many sheets were dropped.
+/// `areas`: every part's net area by index (`fabricate::net_area_mm2`).
 pub fn place_bands(
     kit: &Kit,
+    areas: &[f64],
     sheets: &mut Vec<SheetNest>,
     margin: f64,
     gap: f64,
@@ -713,7 +717,7 @@ pub fn place_bands(
         margin,
         gap,
         rotations,
-        areas: kit.parts.iter().map(net_area_mm2).collect(),
+        areas: areas.to_vec(),
         queries: Cell::new(0),
         limit: MAX_BAND_QUERIES,
         hazards: RefCell::new(HashMap::new()),
