@@ -167,10 +167,44 @@ impl Hermite5 {
         [a0, a1, a2, a3, a4, a5]
     }
 
+    /// Segment `k` as one polynomial piece (its coefficients computed once,
+    /// for evaluating several points of it).
+    pub fn piece(&self, k: usize) -> Piece {
+        Piece {
+            a: self.coefficients(k),
+            h: self.t[k + 1] - self.t[k],
+        }
+    }
+
     /// Value and derivatives with respect to `t` in segment `k` at local u.
     pub fn jet_at(&self, k: usize, u: f64) -> Jet {
-        let a = self.coefficients(k);
-        let h = self.t[k + 1] - self.t[k];
+        self.piece(k).jet(u)
+    }
+
+    /// Value and derivatives with respect to `t` at parameter `t` (clamped).
+    pub fn jet(&self, t: f64) -> Jet {
+        let (k, u) = self.locate(t);
+        self.jet_at(k, u)
+    }
+}
+
+/// One segment of a [`Hermite5`] in power basis over its local u ∈ [0, 1],
+/// with its parameter length. Guarantees: every evaluation gives exactly
+/// (bit for bit) what the interpolant's per-segment methods give
+/// ([`Hermite5::jet_at`], [`SmoothCurve::station_at`]); it only saves
+/// recomputing the coefficients when one segment is evaluated many times.
+#[derive(Debug, Clone, Copy)]
+pub struct Piece {
+    a: [DVec3; 6],
+    h: f64,
+}
+
+impl Piece {
+    /// Value and derivatives with respect to the interpolant's parameter at local u.
+    #[inline]
+    pub fn jet(&self, u: f64) -> Jet {
+        let a = &self.a;
+        let h = self.h;
         let value = a[0] + u * (a[1] + u * (a[2] + u * (a[3] + u * (a[4] + u * a[5]))));
         let du = a[1] + u * (2.0 * a[2] + u * (3.0 * a[3] + u * (4.0 * a[4] + u * 5.0 * a[5])));
         let ddu = 2.0 * a[2] + u * (6.0 * a[3] + u * (12.0 * a[4] + u * 20.0 * a[5]));
@@ -183,15 +217,32 @@ impl Hermite5 {
         }
     }
 
-    /// Value and derivatives with respect to `t` at parameter `t` (clamped).
-    pub fn jet(&self, t: f64) -> Jet {
-        let (k, u) = self.locate(t);
-        self.jet_at(k, u)
+    /// The value at local u.
+    #[inline]
+    pub fn value(&self, u: f64) -> DVec3 {
+        let a = &self.a;
+        a[0] + u * (a[1] + u * (a[2] + u * (a[3] + u * (a[4] + u * a[5]))))
     }
 
-    /// |d value / du| in segment k (the speed in the local coordinate).
-    fn speed_u(a: &[DVec3; 6], u: f64) -> f64 {
+    /// |d value / du| (the speed in the local coordinate).
+    #[inline]
+    fn speed_u(&self, u: f64) -> f64 {
+        let a = &self.a;
         (a[1] + u * (2.0 * a[2] + u * (3.0 * a[3] + u * (4.0 * a[4] + u * 5.0 * a[5])))).length()
+    }
+
+    /// ∫₀ᵘ |c′(w)| dw by 8-point Gauss–Legendre (the arc length from the
+    /// segment's start to local u, for a curve over its chord parameter).
+    #[inline]
+    fn arc_length_to(&self, u: f64) -> f64 {
+        if u <= 0.0 {
+            return 0.0;
+        }
+        let mut sum = 0.0;
+        for (x, w) in GL_NODES.iter().zip(GL_WEIGHTS.iter()) {
+            sum += w * self.speed_u(x * u);
+        }
+        sum * u
     }
 }
 
@@ -605,8 +656,7 @@ impl SmoothCurve {
         s.push(0.0);
         let mut total = 0.0;
         for k in 0..h.segments() {
-            let a = h.coefficients(k);
-            total += integrate_speed(&a, 1.0);
+            total += h.piece(k).arc_length_to(1.0);
             s.push(total);
         }
         SmoothCurve {
@@ -668,13 +718,34 @@ impl SmoothCurve {
             .partition_point(|&x| x <= station_mm)
             .saturating_sub(1)
             .min(n - 2);
+        self.solve_in_segment(k, station_mm)
+    }
+
+    /// [`SmoothCurve::locate_station`] for a station expected in segment
+    /// `hint` (or, failing that, the next one): exactly the same result, the
+    /// search for the segment skipped when the guess is right (stations
+    /// visited in order).
+    pub fn locate_station_near(&self, station_mm: f64, hint: usize) -> (usize, f64) {
+        let s = &self.s;
+        for k in [hint, hint + 1] {
+            // The segment the search would find: the last k with s[k] ≤ station.
+            if k + 1 < s.len() && 0.0 < station_mm && s[k] <= station_mm && station_mm < s[k + 1] {
+                return self.solve_in_segment(k, station_mm);
+            }
+        }
+        self.locate_station(station_mm)
+    }
+
+    /// Local u of a station known to lie in segment k (Newton on the arc
+    /// length from the linear guess, to |Δu| < 1e-14).
+    fn solve_in_segment(&self, k: usize, station_mm: f64) -> (usize, f64) {
         let target = station_mm - self.s[k];
         let seg_len = self.s[k + 1] - self.s[k];
-        let a = self.h.coefficients(k);
+        let piece = self.h.piece(k);
         let mut u = (target / seg_len).clamp(0.0, 1.0);
         for _ in 0..12 {
-            let f = integrate_speed(&a, u) - target;
-            let speed = Hermite5::speed_u(&a, u);
+            let f = piece.arc_length_to(u) - target;
+            let speed = piece.speed_u(u);
             if speed <= 0.0 {
                 break;
             }
@@ -687,6 +758,13 @@ impl SmoothCurve {
         (k, u)
     }
 
+    /// Segment k as one polynomial piece, for evaluating several points of
+    /// it ([`SmoothCurve::gauss_nodes4_in`], [`SmoothCurve::station_in`],
+    /// [`Piece::jet`]): exactly what the per-segment methods give.
+    pub fn piece(&self, k: usize) -> Piece {
+        self.h.piece(k)
+    }
+
     /// 4-point Gauss–Legendre quadrature (exact for degree 7) over segment
     /// k from local u0 to u1 in arc length: for each node its local u, its
     /// station (mm) and its weight (mm), so Σ w·f(u) ≈ ∫ f ds over that
@@ -695,6 +773,18 @@ impl SmoothCurve {
     /// length, so |c′| is nearly constant and the error is below
     /// (Δs)²·max|d|c′|/du|/8, far under 1e-6 mm on sampled curves.
     pub fn gauss_nodes4(&self, k: usize, u0: f64, u1: f64) -> [(f64, f64, f64); 4] {
+        self.gauss_nodes4_in(&self.h.piece(k), k, u0, u1)
+    }
+
+    /// [`SmoothCurve::gauss_nodes4`] with segment k given as its piece
+    /// (`self.piece(k)`).
+    pub fn gauss_nodes4_in(
+        &self,
+        piece: &Piece,
+        k: usize,
+        u0: f64,
+        u1: f64,
+    ) -> [(f64, f64, f64); 4] {
         const X: [f64; 4] = [
             0.069_431_844_202_973_71,
             0.330_009_478_207_571_87,
@@ -707,13 +797,12 @@ impl SmoothCurve {
             0.326_072_577_431_273_07,
             0.173_927_422_568_726_93,
         ];
-        let a = self.h.coefficients(k);
         let du = u1 - u0;
-        let s0 = self.s[k] + integrate_speed(&a, u0);
+        let s0 = self.s[k] + piece.arc_length_to(u0);
         let mut speeds = [0.0; 4];
         let mut total = 0.0;
         for i in 0..4 {
-            speeds[i] = Hermite5::speed_u(&a, u0 + X[i] * du);
+            speeds[i] = piece.speed_u(u0 + X[i] * du);
             total += W[i] * speeds[i] * du;
         }
         let mut out = [(0.0, 0.0, 0.0); 4];
@@ -725,8 +814,12 @@ impl SmoothCurve {
 
     /// Station of segment k at local u.
     pub fn station_at(&self, k: usize, u: f64) -> f64 {
-        let a = self.h.coefficients(k);
-        self.s[k] + integrate_speed(&a, u)
+        self.station_in(&self.h.piece(k), k, u)
+    }
+
+    /// [`SmoothCurve::station_at`] with segment k given as its piece.
+    pub fn station_in(&self, piece: &Piece, k: usize, u: f64) -> f64 {
+        self.s[k] + piece.arc_length_to(u)
     }
 
     /// Derivatives with respect to the chord parameter at segment k, local u.
@@ -736,7 +829,13 @@ impl SmoothCurve {
 
     /// Point and unit tangent at a station (clamped to [0, length]).
     pub fn at(&self, station_mm: f64) -> CurvePoint {
-        let (k, u) = self.locate_station(station_mm);
+        self.at_located(station_mm, self.locate_station(station_mm))
+    }
+
+    /// [`SmoothCurve::at`] for a station already located:
+    /// `located = self.locate_station(station_mm)`.
+    pub fn at_located(&self, station_mm: f64, located: (usize, f64)) -> CurvePoint {
+        let (k, u) = located;
         let j = self.h.jet_at(k, u);
         CurvePoint {
             station_mm: station_mm.clamp(0.0, self.length_mm()),
@@ -753,18 +852,6 @@ impl SmoothCurve {
     pub fn tangent(&self, station_mm: f64) -> DVec3 {
         self.at(station_mm).tangent
     }
-}
-
-/// ∫_0^u |c'(w)| dw for a segment in power basis, by 8-point Gauss–Legendre.
-fn integrate_speed(a: &[DVec3; 6], u: f64) -> f64 {
-    if u <= 0.0 {
-        return 0.0;
-    }
-    let mut sum = 0.0;
-    for (x, w) in GL_NODES.iter().zip(GL_WEIGHTS.iter()) {
-        sum += w * Hermite5::speed_u(a, x * u);
-    }
-    sum * u
 }
 
 #[cfg(test)]
