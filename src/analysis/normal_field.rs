@@ -315,18 +315,45 @@ impl NormalField {
         }
         segment_first.push(total);
         let count = total + 1;
-        let mut stations_mm = Vec::with_capacity(count);
-        let mut noise = Vec::with_capacity(count);
-        let mut points_mm = Vec::with_capacity(count);
-        let mut tangents = Vec::with_capacity(count);
-        let mut curvatures = Vec::with_capacity(count);
+        let mut stations_mm: Vec<f64> = Vec::with_capacity(count);
+        let mut points_mm: Vec<DVec3> = Vec::with_capacity(count);
+        let mut tangents: Vec<DVec3> = Vec::with_capacity(count);
+        let mut refs: Vec<DVec3> = Vec::with_capacity(count);
+        // The binormal observations, their angle raw (the branch is chosen
+        // once the node field is known), in station order; and whether the
+        // first one's binormal points down.
+        let mut binormals: Vec<Observation> =
+            Vec::with_capacity(if use_binormal { count } else { 0 });
+        let mut first_points_down: Option<bool> = None;
         let mut push = |piece: &Piece, u: f64, station: f64, near: usize| {
-            let (p, x, kv) = point_tangent_curvature(piece, u);
+            let (p, x, kvec) = point_tangent_curvature(piece, u);
+            // The rotation-minimising frame, carried from the last station.
+            let r = match (points_mm.last(), tangents.last(), refs.last()) {
+                (Some(&p0), Some(&t0), Some(&r0)) => double_reflection(p0, t0, r0, p, x),
+                _ => x.any_orthonormal_vector(),
+            };
             stations_mm.push(station);
-            noise.push(smooth.curvature_noise_per_mm(near));
             points_mm.push(p);
             tangents.push(x);
-            curvatures.push(kv);
+            refs.push(r);
+            if !use_binormal {
+                return;
+            }
+            let kappa = kvec.length();
+            let sigma_kappa = smooth
+                .curvature_noise_per_mm(near)
+                .hypot(opts.curvature_floor_per_mm);
+            let sigma = sigma_kappa / kappa.max(1e-300);
+            if sigma > opts.max_binormal_sigma_rad {
+                return;
+            }
+            let b = x.cross(kvec / kappa);
+            first_points_down.get_or_insert(b.z < 0.0);
+            binormals.push(Observation {
+                station_mm: station,
+                theta: b.dot(x.cross(r)).atan2(b.dot(r)),
+                weight: 1.0 / (sigma * sigma),
+            });
         };
         for k in 0..n - 1 {
             let piece = smooth.piece(k);
@@ -342,18 +369,6 @@ impl NormalField {
             }
         }
         push(&smooth.piece(n - 2), 1.0, length, n - 1);
-        let mut refs = Vec::with_capacity(stations_mm.len());
-        refs.push(tangents[0].any_orthonormal_vector());
-        for i in 1..stations_mm.len() {
-            let r = double_reflection(
-                points_mm[i - 1],
-                tangents[i - 1],
-                refs[i - 1],
-                points_mm[i],
-                tangents[i],
-            );
-            refs.push(r);
-        }
         let mut field = NormalField {
             stations_mm,
             points_mm,
@@ -374,7 +389,7 @@ impl NormalField {
 
         // Node angles, unwrapped along the curve (normals oriented alike).
         let node_weight = 1.0 / (opts.node_sigma_rad * opts.node_sigma_rad);
-        let mut obs: Vec<Observation> = Vec::with_capacity(nodes.len());
+        let mut obs: Vec<Observation> = Vec::with_capacity(nodes.len() + binormals.len());
         for nn in nodes {
             let (s, z) = (nn.station_mm, nn.normal_world);
             debug_assert_eq!(smooth.locate_station(s), (nn.segment, nn.u));
@@ -391,43 +406,26 @@ impl NormalField {
         }
         let from_nodes = AngleSpline::fit(length, knot_step, &obs, opts.smoothing);
 
-        if use_binormal {
-            let mut previous: Option<f64> = None;
-            let mut binormals = Vec::new();
-            for i in 0..field.stations_mm.len() {
-                let kvec = curvatures[i];
-                let kappa = kvec.length();
-                let sigma_kappa = noise[i].hypot(opts.curvature_floor_per_mm);
-                let sigma = sigma_kappa / kappa.max(1e-300);
-                if sigma > opts.max_binormal_sigma_rad {
-                    continue;
-                }
-                let (s, x, u1) = (field.stations_mm[i], field.tangents[i], field.refs[i]);
-                let b = x.cross(kvec / kappa);
-                let raw = b.dot(x.cross(u1)).atan2(b.dot(u1));
-                // The binormal is the normal up to sign: take the branch
-                // nearest the node field, else the previous binormal, else
-                // the one whose normal points up.
-                let theta = if !nodes.is_empty() {
-                    unwrap_near(raw, from_nodes.eval(s).0, std::f64::consts::PI)
-                } else if let Some(prev) = previous {
-                    unwrap_near(raw, prev, std::f64::consts::PI)
-                } else if b.z < 0.0 {
-                    raw + std::f64::consts::PI
-                } else {
-                    raw
-                };
-                previous = Some(theta);
-                binormals.push(Observation {
-                    station_mm: s,
-                    theta,
-                    weight: 1.0 / (sigma * sigma),
-                });
-            }
-            if !binormals.is_empty() {
-                field.sources.binormals = true;
-                obs.extend(binormals);
-            }
+        // The binormal is the normal up to sign: take the branch nearest the
+        // node field, else the previous binormal, else the one whose normal
+        // points up.
+        let mut previous: Option<f64> = None;
+        for o in &mut binormals {
+            let raw = o.theta;
+            o.theta = if !nodes.is_empty() {
+                unwrap_near(raw, from_nodes.eval(o.station_mm).0, std::f64::consts::PI)
+            } else if let Some(prev) = previous {
+                unwrap_near(raw, prev, std::f64::consts::PI)
+            } else if first_points_down == Some(true) {
+                raw + std::f64::consts::PI
+            } else {
+                raw
+            };
+            previous = Some(o.theta);
+        }
+        if !binormals.is_empty() {
+            field.sources.binormals = true;
+            obs.extend(binormals);
         }
         field.angle = if field.sources.binormals {
             AngleSpline::fit(length, knot_step, &obs, opts.smoothing)

@@ -429,17 +429,7 @@ fn kernel_fit(
         let coef = poly_fit(t, v, t0, scale, deg);
         return (coef, 0.0);
     };
-    let mut coef = [DVec3::ZERO; MAX_DEGREE + 1];
-    let mut rhs_axis = [0.0f64; MAX_DEGREE + 1];
-    for axis in 0..3 {
-        for q in 0..k {
-            rhs_axis[q] = rhs[q][axis];
-        }
-        let x = cholesky_solve(&l, &rhs_axis, k);
-        for q in 0..k {
-            coef[q][axis] = x[q];
-        }
-    }
+    let coef = cholesky_solve3(&l, &rhs, k);
     if deg < 2 {
         return (coef, 0.0);
     }
@@ -505,6 +495,29 @@ fn cholesky_solve(l: &Small, b: &[f64; MAX_DEGREE + 1], k: usize) -> [f64; MAX_D
         let mut sum = y[i];
         for p in i + 1..k {
             sum -= l[p][i] * x[p];
+        }
+        x[i] = sum / l[i][i];
+    }
+    x
+}
+
+/// [`cholesky_solve`] for the three coordinates at once: each coordinate
+/// goes through exactly the operations the scalar solve does (the same
+/// result bit for bit, one pass instead of three).
+fn cholesky_solve3(l: &Small, b: &[DVec3; MAX_DEGREE + 1], k: usize) -> [DVec3; MAX_DEGREE + 1] {
+    let mut y = [DVec3::ZERO; MAX_DEGREE + 1];
+    for i in 0..k {
+        let mut sum = b[i];
+        for p in 0..i {
+            sum -= y[p] * l[i][p];
+        }
+        y[i] = sum / l[i][i];
+    }
+    let mut x = [DVec3::ZERO; MAX_DEGREE + 1];
+    for i in (0..k).rev() {
+        let mut sum = y[i];
+        for p in i + 1..k {
+            sum -= x[p] * l[p][i];
         }
         x[i] = sum / l[i][i];
     }
@@ -638,16 +651,13 @@ impl SmoothCurve {
                 acc += w[1].distance(w[0]).max(1e-9);
                 t.push(acc);
             }
-            let (d1, d2): (Vec<DVec3>, Vec<DVec3>) = smoothed
-                .d1
-                .iter()
-                .zip(&smoothed.d2)
-                .map(|(&a, &b)| {
-                    let v2 = a.length_squared().max(1e-300);
-                    let x = a / v2.sqrt();
-                    (x, (b - x * b.dot(x)) / v2)
-                })
-                .unzip();
+            let (mut d1, mut d2) = (smoothed.d1, smoothed.d2);
+            for (a, b) in d1.iter_mut().zip(d2.iter_mut()) {
+                let v2 = a.length_squared().max(1e-300);
+                let x = *a / v2.sqrt();
+                *b = (*b - x * b.dot(x)) / v2;
+                *a = x;
+            }
             Hermite5::from_parts(t, values, d1, d2)
         } else {
             Hermite5::from_parts(t, smoothed.values, smoothed.d1, smoothed.d2)
