@@ -321,8 +321,9 @@ fn segment_deviation(c: &SmoothCurve) -> Vec<f64> {
     (0..pts.len() - 1)
         .map(|k| {
             let mut worst: f64 = 0.0;
+            let piece = c.piece(k);
             for u in [0.25, 0.5, 0.75] {
-                let p = c.jet_at(k, u).value;
+                let p = piece.value(u);
                 let chord = pts[k].lerp(pts[k + 1], u);
                 worst = worst.max(p.distance(chord));
             }
