@@ -355,13 +355,13 @@ impl NormalField {
                 weight: 1.0 / (sigma * sigma),
             });
         };
-        for k in 0..n - 1 {
+        for (k, &sample_mm) in samples[..n - 1].iter().enumerate() {
             let piece = smooth.piece(k);
             let parts = parts_of(k);
             for p in 0..parts {
                 let u = p as f64 / parts as f64;
                 let station = if p == 0 {
-                    samples[k]
+                    sample_mm
                 } else {
                     smooth.station_in(&piece, k, u)
                 };

@@ -428,6 +428,10 @@ fn refine(
     gap.is_finite().then_some((ka, ua, kb, ub, gap))
 }
 
+/// A raw node's two stations located on their curves: on `a`, the point
+/// and tangent and the (segment, u) they lie at, then the same on `b`.
+type Located = (CurvePoint, (usize, f64), CurvePoint, (usize, f64));
+
 fn build_topology(
     net: &Network,
     curves: &[SmoothCurve],
@@ -437,7 +441,7 @@ fn build_topology(
     let mut warnings = Vec::new();
     // Each station located once on its curve, for the angle, the node and
     // every later stage (`CurveNode::segment`, `CurveNode::u`).
-    let located: Vec<(CurvePoint, (usize, f64), CurvePoint, (usize, f64))> = raw
+    let located: Vec<Located> = raw
         .iter()
         .map(|r| {
             let (la, lb) = (
