@@ -82,7 +82,21 @@ impl LamellaLine {
         wanted.push(strip.length_mm);
         let mut order: Vec<usize> = (0..wanted.len()).collect();
         order.sort_by(|&a, &b| wanted[a].total_cmp(&wanted[b]));
-        let sorted: Vec<f64> = order.iter().map(|&i| wanted[i]).collect();
+        // Where each lies on the curve: the nodes' as the topology found
+        // them, the others searched for (in order, each from the last).
+        let n = strip.nodes.len();
+        let mut hint = 0;
+        let located: Vec<(usize, f64)> = order
+            .iter()
+            .map(|&i| {
+                let at = match strip.nodes.get(i) {
+                    Some(cn) => (cn.segment, cn.u),
+                    None => smooth.locate_station_near(wanted[i], hint),
+                };
+                hint = at.0;
+                at
+            })
+            .collect();
         let off: Vec<(f64, f64)> = offsets
             .iter()
             .filter(|o| o.dy_mm != 0.0 || o.dz_mm != 0.0)
@@ -91,10 +105,9 @@ impl LamellaLine {
         let mut integrated = if off.is_empty() {
             Vec::new()
         } else {
-            strip.offset_stations_many(smooth, &off, &sorted, LINE_STEP_MM)
+            strip.offset_stations_located(smooth, &off, &located, LINE_STEP_MM)
         }
         .into_iter();
-        let n = strip.nodes.len();
         offsets
             .iter()
             .map(|&offset| {

@@ -21,7 +21,7 @@
 //! ruling it is a smooth interpolant of the node angles. Edge curves are not
 //! asymptotic: their normal comes from their nodes only.
 
-use crate::geom::curve::SmoothCurve;
+use crate::geom::curve::{Piece, SmoothCurve};
 use glam::DVec3;
 
 /// One observation of the normal's angle.
@@ -226,6 +226,10 @@ pub struct NormalField {
     tangents: Vec<DVec3>,
     /// u₁ of the rotation-minimising frame at each station.
     refs: Vec<DVec3>,
+    /// Index of the first station in each segment of the curve (the
+    /// sample's own), and last the final station's: segment k's stations
+    /// are `segment_first[k]..segment_first[k + 1]`.
+    segment_first: Vec<usize>,
     angle: AngleSpline,
     /// What the angle θ(s) was fitted to.
     pub sources: FieldSources,
@@ -260,21 +264,36 @@ fn double_reflection(p0: DVec3, t0: DVec3, r: DVec3, p1: DVec3, t1: DVec3) -> DV
 /// Below this distance (mm) a frame is carried by projection, not reflection.
 const MIN_REFLECTION_STEP_MM: f64 = 1e-4;
 
-/// Position, unit tangent and curvature vector (1/mm) at segment k, local u.
-fn point_tangent_curvature(smooth: &SmoothCurve, k: usize, u: f64) -> (DVec3, DVec3, DVec3) {
-    let j = smooth.jet_at(k, u);
+/// A node's normal as the field takes it: its station on the curve, where
+/// that lies (segment and local u, as `SmoothCurve::locate_station` gives
+/// them), and the unit normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeNormal {
+    /// Station on the curve, mm.
+    pub station_mm: f64,
+    /// Segment of the curve the station lies in.
+    pub segment: usize,
+    /// Local coordinate of the station in its segment.
+    pub u: f64,
+    /// Unit normal, world frame.
+    pub normal_world: DVec3,
+}
+
+/// Position, unit tangent and curvature vector (1/mm) of a piece at local u.
+fn point_tangent_curvature(piece: &Piece, u: f64) -> (DVec3, DVec3, DVec3) {
+    let j = piece.jet(u);
     let v2 = j.d1.length_squared();
     let x = j.d1 / v2.sqrt();
     (j.value, x, (j.d2 - x * j.d2.dot(x)) / v2)
 }
 
 impl NormalField {
-    /// Fit the normal field of a curve to its node normals (`nodes`:
-    /// station and unit normal, oriented consistently, sorted by station)
-    /// and, when `use_binormal`, to its binormals.
+    /// Fit the normal field of a curve to its node normals (`nodes`: unit
+    /// normals oriented consistently, sorted by station) and, when
+    /// `use_binormal`, to its binormals.
     pub fn new(
         smooth: &SmoothCurve,
-        nodes: &[(f64, DVec3)],
+        nodes: &[NodeNormal],
         use_binormal: bool,
         opts: NormalFieldOptions,
     ) -> NormalField {
@@ -283,51 +302,79 @@ impl NormalField {
         // its parameter to the largest step.
         let samples = smooth.sample_stations_mm();
         let n = samples.len();
-        let mut stations_mm = Vec::with_capacity(n);
-        let mut noise = Vec::with_capacity(n);
-        let mut points_mm = Vec::with_capacity(n);
-        let mut tangents = Vec::with_capacity(n);
-        let mut curvatures = Vec::with_capacity(n);
-        let mut push = |k: usize, u: f64, station: f64, near: usize| {
-            let (p, x, kv) = point_tangent_curvature(smooth, k, u);
+        let parts_of = |k: usize| {
+            ((samples[k + 1] - samples[k]) / opts.max_frame_step_mm)
+                .ceil()
+                .max(1.0) as usize
+        };
+        let mut segment_first = Vec::with_capacity(n);
+        let mut total = 0;
+        for k in 0..n - 1 {
+            segment_first.push(total);
+            total += parts_of(k);
+        }
+        segment_first.push(total);
+        let count = total + 1;
+        let mut stations_mm: Vec<f64> = Vec::with_capacity(count);
+        let mut points_mm: Vec<DVec3> = Vec::with_capacity(count);
+        let mut tangents: Vec<DVec3> = Vec::with_capacity(count);
+        let mut refs: Vec<DVec3> = Vec::with_capacity(count);
+        // The binormal observations, their angle raw (the branch is chosen
+        // once the node field is known), in station order; and whether the
+        // first one's binormal points down.
+        let mut binormals: Vec<Observation> =
+            Vec::with_capacity(if use_binormal { count } else { 0 });
+        let mut first_points_down: Option<bool> = None;
+        let mut push = |piece: &Piece, u: f64, station: f64, near: usize| {
+            let (p, x, kvec) = point_tangent_curvature(piece, u);
+            // The rotation-minimising frame, carried from the last station.
+            let r = match (points_mm.last(), tangents.last(), refs.last()) {
+                (Some(&p0), Some(&t0), Some(&r0)) => double_reflection(p0, t0, r0, p, x),
+                _ => x.any_orthonormal_vector(),
+            };
             stations_mm.push(station);
-            noise.push(smooth.curvature_noise_per_mm(near));
             points_mm.push(p);
             tangents.push(x);
-            curvatures.push(kv);
+            refs.push(r);
+            if !use_binormal {
+                return;
+            }
+            let kappa = kvec.length();
+            let sigma_kappa = smooth
+                .curvature_noise_per_mm(near)
+                .hypot(opts.curvature_floor_per_mm);
+            let sigma = sigma_kappa / kappa.max(1e-300);
+            if sigma > opts.max_binormal_sigma_rad {
+                return;
+            }
+            let b = x.cross(kvec / kappa);
+            first_points_down.get_or_insert(b.z < 0.0);
+            binormals.push(Observation {
+                station_mm: station,
+                theta: b.dot(x.cross(r)).atan2(b.dot(r)),
+                weight: 1.0 / (sigma * sigma),
+            });
         };
-        for k in 0..n - 1 {
-            let parts = ((samples[k + 1] - samples[k]) / opts.max_frame_step_mm)
-                .ceil()
-                .max(1.0) as usize;
+        for (k, &sample_mm) in samples[..n - 1].iter().enumerate() {
+            let piece = smooth.piece(k);
+            let parts = parts_of(k);
             for p in 0..parts {
                 let u = p as f64 / parts as f64;
                 let station = if p == 0 {
-                    samples[k]
+                    sample_mm
                 } else {
-                    smooth.station_at(k, u)
+                    smooth.station_in(&piece, k, u)
                 };
-                push(k, u, station, if 2 * p < parts { k } else { k + 1 });
+                push(&piece, u, station, if 2 * p < parts { k } else { k + 1 });
             }
         }
-        push(n - 2, 1.0, length, n - 1);
-        let mut refs = Vec::with_capacity(stations_mm.len());
-        refs.push(tangents[0].any_orthonormal_vector());
-        for i in 1..stations_mm.len() {
-            let r = double_reflection(
-                points_mm[i - 1],
-                tangents[i - 1],
-                refs[i - 1],
-                points_mm[i],
-                tangents[i],
-            );
-            refs.push(r);
-        }
+        push(&smooth.piece(n - 2), 1.0, length, n - 1);
         let mut field = NormalField {
             stations_mm,
             points_mm,
             tangents,
             refs,
+            segment_first,
             angle: AngleSpline {
                 step_mm: length.max(1e-9),
                 intervals: 1,
@@ -342,11 +389,12 @@ impl NormalField {
 
         // Node angles, unwrapped along the curve (normals oriented alike).
         let node_weight = 1.0 / (opts.node_sigma_rad * opts.node_sigma_rad);
-        let mut obs: Vec<Observation> = Vec::with_capacity(nodes.len());
-        for &(s, z) in nodes {
-            let (k, u) = smooth.locate_station(s);
-            let (p, x, _) = point_tangent_curvature(smooth, k, u);
-            let mut theta = field.angle_of(s, p, x, z);
+        let mut obs: Vec<Observation> = Vec::with_capacity(nodes.len() + binormals.len());
+        for nn in nodes {
+            let (s, z) = (nn.station_mm, nn.normal_world);
+            debug_assert_eq!(smooth.locate_station(s), (nn.segment, nn.u));
+            let (p, x, _) = point_tangent_curvature(&smooth.piece(nn.segment), nn.u);
+            let mut theta = field.angle_of(nn.segment, s, p, x, z);
             if let Some(prev) = obs.last() {
                 theta = unwrap_near(theta, prev.theta, std::f64::consts::TAU);
             }
@@ -358,43 +406,26 @@ impl NormalField {
         }
         let from_nodes = AngleSpline::fit(length, knot_step, &obs, opts.smoothing);
 
-        if use_binormal {
-            let mut previous: Option<f64> = None;
-            let mut binormals = Vec::new();
-            for i in 0..field.stations_mm.len() {
-                let kvec = curvatures[i];
-                let kappa = kvec.length();
-                let sigma_kappa = noise[i].hypot(opts.curvature_floor_per_mm);
-                let sigma = sigma_kappa / kappa.max(1e-300);
-                if sigma > opts.max_binormal_sigma_rad {
-                    continue;
-                }
-                let (s, x, u1) = (field.stations_mm[i], field.tangents[i], field.refs[i]);
-                let b = x.cross(kvec / kappa);
-                let raw = b.dot(x.cross(u1)).atan2(b.dot(u1));
-                // The binormal is the normal up to sign: take the branch
-                // nearest the node field, else the previous binormal, else
-                // the one whose normal points up.
-                let theta = if !nodes.is_empty() {
-                    unwrap_near(raw, from_nodes.eval(s).0, std::f64::consts::PI)
-                } else if let Some(prev) = previous {
-                    unwrap_near(raw, prev, std::f64::consts::PI)
-                } else if b.z < 0.0 {
-                    raw + std::f64::consts::PI
-                } else {
-                    raw
-                };
-                previous = Some(theta);
-                binormals.push(Observation {
-                    station_mm: s,
-                    theta,
-                    weight: 1.0 / (sigma * sigma),
-                });
-            }
-            if !binormals.is_empty() {
-                field.sources.binormals = true;
-                obs.extend(binormals);
-            }
+        // The binormal is the normal up to sign: take the branch nearest the
+        // node field, else the previous binormal, else the one whose normal
+        // points up.
+        let mut previous: Option<f64> = None;
+        for o in &mut binormals {
+            let raw = o.theta;
+            o.theta = if !nodes.is_empty() {
+                unwrap_near(raw, from_nodes.eval(o.station_mm).0, std::f64::consts::PI)
+            } else if let Some(prev) = previous {
+                unwrap_near(raw, prev, std::f64::consts::PI)
+            } else if first_points_down == Some(true) {
+                raw + std::f64::consts::PI
+            } else {
+                raw
+            };
+            previous = Some(o.theta);
+        }
+        if !binormals.is_empty() {
+            field.sources.binormals = true;
+            obs.extend(binormals);
         }
         field.angle = if field.sources.binormals {
             AngleSpline::fit(length, knot_step, &obs, opts.smoothing)
@@ -404,19 +435,32 @@ impl NormalField {
         field
     }
 
-    /// The rotation-minimising u₁ at station s, point p, unit tangent x.
-    fn reference(&self, station_mm: f64, p: DVec3, x: DVec3) -> DVec3 {
-        let i = self
-            .stations_mm
-            .partition_point(|&t| t <= station_mm)
+    /// Index of the last frame station at or before `station_mm` (the
+    /// first if none), found among segment k's stations when the station
+    /// lies there, else by a search of them all: the same index either way.
+    fn station_index(&self, k: usize, station_mm: f64) -> usize {
+        let st = &self.stations_mm;
+        if k < self.segment_first.len().saturating_sub(1) {
+            let (lo, hi) = (self.segment_first[k], self.segment_first[k + 1]);
+            if st[lo] <= station_mm && station_mm < st[hi] {
+                return lo + st[lo..hi].partition_point(|&t| t <= station_mm) - 1;
+            }
+        }
+        st.partition_point(|&t| t <= station_mm)
             .saturating_sub(1)
-            .min(self.stations_mm.len() - 1);
+            .min(st.len() - 1)
+    }
+
+    /// The rotation-minimising u₁ at station s (in segment k), point p,
+    /// unit tangent x.
+    fn reference(&self, k: usize, station_mm: f64, p: DVec3, x: DVec3) -> DVec3 {
+        let i = self.station_index(k, station_mm);
         double_reflection(self.points_mm[i], self.tangents[i], self.refs[i], p, x)
     }
 
     /// Angle of the vector z (any, not necessarily ⟂ x) about x in the frame.
-    fn angle_of(&self, station_mm: f64, p: DVec3, x: DVec3, z: DVec3) -> f64 {
-        let u1 = self.reference(station_mm, p, x);
+    fn angle_of(&self, k: usize, station_mm: f64, p: DVec3, x: DVec3, z: DVec3) -> f64 {
+        let u1 = self.reference(k, station_mm, p, x);
         let u2 = x.cross(u1);
         z.dot(u2).atan2(z.dot(u1))
     }
@@ -424,7 +468,13 @@ impl NormalField {
     /// Unit normal and geodesic torsion (rad/mm) at a station with point p
     /// and unit tangent x.
     pub fn at(&self, station_mm: f64, p: DVec3, x: DVec3) -> (DVec3, f64) {
-        let u1 = self.reference(station_mm, p, x);
+        self.at_in(usize::MAX, station_mm, p, x)
+    }
+
+    /// [`NormalField::at`] for a station in segment k of the curve (any k
+    /// gives the same result; the right one spares a search).
+    pub fn at_in(&self, k: usize, station_mm: f64, p: DVec3, x: DVec3) -> (DVec3, f64) {
+        let u1 = self.reference(k, station_mm, p, x);
         let u2 = x.cross(u1);
         let (theta, dtheta) = self.angle.eval(station_mm);
         (u1 * theta.cos() + u2 * theta.sin(), dtheta)

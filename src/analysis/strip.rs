@@ -18,9 +18,9 @@
 //! Sign conventions: z agrees with the oriented node normals; kg and kn change
 //! sign with z, tg does not change with z or with the curve's direction.
 
-use crate::analysis::normal_field::{NormalField, NormalFieldOptions};
+use crate::analysis::normal_field::{NodeNormal, NormalField, NormalFieldOptions};
 use crate::analysis::topology::{CurveNode, Node};
-use crate::geom::curve::{Hermite5, SmoothCurve};
+use crate::geom::curve::{Hermite5, Jet, Piece, SmoothCurve};
 use crate::network::{Curve, Family};
 use glam::DVec3;
 
@@ -181,15 +181,20 @@ impl StripGeometry {
                 )
             }
             None => {
-                let mut at_nodes: Vec<(f64, DVec3)> = Vec::with_capacity(nodes.len());
+                let mut at_nodes: Vec<NodeNormal> = Vec::with_capacity(nodes.len());
                 for cn in nodes {
                     if at_nodes
                         .last()
-                        .is_some_and(|&(s, _)| cn.station_mm - s < 1e-6)
+                        .is_some_and(|nn| cn.station_mm - nn.station_mm < 1e-6)
                     {
                         continue;
                     }
-                    at_nodes.push((cn.station_mm, all_nodes[cn.node].normal_world));
+                    at_nodes.push(NodeNormal {
+                        station_mm: cn.station_mm,
+                        segment: cn.segment,
+                        u: cn.u,
+                        normal_world: all_nodes[cn.node].normal_world,
+                    });
                 }
                 // Edge curves are not asymptotic: their binormal is not the
                 // surface normal. Only a curve with no node at all falls back on it.
@@ -221,9 +226,11 @@ impl StripGeometry {
         // sparse (at most `MAX_CURVATURE_SPACING_MM` apart), so extremes of a
         // coarsely sampled curve (DXF LINEs, short polylines) are not missed.
         let stations = smooth.sample_stations_mm();
-        let mut samples: Vec<Curvatures> = Vec::with_capacity(n);
-        let mut push = |k: usize, u: f64, station: f64| {
-            let f = strip.frame_at_param(smooth, k, u, station);
+        let parts_of =
+            |i: usize| ((stations[i + 1] - stations[i]) / MAX_CURVATURE_SPACING_MM).ceil() as usize;
+        let count = 1 + (0..n - 1).map(|i| parts_of(i).max(1)).sum::<usize>();
+        let mut samples: Vec<Curvatures> = Vec::with_capacity(count);
+        let mut push = |f: DarbouxFrame| {
             samples.push(Curvatures {
                 station_mm: f.station_mm,
                 kg_per_mm: f.kg_per_mm,
@@ -233,14 +240,20 @@ impl StripGeometry {
         };
         for i in 0..n {
             let (k, u) = knot(i);
-            push(k, u, stations[i]);
+            let piece = smooth.piece(k);
+            push(strip.frame_of_jet(piece.jet(u), k, u, stations[i]));
             if i + 1 < n {
                 let len = stations[i + 1] - stations[i];
-                let parts = (len / MAX_CURVATURE_SPACING_MM).ceil() as usize;
+                let parts = parts_of(i);
                 for p in 1..parts {
                     let target = stations[i] + len * p as f64 / parts as f64;
-                    let (k, u) = smooth.locate_station(target);
-                    push(k, u, target);
+                    let (k, u) = smooth.locate_station_near(target, i);
+                    let j = if k == i {
+                        piece.jet(u)
+                    } else {
+                        smooth.jet_at(k, u)
+                    };
+                    push(strip.frame_of_jet(j, k, u, target));
                 }
             }
         }
@@ -262,8 +275,8 @@ impl StripGeometry {
             nodes
                 .iter()
                 .map(|cn| {
-                    let (k, u) = smooth.locate_station(cn.station_mm);
-                    curvature_vector(smooth, k, u)
+                    debug_assert_eq!(smooth.locate_station(cn.station_mm), (cn.segment, cn.u));
+                    curvature_vector(smooth, cn.segment, cn.u)
                         .dot(all_nodes[cn.node].normal_world)
                         .abs()
                 })
@@ -306,7 +319,12 @@ impl StripGeometry {
         u: f64,
         station_mm: f64,
     ) -> DarbouxFrame {
-        let j = smooth.jet_at(k, u);
+        self.frame_of_jet(smooth.jet_at(k, u), k, u, station_mm)
+    }
+
+    /// The Darboux frame from the curve's jet `j` at segment k, local u
+    /// (`j = smooth.jet_at(k, u)`; station given by the caller).
+    fn frame_of_jet(&self, j: Jet, k: usize, u: f64, station_mm: f64) -> DarbouxFrame {
         let speed = j.d1.length();
         let x = j.d1 / speed;
         let kvec = curvature_of(&j);
@@ -320,7 +338,7 @@ impl StripGeometry {
                 (z, y, -dz_ds.dot(x), -dz_ds.dot(y))
             }
             Normals::Field(f) => {
-                let (z, tg) = f.at(station_mm, j.value, x);
+                let (z, tg) = f.at_in(k, station_mm, j.value, x);
                 (z, z.cross(x), kvec.dot(z), tg)
             }
         };
@@ -368,23 +386,41 @@ impl StripGeometry {
         stations_mm: &[f64],
         max_step_mm: f64,
     ) -> Vec<Vec<f64>> {
+        // Where each requested station lies: (segment, local u), in order.
+        let mut hint = 0;
+        let targets: Vec<(usize, f64)> = stations_mm
+            .iter()
+            .map(|&s| {
+                let at = smooth.locate_station_near(s, hint);
+                hint = at.0;
+                at
+            })
+            .collect();
+        self.offset_stations_located(smooth, offsets_mm, &targets, max_step_mm)
+    }
+
+    /// [`StripGeometry::offset_stations_many`] for stations already located
+    /// on the curve: `targets[i] = smooth.locate_station(stations_mm[i])`,
+    /// in ascending order.
+    pub fn offset_stations_located(
+        &self,
+        smooth: &SmoothCurve,
+        offsets_mm: &[(f64, f64)],
+        targets: &[(usize, f64)],
+        max_step_mm: f64,
+    ) -> Vec<Vec<f64>> {
         let m = offsets_mm.len();
         let knots = smooth.sample_stations_mm();
         let segments = knots.len() - 1;
-        // Where each requested station lies: (segment, local u), in order.
-        let targets: Vec<(usize, f64)> = stations_mm
-            .iter()
-            .map(|&s| smooth.locate_station(s))
-            .collect();
-        let mut out: Vec<Vec<f64>> = vec![Vec::with_capacity(stations_mm.len()); m];
+        let mut out: Vec<Vec<f64>> = vec![Vec::with_capacity(targets.len()); m];
         let mut acc = vec![0.0; m];
         let mut next = 0;
-        let integrate = |k: usize, u0: f64, u1: f64, acc: &mut [f64]| {
+        let integrate = |piece: &Piece, k: usize, u0: f64, u1: f64, acc: &mut [f64]| {
             if u1 <= u0 {
                 return;
             }
-            for (u, s, w) in smooth.gauss_nodes4(k, u0, u1) {
-                let f = self.frame_at_param(smooth, k, u, s);
+            for (u, s, w) in smooth.gauss_nodes4_in(piece, k, u0, u1) {
+                let f = self.frame_of_jet(piece.jet(u), k, u, s);
                 for (j, &(dy, dz)) in offsets_mm.iter().enumerate() {
                     let a = 1.0 - dy * f.kg_per_mm - dz * f.kn_per_mm;
                     acc[j] += w
@@ -393,6 +429,7 @@ impl StripGeometry {
             }
         };
         for k in 0..segments {
+            let piece = smooth.piece(k);
             let parts = ((knots[k + 1] - knots[k]) / max_step_mm).ceil().max(1.0) as usize;
             let mut u_prev = 0.0;
             for p in 1..=parts {
@@ -402,7 +439,7 @@ impl StripGeometry {
                     && (targets[next].0 < k || (targets[next].0 == k && targets[next].1 <= u_piece))
                 {
                     if targets[next].0 == k && targets[next].1 > u_prev {
-                        integrate(k, u_prev, targets[next].1, &mut acc);
+                        integrate(&piece, k, u_prev, targets[next].1, &mut acc);
                         u_prev = targets[next].1;
                     }
                     for j in 0..m {
@@ -410,12 +447,12 @@ impl StripGeometry {
                     }
                     next += 1;
                 }
-                integrate(k, u_prev, u_piece, &mut acc);
+                integrate(&piece, k, u_prev, u_piece, &mut acc);
                 u_prev = u_piece;
             }
         }
         for j in 0..m {
-            while out[j].len() < stations_mm.len() {
+            while out[j].len() < targets.len() {
                 out[j].push(acc[j]);
             }
         }

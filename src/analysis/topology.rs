@@ -14,7 +14,7 @@
 //! oriented consistently along each curve and with file normals where given.
 
 use crate::geom::closest::closest_segment_params;
-use crate::geom::curve::SmoothCurve;
+use crate::geom::curve::{CurvePoint, SmoothCurve};
 use crate::network::{Family, Network};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -159,6 +159,12 @@ pub struct CurveNode {
     pub crossing: usize,
     /// Station of the node on this curve, mm.
     pub station_mm: f64,
+    /// Where the station lies on this curve's smooth interpolant: the
+    /// segment and local u that `SmoothCurve::locate_station(station_mm)`
+    /// gives (found once here, so no later stage searches for it again).
+    pub segment: usize,
+    /// Local coordinate of the station in `segment`, [0, 1].
+    pub u: f64,
 }
 
 /// The output of the topology stage.
@@ -315,8 +321,9 @@ fn segment_deviation(c: &SmoothCurve) -> Vec<f64> {
     (0..pts.len() - 1)
         .map(|k| {
             let mut worst: f64 = 0.0;
+            let piece = c.piece(k);
             for u in [0.25, 0.5, 0.75] {
-                let p = c.jet_at(k, u).value;
+                let p = piece.value(u);
                 let chord = pts[k].lerp(pts[k + 1], u);
                 worst = worst.max(p.distance(chord));
             }
@@ -421,6 +428,10 @@ fn refine(
     gap.is_finite().then_some((ka, ua, kb, ub, gap))
 }
 
+/// A raw node's two stations located on their curves: on `a`, the point
+/// and tangent and the (segment, u) they lie at, then the same on `b`.
+type Located = (CurvePoint, (usize, f64), CurvePoint, (usize, f64));
+
 fn build_topology(
     net: &Network,
     curves: &[SmoothCurve],
@@ -428,10 +439,27 @@ fn build_topology(
     opts: NodeOptions,
 ) -> Topology {
     let mut warnings = Vec::new();
+    // Each station located once on its curve, for the angle, the node and
+    // every later stage (`CurveNode::segment`, `CurveNode::u`).
+    let located: Vec<Located> = raw
+        .iter()
+        .map(|r| {
+            let (la, lb) = (
+                curves[r.a].locate_station(r.sa),
+                curves[r.b].locate_station(r.sb),
+            );
+            (
+                curves[r.a].at_located(r.sa, la),
+                la,
+                curves[r.b].at_located(r.sb, lb),
+                lb,
+            )
+        })
+        .collect();
     // Curves that run together (several near-tangent contacts of one pair)
     // overlap: no node is taken there, one warning says where.
-    let angle_of = |r: &RawNode| {
-        let (ta, tb) = (curves[r.a].tangent(r.sa), curves[r.b].tangent(r.sb));
+    let angle_of = |i: usize| {
+        let (ta, tb) = (located[i].0.tangent, located[i].2.tangent);
         ta.dot(tb).abs().min(1.0).acos().to_degrees()
     };
     let mut keep = vec![true; raw.len()];
@@ -465,7 +493,7 @@ fn build_topology(
             run.clear();
         };
         for i in start..end {
-            if angle_of(&raw[i]) < opts.near_tangent_deg {
+            if angle_of(i) < opts.near_tangent_deg {
                 if run
                     .last()
                     .is_some_and(|&j| raw[i].sa - raw[j].sa > OVERLAP_GAP_MM)
@@ -480,23 +508,23 @@ fn build_topology(
         flush(&mut run, &mut keep, &mut warnings);
         start = end;
     }
-    let raw: Vec<RawNode> = raw
+    let (raw, located): (Vec<RawNode>, Vec<_>) = raw
         .into_iter()
+        .zip(located)
         .zip(keep)
         .filter(|(_, k)| *k)
         .map(|(r, _)| r)
-        .collect();
+        .unzip();
     let mut nodes: Vec<Node> = raw
         .iter()
+        .zip(&located)
         .enumerate()
-        .map(|(id, r)| {
-            let pa = curves[r.a].at(r.sa);
-            let pb = curves[r.b].at(r.sb);
+        .map(|(id, (r, &(pa, la, pb, lb)))| {
             let cos = pa.tangent.dot(pb.tangent).abs().min(1.0);
             let angle_deg = cos.acos().to_degrees();
             let cross = pa.tangent.cross(pb.tangent);
-            let normal = file_normal(net, curves, r.a, r.sa)
-                .or_else(|| file_normal(net, curves, r.b, r.sb))
+            let normal = file_normal(net, r.a, la)
+                .or_else(|| file_normal(net, r.b, lb))
                 .map(|n| {
                     if cross.length() > 1e-9 && cross.dot(n) < 0.0 {
                         -cross.normalize()
@@ -524,16 +552,20 @@ fn build_topology(
         })
         .collect();
     let mut per_curve: Vec<Vec<CurveNode>> = vec![Vec::new(); net.curves.len()];
-    for n in &nodes {
+    for (n, &(_, (ka, ua), _, (kb, ub))) in nodes.iter().zip(&located) {
         per_curve[n.a].push(CurveNode {
             node: n.id,
             crossing: n.b,
             station_mm: n.station_a_mm,
+            segment: ka,
+            u: ua,
         });
         per_curve[n.b].push(CurveNode {
             node: n.id,
             crossing: n.a,
             station_mm: n.station_b_mm,
+            segment: kb,
+            u: ub,
         });
     }
     for list in &mut per_curve {
@@ -596,10 +628,10 @@ fn build_topology(
     }
 }
 
-/// The file normal of curve `ci` at a station, if the file gave normals.
-fn file_normal(net: &Network, curves: &[SmoothCurve], ci: usize, station_mm: f64) -> Option<DVec3> {
+/// The file normal of curve `ci` at a located station (segment k, local u),
+/// if the file gave normals.
+fn file_normal(net: &Network, ci: usize, (k, u): (usize, f64)) -> Option<DVec3> {
     let normals = net.curves[ci].normals_world.as_ref()?;
-    let (k, u) = curves[ci].locate_station(station_mm);
     let n = normals[k].lerp(normals[k + 1], u);
     n.try_normalize()
 }

@@ -167,10 +167,44 @@ impl Hermite5 {
         [a0, a1, a2, a3, a4, a5]
     }
 
+    /// Segment `k` as one polynomial piece (its coefficients computed once,
+    /// for evaluating several points of it).
+    pub fn piece(&self, k: usize) -> Piece {
+        Piece {
+            a: self.coefficients(k),
+            h: self.t[k + 1] - self.t[k],
+        }
+    }
+
     /// Value and derivatives with respect to `t` in segment `k` at local u.
     pub fn jet_at(&self, k: usize, u: f64) -> Jet {
-        let a = self.coefficients(k);
-        let h = self.t[k + 1] - self.t[k];
+        self.piece(k).jet(u)
+    }
+
+    /// Value and derivatives with respect to `t` at parameter `t` (clamped).
+    pub fn jet(&self, t: f64) -> Jet {
+        let (k, u) = self.locate(t);
+        self.jet_at(k, u)
+    }
+}
+
+/// One segment of a [`Hermite5`] in power basis over its local u ∈ [0, 1],
+/// with its parameter length. Guarantees: every evaluation gives exactly
+/// (bit for bit) what the interpolant's per-segment methods give
+/// ([`Hermite5::jet_at`], [`SmoothCurve::station_at`]); it only saves
+/// recomputing the coefficients when one segment is evaluated many times.
+#[derive(Debug, Clone, Copy)]
+pub struct Piece {
+    a: [DVec3; 6],
+    h: f64,
+}
+
+impl Piece {
+    /// Value and derivatives with respect to the interpolant's parameter at local u.
+    #[inline]
+    pub fn jet(&self, u: f64) -> Jet {
+        let a = &self.a;
+        let h = self.h;
         let value = a[0] + u * (a[1] + u * (a[2] + u * (a[3] + u * (a[4] + u * a[5]))));
         let du = a[1] + u * (2.0 * a[2] + u * (3.0 * a[3] + u * (4.0 * a[4] + u * 5.0 * a[5])));
         let ddu = 2.0 * a[2] + u * (6.0 * a[3] + u * (12.0 * a[4] + u * 20.0 * a[5]));
@@ -183,15 +217,32 @@ impl Hermite5 {
         }
     }
 
-    /// Value and derivatives with respect to `t` at parameter `t` (clamped).
-    pub fn jet(&self, t: f64) -> Jet {
-        let (k, u) = self.locate(t);
-        self.jet_at(k, u)
+    /// The value at local u.
+    #[inline]
+    pub fn value(&self, u: f64) -> DVec3 {
+        let a = &self.a;
+        a[0] + u * (a[1] + u * (a[2] + u * (a[3] + u * (a[4] + u * a[5]))))
     }
 
-    /// |d value / du| in segment k (the speed in the local coordinate).
-    fn speed_u(a: &[DVec3; 6], u: f64) -> f64 {
+    /// |d value / du| (the speed in the local coordinate).
+    #[inline]
+    fn speed_u(&self, u: f64) -> f64 {
+        let a = &self.a;
         (a[1] + u * (2.0 * a[2] + u * (3.0 * a[3] + u * (4.0 * a[4] + u * 5.0 * a[5])))).length()
+    }
+
+    /// ∫₀ᵘ |c′(w)| dw by 8-point Gauss–Legendre (the arc length from the
+    /// segment's start to local u, for a curve over its chord parameter).
+    #[inline]
+    fn arc_length_to(&self, u: f64) -> f64 {
+        if u <= 0.0 {
+            return 0.0;
+        }
+        let mut sum = 0.0;
+        for (x, w) in GL_NODES.iter().zip(GL_WEIGHTS.iter()) {
+            sum += w * self.speed_u(x * u);
+        }
+        sum * u
     }
 }
 
@@ -265,8 +316,9 @@ pub fn smooth_samples(t: &[f64], v: &[DVec3], precision_mm: f64) -> SmoothedSamp
             d1.cross(first.d2[i]).length() / d1.length().powi(3).max(1e-300)
         })
         .collect();
-    kappa.sort_by(f64::total_cmp);
-    let k95 = kappa[(n * 95 / 100).min(n - 1)];
+    // The 95th percentile: the element a full sort would put there.
+    let i95 = (n * 95 / 100).min(n - 1);
+    let k95 = *kappa.select_nth_unstable_by(i95, f64::total_cmp).1;
     let w_bias = WINDOW_PER_RADIUS / k95.max(1e-12);
     if w_bias < w_noise {
         fit_window(t, v, w_bias, eps)
@@ -378,17 +430,7 @@ fn kernel_fit(
         let coef = poly_fit(t, v, t0, scale, deg);
         return (coef, 0.0);
     };
-    let mut coef = [DVec3::ZERO; MAX_DEGREE + 1];
-    let mut rhs_axis = [0.0f64; MAX_DEGREE + 1];
-    for axis in 0..3 {
-        for q in 0..k {
-            rhs_axis[q] = rhs[q][axis];
-        }
-        let x = cholesky_solve(&l, &rhs_axis, k);
-        for q in 0..k {
-            coef[q][axis] = x[q];
-        }
-    }
+    let coef = cholesky_solve3(&l, &rhs, k);
     if deg < 2 {
         return (coef, 0.0);
     }
@@ -454,6 +496,29 @@ fn cholesky_solve(l: &Small, b: &[f64; MAX_DEGREE + 1], k: usize) -> [f64; MAX_D
         let mut sum = y[i];
         for p in i + 1..k {
             sum -= l[p][i] * x[p];
+        }
+        x[i] = sum / l[i][i];
+    }
+    x
+}
+
+/// [`cholesky_solve`] for the three coordinates at once: each coordinate
+/// goes through exactly the operations the scalar solve does (the same
+/// result bit for bit, one pass instead of three).
+fn cholesky_solve3(l: &Small, b: &[DVec3; MAX_DEGREE + 1], k: usize) -> [DVec3; MAX_DEGREE + 1] {
+    let mut y = [DVec3::ZERO; MAX_DEGREE + 1];
+    for i in 0..k {
+        let mut sum = b[i];
+        for p in 0..i {
+            sum -= y[p] * l[i][p];
+        }
+        y[i] = sum / l[i][i];
+    }
+    let mut x = [DVec3::ZERO; MAX_DEGREE + 1];
+    for i in (0..k).rev() {
+        let mut sum = y[i];
+        for p in i + 1..k {
+            sum -= x[p] * l[p][i];
         }
         x[i] = sum / l[i][i];
     }
@@ -587,16 +652,13 @@ impl SmoothCurve {
                 acc += w[1].distance(w[0]).max(1e-9);
                 t.push(acc);
             }
-            let (d1, d2): (Vec<DVec3>, Vec<DVec3>) = smoothed
-                .d1
-                .iter()
-                .zip(&smoothed.d2)
-                .map(|(&a, &b)| {
-                    let v2 = a.length_squared().max(1e-300);
-                    let x = a / v2.sqrt();
-                    (x, (b - x * b.dot(x)) / v2)
-                })
-                .unzip();
+            let (mut d1, mut d2) = (smoothed.d1, smoothed.d2);
+            for (a, b) in d1.iter_mut().zip(d2.iter_mut()) {
+                let v2 = a.length_squared().max(1e-300);
+                let x = *a / v2.sqrt();
+                *b = (*b - x * b.dot(x)) / v2;
+                *a = x;
+            }
             Hermite5::from_parts(t, values, d1, d2)
         } else {
             Hermite5::from_parts(t, smoothed.values, smoothed.d1, smoothed.d2)
@@ -605,8 +667,7 @@ impl SmoothCurve {
         s.push(0.0);
         let mut total = 0.0;
         for k in 0..h.segments() {
-            let a = h.coefficients(k);
-            total += integrate_speed(&a, 1.0);
+            total += h.piece(k).arc_length_to(1.0);
             s.push(total);
         }
         SmoothCurve {
@@ -668,13 +729,34 @@ impl SmoothCurve {
             .partition_point(|&x| x <= station_mm)
             .saturating_sub(1)
             .min(n - 2);
+        self.solve_in_segment(k, station_mm)
+    }
+
+    /// [`SmoothCurve::locate_station`] for a station expected in segment
+    /// `hint` (or, failing that, the next one): exactly the same result, the
+    /// search for the segment skipped when the guess is right (stations
+    /// visited in order).
+    pub fn locate_station_near(&self, station_mm: f64, hint: usize) -> (usize, f64) {
+        let s = &self.s;
+        for k in [hint, hint + 1] {
+            // The segment the search would find: the last k with s[k] ≤ station.
+            if k + 1 < s.len() && 0.0 < station_mm && s[k] <= station_mm && station_mm < s[k + 1] {
+                return self.solve_in_segment(k, station_mm);
+            }
+        }
+        self.locate_station(station_mm)
+    }
+
+    /// Local u of a station known to lie in segment k (Newton on the arc
+    /// length from the linear guess, to |Δu| < 1e-14).
+    fn solve_in_segment(&self, k: usize, station_mm: f64) -> (usize, f64) {
         let target = station_mm - self.s[k];
         let seg_len = self.s[k + 1] - self.s[k];
-        let a = self.h.coefficients(k);
+        let piece = self.h.piece(k);
         let mut u = (target / seg_len).clamp(0.0, 1.0);
         for _ in 0..12 {
-            let f = integrate_speed(&a, u) - target;
-            let speed = Hermite5::speed_u(&a, u);
+            let f = piece.arc_length_to(u) - target;
+            let speed = piece.speed_u(u);
             if speed <= 0.0 {
                 break;
             }
@@ -687,6 +769,13 @@ impl SmoothCurve {
         (k, u)
     }
 
+    /// Segment k as one polynomial piece, for evaluating several points of
+    /// it ([`SmoothCurve::gauss_nodes4_in`], [`SmoothCurve::station_in`],
+    /// [`Piece::jet`]): exactly what the per-segment methods give.
+    pub fn piece(&self, k: usize) -> Piece {
+        self.h.piece(k)
+    }
+
     /// 4-point Gauss–Legendre quadrature (exact for degree 7) over segment
     /// k from local u0 to u1 in arc length: for each node its local u, its
     /// station (mm) and its weight (mm), so Σ w·f(u) ≈ ∫ f ds over that
@@ -695,6 +784,18 @@ impl SmoothCurve {
     /// length, so |c′| is nearly constant and the error is below
     /// (Δs)²·max|d|c′|/du|/8, far under 1e-6 mm on sampled curves.
     pub fn gauss_nodes4(&self, k: usize, u0: f64, u1: f64) -> [(f64, f64, f64); 4] {
+        self.gauss_nodes4_in(&self.h.piece(k), k, u0, u1)
+    }
+
+    /// [`SmoothCurve::gauss_nodes4`] with segment k given as its piece
+    /// (`self.piece(k)`).
+    pub fn gauss_nodes4_in(
+        &self,
+        piece: &Piece,
+        k: usize,
+        u0: f64,
+        u1: f64,
+    ) -> [(f64, f64, f64); 4] {
         const X: [f64; 4] = [
             0.069_431_844_202_973_71,
             0.330_009_478_207_571_87,
@@ -707,13 +808,12 @@ impl SmoothCurve {
             0.326_072_577_431_273_07,
             0.173_927_422_568_726_93,
         ];
-        let a = self.h.coefficients(k);
         let du = u1 - u0;
-        let s0 = self.s[k] + integrate_speed(&a, u0);
+        let s0 = self.s[k] + piece.arc_length_to(u0);
         let mut speeds = [0.0; 4];
         let mut total = 0.0;
         for i in 0..4 {
-            speeds[i] = Hermite5::speed_u(&a, u0 + X[i] * du);
+            speeds[i] = piece.speed_u(u0 + X[i] * du);
             total += W[i] * speeds[i] * du;
         }
         let mut out = [(0.0, 0.0, 0.0); 4];
@@ -725,8 +825,12 @@ impl SmoothCurve {
 
     /// Station of segment k at local u.
     pub fn station_at(&self, k: usize, u: f64) -> f64 {
-        let a = self.h.coefficients(k);
-        self.s[k] + integrate_speed(&a, u)
+        self.station_in(&self.h.piece(k), k, u)
+    }
+
+    /// [`SmoothCurve::station_at`] with segment k given as its piece.
+    pub fn station_in(&self, piece: &Piece, k: usize, u: f64) -> f64 {
+        self.s[k] + piece.arc_length_to(u)
     }
 
     /// Derivatives with respect to the chord parameter at segment k, local u.
@@ -736,7 +840,13 @@ impl SmoothCurve {
 
     /// Point and unit tangent at a station (clamped to [0, length]).
     pub fn at(&self, station_mm: f64) -> CurvePoint {
-        let (k, u) = self.locate_station(station_mm);
+        self.at_located(station_mm, self.locate_station(station_mm))
+    }
+
+    /// [`SmoothCurve::at`] for a station already located:
+    /// `located = self.locate_station(station_mm)`.
+    pub fn at_located(&self, station_mm: f64, located: (usize, f64)) -> CurvePoint {
+        let (k, u) = located;
         let j = self.h.jet_at(k, u);
         CurvePoint {
             station_mm: station_mm.clamp(0.0, self.length_mm()),
@@ -753,18 +863,6 @@ impl SmoothCurve {
     pub fn tangent(&self, station_mm: f64) -> DVec3 {
         self.at(station_mm).tangent
     }
-}
-
-/// ∫_0^u |c'(w)| dw for a segment in power basis, by 8-point Gauss–Legendre.
-fn integrate_speed(a: &[DVec3; 6], u: f64) -> f64 {
-    if u <= 0.0 {
-        return 0.0;
-    }
-    let mut sum = 0.0;
-    for (x, w) in GL_NODES.iter().zip(GL_WEIGHTS.iter()) {
-        sum += w * Hermite5::speed_u(a, x * u);
-    }
-    sum * u
 }
 
 #[cfg(test)]
