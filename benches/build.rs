@@ -52,10 +52,13 @@ fn measure(path: &Path) {
     let profile = Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
     let out = path.with_extension("build");
     let _ = std::fs::remove_dir_all(&out);
-    // Earlier runs' files deleted and their writes flushed first: a build
-    // does not start on the heels of deleting thousands of files (ext4
-    // scans past inodes deleted before the journal commits them).
+    // Earlier runs' files deleted and flushed, and 6 s let pass, before the
+    // clock starts: ext4 without a journal (this machine's) will not reuse
+    // an inode deleted in the last 5 s (300 s while its block is dirty) and
+    // scans past each such inode for every file it creates, so a build
+    // started on the heels of deleting 5,316 files pays for that deletion.
     support::sync_disk();
+    std::thread::sleep(std::time::Duration::from_secs(6));
     let load0 = support::load_average();
     let t0 = Instant::now();
     let r = build(
