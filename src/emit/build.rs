@@ -200,19 +200,29 @@ pub fn build(
     if let Some(f) = &flat {
         plan::add_flat(&mut the_plan, f);
     }
-    let mut kit =
-        crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
+    let kit = crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
     let nodes = an.topology.nodes.len();
     drop(an);
     clock.lap("parts");
     warnings.extend(kit.warnings.iter().cloned());
     progress.set_message("nesting");
-    let nest = crate::nest::nest(&kit, &profile)?;
+    // The nest is mostly one thread: the plan's parts are converted and
+    // the assembly sheets' strip sheets (which need no nest) drawn beside it.
+    let frame = super::assembly::Frame::of(opts.paper);
+    let (nest, (plan_parts, strip_pages)) = rayon::join(
+        || crate::nest::nest(&kit, &profile),
+        || {
+            let parts = plan::plan_parts(&kit);
+            let pages = super::assembly::strips::pages_of(&the_plan, &parts, &frame);
+            (parts, pages)
+        },
+    );
+    let nest = nest?;
     clock.lap("nest");
     let takeoff = takeoff::takeoff(&net.name, &kit, &nest, &profile);
     plan::add_nest(&mut the_plan, &kit, &nest);
     let kinds = kit.summary.kinds.clone();
-    plan::add_parts_taking(&mut the_plan, &mut kit);
+    plan::set_parts(&mut the_plan, plan_parts, &kit);
     let plan_target = out.join("plan.json");
     if let Some(field) = plan::first_non_finite(&mut the_plan) {
         return Err(Error::output(
@@ -247,13 +257,11 @@ pub fn build(
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
         .collect();
-    fn timed<T>(f: &dyn Fn() -> Result<T>) -> (Result<T>, f64) {
+    fn timed<T>(f: impl FnOnce() -> Result<T>) -> (Result<T>, f64) {
         let t = std::time::Instant::now();
         let r = f();
         (r, t.elapsed().as_secs_f64())
     }
-    let timed_sections =
-        |input: &super::assembly::AssemblyInput| timed(&|| super::assembly::sections(input));
     let assembly_input = super::assembly::AssemblyInput {
         plan: &the_plan,
         takeoff: &takeoff,
@@ -261,7 +269,6 @@ pub fn build(
         paper: opts.paper,
         plan_path: &plan_target,
     };
-    let frame = super::assembly::Frame::of(opts.paper);
     // With kerf compensation the cutting files are offset; the nested
     // sheets' pages stay nominal, drawn apart.
     let nominal = match kerf {
@@ -282,11 +289,11 @@ pub fn build(
         .map_err(|e| Error::output(out, format!("cannot start the writer threads: {e}")))?;
     let (plan_written, (sheets_written, sections)) = write_pool.install(|| {
         rayon::join(
-            || timed(&|| staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))),
+            || timed(|| staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))),
             || {
                 rayon::join(
                     || {
-                        timed(&|| {
+                        timed(|| {
                             (0..sheet_count)
                                 .into_par_iter()
                                 // Each worker's text buffers serve sheet after sheet.
@@ -337,7 +344,7 @@ pub fn build(
                                 .collect::<Result<Vec<_>>>()
                         })
                     },
-                    || timed_sections(&assembly_input),
+                    || timed(|| super::assembly::sections_with(&assembly_input, Some(strip_pages))),
                 )
             },
         )

@@ -912,6 +912,20 @@ pub fn add_parts_taking(plan: &mut Plan, kit: &mut crate::fabricate::Kit) {
     add_kit_summary(plan, kit);
 }
 
+/// Every part of `kit` as plan.json writes it, in order (converted in
+/// parallel; the kit is left as it is).
+pub fn plan_parts(kit: &crate::fabricate::Kit) -> Vec<PlanPart> {
+    use rayon::prelude::*;
+    kit.parts.par_iter().map(plan_part).collect()
+}
+
+/// Put `parts` (from [`plan_parts`] of `kit`) into the plan, with the
+/// engraving font and the kit's summary: what [`add_parts`] does.
+pub fn set_parts(plan: &mut Plan, parts: Vec<PlanPart>, kit: &crate::fabricate::Kit) {
+    plan.parts = Some(parts);
+    add_kit_summary(plan, kit);
+}
+
 /// One part as plan.json writes it (rounded); its round holes only as
 /// its `hole` features.
 fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {

@@ -252,6 +252,15 @@ pub struct Sections {
 
 /// The sections of the assembly sheets other than the sheets as nested.
 pub fn sections(input: &AssemblyInput) -> Result<Sections> {
+    sections_with(input, None)
+}
+
+/// [`sections`], with the strip sheets already drawn when `strips` is
+/// given ([`strips::pages_of`]).
+pub fn sections_with(
+    input: &AssemblyInput,
+    strip_pages: Option<Vec<SealedPage>>,
+) -> Result<Sections> {
     let plan = input.plan;
     let frame = Frame::of(input.paper);
     let (Some(_), Some(_)) = (&plan.parts, &plan.sheets) else {
@@ -271,7 +280,7 @@ pub fn sections(input: &AssemblyInput) -> Result<Sections> {
         },
         || {
             rayon::join(
-                || strips::pages(plan, &frame),
+                || strip_pages.unwrap_or_else(|| strips::pages(plan, &frame)),
                 || {
                     (
                         seal(tables::node_pages(plan, &frame)),

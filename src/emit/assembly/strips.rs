@@ -88,9 +88,16 @@ struct Lamella<'a> {
 
 /// Every strip's pages, in strip order.
 pub fn pages(plan: &Plan, frame: &Frame) -> Vec<SealedPage> {
-    let Some(parts) = &plan.parts else {
-        return Vec::new();
-    };
+    match &plan.parts {
+        Some(parts) => pages_of(plan, parts, frame),
+        None => Vec::new(),
+    }
+}
+
+/// [`pages`] with the plan's parts given apart (`lamella build` draws the
+/// strip sheets while the kit is being nested, before the parts join the
+/// plan).
+pub fn pages_of(plan: &Plan, parts: &[PlanPart], frame: &Frame) -> Vec<SealedPage> {
     let height = plan
         .profile
         .as_ref()
