@@ -40,9 +40,7 @@
 use crate::analysis::strip::Curvatures;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
-use crate::fabricate::part::{
-    circle_cw, Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM,
-};
+use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM};
 use crate::network::Family;
 use crate::profile::Profile;
 use kurbo::{Point, Vec2};
@@ -371,7 +369,7 @@ fn edge_piece(
             .total_cmp(&b.center_part_mm.x)
             .then(a.center_part_mm.y.total_cmp(&b.center_part_mm.y))
     });
-    let holes = hole_polylines(&profile.source, &edge.id, &features, diameter)?;
+    holes_apart(&profile.source, &edge.id, &features, diameter)?;
     Ok(Part {
         id,
         kind: PartKind::EdgeStrip,
@@ -382,20 +380,15 @@ fn edge_piece(
         height_mm: max_y - min_y,
         station_start_mm: Some(from_mm),
         outline_part_mm: outline,
-        holes_part_mm: holes,
+        holes_part_mm: Vec::new(),
         engraving: Vec::new(),
         features,
     })
 }
 
-/// One hole polyline per distinct centre: features closer than
-/// [`SHARED_HOLE_MM`] share one; holes that overlap otherwise are an error.
-fn hole_polylines(
-    profile: &Path,
-    edge: &str,
-    features: &[Feature],
-    diameter: f64,
-) -> Result<Vec<Vec<Point>>> {
+/// Features closer than [`SHARED_HOLE_MM`] share one hole; holes that
+/// overlap otherwise are an error.
+fn holes_apart(profile: &Path, edge: &str, features: &[Feature], diameter: f64) -> Result<()> {
     let mut centres: Vec<(Point, usize)> = Vec::new();
     for f in features {
         let node = f.node.unwrap_or_default();
@@ -415,10 +408,7 @@ fn hole_polylines(
             None => centres.push((f.center_part_mm, node)),
         }
     }
-    Ok(centres
-        .into_iter()
-        .map(|(c, _)| circle_cw(c, 0.5 * diameter, ARC_TOLERANCE_MM))
-        .collect())
+    Ok(())
 }
 
 /// Drop the vertices of a closed polyline that lie within 1e-9 mm of the
@@ -740,7 +730,8 @@ mod tests {
         assert!(min_x.abs() < 1e-9 && min_y.abs() < 1e-9);
         // Holes: on one circle of radius R, their chords those of the stations.
         assert_eq!(part.features.len(), 5);
-        assert_eq!(part.holes_part_mm.len(), 5);
+        assert!(part.holes_part_mm.is_empty());
+        assert_eq!(part.round_holes().len(), 5);
         let f = &part.features;
         let by_station = |s: f64| {
             f.iter()
@@ -756,7 +747,7 @@ mod tests {
             }
         }
         // Every hole is 9 mm (M8 + 1 mm), clockwise, inside the band.
-        for (x, hole) in f.iter().zip(&part.holes_part_mm) {
+        for (x, hole) in f.iter().zip(&part.hole_polygons()) {
             assert_eq!(x.hole_use, Some(HoleUse::EdgeNode));
             assert!(x.node.is_some() && x.crossing.is_some());
             assert_eq!(x.width_mm, 9.0);
@@ -865,7 +856,9 @@ mod tests {
         let part =
             edge_strip(&steel(), &curve("e", 1000.0, |_| 1e-3, &[500.0, 500.0])).expect("band");
         assert_eq!(part.features.len(), 2);
-        assert_eq!(part.holes_part_mm.len(), 1);
+        assert!(part.holes_part_mm.is_empty());
+        assert_eq!(part.round_holes().len(), 1);
+        assert_eq!(part.hole_polygons().len(), 1);
     }
 
     /// A flat grid (z = 0): A lines along x, B lines at 60°, and an arc

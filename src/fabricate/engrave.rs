@@ -256,7 +256,7 @@ fn engrave_other(p: &mut Part, c: f64) -> Option<String> {
         search_mm: 0.5 * (x1 - x0),
     };
     let outline = p.outline_part_mm.clone();
-    let holes = p.holes_part_mm.clone();
+    let holes = p.hole_polygons();
     let mut placer = Placer::new(&outline, &holes, c);
     // Anchors: the centre line of the extent first, then a grid.
     let mut anchors = Vec::new();

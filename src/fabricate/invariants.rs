@@ -299,14 +299,21 @@ pub fn outline_is_closed_simple_ccw(part: &Part) -> Result<(), String> {
     Ok(())
 }
 
-/// Every hole is a closed simple clockwise polygon (at least 3 points, no
-/// repeated consecutive points, no self-contact, negative signed area),
-/// every hole vertex lies strictly inside the outline, no hole edge meets
-/// the outline or another hole, and no hole lies inside another. Assumes
-/// the outline itself is simple ([`outline_is_closed_simple_ccw`]).
+/// Every hole (the round ones as the polygons the cutter's tolerance
+/// allows, [`Part::hole_polygons`]) is a closed simple clockwise polygon
+/// (at least 3 points, no repeated consecutive points, no self-contact,
+/// negative signed area), every hole vertex lies strictly inside the
+/// outline, no hole edge meets the outline or another hole, and no hole
+/// lies inside another. Assumes the outline itself is simple
+/// ([`outline_is_closed_simple_ccw`]).
 pub fn holes_are_simple_cw_inside(part: &Part) -> Result<(), String> {
+    holes_ok(part, &part.hole_polygons())
+}
+
+/// [`holes_are_simple_cw_inside`] with the part's hole polygons given.
+fn holes_ok(part: &Part, holes: &[Vec<Point>]) -> Result<(), String> {
     let outline = &part.outline_part_mm;
-    for (k, hole) in part.holes_part_mm.iter().enumerate() {
+    for (k, hole) in holes.iter().enumerate() {
         ring_points_ok(part, k + 1, hole)?;
         let area = signed_area_mm2(hole);
         if area >= 0.0 {
@@ -324,8 +331,7 @@ pub fn holes_are_simple_cw_inside(part: &Part) -> Result<(), String> {
             }
         }
     }
-    let mut edges: Vec<Edge> = part
-        .holes_part_mm
+    let mut edges: Vec<Edge> = holes
         .iter()
         .enumerate()
         .flat_map(|(k, h)| ring_edges(k + 1, h))
@@ -348,8 +354,8 @@ pub fn holes_are_simple_cw_inside(part: &Part) -> Result<(), String> {
     }
     // No edges meet, so a hole is inside another exactly when its first
     // vertex is.
-    for (k, hole) in part.holes_part_mm.iter().enumerate() {
-        for (j, other) in part.holes_part_mm.iter().enumerate() {
+    for (k, hole) in holes.iter().enumerate() {
+        for (j, other) in holes.iter().enumerate() {
             if j != k && point_in_polygon(hole[0], other) {
                 return Err(format!("part {}: hole {k} lies inside hole {j}", part.id));
             }
@@ -361,10 +367,16 @@ pub fn holes_are_simple_cw_inside(part: &Part) -> Result<(), String> {
 /// Every engraving polyline has at least one point, every vertex is finite,
 /// inside the outline and outside every hole, and every segment (a
 /// one-point polyline: its point) keeps at least `clearance_mm` from every
-/// outline and hole edge (segment-to-segment distance) and crosses none.
-/// Assumes the outline and holes pass their own checks.
+/// outline and hole edge (segment-to-segment distance; the round holes as
+/// [`Part::hole_polygons`]) and crosses none. Assumes the outline and holes
+/// pass their own checks.
 pub fn engraving_inside_and_clear(part: &Part, clearance_mm: f64) -> Result<(), String> {
-    strokes_inside_and_clear(part, &part.engraving_strokes(), clearance_mm)
+    strokes_clear(
+        part,
+        &part.hole_polygons(),
+        &part.engraving_strokes(),
+        clearance_mm,
+    )
 }
 
 /// [`engraving_inside_and_clear`] for the open polylines `strokes` (part
@@ -374,9 +386,19 @@ pub fn strokes_inside_and_clear(
     strokes: &[Vec<Point>],
     clearance_mm: f64,
 ) -> Result<(), String> {
+    strokes_clear(part, &part.hole_polygons(), strokes, clearance_mm)
+}
+
+/// [`strokes_inside_and_clear`] with the part's hole polygons given.
+fn strokes_clear(
+    part: &Part,
+    holes: &[Vec<Point>],
+    strokes: &[Vec<Point>],
+    clearance_mm: f64,
+) -> Result<(), String> {
     let cuts: Vec<Edge> = ring_edges(0, &part.outline_part_mm)
         .chain(
-            part.holes_part_mm
+            holes
                 .iter()
                 .enumerate()
                 .flat_map(|(k, h)| ring_edges(k + 1, h)),
@@ -394,11 +416,7 @@ pub fn strokes_inside_and_clear(
             if !point_in_polygon(*p, &part.outline_part_mm) {
                 return Err(format!("part {}: {at} is outside the outline", part.id));
             }
-            if let Some(k) = part
-                .holes_part_mm
-                .iter()
-                .position(|h| point_in_polygon(*p, h))
-            {
+            if let Some(k) = holes.iter().position(|h| point_in_polygon(*p, h)) {
                 return Err(format!("part {}: {at} is inside hole {k}", part.id));
             }
         }
@@ -434,23 +452,33 @@ pub fn strokes_inside_and_clear(
     Ok(())
 }
 
-/// Every `hole` feature is a round hole: some hole polygon has every
-/// vertex on the feature's circle (within [`ROUND_HOLE_MM`]). plan.json writes round
-/// holes as their features only, and the cutting files cut them as circles.
+/// Every `hole` feature is a round hole: its centre finite and its
+/// diameter positive and finite, so that its circle is a hole of the part
+/// ([`Part::round_holes`]; checked as such by
+/// [`holes_are_simple_cw_inside`] and [`engraving_inside_and_clear`]), and
+/// no other hole polygon lies on its circle (within [`ROUND_HOLE_MM`]: the
+/// same hole cut twice). plan.json writes round holes as their features
+/// only, and the cutting files cut them as circles.
 pub fn hole_features_are_holes(part: &Part) -> Result<(), String> {
     for (i, f) in part.features.iter().enumerate() {
         if f.kind != FeatureKind::Hole {
             continue;
         }
-        let r = 0.5 * f.width_mm;
-        let found = part.holes_part_mm.iter().any(|h| {
-            h.iter()
-                .all(|q| (q.distance(f.center_part_mm) - r).abs() <= ROUND_HOLE_MM)
-        });
-        if !found {
+        let (c, r) = (f.center_part_mm, 0.5 * f.width_mm);
+        if !(c.x.is_finite() && c.y.is_finite() && r.is_finite() && r > 0.0) {
             return Err(format!(
-                "part {}: hole feature {i} at ({:.4}, {:.4}), {:.4} mm, has no hole on its circle",
-                part.id, f.center_part_mm.x, f.center_part_mm.y, f.width_mm
+                "part {}: hole feature {i} at ({:.4}, {:.4}), {:.4} mm, is not a circle",
+                part.id, c.x, c.y, f.width_mm
+            ));
+        }
+        if let Some(k) = part
+            .holes_part_mm
+            .iter()
+            .position(|h| h.iter().all(|q| (q.distance(c) - r).abs() <= ROUND_HOLE_MM))
+        {
+            return Err(format!(
+                "part {}: hole feature {i} at ({:.4}, {:.4}), {:.4} mm, is also the polygon hole {k}",
+                part.id, c.x, c.y, f.width_mm
             ));
         }
     }
@@ -460,12 +488,14 @@ pub fn hole_features_are_holes(part: &Part) -> Result<(), String> {
 /// All four checks: [`outline_is_closed_simple_ccw`],
 /// [`holes_are_simple_cw_inside`], [`hole_features_are_holes`],
 /// [`engraving_inside_and_clear`] with `clearance_mm` (kerf and part
-/// spacing, mm); the first failure.
+/// spacing, mm); the first failure. The round holes' polygons are built
+/// once for both checks that need them.
 pub fn check_part(part: &Part, clearance_mm: f64) -> Result<(), String> {
     outline_is_closed_simple_ccw(part)?;
-    holes_are_simple_cw_inside(part)?;
     hole_features_are_holes(part)?;
-    engraving_inside_and_clear(part, clearance_mm)
+    let holes = part.hole_polygons();
+    holes_ok(part, &holes)?;
+    strokes_clear(part, &holes, &part.engraving_strokes(), clearance_mm)
 }
 
 #[cfg(test)]
@@ -757,6 +787,124 @@ mod tests {
         );
         // Empty polyline.
         assert!(check(vec![vec![]], 0.0).unwrap_err().contains("no points"));
+    }
+
+    /// A `hole` feature: a round hole at (x, y) of radius r.
+    fn round(x: f64, y: f64, r: f64) -> super::super::part::Feature {
+        super::super::part::Feature {
+            kind: FeatureKind::Hole,
+            hole_use: Some(super::super::part::HoleUse::Node),
+            node: None,
+            crossing: None,
+            center_part_mm: p(x, y),
+            width_mm: 2.0 * r,
+            depth_mm: 0.0,
+            edge: None,
+            angle_range_deg: None,
+            station_mm: None,
+        }
+    }
+
+    /// The notched part with round holes held only as their features.
+    fn with_round(holes: &[(f64, f64, f64)]) -> Part {
+        let mut part = part(notched(), vec![]);
+        part.features = holes.iter().map(|&(x, y, r)| round(x, y, r)).collect();
+        part
+    }
+
+    #[test]
+    fn round_holes_are_checked_as_their_circles() {
+        // The polygons built on demand are the ones the parts used to hold.
+        let ok = with_round(&[(150.0, 25.0, 3.0), (50.0, 25.0, 3.0)]);
+        assert!(ok.holes_part_mm.is_empty());
+        assert_eq!(
+            ok.hole_polygons(),
+            [
+                circle_cw(p(150.0, 25.0), 3.0, ARC_TOLERANCE_MM),
+                circle_cw(p(50.0, 25.0), 3.0, ARC_TOLERANCE_MM)
+            ]
+        );
+        assert_eq!(check_part(&ok, 0.5), Ok(()));
+        // Two features on one circle are one hole (an edge strip's shared
+        // node hole), not two crossing ones.
+        let shared = with_round(&[(150.0, 25.0, 3.0), (150.0, 25.0, 3.0)]);
+        assert_eq!(shared.round_holes().len(), 1);
+        assert_eq!(check_part(&shared, 0.5), Ok(()));
+        // A round hole crossing the bottom edge, inside a notch, outside.
+        for bad in [(150.0, 2.0, 3.0), (100.0, 40.0, 1.0), (350.0, 25.0, 3.0)] {
+            let e = check_part(&with_round(&[bad]), 0.5).unwrap_err();
+            assert!(
+                e.contains("strictly inside") || e.contains("crosses"),
+                "{bad:?}: {e}"
+            );
+        }
+        // Another round hole too close: overlapping, overlapping by 0.05 mm
+        // (more than the polygons' 0.01 mm sagitta), or inside it.
+        let e =
+            check_part(&with_round(&[(150.0, 25.0, 3.0), (154.0, 25.0, 3.0)]), 0.5).unwrap_err();
+        assert!(e.contains("crosses"), "{e}");
+        let e =
+            check_part(&with_round(&[(150.0, 25.0, 3.0), (155.95, 25.0, 3.0)]), 0.5).unwrap_err();
+        assert!(e.contains("crosses"), "{e}");
+        let e =
+            check_part(&with_round(&[(150.0, 25.0, 8.0), (150.0, 25.0, 3.0)]), 0.5).unwrap_err();
+        assert!(e.contains("inside hole 0"), "{e}");
+        // A polygon hole too close to a round one, and one that is the
+        // round hole over again.
+        let mut near = with_round(&[(150.0, 25.0, 3.0)]);
+        near.holes_part_mm = vec![vec![
+            p(152.0, 30.0),
+            p(160.0, 30.0),
+            p(160.0, 20.0),
+            p(152.0, 20.0),
+        ]];
+        let e = check_part(&near, 0.5).unwrap_err();
+        assert!(e.contains("crosses"), "{e}");
+        let mut twice = with_round(&[(150.0, 25.0, 3.0)]);
+        twice.holes_part_mm = vec![circle_cw(p(150.0, 25.0), 3.0, ARC_TOLERANCE_MM)];
+        let e = check_part(&twice, 0.5).unwrap_err();
+        assert!(e.contains("also the polygon hole 0"), "{e}");
+        // A feature that is no circle.
+        let e = check_part(&with_round(&[(150.0, 25.0, 0.0)]), 0.5).unwrap_err();
+        assert!(e.contains("is not a circle"), "{e}");
+        let e = check_part(&with_round(&[(f64::NAN, 25.0, 3.0)]), 0.5).unwrap_err();
+        assert!(e.contains("is not a circle"), "{e}");
+    }
+
+    #[test]
+    fn engraving_too_close_to_a_round_hole_is_caught() {
+        let hole = with_round(&[(150.0, 25.0, 3.0)]);
+        let check = |eng: Vec<Vec<Point>>, c: f64| strokes_inside_and_clear(&hole, &eng, c);
+        // Inside the hole; crossing it; 0.5 mm above it (clearance 1).
+        let e = check(vec![vec![p(150.0, 25.0)]], 0.0).unwrap_err();
+        assert!(e.contains("inside hole 0"), "{e}");
+        let e = check(vec![vec![p(140.0, 25.5), p(160.0, 25.5)]], 0.0).unwrap_err();
+        assert!(e.contains("hole 0 edge") && e.contains("0.0000 mm"), "{e}");
+        let e = check(vec![vec![p(140.0, 28.5), p(160.0, 28.5)]], 1.0).unwrap_err();
+        assert!(e.contains("hole 0 edge"), "{e}");
+        // Diagonally off the hole: 3.6 mm from its centre, 0.6 mm from
+        // the circle.
+        let d = 3.6 / 2f64.sqrt();
+        let e = check(vec![vec![p(150.0 + d, 25.0 + d)]], 0.7).unwrap_err();
+        assert!(e.contains("hole 0 edge"), "{e}");
+        assert_eq!(check(vec![vec![p(150.0 + d, 25.0 + d)]], 0.5), Ok(()));
+        assert_eq!(
+            check(vec![vec![p(140.0, 29.5), p(160.0, 29.5)]], 0.45),
+            Ok(())
+        );
+        // The placed engraving is checked the same way.
+        let mut placed = with_round(&[(150.0, 25.0, 3.0)]);
+        placed.engraving = vec![super::super::part::Engraving {
+            what: super::super::part::Engraved::OrientationMark,
+            at_part_mm: p(148.0, 28.2),
+            height_mm: 1.0,
+        }];
+        let e = engraving_inside_and_clear(&placed, 0.5).unwrap_err();
+        assert!(e.contains("hole 0 edge"), "{e}");
+        let e = check_part(&placed, 0.5).unwrap_err();
+        assert!(e.contains("hole 0 edge"), "{e}");
+        placed.engraving[0].at_part_mm = p(148.0, 29.0);
+        assert_eq!(check_part(&placed, 0.5), Ok(()));
     }
 
     /// A star-shaped outline of `n` vertices (radius alternating), CCW.

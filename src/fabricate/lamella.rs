@@ -9,9 +9,7 @@
 //! from each node's station on the lamella's own line.
 
 use super::blocks;
-use super::part::{
-    CircleCw, Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge, ARC_TOLERANCE_MM,
-};
+use super::part::{Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge};
 use super::slots::{node_slots_in, range_between_rad, sweep_range_rad, SlotSpan, SweepRange};
 use crate::analysis::model::LamellaLine;
 use crate::analysis::Analysis;
@@ -439,8 +437,6 @@ pub fn strip_parts(
     wanted.extend(&cuts);
     wanted.extend(&splice_holes);
     let lines = LamellaLine::with_stations_many(strip, smooth, &offsets, &wanted);
-    // The round holes' polygons, one per diameter, their trigonometry taken once.
-    let mut circles: Vec<CircleCw> = Vec::new();
     for (j, (o, (line, on_line))) in offsets.iter().zip(lines).enumerate() {
         let (b_line, rest) = on_line.split_at(block_stations.len());
         let (cut_line, hole_line) = rest.split_at(cuts.len());
@@ -574,17 +570,8 @@ pub fn strip_parts(
             } else {
                 format!("{}-{}.{}", strip.id, o.number, p + 1)
             };
-            let part = lamella_part(
-                id,
-                &strip.id,
-                o.number,
-                start,
-                end - start,
-                h,
-                mine,
-                &mut circles,
-            )
-            .map_err(|(node, what)| fail(node, what))?;
+            let part = lamella_part(id, &strip.id, o.number, start, end - start, h, mine)
+                .map_err(|(node, what)| fail(node, what))?;
             out.lamellas.push(part);
         }
     }
@@ -592,11 +579,10 @@ pub fn strip_parts(
 }
 
 /// One lamella piece: the rectangle length × h with its slots notched from
-/// their edges and its holes (their polygons from `circles`, one per
-/// diameter, added to as new ones come); features sorted by x. Err (node,
+/// their edges (its round holes are its `hole` features alone); features
+/// sorted by x. Err (node,
 /// what) when a slot runs past an end or two slots leave less than 1 mm
 /// of material between them.
-#[allow(clippy::too_many_arguments)]
 fn lamella_part(
     id: String,
     strip: &str,
@@ -605,7 +591,6 @@ fn lamella_part(
     length_mm: f64,
     h: f64,
     mut features: Vec<Feature>,
-    circles: &mut Vec<CircleCw>,
 ) -> std::result::Result<Part, (Option<usize>, String)> {
     features.sort_by(|a, b| a.center_part_mm.x.total_cmp(&b.center_part_mm.x));
     // Minimum material between two notches on one edge, mm (a laser keeps
@@ -678,21 +663,6 @@ fn lamella_part(
         ]);
     }
     outline.push(Point::new(0.0, h));
-    let holes = features
-        .iter()
-        .filter(|f| f.kind == FeatureKind::Hole)
-        .map(|f| {
-            let r = 0.5 * f.width_mm;
-            let k = match circles.iter().position(|c| c.radius_mm == r) {
-                Some(k) => k,
-                None => {
-                    circles.push(CircleCw::new(r, ARC_TOLERANCE_MM));
-                    circles.len() - 1
-                }
-            };
-            circles[k].at(f.center_part_mm)
-        })
-        .collect();
     Ok(Part {
         id,
         kind: PartKind::Lamella,
@@ -703,7 +673,7 @@ fn lamella_part(
         height_mm: h,
         station_start_mm: Some(station_start_mm),
         outline_part_mm: outline,
-        holes_part_mm: holes,
+        holes_part_mm: Vec::new(),
         engraving: Vec::new(),
         features,
     })

@@ -25,9 +25,7 @@ use crate::error::Result;
 use crate::network::Network;
 use crate::profile::Profile;
 use kurbo::Point;
-use part::{
-    circle_cw, signed_area_mm2, Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM,
-};
+use part::{signed_area_mm2, Feature, FeatureKind, HoleUse, Part, PartKind};
 use rayon::prelude::*;
 
 /// Every part of a network for one profile.
@@ -165,7 +163,7 @@ pub fn fabricate_with_rotations(
     })
 }
 
-/// A rectangular part with round holes (features and polylines).
+/// A rectangular part with round holes (its `hole` features).
 fn rectangle_part(
     id: &str,
     kind: PartKind,
@@ -189,10 +187,7 @@ fn rectangle_part(
             Point::new(length_mm, height_mm),
             Point::new(0.0, height_mm),
         ],
-        holes_part_mm: holes
-            .iter()
-            .map(|&(c, d, _)| circle_cw(c, 0.5 * d, ARC_TOLERANCE_MM))
-            .collect(),
+        holes_part_mm: Vec::new(),
         engraving: Vec::new(),
         features: holes
             .iter()
@@ -212,17 +207,15 @@ fn rectangle_part(
     }
 }
 
-/// Net area of a part (outline less holes), mm²: a round hole (on a
-/// `hole` feature's circle, [`part::round_hole`]) takes its circle's area,
-/// as it is cut; any other hole its polygon's.
+/// Net area of a part (outline less holes), mm²: a round hole
+/// ([`Part::round_holes`]) takes its circle's area, as it is cut; any
+/// other hole its polygon's.
 pub fn net_area_mm2(p: &Part) -> f64 {
     signed_area_mm2(&p.outline_part_mm)
-        - p.holes_part_mm
-            .iter()
-            .map(|h| match part::round_hole(p, h) {
-                Some(f) => std::f64::consts::PI * (0.5 * f.width_mm).powi(2),
-                None => signed_area_mm2(h).abs(),
-            })
+        - p.round_holes()
+            .into_iter()
+            .map(|(_, r)| std::f64::consts::PI * r.powi(2))
+            .chain(p.holes_part_mm.iter().map(|h| signed_area_mm2(h).abs()))
             .sum::<f64>()
 }
 

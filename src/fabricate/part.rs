@@ -143,7 +143,10 @@ pub struct Part {
     pub station_start_mm: Option<f64>,
     /// Closed outline, counter-clockwise, part frame, mm.
     pub outline_part_mm: Vec<Point>,
-    /// Closed holes, clockwise, inside the outline, part frame, mm.
+    /// Closed holes other than the round ones, clockwise, inside the
+    /// outline, part frame, mm. A round hole is only its `hole` feature
+    /// (centre and diameter): [`Part::round_holes`], and as polygons
+    /// [`Part::hole_polygons`].
     pub holes_part_mm: Vec<Vec<Point>>,
     /// What is engraved, in the order it was placed (its strokes:
     /// [`Part::engraving_strokes`]).
@@ -153,6 +156,52 @@ pub struct Part {
 }
 
 impl Part {
+    /// The round holes, (centre, radius) in feature order: one per `hole`
+    /// feature, except that features on the same circle (centres and radii
+    /// within [`ROUND_HOLE_MM`] together: an edge strip's nodes that share
+    /// a hole) are one hole, the first's.
+    pub fn round_holes(&self) -> Vec<(Point, f64)> {
+        let mut out: Vec<(Point, f64)> = Vec::new();
+        for f in &self.features {
+            if f.kind != FeatureKind::Hole {
+                continue;
+            }
+            let (c, r) = (f.center_part_mm, 0.5 * f.width_mm);
+            if !out
+                .iter()
+                .any(|&(c0, r0)| c0.distance(c) + (r0 - r).abs() <= ROUND_HOLE_MM)
+            {
+                out.push((c, r));
+            }
+        }
+        out
+    }
+
+    /// Every hole as a closed clockwise polygon, part frame, mm: the round
+    /// holes ([`Part::round_holes`]) as [`circle_cw`] at
+    /// [`ARC_TOLERANCE_MM`] (each size's trigonometry taken once), then
+    /// [`Part::holes_part_mm`]. Built on demand, for the checks and the
+    /// engraving placement of the few parts that need them.
+    pub fn hole_polygons(&self) -> Vec<Vec<Point>> {
+        let mut circles: Vec<CircleCw> = Vec::new();
+        let mut out: Vec<Vec<Point>> = self
+            .round_holes()
+            .into_iter()
+            .map(|(c, r)| {
+                let k = match circles.iter().position(|s| s.radius_mm == r) {
+                    Some(k) => k,
+                    None => {
+                        circles.push(CircleCw::new(r, ARC_TOLERANCE_MM));
+                        circles.len() - 1
+                    }
+                };
+                circles[k].at(c)
+            })
+            .collect();
+        out.extend(self.holes_part_mm.iter().cloned());
+        out
+    }
+
     /// Every engraving's open single-stroke polylines, part frame, mm.
     pub fn engraving_strokes(&self) -> Vec<Vec<Point>> {
         self.engraving.iter().flat_map(Engraving::strokes).collect()

@@ -27,9 +27,7 @@
 //! both on one face.
 
 use crate::error::{Error, Result};
-use crate::fabricate::part::{
-    circle_cw, Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM,
-};
+use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
 use crate::io::profile_file::JointSystem;
 use crate::profile::Profile;
 use kurbo::Point;
@@ -106,25 +104,22 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
     let count = u32::try_from(nodes).unwrap_or(u32::MAX);
     let hole = |x: f64| {
         let centre = Point::new(x, 0.5 * side);
-        (
-            Feature {
-                kind: FeatureKind::Hole,
-                hole_use: Some(HoleUse::Node),
-                node: None,
-                crossing: None,
-                center_part_mm: centre,
-                width_mm: d,
-                depth_mm: 0.0,
-                edge: None,
-                angle_range_deg: None,
-                station_mm: None,
-            },
-            circle_cw(centre, 0.5 * d, ARC_TOLERANCE_MM),
-        )
+        Feature {
+            kind: FeatureKind::Hole,
+            hole_use: Some(HoleUse::Node),
+            node: None,
+            crossing: None,
+            center_part_mm: centre,
+            width_mm: d,
+            depth_mm: 0.0,
+            edge: None,
+            angle_range_deg: None,
+            station_mm: None,
+        }
     };
     // By x: family B's level (lower), then family A's.
-    let (fb, hb) = hole(0.5 * len - o);
-    let (fa, ha) = hole(0.5 * len + o);
+    let fb = hole(0.5 * len - o);
+    let fa = hole(0.5 * len + o);
     let part = Part {
         id: STUD_ID.into(),
         kind: PartKind::Stud,
@@ -140,7 +135,7 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
             Point::new(len, side),
             Point::new(0.0, side),
         ],
-        holes_part_mm: vec![hb, ha],
+        holes_part_mm: Vec::new(),
         engraving: Vec::new(),
         features: vec![fb, fa],
     };
@@ -178,7 +173,8 @@ mod tests {
         // Holes at the lamella mid-heights: 60 ∓ 30 mm, on the face's centre line.
         let xs: Vec<f64> = s.features.iter().map(|f| f.center_part_mm.x).collect();
         assert_eq!(xs, [30.0, 90.0]);
-        for (f, h) in s.features.iter().zip(&s.holes_part_mm) {
+        assert!(s.holes_part_mm.is_empty());
+        for (f, h) in s.features.iter().zip(&s.hole_polygons()) {
             assert_eq!(f.kind, FeatureKind::Hole);
             assert_eq!(f.hole_use, Some(HoleUse::Node));
             assert_eq!((f.center_part_mm.y, f.width_mm), (10.0, 4.0));

@@ -26,9 +26,7 @@
 
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
-use crate::fabricate::part::{
-    circle_cw, Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM,
-};
+use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
 use crate::io::profile_file::JointSystem;
 use crate::network::Family;
 use crate::profile::Profile;
@@ -150,7 +148,7 @@ pub fn washer_part(
         height_mm: max_y - min_y,
         station_start_mm: None,
         outline_part_mm: star.iter().map(|p| *p + shift).collect(),
-        holes_part_mm: vec![circle_cw(centre, 0.5 * hole_diameter_mm, ARC_TOLERANCE_MM)],
+        holes_part_mm: Vec::new(),
         engraving: Vec::new(),
         features: vec![Feature {
             kind: FeatureKind::Hole,
@@ -377,8 +375,12 @@ mod tests {
             .fold(f64::INFINITY, f64::min);
         assert!(min_x.abs() < 1e-12 && min_y.abs() < 1e-12);
         assert!((w60.features[0].width_mm - 9.0).abs() < 1e-12);
-        assert!(signed_area_mm2(&w60.holes_part_mm[0]) < 0.0);
-        for q in &w60.holes_part_mm[0] {
+        // The hole only as its feature; its polygon built on demand.
+        assert!(w60.holes_part_mm.is_empty());
+        assert_eq!(w60.round_holes(), [(c, 4.5)]);
+        let holes = w60.hole_polygons();
+        assert!(signed_area_mm2(&holes[0]) < 0.0);
+        for q in &holes[0] {
             assert!((q.distance(c) - 4.5).abs() < 1e-9);
         }
         // The W87.5 class is drawn at 87.5°.
