@@ -52,13 +52,15 @@ fn measure(path: &Path) {
     let profile = Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
     let out = path.with_extension("build");
     let _ = std::fs::remove_dir_all(&out);
-    // Earlier runs' files deleted and flushed, and 6 s let pass, before the
-    // clock starts: ext4 without a journal (this machine's) will not reuse
-    // an inode deleted in the last 5 s (300 s while its block is dirty) and
-    // scans past each such inode for every file it creates, so a build
-    // started on the heels of deleting 5,316 files pays for that deletion.
-    support::sync_disk();
-    std::thread::sleep(std::time::Duration::from_secs(6));
+    // Earlier runs' files deleted, flushed and out of the kernel's caches
+    // before the clock starts: ext4 without a journal (this machine's)
+    // avoids reusing inodes deleted recently while their blocks are cached,
+    // scanning past each of them for every file it creates, so a build
+    // started within minutes of deleting 5,316 files pays about 1.3 s of
+    // system time for that deletion (measured with 5,316 small files: 0.2 s
+    // to create them on clean caches, 1.2–1.6 s after deleting as many, even
+    // 20 s later). Dropping the caches needs root; elsewhere only `sync`.
+    support::sync_and_drop_caches();
     let load0 = support::load_average();
     let t0 = Instant::now();
     let r = build(

@@ -96,9 +96,11 @@ pub fn generated(name: &str, make: impl FnOnce() -> String) -> PathBuf {
     path
 }
 
-/// Flush the file system (`sync`): what earlier runs wrote or deleted is on
-/// the disk before the next measurement starts.
+/// Flush the file system (`sync`) and, where allowed (root), drop the
+/// kernel's clean caches (`/proc/sys/vm/drop_caches`): what earlier runs
+/// wrote or deleted no longer weighs on the next measurement.
 #[allow(dead_code)]
-pub fn sync_disk() {
+pub fn sync_and_drop_caches() {
     let _ = Command::new("sync").status();
+    let _ = std::fs::write("/proc/sys/vm/drop_caches", "3");
 }
