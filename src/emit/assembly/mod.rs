@@ -250,6 +250,23 @@ pub struct Sections {
     check: Vec<SealedPage>,
 }
 
+impl Sections {
+    /// Every section after the cover in the document's order ([`SECTIONS`]),
+    /// with the sheets as nested (`nested`) before the elastic check.
+    fn in_order(self, nested: Vec<SealedPage>) -> Vec<Vec<SealedPage>> {
+        vec![
+            self.overview,
+            self.order,
+            self.strips,
+            self.nodes,
+            self.blocks,
+            vec![self.takeoff],
+            nested,
+            self.check,
+        ]
+    }
+}
+
 /// The sections of the assembly sheets other than the sheets as nested.
 pub fn sections(input: &AssemblyInput) -> Result<Sections> {
     sections_with(input, None)
@@ -326,25 +343,7 @@ pub fn assemble_into(
     w: &mut dyn std::io::Write,
 ) -> std::io::Result<usize> {
     let frame = Frame::of(input.paper);
-    let Sections {
-        overview,
-        order,
-        strips,
-        nodes,
-        blocks,
-        takeoff,
-        check,
-    } = sections;
-    let sections: Vec<Vec<SealedPage>> = vec![
-        overview,
-        order,
-        strips,
-        nodes,
-        blocks,
-        vec![takeoff],
-        nested,
-        check,
-    ];
+    let sections = sections.in_order(nested);
     // Contents: the first page of every section (the cover is page 1).
     let mut first = Vec::new();
     let mut n = 2;
