@@ -853,8 +853,7 @@ fn money(x: f64) -> f64 {
 
 /// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).
 pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
-    plan.parts = Some(kit.parts.iter().map(plan_part).collect());
-    add_kit_summary(plan, kit);
+    set_parts(plan, plan_parts(kit), kit);
 }
 
 /// The font entry of every character and mark the parts engrave.
@@ -900,17 +899,6 @@ fn engraving_font(parts: &[PlanPart]) -> PlanFont {
 
 /// The name of the orientation mark in plan.json.
 pub const ORIENTATION_MARK: &str = "orientation";
-
-/// [`add_parts`], taking the kit's parts: each is freed once converted, so
-/// a big kit and its plan copy are not both held whole. Call [`add_nest`]
-/// first (it names parts by the kit).
-pub fn add_parts_taking(plan: &mut Plan, kit: &mut crate::fabricate::Kit) {
-    use rayon::prelude::*;
-    let parts = std::mem::take(&mut kit.parts);
-    // In parallel, in order; each part freed where it is converted.
-    plan.parts = Some(parts.into_par_iter().map(|p| plan_part(&p)).collect());
-    add_kit_summary(plan, kit);
-}
 
 /// Every part of `kit` as plan.json writes it, in order (converted in
 /// parallel; the kit is left as it is).
