@@ -9,8 +9,15 @@ use std::process::Command;
 pub const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
 
 /// The network this process is to measure, when it is a child.
+///
+/// The child keeps freed memory as the CLI does
+/// ([`lamella::keep_freed_memory`]).
 pub fn child_network() -> Option<PathBuf> {
-    std::env::var(CHILD_ENV).ok().map(PathBuf::from)
+    let path = std::env::var(CHILD_ENV).ok().map(PathBuf::from);
+    if path.is_some() {
+        lamella::keep_freed_memory();
+    }
+    path
 }
 
 /// The sizes named on the command line, else 100, 200 and 400.
