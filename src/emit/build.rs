@@ -298,7 +298,7 @@ pub fn build(
                                 .into_par_iter()
                                 // Each worker's text buffers serve sheet after sheet.
                                 .map_init(
-                                    || (String::new(), String::new()),
+                                    || (Vec::new(), Vec::new()),
                                     |(dxf, svg), i| -> Result<super::assembly::SealedPage> {
                                         let sheet = drawer.sheet(i)?;
                                         let stem = sheet.file_stem();
@@ -309,7 +309,7 @@ pub fn build(
                                             )
                                         })?;
                                         staging
-                                            .write(&format!("sheets/{stem}.dxf"), dxf.as_bytes())?;
+                                            .write(&format!("sheets/{stem}.dxf"), dxf)?;
                                         let title = format!(
                                             "{} — {}: sheet {} of {} ({}), {} × {} mm",
                                             network_name,
@@ -322,7 +322,7 @@ pub fn build(
                                         );
                                         svg_out::write_svg(&sheet, &title, svg);
                                         staging
-                                            .write(&format!("sheets/{stem}.svg"), svg.as_bytes())?;
+                                            .write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
                                             Some(d) => super::assembly::nested::page(
                                                 &d.sheet_cuts(i)?,

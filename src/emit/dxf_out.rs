@@ -19,7 +19,6 @@ use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex};
 use dxf::enums::{AcadVersion, DrawingUnits, Units};
 use dxf::tables::Layer as DxfLayer;
 use dxf::{Color, Drawing};
-use std::fmt::Write;
 use std::sync::OnceLock;
 
 /// Decimals of coordinates and radii.
@@ -105,14 +104,14 @@ fn make_skeleton() -> Result<Skeleton, String> {
 
 /// The DXF text of one sheet.
 pub fn to_dxf(sheet: &SheetDrawing) -> Result<Vec<u8>, String> {
-    let mut out = String::new();
+    let mut out = Vec::new();
     write_dxf(sheet, &mut out)?;
-    Ok(out.into_bytes())
+    Ok(out)
 }
 
 /// The DXF text of one sheet into `out` (cleared first; a buffer used
 /// again for the next sheet keeps its memory).
-pub fn write_dxf(sheet: &SheetDrawing, out: &mut String) -> Result<(), String> {
+pub fn write_dxf(sheet: &SheetDrawing, out: &mut Vec<u8>) -> Result<(), String> {
     let sk = skeleton()?;
     let outline = sheet.outline();
     let shapes = || std::iter::once(&outline).chain(sheet.parts.iter().flat_map(|p| &p.shapes));
@@ -129,20 +128,20 @@ pub fn write_dxf(sheet: &SheetDrawing, out: &mut String) -> Result<(), String> {
     out.reserve(
         sk.before_seed.len() + sk.before_entities.len() + bytes + sk.after_entities.len() + 16,
     );
-    out.push_str(&sk.before_seed);
-    let _ = write!(out, "{:X}", sk.first_handle + count);
-    out.push_str(&sk.before_entities);
+    out.extend_from_slice(sk.before_seed.as_bytes());
+    push_hex(out, sk.first_handle + count);
+    out.extend_from_slice(sk.before_entities.as_bytes());
     let mut handle = sk.first_handle;
     for shape in shapes() {
         entity(out, shape, &mut handle);
     }
-    out.push_str(&sk.after_entities);
+    out.extend_from_slice(sk.after_entities.as_bytes());
     Ok(())
 }
 
 /// One entity with its handle (a [`Shape::Strokes`]: one per stroke), in
 /// the group codes the dxf crate writes (integers without its padding).
-fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
+fn entity(s: &mut Vec<u8>, shape: &Shape, handle: &mut u64) {
     match shape {
         Shape::Polyline {
             layer,
@@ -163,24 +162,24 @@ fn entity(s: &mut String, shape: &Shape, handle: &mut u64) {
             center_mm,
             radius_mm,
         } => {
-            s.push_str("  0\nCIRCLE\n  5\n");
+            s.extend_from_slice(b"  0\nCIRCLE\n  5\n");
             push_hex(s, *handle);
-            s.push_str("\n100\nAcDbEntity\n  8\n");
-            s.push_str(layer.name());
-            s.push_str("\n100\nAcDbCircle\n 10\n");
+            s.extend_from_slice(b"\n100\nAcDbEntity\n  8\n");
+            s.extend_from_slice(layer.name().as_bytes());
+            s.extend_from_slice(b"\n100\nAcDbCircle\n 10\n");
             super::push_decimal(s, center_mm[0], COORD_DECIMALS, true);
-            s.push_str("\n 20\n");
+            s.extend_from_slice(b"\n 20\n");
             super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
-            s.push_str("\n 30\n0.0\n 40\n");
+            s.extend_from_slice(b"\n 30\n0.0\n 40\n");
             super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
-            s.push('\n');
+            s.push(b'\n');
             *handle += 1;
         }
     }
 }
 
 /// `n` in upper-case hexadecimal, as DXF handles are written.
-fn push_hex(s: &mut String, n: u64) {
+fn push_hex(s: &mut Vec<u8>, n: u64) {
     const DIGITS: &[u8; 16] = b"0123456789ABCDEF";
     let mut buf = [0u8; 16];
     let mut i = buf.len();
@@ -193,30 +192,30 @@ fn push_hex(s: &mut String, n: u64) {
             break;
         }
     }
-    s.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
+    s.extend_from_slice(&buf[i..]);
 }
 
 /// One LWPOLYLINE with its handle.
-fn polyline(s: &mut String, layer: Layer, closed: bool, vertices: &[Vertex], handle: &mut u64) {
+fn polyline(s: &mut Vec<u8>, layer: Layer, closed: bool, vertices: &[Vertex], handle: &mut u64) {
     // Pieces pushed one by one: `write!`'s formatting machinery was a
     // tenth of writing the engraving's many short polylines.
-    s.push_str("  0\nLWPOLYLINE\n  5\n");
+    s.extend_from_slice(b"  0\nLWPOLYLINE\n  5\n");
     push_hex(s, *handle);
-    s.push_str("\n100\nAcDbEntity\n  8\n");
-    s.push_str(layer.name());
-    s.push_str("\n100\nAcDbPolyline\n 90\n");
+    s.extend_from_slice(b"\n100\nAcDbEntity\n  8\n");
+    s.extend_from_slice(layer.name().as_bytes());
+    s.extend_from_slice(b"\n100\nAcDbPolyline\n 90\n");
     super::push_scaled(s, false, vertices.len() as u64, 0, false);
-    s.push_str(if closed { "\n 70\n1\n" } else { "\n 70\n0\n" });
+    s.extend_from_slice(if closed { b"\n 70\n1\n" } else { b"\n 70\n0\n" });
     for v in vertices {
-        s.push_str(" 10\n");
+        s.extend_from_slice(b" 10\n");
         super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
-        s.push_str("\n 20\n");
+        s.extend_from_slice(b"\n 20\n");
         super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
-        s.push('\n');
+        s.push(b'\n');
         if v.bulge != 0.0 {
-            s.push_str(" 42\n");
+            s.extend_from_slice(b" 42\n");
             super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
-            s.push('\n');
+            s.push(b'\n');
         }
     }
     *handle += 1;
@@ -241,9 +240,9 @@ mod hex_tests {
             0xFFFF_FFFF,
             u64::MAX,
         ] {
-            let mut s = String::from("x");
+            let mut s = b"x".to_vec();
             push_hex(&mut s, n);
-            assert_eq!(s, format!("x{n:X}"), "{n}");
+            assert_eq!(s, format!("x{n:X}").as_bytes(), "{n}");
         }
     }
 }

@@ -24,11 +24,21 @@ pub mod takeoff;
 /// (`3.0`, as DXF writers do). Integer arithmetic on the scaled, rounded
 /// value: several times faster than `format!("{x:.N}")`, whose exact
 /// formatting dominated writing big kits. Coordinates are bounded by the
-/// network's ±10 km, far inside i64 at 9 decimals.
-pub(crate) fn push_decimal(out: &mut String, x: f64, decimals: u32, keep_point: bool) {
+/// network's ±10 km, far inside i64 at 9 decimals. The writers build their
+/// files as bytes (ASCII): a `String` would validate every number pushed.
+pub(crate) fn push_decimal(out: &mut Vec<u8>, x: f64, decimals: u32, keep_point: bool) {
     let decimals = decimals.min(9);
     let scaled = round_half_away(x.abs() * POW10[decimals as usize] as f64);
     push_scaled(out, x < 0.0, scaled, decimals, keep_point);
+}
+
+/// [`push_decimal`] into a `String` (for text that is not a big file's).
+pub(crate) fn push_decimal_str(out: &mut String, x: f64, decimals: u32, keep_point: bool) {
+    let decimals = decimals.min(9);
+    let scaled = round_half_away(x.abs() * POW10[decimals as usize] as f64);
+    let (buf, i) = scaled_digits(x < 0.0, scaled, decimals, keep_point);
+    // ASCII digits, point and sign only.
+    out.extend(buf[i..].iter().map(|&b| char::from(b)));
 }
 
 /// Powers of ten up to 10⁹.
@@ -46,17 +56,27 @@ const POW10: [u64; 10] = [
 ];
 
 /// Append `scaled` units of 10^−`decimals` (negative when `negative`, but
-/// never `-0`) as [`push_decimal`] writes numbers. The digits are made
-/// right to left in a buffer, two at a time, with divisions by constants
-/// only (the serial chain of divisions was most of formatting a big kit),
-/// and appended at once.
+/// never `-0`) as [`push_decimal`] writes numbers.
 pub(crate) fn push_scaled(
-    out: &mut String,
+    out: &mut Vec<u8>,
     negative: bool,
     scaled: u64,
     decimals: u32,
     keep_point: bool,
 ) {
+    let (buf, i) = scaled_digits(negative, scaled, decimals, keep_point);
+    out.extend_from_slice(&buf[i..]);
+}
+
+/// The text of [`push_scaled`]: `buf[i..]`. The digits are made right to
+/// left, two at a time, with divisions by constants only (the serial chain
+/// of divisions was most of formatting a big kit).
+pub(crate) fn scaled_digits(
+    negative: bool,
+    scaled: u64,
+    decimals: u32,
+    keep_point: bool,
+) -> ([u8; 24], usize) {
     // 20 digits, the point, a zero and the sign at most.
     let mut buf = [0u8; 24];
     let mut i = buf.len();
@@ -111,9 +131,7 @@ pub(crate) fn push_scaled(
         i -= 1;
         buf[i] = b'-';
     }
-    // ASCII only (pushing the bytes as chars one by one is slower than
-    // validating them once).
-    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
+    (buf, i)
 }
 
 /// "00" to "99".
@@ -156,8 +174,12 @@ mod tests {
     use super::push_decimal;
 
     fn d(x: f64, n: u32, keep: bool) -> String {
-        let mut s = String::new();
+        let mut s = Vec::new();
         push_decimal(&mut s, x, n, keep);
+        let mut t = String::new();
+        super::push_decimal_str(&mut t, x, n, keep);
+        let s = String::from_utf8(s).expect("ASCII");
+        assert_eq!(s, t, "the two entry points");
         s
     }
 

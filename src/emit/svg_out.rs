@@ -8,7 +8,7 @@
 //! sheets give equal bytes.
 
 use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS};
-use std::fmt::Write;
+use std::io::Write;
 
 /// Stroke width of every contour, mm.
 pub const STROKE_MM: f64 = 0.1;
@@ -21,14 +21,15 @@ const LABEL_MAX_MM: f64 = 40.0;
 
 /// The SVG text of one sheet; `title` names the project and sheet.
 pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
-    let mut s = String::new();
+    let mut s = Vec::new();
     write_svg(sheet, title, &mut s);
-    s
+    // Written from `str`s and ASCII only.
+    String::from_utf8(s).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
 /// The SVG text of one sheet into `s` (cleared first; a buffer used again
 /// for the next sheet keeps its memory).
-pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut String) {
+pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut Vec<u8>) {
     let (l, w) = (sheet.length_mm, sheet.width_mm);
     let bytes: usize = sheet
         .parts
@@ -105,7 +106,7 @@ fn shape_layer(sh: &Shape) -> Layer {
     sh.layer()
 }
 
-fn shape(s: &mut String, sh: &Shape, w: f64) {
+fn shape(s: &mut Vec<u8>, sh: &Shape, w: f64) {
     match sh {
         Shape::Circle {
             center_mm,
@@ -123,7 +124,7 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
         Shape::Polyline {
             closed, vertices, ..
         } => {
-            s.push_str(r#"<path d=""#);
+            s.extend_from_slice(br#"<path d=""#);
             let n = vertices.len();
             let _ = write!(
                 s,
@@ -140,9 +141,9 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
                 segment(s, a, b, w);
             }
             if *closed {
-                s.push('Z');
+                s.push(b'Z');
             }
-            s.push_str("\"/>\n");
+            s.extend_from_slice(b"\"/>\n");
         }
         Shape::Strokes { vertices, ends, .. } => {
             for stroke in strokes(vertices, ends) {
@@ -168,7 +169,7 @@ fn shape(s: &mut String, sh: &Shape, w: f64) {
 /// [`ENGRAVE_DECIMALS`] decimals ([`super::drawing`]), so every step is a
 /// whole number of grid units, written exactly: the positions it adds up
 /// to are the DXF's.
-fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
+fn engraving(s: &mut Vec<u8>, shapes: &[Shape], w: f64) {
     let scale = 10f64.powi(ENGRAVE_DECIMALS);
     let unit = |v: f64| super::round_to_i64(v * scale);
     let mut path = RelativePath::new(s);
@@ -202,35 +203,33 @@ fn engraving(s: &mut String, shapes: &[Shape], w: f64) {
         }
     }
     if at.is_some() {
-        path.s.push_str("\"/>\n");
+        path.s.extend_from_slice(b"\"/>\n");
     }
 }
 
 /// An SVG path written with relative steps (see [`engraving`]).
 struct RelativePath<'a> {
-    s: &'a mut String,
+    s: &'a mut Vec<u8>,
     /// The command the next numbers continue without a letter.
     command: u8,
     /// Whether a number was written last (a separator may be due).
     after_number: bool,
-    scratch: String,
 }
 
 impl<'a> RelativePath<'a> {
-    fn new(s: &'a mut String) -> RelativePath<'a> {
+    fn new(s: &'a mut Vec<u8>) -> RelativePath<'a> {
         RelativePath {
             s,
             command: 0,
             after_number: false,
-            scratch: String::with_capacity(24),
         }
     }
 
     /// `<path d="M x y` (absolute, mm).
     fn start(&mut self, x: f64, y: f64) {
-        self.s.push_str(r#"<path d="M"#);
+        self.s.extend_from_slice(br#"<path d="M"#);
         super::push_decimal(self.s, x, DECIMALS, false);
-        self.s.push(' ');
+        self.s.push(b' ');
         super::push_decimal(self.s, y, DECIMALS, false);
         // Numbers after an `M` pair would be absolute lines.
         self.command = b'L';
@@ -267,7 +266,7 @@ impl<'a> RelativePath<'a> {
 
     fn letter(&mut self, c: u8) {
         if self.command != c || c == b'm' {
-            self.s.push(char::from(c));
+            self.s.push(c);
             self.command = c;
             self.after_number = false;
         }
@@ -276,42 +275,39 @@ impl<'a> RelativePath<'a> {
     /// A whole number of grid units as a decimal, without the zero before
     /// the point (`-.75`, `.5`, `12`).
     fn number(&mut self, units: i64) {
-        self.scratch.clear();
-        super::push_scaled(
-            &mut self.scratch,
+        let (buf, i) = super::scaled_digits(
             units < 0,
             units.unsigned_abs(),
             ENGRAVE_DECIMALS as u32,
             false,
         );
-        let t = self.scratch.as_str();
-        let t = if let Some(rest) = t.strip_prefix("-0.") {
-            self.s.push('-');
-            self.s.push('.');
-            rest
-        } else if let Some(rest) = t.strip_prefix("0.") {
-            if self.after_number {
-                self.s.push(' ');
-            }
-            self.s.push('.');
-            rest
-        } else {
-            if self.after_number && !t.starts_with('-') {
-                self.s.push(' ');
-            }
-            t
+        let t = &buf[i..];
+        let (negative, digits) = match t.split_first() {
+            Some((b'-', rest)) => (true, rest),
+            _ => (false, t),
         };
-        self.s.push_str(t);
+        let digits = if digits.starts_with(b"0.") {
+            &digits[1..]
+        } else {
+            digits
+        };
+        // A minus sign separates; a number after a number needs a space.
+        if negative {
+            self.s.push(b'-');
+        } else if self.after_number {
+            self.s.push(b' ');
+        }
+        self.s.extend_from_slice(digits);
         self.after_number = true;
     }
 }
 
 /// The segment from `a` to `b`: a line, or the arc of `a`'s bulge.
-fn segment(s: &mut String, a: Vertex, b: Vertex, w: f64) {
+fn segment(s: &mut Vec<u8>, a: Vertex, b: Vertex, w: f64) {
     if a.bulge == 0.0 {
-        s.push_str(" L");
+        s.extend_from_slice(b" L");
         super::push_decimal(s, b.x_mm, DECIMALS, false);
-        s.push(' ');
+        s.push(b' ');
         super::push_decimal(s, w - b.y_mm, DECIMALS, false);
         return;
     }
@@ -330,7 +326,7 @@ fn segment(s: &mut String, a: Vertex, b: Vertex, w: f64) {
 /// never `-0`.
 fn num(x: f64) -> String {
     let mut t = String::with_capacity(16);
-    super::push_decimal(&mut t, x, DECIMALS, false);
+    super::push_decimal_str(&mut t, x, DECIMALS, false);
     t
 }
 
@@ -378,22 +374,34 @@ mod tests {
             ]),
             stroke(vec![v(20.0, 10.0), v(19.5, 10.75)]),
         ];
-        let mut s = String::new();
+        let mut s = Vec::new();
         engraving(&mut s, &shapes, 100.0);
-        assert_eq!(s, "<path d=\"M10 90h2.5v.75l-.75 .75m8.25-1.5-.5-.75\"/>\n");
+        assert_eq!(s, b"<path d=\"M10 90h2.5v.75l-.75 .75m8.25-1.5-.5-.75\"/>\n");
+    }
+
+    /// Grid numbers (µm) one after another: a space only between two
+    /// numbers where no minus sign separates them, no zero before a point.
+    #[test]
+    fn grid_numbers_are_separated_only_where_needed() {
+        let mut s = Vec::new();
+        let mut path = RelativePath::new(&mut s);
+        for units in [0, 500, -500, 12_000, -12_000, 1, -1, 1_234_567, 0] {
+            path.number(units);
+        }
+        assert_eq!(s, b"0 .5-.5 12-12 .001-.001 1234.567 0");
     }
 
     /// A half circle of radius 5 from (0, 0) to (10, 0) counter-clockwise
     /// (bulge 1): radius 5, small arc flag 0, positive sweep.
     #[test]
     fn bulges_become_arcs() {
-        let mut s = String::new();
+        let mut s = Vec::new();
         let v = |x_mm, bulge| Vertex {
             x_mm,
             y_mm: 0.0,
             bulge,
         };
         segment(&mut s, v(0.0, 1.0), v(10.0, 0.0), 100.0);
-        assert_eq!(s, " A5 5 0 0 1 10 100");
+        assert_eq!(s, b" A5 5 0 0 1 10 100");
     }
 }

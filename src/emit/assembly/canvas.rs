@@ -47,7 +47,7 @@ pub enum Align {
 /// the time and memory of big kits).
 #[derive(Debug, Default)]
 pub struct Canvas {
-    out: String,
+    out: Vec<u8>,
     in_text: bool,
     /// The text line start, tenths of a point, when unrotated.
     line_at: Option<(i64, i64)>,
@@ -72,7 +72,7 @@ impl Canvas {
     /// The content stream drawn, ending any open text object.
     pub fn into_content(mut self) -> Vec<u8> {
         self.end_text();
-        self.out.into_bytes()
+        self.out
     }
 
     /// Bytes written so far.
@@ -87,7 +87,7 @@ impl Canvas {
 
     fn num(&mut self, tenths: i64) {
         push_scaled(&mut self.out, tenths < 0, tenths.unsigned_abs(), 1, false);
-        self.out.push(' ');
+        self.out.push(b' ');
     }
 
     fn xy(&mut self, p: [f64; 2]) {
@@ -97,7 +97,7 @@ impl Canvas {
 
     fn end_text(&mut self) {
         if self.in_text {
-            self.out.push_str("ET\n");
+            self.out.extend_from_slice(b"ET\n");
             self.in_text = false;
             self.line_at = None;
         }
@@ -106,10 +106,10 @@ impl Canvas {
     fn rgb(&mut self, c: Rgb3, op: &str) {
         for v in c {
             push_decimal(&mut self.out, f64::from(v), 3, false);
-            self.out.push(' ');
+            self.out.push(b' ');
         }
-        self.out.push_str(op);
-        self.out.push('\n');
+        self.out.extend_from_slice(op.as_bytes());
+        self.out.push(b'\n');
     }
 
     /// Stroke colour.
@@ -135,7 +135,7 @@ impl Canvas {
         if self.width_pt != Some(w) {
             self.end_text();
             self.num(w);
-            self.out.push_str("w\n");
+            self.out.extend_from_slice(b"w\n");
             self.width_pt = Some(w);
         }
     }
@@ -144,8 +144,11 @@ impl Canvas {
     pub fn dash(&mut self, dashed: bool) {
         if self.dashed != dashed {
             self.end_text();
-            self.out
-                .push_str(if dashed { "[4 2] 0 d\n" } else { "[] 0 d\n" });
+            self.out.extend_from_slice(if dashed {
+                b"[4 2] 0 d\n"
+            } else {
+                b"[] 0 d\n"
+            });
             self.dashed = dashed;
         }
     }
@@ -161,7 +164,8 @@ impl Canvas {
             last = Some(q);
             self.num(q.0);
             self.num(q.1);
-            self.out.push_str(if k == 0 { "m\n" } else { "l\n" });
+            self.out
+                .extend_from_slice(if k == 0 { b"m\n" } else { b"l\n" });
         }
     }
 
@@ -172,7 +176,7 @@ impl Canvas {
             return;
         }
         self.path(pts);
-        self.out.push_str(if closed { "s\n" } else { "S\n" });
+        self.out.extend_from_slice(if closed { b"s\n" } else { b"S\n" });
     }
 
     /// A straight segment.
@@ -186,7 +190,7 @@ impl Canvas {
             return;
         }
         self.path(pts);
-        self.out.push_str("h f\n");
+        self.out.extend_from_slice(b"h f\n");
     }
 
     /// An axis-aligned rectangle from (x, y), `w` × `h` mm: filled with the
@@ -199,10 +203,10 @@ impl Canvas {
         self.xy([x, y]);
         self.num(hpt(x + w) - hpt(x));
         self.num(hpt(y + h) - hpt(y));
-        self.out.push_str(match (fill, stroke) {
-            (true, true) => "re B\n",
-            (true, false) => "re f\n",
-            _ => "re S\n",
+        self.out.extend_from_slice(match (fill, stroke) {
+            (true, true) => b"re B\n",
+            (true, false) => b"re f\n",
+            _ => b"re S\n",
         });
     }
 
@@ -226,7 +230,7 @@ impl Canvas {
         let [x, y] = c;
         self.end_text();
         self.xy([x + r, y]);
-        self.out.push_str("m\n");
+        self.out.extend_from_slice(b"m\n");
         let arcs = [
             [[x + r, y + k], [x + k, y + r], [x, y + r]],
             [[x - k, y + r], [x - r, y + k], [x - r, y]],
@@ -237,9 +241,9 @@ impl Canvas {
             for p in a {
                 self.xy(p);
             }
-            self.out.push_str("c\n");
+            self.out.extend_from_slice(b"c\n");
         }
-        self.out.push_str(if filled { "h f\n" } else { "h S\n" });
+        self.out.extend_from_slice(if filled { b"h f\n" } else { b"h S\n" });
     }
 
     /// Text at `at` (its baseline), `size_pt` points, anchored by `align`,
@@ -267,21 +271,24 @@ impl Canvas {
         let (sin, cos) = rot_deg.to_radians().sin_cos();
         let (x, y) = (hpt(at[0] - shift * cos), hpt(at[1] - shift * sin));
         if !self.in_text {
-            self.out.push_str("BT\n");
+            self.out.extend_from_slice(b"BT\n");
             self.in_text = true;
             self.line_at = Some((0, 0));
         }
         let size = (size_pt * 10.0).round() as u32;
         if self.font != Some((bold, size)) {
-            self.out.push('/');
-            self.out.push_str(if bold {
-                HELVETICA_BOLD_RES
-            } else {
-                HELVETICA_RES
-            });
-            self.out.push(' ');
+            self.out.push(b'/');
+            self.out.extend_from_slice(
+                if bold {
+                    HELVETICA_BOLD_RES
+                } else {
+                    HELVETICA_RES
+                }
+                .as_bytes(),
+            );
+            self.out.push(b' ');
             self.num(i64::from(size));
-            self.out.push_str("Tf\n");
+            self.out.extend_from_slice(b"Tf\n");
             self.font = Some((bold, size));
         }
         if rot_deg == 0.0 {
@@ -291,41 +298,41 @@ impl Canvas {
                 Some((lx, ly)) => {
                     self.num(x - lx);
                     self.num(y - ly);
-                    self.out.push_str("Td\n");
+                    self.out.extend_from_slice(b"Td\n");
                 }
                 None => {
-                    self.out.push_str("1 0 0 1 ");
+                    self.out.extend_from_slice(b"1 0 0 1 ");
                     self.num(x);
                     self.num(y);
-                    self.out.push_str("Tm\n");
+                    self.out.extend_from_slice(b"Tm\n");
                 }
             }
             self.line_at = Some((x, y));
         } else {
             for v in [cos, sin, -sin, cos] {
                 push_decimal(&mut self.out, v, 4, false);
-                self.out.push(' ');
+                self.out.push(b' ');
             }
             self.num(x);
             self.num(y);
-            self.out.push_str("Tm\n");
+            self.out.extend_from_slice(b"Tm\n");
             self.line_at = None;
         }
-        self.out.push('(');
+        self.out.push(b'(');
         for c in s.chars() {
             match c {
                 '(' | ')' | '\\' => {
-                    self.out.push('\\');
-                    self.out.push(c);
+                    self.out.push(b'\\');
+                    self.out.push(c as u8);
                 }
-                ' '..='~' => self.out.push(c),
+                ' '..='~' => self.out.push(c as u8),
                 _ => {
                     let b = win_ansi_byte(c).unwrap_or(b'?');
-                    self.out.push_str(&format!("\\{b:03o}"));
+                    self.out.extend_from_slice(format!("\\{b:03o}").as_bytes());
                 }
             }
         }
-        self.out.push_str(") Tj\n");
+        self.out.extend_from_slice(b") Tj\n");
     }
 }
 
