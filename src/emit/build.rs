@@ -308,8 +308,7 @@ pub fn build(
                                                 e,
                                             )
                                         })?;
-                                        staging
-                                            .write(&format!("sheets/{stem}.dxf"), dxf)?;
+                                        staging.write(&format!("sheets/{stem}.dxf"), dxf)?;
                                         let title = format!(
                                             "{} — {}: sheet {} of {} ({}), {} × {} mm",
                                             network_name,
@@ -321,8 +320,7 @@ pub fn build(
                                             sheet.width_mm
                                         );
                                         svg_out::write_svg(&sheet, &title, svg);
-                                        staging
-                                            .write(&format!("sheets/{stem}.svg"), svg)?;
+                                        staging.write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
                                             Some(d) => super::assembly::nested::page(
                                                 &d.sheet_cuts(i)?,

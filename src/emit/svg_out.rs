@@ -275,29 +275,18 @@ impl<'a> RelativePath<'a> {
     /// A whole number of grid units as a decimal, without the zero before
     /// the point (`-.75`, `.5`, `12`).
     fn number(&mut self, units: i64) {
-        let (buf, i) = super::scaled_digits(
+        // A minus sign separates; a number after a number needs a space.
+        if self.after_number && units >= 0 {
+            self.s.push(b' ');
+        }
+        super::push_digits(
+            self.s,
             units < 0,
             units.unsigned_abs(),
             ENGRAVE_DECIMALS as u32,
             false,
+            false,
         );
-        let t = &buf[i..];
-        let (negative, digits) = match t.split_first() {
-            Some((b'-', rest)) => (true, rest),
-            _ => (false, t),
-        };
-        let digits = if digits.starts_with(b"0.") {
-            &digits[1..]
-        } else {
-            digits
-        };
-        // A minus sign separates; a number after a number needs a space.
-        if negative {
-            self.s.push(b'-');
-        } else if self.after_number {
-            self.s.push(b' ');
-        }
-        self.s.extend_from_slice(digits);
         self.after_number = true;
     }
 }
@@ -376,7 +365,10 @@ mod tests {
         ];
         let mut s = Vec::new();
         engraving(&mut s, &shapes, 100.0);
-        assert_eq!(s, b"<path d=\"M10 90h2.5v.75l-.75 .75m8.25-1.5-.5-.75\"/>\n");
+        assert_eq!(
+            s,
+            b"<path d=\"M10 90h2.5v.75l-.75 .75m8.25-1.5-.5-.75\"/>\n"
+        );
     }
 
     /// Grid numbers (µm) one after another: a space only between two

@@ -144,11 +144,8 @@ impl Canvas {
     pub fn dash(&mut self, dashed: bool) {
         if self.dashed != dashed {
             self.end_text();
-            self.out.extend_from_slice(if dashed {
-                b"[4 2] 0 d\n"
-            } else {
-                b"[] 0 d\n"
-            });
+            self.out
+                .extend_from_slice(if dashed { b"[4 2] 0 d\n" } else { b"[] 0 d\n" });
             self.dashed = dashed;
         }
     }
@@ -176,7 +173,8 @@ impl Canvas {
             return;
         }
         self.path(pts);
-        self.out.extend_from_slice(if closed { b"s\n" } else { b"S\n" });
+        self.out
+            .extend_from_slice(if closed { b"s\n" } else { b"S\n" });
     }
 
     /// A straight segment.
@@ -243,7 +241,8 @@ impl Canvas {
             }
             self.out.extend_from_slice(b"c\n");
         }
-        self.out.extend_from_slice(if filled { b"h f\n" } else { b"h S\n" });
+        self.out
+            .extend_from_slice(if filled { b"h f\n" } else { b"h S\n" });
     }
 
     /// Text at `at` (its baseline), `size_pt` points, anchored by `align`,
