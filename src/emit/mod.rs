@@ -26,6 +26,7 @@ pub mod takeoff;
 /// formatting dominated writing big kits. Coordinates are bounded by the
 /// network's ±10 km, far inside i64 at 9 decimals. The writers build their
 /// files as bytes (ASCII): a `String` would validate every number pushed.
+#[inline]
 pub(crate) fn push_decimal(out: &mut Vec<u8>, x: f64, decimals: u32, keep_point: bool) {
     let decimals = decimals.min(9);
     let scaled = round_half_away(x.abs() * POW10[decimals as usize] as f64);
@@ -56,6 +57,7 @@ const POW10: [u64; 10] = [
 
 /// Append `scaled` units of 10^−`decimals` (at most 9; negative when
 /// `negative`, but never `-0`) as [`push_decimal`] writes numbers.
+#[inline]
 pub(crate) fn push_scaled(
     out: &mut Vec<u8>,
     negative: bool,
@@ -75,6 +77,7 @@ pub(crate) fn push_scaled(
 /// big kit). Not through a buffer on the stack: copying one filled byte by
 /// byte stalls the processor (its wide loads cannot be forwarded from the
 /// narrow stores), which was most of the time of formatting a number.
+#[inline]
 pub(crate) fn push_digits(
     out: &mut Vec<u8>,
     negative: bool,
@@ -83,16 +86,51 @@ pub(crate) fn push_digits(
     keep_point: bool,
     zero_before_point: bool,
 ) {
-    // Most numbers of a kit's files: sheet coordinates on the 1 µm grid.
-    let milli = match decimals {
-        3 => Some(scaled),
-        6 if scaled.is_multiple_of(1000) => Some(scaled / 1000),
-        _ => None,
-    };
-    if let Some(m) = milli.filter(|&m| m < 10_000_000) {
-        push_milli(out, negative, m, keep_point, zero_before_point);
-        return;
+    // Most numbers of a kit's files: sheet coordinates on the 1 µm grid,
+    // PDF coordinates in tenths of a point. Inlined, so that the decimals
+    // (a constant where called) fold the test into one division by a
+    // constant.
+    match thousandths(scaled, decimals) {
+        Some(m) => push_milli(out, negative, m, keep_point, zero_before_point),
+        None => push_digits_general(
+            out,
+            negative,
+            scaled,
+            decimals,
+            keep_point,
+            zero_before_point,
+        ),
     }
+}
+
+/// `scaled` units of 10^−`decimals` as thousandths, if exactly so and
+/// below 10⁷.
+#[inline]
+fn thousandths(scaled: u64, decimals: u32) -> Option<u64> {
+    let m = match decimals {
+        0..=3 => scaled.checked_mul(POW10[3 - decimals as usize])?,
+        4..=9 => {
+            let p = POW10[decimals as usize - 3];
+            if !scaled.is_multiple_of(p) {
+                return None;
+            }
+            scaled / p
+        }
+        _ => return None,
+    };
+    (m < 10_000_000).then_some(m)
+}
+
+/// [`push_digits`] of any number.
+#[inline(never)]
+fn push_digits_general(
+    out: &mut Vec<u8>,
+    negative: bool,
+    scaled: u64,
+    decimals: u32,
+    keep_point: bool,
+    zero_before_point: bool,
+) {
     let mut n = scaled;
     let mut frac_digits = decimals.min(9) as usize;
     // Trailing zeros of the fraction are not written (three at a time
@@ -170,6 +208,7 @@ pub(crate) fn push_digits(
 
 /// [`push_digits`] of `m` < 10⁷ thousandths: the digits before the point
 /// two at a time, the fraction from [`FRACTIONS`].
+#[inline]
 fn push_milli(
     out: &mut Vec<u8>,
     negative: bool,
