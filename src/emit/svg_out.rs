@@ -113,25 +113,23 @@ fn shape(s: &mut Vec<u8>, sh: &Shape, w: f64) {
             radius_mm,
             ..
         } => {
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{}" cy="{}" r="{}"/>"#,
-                num(center_mm[0]),
-                num(w - center_mm[1]),
-                num(*radius_mm)
-            );
+            s.extend_from_slice(br#"<circle cx=""#);
+            super::push_decimal(s, center_mm[0], DECIMALS, false);
+            s.extend_from_slice(br#"" cy=""#);
+            super::push_decimal(s, w - center_mm[1], DECIMALS, false);
+            s.extend_from_slice(br#"" r=""#);
+            super::push_decimal(s, *radius_mm, DECIMALS, false);
+            s.extend_from_slice(b"\"/>\n");
         }
         Shape::Polyline {
             closed, vertices, ..
         } => {
             s.extend_from_slice(br#"<path d=""#);
             let n = vertices.len();
-            let _ = write!(
-                s,
-                "M{} {}",
-                num(vertices[0].x_mm),
-                num(w - vertices[0].y_mm)
-            );
+            s.push(b'M');
+            super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
+            s.push(b' ');
+            super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
             let segments = if *closed { n } else { n - 1 };
             for i in 0..segments {
                 let (a, b) = (vertices[i], vertices[(i + 1) % n]);
