@@ -14,6 +14,7 @@ use super::font;
 use super::label::{self, LabelSize, Placer};
 use super::part::{Engraved, Engraving, FeatureKind, Part, PartKind, SlotEdge};
 use kurbo::Point;
+use rayon::prelude::*;
 
 /// The largest cap height of a lamella's id, mm.
 const ID_HEIGHT_MM: f64 = 8.0;
@@ -24,17 +25,22 @@ pub const MIN_HEIGHT_MM: f64 = 1.0;
 /// How far a crossing label may move from its slot, in text widths.
 const CROSSING_SEARCH_WIDTHS: f64 = 3.0;
 
-/// Engrave every part; returns what could not be engraved (one line each).
+/// Engrave every part (each on its own, in parallel); returns what could
+/// not be engraved (one line each, in part order).
 pub fn engrave_all(parts: &mut [Part], clearance_mm: f64) -> Vec<String> {
-    let mut missing = Vec::new();
-    for p in parts.iter_mut() {
-        if p.kind == PartKind::Lamella {
-            missing.extend(engrave_lamella(p, clearance_mm));
-        } else if let Some(m) = engrave_other(p, clearance_mm) {
-            missing.push(m);
-        }
-    }
-    missing
+    parts
+        .par_iter_mut()
+        .map(|p| {
+            if p.kind == PartKind::Lamella {
+                engrave_lamella(p, clearance_mm)
+            } else {
+                engrave_other(p, clearance_mm).into_iter().collect()
+            }
+        })
+        .collect::<Vec<Vec<String>>>()
+        .into_iter()
+        .flatten()
+        .collect()
 }
 
 /// Free x-intervals search: the position nearest `want` (a box centre) for a
