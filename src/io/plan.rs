@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::io::profile_file::JointSystem;
 use crate::network::Network;
 use crate::profile::Profile;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -655,11 +656,12 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         }
         v
     };
+    // Strips and nodes formatted in parallel (in order).
     let strips: Vec<PlanStrip> = an
         .strips
-        .iter()
-        .zip(&model.strips)
-        .zip(&checks)
+        .par_iter()
+        .zip(model.strips.par_iter())
+        .zip(checks.par_iter())
         .map(|((s, m), sc)| {
             let nodes = s
                 .nodes
@@ -723,7 +725,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
     let nodes: Vec<PlanNode> = an
         .topology
         .nodes
-        .iter()
+        .par_iter()
         .map(|n| PlanNode {
             id: n.id,
             a: id(n.a),
