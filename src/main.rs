@@ -528,9 +528,10 @@ fn parts(
     } else {
         None
     };
+    // The lamella lines the check integrates serve fabrication too.
+    let (report, lines) = lamella::check::check_with_lines(&an, &profile);
     let kit =
-        lamella::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
-    let report = lamella::check::check(&an, &profile);
+        lamella::fabricate::fabricate_with_lines(&net, &an, &profile, rotations.as_ref(), lines)?;
     let model = Model::checked(&net, &an, profile.clone(), report, None);
     let mut plan = plan::build(&net, &an, &model);
     plan::add_parts(&mut plan, &kit);

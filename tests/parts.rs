@@ -261,6 +261,31 @@ fn two_level_node_holes_sit_at_the_nodes() {
     assert_eq!(studs.count as usize, ab);
 }
 
+/// Fabrication on the check's lamella lines (what `lamella build` does)
+/// makes exactly the parts it makes integrating its own lines: no station
+/// depends on which others were asked for with it.
+#[test]
+fn parts_on_the_checks_lines_are_the_same() {
+    for (sample, profile) in [("enneper-4m", "steel-1.5"), ("catenoid", "poplar-ply-4")] {
+        let (net, an, p) = load(sample, profile);
+        let own = fabricate(&net, &an, &p).unwrap();
+        let (report, lines) = lamella::check::check_with_lines(&an, &p);
+        assert_eq!(report, lamella::check::check(&an, &p), "{sample}");
+        let shared = lamella::fabricate::fabricate_with_lines(&net, &an, &p, None, lines).unwrap();
+        assert_eq!(own.parts, shared.parts, "{sample} with {profile}");
+        // The nodes where the parts put them: where the check's lines have them.
+        for sc in &report.strips {
+            for l in &sc.lamellas {
+                let s = &an.strips[sc.strip];
+                assert_eq!(
+                    l.line,
+                    LamellaLine::new(s, &an.curves[s.curve], l.line.offset)
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn shear_blocks_keep_both_limits_and_clear_the_nodes() {
     for (sample, profile) in [

@@ -355,7 +355,7 @@ impl StripGeometry {
     }
 
     /// Stations on the lamella line c(s) + dy·y(s) + dz·z(s) that correspond
-    /// to the given centre-line stations (sorted ascending); see
+    /// to the given centre-line stations (any order); see
     /// [`StripGeometry::offset_stations_many`].
     pub fn offset_stations(
         &self,
@@ -372,13 +372,9 @@ impl StripGeometry {
 
     /// For each offset (dy, dz), the stations on the lamella line
     /// c(s) + dy·y(s) + dz·z(s) that correspond to the given centre-line
-    /// stations (sorted ascending), by integrating
-    /// ds' = sqrt((1 − dy·kg − dz·kn)² + (dz·tg)² + (dy·tg)²) ds with
-    /// 4-point Gauss–Legendre in the curve's own parameter over every
-    /// segment, split at the requested stations and into pieces at most
-    /// `max_step_mm` long. The frames are evaluated once for all offsets,
-    /// where they are (no search for stations). Exact for integrands of
-    /// degree 7 per piece; the tests hold it to exact offset lines to 0.01 mm.
+    /// stations (any order): the line's arc length on the grid
+    /// ([`StripGeometry::offset_arc_table`]), then each station from the
+    /// grid point before it ([`StripGeometry::offset_stations_in`]).
     pub fn offset_stations_many(
         &self,
         smooth: &SmoothCurve,
@@ -386,7 +382,7 @@ impl StripGeometry {
         stations_mm: &[f64],
         max_step_mm: f64,
     ) -> Vec<Vec<f64>> {
-        // Where each requested station lies: (segment, local u), in order.
+        // Where each requested station lies: (segment, local u).
         let mut hint = 0;
         let targets: Vec<(usize, f64)> = stations_mm
             .iter()
@@ -396,67 +392,182 @@ impl StripGeometry {
                 at
             })
             .collect();
-        self.offset_stations_located(smooth, offsets_mm, &targets, max_step_mm)
+        let table = self.offset_arc_table(smooth, offsets_mm, max_step_mm);
+        self.offset_stations_in(smooth, &table, &targets)
     }
 
-    /// [`StripGeometry::offset_stations_many`] for stations already located
-    /// on the curve: `targets[i] = smooth.locate_station(stations_mm[i])`,
-    /// in ascending order.
-    pub fn offset_stations_located(
+    /// For each offset (dy, dz), the arc length of the lamella line
+    /// c(s) + dy·y(s) + dz·z(s) from its start to every point of the
+    /// strip's integration grid: every segment of the curve cut into
+    /// ⌈length / `max_step_mm`⌉ equal steps of its parameter, each integrated by 4-point Gauss–Legendre in the curve's
+    /// own parameter, ds' = sqrt((1 − dy·kg − dz·kn)² + (dz·tg)² + (dy·tg)²) ds
+    /// (exact for integrands of degree 7 per step; the tests hold it to
+    /// exact offset lines to 0.01 mm). The frames are evaluated once for
+    /// all offsets. The grid depends on the curve and `max_step_mm` alone.
+    pub fn offset_arc_table(
         &self,
         smooth: &SmoothCurve,
         offsets_mm: &[(f64, f64)],
-        targets: &[(usize, f64)],
         max_step_mm: f64,
-    ) -> Vec<Vec<f64>> {
+    ) -> OffsetArcTable {
         let m = offsets_mm.len();
-        let knots = smooth.sample_stations_mm();
-        let segments = knots.len() - 1;
-        let mut out: Vec<Vec<f64>> = vec![Vec::with_capacity(targets.len()); m];
+        let first = grid_first_points(smooth, max_step_mm);
+        let points = first.last().map_or(1, |&g| g + 1);
+        let mut cumulative_mm: Vec<f64> = Vec::with_capacity(points * m);
         let mut acc = vec![0.0; m];
-        let mut next = 0;
-        let integrate = |piece: &Piece, k: usize, u0: f64, u1: f64, acc: &mut [f64]| {
-            if u1 <= u0 {
-                return;
-            }
-            for (u, s, w) in smooth.gauss_nodes4_in(piece, k, u0, u1) {
-                let f = self.frame_of_jet(piece.jet(u), k, u, s);
-                for (j, &(dy, dz)) in offsets_mm.iter().enumerate() {
-                    let a = 1.0 - dy * f.kg_per_mm - dz * f.kn_per_mm;
-                    acc[j] += w
-                        * (a * a + (dz * f.tg_per_mm).powi(2) + (dy * f.tg_per_mm).powi(2)).sqrt();
-                }
-            }
-        };
-        for k in 0..segments {
+        cumulative_mm.extend_from_slice(&acc);
+        for (k, w) in first.windows(2).enumerate() {
             let piece = smooth.piece(k);
-            let parts = ((knots[k + 1] - knots[k]) / max_step_mm).ceil().max(1.0) as usize;
-            let mut u_prev = 0.0;
+            let parts = w[1] - w[0];
             for p in 1..=parts {
-                let u_piece = p as f64 / parts as f64;
-                // Requested stations in this piece, in order.
-                while next < targets.len()
-                    && (targets[next].0 < k || (targets[next].0 == k && targets[next].1 <= u_piece))
-                {
-                    if targets[next].0 == k && targets[next].1 > u_prev {
-                        integrate(&piece, k, u_prev, targets[next].1, &mut acc);
-                        u_prev = targets[next].1;
-                    }
-                    for j in 0..m {
-                        out[j].push(acc[j]);
-                    }
-                    next += 1;
-                }
-                integrate(&piece, k, u_prev, u_piece, &mut acc);
-                u_prev = u_piece;
+                let (u0, u1) = ((p - 1) as f64 / parts as f64, p as f64 / parts as f64);
+                self.add_offset_arcs(smooth, &piece, k, (u0, u1), offsets_mm, &mut acc);
+                cumulative_mm.extend_from_slice(&acc);
             }
         }
-        for j in 0..m {
-            while out[j].len() < targets.len() {
-                out[j].push(acc[j]);
+        OffsetArcTable {
+            offsets_mm: offsets_mm.to_vec(),
+            max_step_mm,
+            cumulative_mm,
+        }
+    }
+
+    /// For each offset of `table` (made on this strip), the stations on its
+    /// line of curve stations already located,
+    /// `targets[i] = smooth.locate_station(station_i)`, in any order: the
+    /// table's arc length at the grid point at or before each, plus 4-point
+    /// Gauss–Legendre from there to the station. A station's value depends
+    /// on the table and its own location alone, never on the other targets.
+    pub fn offset_stations_in(
+        &self,
+        smooth: &SmoothCurve,
+        table: &OffsetArcTable,
+        targets: &[(usize, f64)],
+    ) -> Vec<Vec<f64>> {
+        let m = table.offsets_mm.len();
+        let mut out: Vec<Vec<f64>> = vec![Vec::with_capacity(targets.len()); m];
+        if m == 0 {
+            return out;
+        }
+        let first = grid_first_points(smooth, table.max_step_mm);
+        debug_assert_eq!(
+            first.last().map_or(1, |&g| g + 1) * m,
+            table.cumulative_mm.len(),
+            "the table was made on another curve"
+        );
+        let segments = first.len() - 1;
+        let mut acc = vec![0.0; m];
+        let mut piece: Option<(usize, Piece)> = None;
+        for &(k, u) in targets {
+            // The grid point at or before (k, u), and the part past it.
+            let (g, u0) = if segments == 0 {
+                (0, u)
+            } else {
+                let k = k.min(segments - 1);
+                let parts = first[k + 1] - first[k];
+                let mut p = ((u * parts as f64).floor().max(0.0) as usize).min(parts);
+                if p > 0 && p as f64 / parts as f64 > u {
+                    p -= 1;
+                }
+                (first[k] + p, p as f64 / parts as f64)
+            };
+            acc.fill(0.0);
+            if segments > 0 && u > u0 {
+                let pc = match piece {
+                    Some((pk, pc)) if pk == k => pc,
+                    _ => {
+                        let pc = smooth.piece(k);
+                        piece = Some((k, pc));
+                        pc
+                    }
+                };
+                self.add_offset_arcs(smooth, &pc, k, (u0, u), &table.offsets_mm, &mut acc);
+            }
+            for (j, o) in out.iter_mut().enumerate() {
+                o.push(table.cumulative_mm[g * m + j] + acc[j]);
             }
         }
         out
+    }
+
+    /// Add ∫ ds' over segment k from local u0 to u1 (4-point Gauss–Legendre)
+    /// of each offset line (dy, dz) to `acc`.
+    fn add_offset_arcs(
+        &self,
+        smooth: &SmoothCurve,
+        piece: &Piece,
+        k: usize,
+        (u0, u1): (f64, f64),
+        offsets_mm: &[(f64, f64)],
+        acc: &mut [f64],
+    ) {
+        if u1 <= u0 {
+            return;
+        }
+        for (u, s, w) in smooth.gauss_nodes4_in(piece, k, u0, u1) {
+            let f = self.frame_of_jet(piece.jet(u), k, u, s);
+            for (a, &(dy, dz)) in acc.iter_mut().zip(offsets_mm) {
+                let c = 1.0 - dy * f.kg_per_mm - dz * f.kn_per_mm;
+                *a += w * (c * c + (dz * f.tg_per_mm).powi(2) + (dy * f.tg_per_mm).powi(2)).sqrt();
+            }
+        }
+    }
+}
+
+/// The index of every segment's first point on the integration grid of a
+/// curve (segment k cut into `first[k + 1] − first[k]` =
+/// ⌈length / `max_step_mm`⌉ equal steps of its parameter, at least one);
+/// the last entry is the curve's end.
+fn grid_first_points(smooth: &SmoothCurve, max_step_mm: f64) -> Vec<usize> {
+    let knots = smooth.sample_stations_mm();
+    let mut first = Vec::with_capacity(knots.len());
+    let mut g = 0;
+    first.push(g);
+    for w in knots.windows(2) {
+        g += ((w[1] - w[0]) / max_step_mm).ceil().max(1.0) as usize;
+        first.push(g);
+    }
+    first
+}
+
+/// The arc length of lamella lines offset from one strip's curve at every
+/// point of its integration grid ([`StripGeometry::offset_arc_table`]):
+/// one f64 per offset per step of at most `max_step_mm`. Stations between
+/// grid points come from [`StripGeometry::offset_stations_in`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct OffsetArcTable {
+    /// The offsets (dy, dz), mm, in the order given.
+    offsets_mm: Vec<(f64, f64)>,
+    /// Longest step of the grid along the curve, mm.
+    max_step_mm: f64,
+    /// At grid point g, offset j: `cumulative_mm[g · offsets + j]`, the arc
+    /// length from the line's start, mm.
+    cumulative_mm: Vec<f64>,
+}
+
+impl OffsetArcTable {
+    /// The offsets (dy, dz) of the lines, mm, in the order given.
+    pub fn offsets_mm(&self) -> &[(f64, f64)] {
+        &self.offsets_mm
+    }
+
+    /// Longest step of the grid along the curve, mm.
+    pub fn max_step_mm(&self) -> f64 {
+        self.max_step_mm
+    }
+
+    /// Number of grid points (the curve's start and the end of every step).
+    pub fn grid_points(&self) -> usize {
+        self.cumulative_mm
+            .len()
+            .checked_div(self.offsets_mm.len())
+            .unwrap_or(0)
+    }
+
+    /// Arc length of line j (by offset order) from its start to its end, mm.
+    pub fn length_mm(&self, j: usize) -> f64 {
+        let m = self.offsets_mm.len();
+        self.cumulative_mm[self.cumulative_mm.len() - m + j]
     }
 }
 

@@ -16,7 +16,7 @@
 //! frame turns by the same angle on it over a longer or shorter length, so
 //! its curvatures are the curve's divided by the stretch ds'/ds.
 
-use crate::analysis::model::LamellaLine;
+use crate::analysis::model::{LamellaLine, NetworkLines, StripLines};
 use crate::analysis::Analysis;
 use crate::profile::{LamellaOffset, Profile};
 use rayon::prelude::*;
@@ -241,8 +241,25 @@ pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
 /// here: they lie tangential to the surface and are cut as curved bands
 /// (fabrication.md), so kg does not bend them about their weak axis.
 pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
+    check_strips(an, profile, false).0
+}
+
+/// [`check`], and every lamella line it integrated, for fabrication to
+/// carry its own stations onto ([`crate::fabricate::fabricate_with_lines`])
+/// instead of integrating the lines again. The report's lines are the same.
+pub fn check_with_lines(an: &Analysis, profile: &Profile) -> (CheckReport, NetworkLines) {
+    let (report, lines) = check_strips(an, profile, true);
+    (report, NetworkLines::new(lines.into_iter().flatten()))
+}
+
+/// [`check`]; with `keep_lines`, each strip's [`StripLines`] too.
+fn check_strips(
+    an: &Analysis,
+    profile: &Profile,
+    keep_lines: bool,
+) -> (CheckReport, Vec<Option<StripLines>>) {
     let checked: Vec<&crate::analysis::strip::StripGeometry> = an.lamella_strips().collect();
-    let strips = checked
+    let (strips, lines): (Vec<StripCheck>, Vec<Option<StripLines>>) = checked
         .par_iter()
         .map(|s| {
             let smooth = &an.curves[s.curve];
@@ -255,10 +272,16 @@ pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
             // frames along the strip.
             let curve_stations: Vec<f64> =
                 scans.iter().map(|sc| s.samples[sc.1].station_mm).collect();
-            let lines = LamellaLine::with_stations_many(s, smooth, &offsets, &curve_stations);
+            let mut strip_lines = StripLines::new(s, smooth, &offsets);
+            let on_lines = strip_lines.stations(s, smooth, &curve_stations);
+            let lines = if keep_lines {
+                strip_lines.lines.clone()
+            } else {
+                std::mem::take(&mut strip_lines.lines)
+            };
             let lamellas: Vec<LamellaCheck> = scans
                 .into_iter()
-                .zip(lines)
+                .zip(lines.into_iter().zip(on_lines))
                 .enumerate()
                 .map(
                     |(k, ((u, _, stresses, kmax, tmax), (line, on_line)))| LamellaCheck {
@@ -282,20 +305,26 @@ pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
                         .then(b.cmp(&a))
                 })
                 .unwrap_or(0);
-            StripCheck {
-                strip: s.curve,
-                id: s.id.clone(),
-                lamellas,
-                worst,
-            }
+            (
+                StripCheck {
+                    strip: s.curve,
+                    id: s.id.clone(),
+                    lamellas,
+                    worst,
+                },
+                keep_lines.then_some(strip_lines),
+            )
         })
-        .collect::<Vec<_>>();
-    CheckReport {
-        design_strength_mpa: profile.design_strength_mpa(),
-        limit_bending_radius_mm: profile.min_bending_radius_mm(),
-        limit_twist_deg_per_m: profile.max_twist_per_mm().to_degrees() * 1000.0,
-        strips,
-    }
+        .unzip();
+    (
+        CheckReport {
+            design_strength_mpa: profile.design_strength_mpa(),
+            limit_bending_radius_mm: profile.min_bending_radius_mm(),
+            limit_twist_deg_per_m: profile.max_twist_per_mm().to_degrees() * 1000.0,
+            strips,
+        },
+        lines,
+    )
 }
 
 /// What a designer can change so that every strip passes.

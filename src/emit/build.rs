@@ -149,7 +149,8 @@ pub fn build(
     progress.set_message("finding nodes, frames and curvatures");
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     progress.set_message("checking");
-    let report = crate::check::check(&an, &profile);
+    // The lamella lines the check integrates serve fabrication too.
+    let (report, lines) = crate::check::check_with_lines(&an, &profile);
     let mut warnings: Vec<String> = an.warnings().iter().map(|w| w.to_string()).collect();
     let governing = governing(&report);
     let overstressed = report.overstressed();
@@ -200,7 +201,8 @@ pub fn build(
     if let Some(f) = &flat {
         plan::add_flat(&mut the_plan, f);
     }
-    let kit = crate::fabricate::fabricate_with_rotations(&net, &an, &profile, rotations.as_ref())?;
+    let kit =
+        crate::fabricate::fabricate_with_lines(&net, &an, &profile, rotations.as_ref(), lines)?;
     let nodes = an.topology.nodes.len();
     drop(an);
     clock.lap("parts");

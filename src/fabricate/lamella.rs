@@ -5,13 +5,14 @@
 //!
 //! Positions along a strip are decided once on its centre line (node zones,
 //! block centres, splice cuts) and then carried to each lamella's own line
-//! by integrating that line (`LamellaLine::with_stations`); slots are placed
-//! from each node's station on the lamella's own line.
+//! (`StripLines::stations`: the check's integration of the lines when it is
+//! given, else the strip's own); slots are placed from each node's station
+//! on the lamella's own line.
 
 use super::blocks;
 use super::part::{Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge};
 use super::slots::{node_slots_in, range_between_rad, sweep_range_rad, SlotSpan, SweepRange};
-use crate::analysis::model::LamellaLine;
+use crate::analysis::model::StripLines;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::io::profile_file::JointSystem;
@@ -66,13 +67,17 @@ fn signed_angle_deg(a: glam::DVec3, b: glam::DVec3, n: glam::DVec3) -> f64 {
 /// The parts of strip `i` (an A or B strip). `rotations`: each A×B node's
 /// rotation from the flat state to the erected one (degrees, A → B, by
 /// node id), when the flat state has been computed: its slots are swept
-/// over that range instead of the profile's blanket tolerance.
+/// over that range instead of the profile's blanket tolerance. `lines`: the
+/// strip's lamella lines for this profile, when already integrated (by the
+/// check); otherwise, or when they are another strip's or another
+/// profile's, they are integrated here.
 pub fn strip_parts(
     net: &Network,
     an: &Analysis,
     profile: &Profile,
     i: usize,
     rotations: Option<&std::collections::HashMap<usize, f64>>,
+    lines: Option<StripLines>,
 ) -> Result<StripParts> {
     let strip = &an.strips[i];
     let smooth = &an.curves[i];
@@ -436,8 +441,16 @@ pub fn strip_parts(
     wanted.extend(&block_stations);
     wanted.extend(&cuts);
     wanted.extend(&splice_holes);
-    let lines = LamellaLine::with_stations_many(strip, smooth, &offsets, &wanted);
-    for (j, (o, (line, on_line))) in offsets.iter().zip(lines).enumerate() {
+    let lines = match lines {
+        Some(l) if l.are_of(i, &offsets) => l,
+        _ => StripLines::new(strip, smooth, &offsets),
+    };
+    let on_lines = lines.stations(strip, smooth, &wanted);
+    for (j, (o, (line, on_line))) in offsets
+        .iter()
+        .zip(lines.lines.iter().zip(on_lines))
+        .enumerate()
+    {
         let (b_line, rest) = on_line.split_at(block_stations.len());
         let (cut_line, hole_line) = rest.split_at(cuts.len());
         let slot_count: usize = slots[j].iter().map(|(_, spans)| spans.len()).sum();

@@ -20,6 +20,7 @@ pub mod slots;
 pub mod stud;
 pub mod washer;
 
+use crate::analysis::model::{NetworkLines, StripLines};
 use crate::analysis::Analysis;
 use crate::error::Result;
 use crate::network::Network;
@@ -72,11 +73,30 @@ pub fn fabricate_with_rotations(
     profile: &Profile,
     rotations: Option<&std::collections::HashMap<usize, f64>>,
 ) -> Result<Kit> {
-    let per_strip: Vec<lamella::StripParts> = an
+    fabricate_with_lines(net, an, profile, rotations, NetworkLines::default())
+}
+
+/// [`fabricate_with_rotations`] on lamella lines already integrated for
+/// this profile ([`crate::check::check_with_lines`]): each strip's blocks,
+/// cuts and holes are carried onto them with one short integral each, and
+/// its lines are dropped once its parts are made. A strip whose lines are
+/// missing (or another profile's) integrates its own; the parts are the
+/// same either way.
+pub fn fabricate_with_lines(
+    net: &Network,
+    an: &Analysis,
+    profile: &Profile,
+    rotations: Option<&std::collections::HashMap<usize, f64>>,
+    mut lines: NetworkLines,
+) -> Result<Kit> {
+    let jobs: Vec<(usize, Option<StripLines>)> = an
         .lamella_strips()
-        .collect::<Vec<_>>()
-        .par_iter()
-        .map(|s| lamella::strip_parts(net, an, profile, s.curve, rotations))
+        .map(|s| (s.curve, lines.take(s.curve)))
+        .collect();
+    drop(lines);
+    let per_strip: Vec<lamella::StripParts> = jobs
+        .into_par_iter()
+        .map(|(i, l)| lamella::strip_parts(net, an, profile, i, rotations, l))
         .collect::<Result<Vec<_>>>()?;
     let mut parts: Vec<Part> = Vec::new();
     let (mut blocks, mut plates) = (0usize, 0usize);
