@@ -67,6 +67,10 @@ pub fn keep_freed_memory() {
     unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) }
 }
 
+pub use analysis::{analyze, Analysis, AnalysisOptions};
+pub use error::{Error, Result};
+pub use network::{Family, Network};
+
 #[cfg(test)]
 mod allocator_tests {
     /// The index names the purge delay: mimalloc 3's default, 1000 ms, is
@@ -80,10 +84,6 @@ mod allocator_tests {
             .unwrap_or(1000);
         // SAFETY: reading an option has no precondition.
         let got = unsafe { libmimalloc_sys::mi_option_get(super::MI_OPTION_PURGE_DELAY) };
-        assert_eq!(i64::from(got), want);
+        assert_eq!(got as i64, want);
     }
 }
-
-pub use analysis::{analyze, Analysis, AnalysisOptions};
-pub use error::{Error, Result};
-pub use network::{Family, Network};

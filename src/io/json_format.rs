@@ -405,7 +405,7 @@ mod tests {
         for k in -200_000i64..200_000 {
             values.push(k as f64 / 1000.0);
             values.push(k as f64 * 0.001 + 0.000_001 * (k % 997) as f64);
-            values.push(k as f64 * 1234.567_891);
+            values.push(k as f64 * 1_234.567_891);
         }
         values.extend([
             0.0,
