@@ -394,7 +394,7 @@ impl<'a> Font<'a> {
             (None, Some(mark)) => {
                 let g = self
                     .marks
-                    .get(mark.as_str())
+                    .get(mark.as_ref())
                     .ok_or_else(|| format!("the engraving font has no mark {mark:?}"))?;
                 for s in &g.strokes {
                     stroke(&mut s.iter().map(|q| [ax + q[0] * h, ay + q[1] * h]));

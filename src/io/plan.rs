@@ -255,7 +255,7 @@ pub struct PlanPart {
     /// Unique part id (also engraved).
     pub id: String,
     /// `lamella`, `shear_block`, `washer`, `stud`, `splice_plate` or `edge_strip`.
-    pub kind: String,
+    pub kind: Name,
     /// The strip it belongs to, if any.
     pub strip: Option<String>,
     /// Lamella number within the strip, if any.
@@ -292,7 +292,7 @@ pub struct PlanEngraving {
     pub text: Option<String>,
     /// The mark (`orientation`), if a mark.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub mark: Option<String>,
+    pub mark: Option<Name>,
     /// Lower left of its box (a text's baseline start), part frame, mm.
     pub at_mm: [f64; 2],
     /// Cap height of a text, whole height of a mark, mm.
@@ -322,14 +322,19 @@ pub struct PlanGlyph {
     pub strokes: Vec<Vec<[f64; 2]>>,
 }
 
+/// A name from a fixed set (a kind, a use, an edge): borrowed from the
+/// program's own strings when the plan is made (a big kit's parts have
+/// millions, each its own allocation as a `String`), owned when read.
+pub type Name = std::borrow::Cow<'static, str>;
+
 /// A slot or hole of a part.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanFeature {
     /// `slot` or `hole`.
-    pub kind: String,
+    pub kind: Name,
     /// For holes: `node`, `shear_block`, `splice` or `edge_node`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub hole_use: Option<String>,
+    pub hole_use: Option<Name>,
     /// The node id it belongs to, if any.
     pub node: Option<usize>,
     /// The crossing strip's id, if any.
@@ -341,7 +346,7 @@ pub struct PlanFeature {
     /// Slot depth from its edge, mm (0 for holes).
     pub depth_mm: f64,
     /// `top` or `bottom` for slots.
-    pub edge: Option<String>,
+    pub edge: Option<Name>,
     /// Crossing angles a slot was swept over, degrees.
     pub angle_range_deg: Option<[f64; 2]>,
     /// Station on the part's own line, mm, where it has one.
@@ -944,7 +949,7 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
             .map(|e| {
                 let (text, mark) = match &e.what {
                     Engraved::Text(t) => (Some(t.clone()), None),
-                    Engraved::OrientationMark => (None, Some(ORIENTATION_MARK.to_string())),
+                    Engraved::OrientationMark => (None, Some(ORIENTATION_MARK.into())),
                 };
                 PlanEngraving {
                     text,
