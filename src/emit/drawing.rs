@@ -21,7 +21,7 @@
 
 use crate::error::{Error, Result};
 use crate::io::plan::{
-    Plan, PlanEngraving, PlanFont, PlanGlyph, PlanPart, PlanPlacement, PlanSheet,
+    Plan, PlanEngraving, PlanFeatureKind, PlanFont, PlanGlyph, PlanPart, PlanPlacement, PlanSheet,
 };
 use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
 use std::collections::HashMap;
@@ -422,7 +422,11 @@ fn part_on_sheet(
     }
     let map = |p: &[f64; 2]| place(*p, pl.rotation_deg, pl.x_mm, pl.y_mm);
     let mut shapes = Vec::with_capacity(part.features.len() + part.holes.len() + 1);
-    for f in part.features.iter().filter(|f| f.kind == "hole") {
+    for f in part
+        .features
+        .iter()
+        .filter(|f| f.kind == PlanFeatureKind::Hole)
+    {
         let r = 0.5 * f.width_mm;
         let radius_mm = r - half_kerf_mm.unwrap_or(0.0);
         if radius_mm <= MERGE_MM {

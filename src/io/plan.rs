@@ -327,14 +327,50 @@ pub struct PlanGlyph {
 /// millions, each its own allocation as a `String`), owned when read.
 pub type Name = std::borrow::Cow<'static, str>;
 
+/// What a feature is, as plan.json names it. (Feature fields are enums,
+/// not strings: a big kit has about a million features, and three strings
+/// each were a fifth of the plan's memory.)
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PlanFeatureKind {
+    /// `slot`: a notch from a long edge.
+    Slot,
+    /// `hole`: a round hole.
+    Hole,
+}
+
+/// What a hole is for, as plan.json names it.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PlanHoleUse {
+    /// `node`: the node bolt, or a stud fastener at a node.
+    Node,
+    /// `shear_block`: a shear block's bolt.
+    ShearBlock,
+    /// `splice`: a splice plate's bolt.
+    Splice,
+    /// `edge_node`: where a lamella ends on an edge strip.
+    EdgeNode,
+}
+
+/// The edge a slot is cut from, as plan.json names it.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PlanSlotEdge {
+    /// `top`.
+    Top,
+    /// `bottom`.
+    Bottom,
+}
+
 /// A slot or hole of a part.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanFeature {
     /// `slot` or `hole`.
-    pub kind: Name,
+    pub kind: PlanFeatureKind,
     /// For holes: `node`, `shear_block`, `splice` or `edge_node`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub hole_use: Option<Name>,
+    pub hole_use: Option<PlanHoleUse>,
     /// The node id it belongs to, if any.
     pub node: Option<usize>,
     /// The crossing strip's id, if any.
@@ -346,7 +382,7 @@ pub struct PlanFeature {
     /// Slot depth from its edge, mm (0 for holes).
     pub depth_mm: f64,
     /// `top` or `bottom` for slots.
-    pub edge: Option<Name>,
+    pub edge: Option<PlanSlotEdge>,
     /// Crossing angles a slot was swept over, degrees.
     pub angle_range_deg: Option<[f64; 2]>,
     /// Station on the part's own line, mm, where it has one.
@@ -924,7 +960,7 @@ pub fn set_parts(plan: &mut Plan, parts: Vec<PlanPart>, kit: &crate::fabricate::
 /// One part as plan.json writes it (rounded); its round holes only as
 /// its `hole` features.
 fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
-    use crate::fabricate::part::{round_hole, Engraved};
+    use crate::fabricate::part::{round_hole, Engraved, FeatureKind, HoleUse, SlotEdge};
     let pt = |p: &kurbo::Point| [round(p.x, MM), round(p.y, MM)];
     let poly = |v: &[kurbo::Point]| v.iter().map(pt).collect::<Vec<_>>();
     PlanPart {
@@ -963,22 +999,25 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
             .features
             .iter()
             .map(|f| PlanFeature {
-                kind: f.kind.as_str().into(),
-                hole_use: f.hole_use.map(|u| {
-                    match u {
-                        crate::fabricate::part::HoleUse::Node => "node",
-                        crate::fabricate::part::HoleUse::ShearBlock => "shear_block",
-                        crate::fabricate::part::HoleUse::Splice => "splice",
-                        crate::fabricate::part::HoleUse::EdgeNode => "edge_node",
-                    }
-                    .into()
+                kind: match f.kind {
+                    FeatureKind::Slot => PlanFeatureKind::Slot,
+                    FeatureKind::Hole => PlanFeatureKind::Hole,
+                },
+                hole_use: f.hole_use.map(|u| match u {
+                    HoleUse::Node => PlanHoleUse::Node,
+                    HoleUse::ShearBlock => PlanHoleUse::ShearBlock,
+                    HoleUse::Splice => PlanHoleUse::Splice,
+                    HoleUse::EdgeNode => PlanHoleUse::EdgeNode,
                 }),
                 node: f.node,
                 crossing: f.crossing.clone(),
                 center_mm: pt(&f.center_part_mm),
                 width_mm: round(f.width_mm, MM),
                 depth_mm: round(f.depth_mm, MM),
-                edge: f.edge.map(|e| e.as_str().into()),
+                edge: f.edge.map(|e| match e {
+                    SlotEdge::Top => PlanSlotEdge::Top,
+                    SlotEdge::Bottom => PlanSlotEdge::Bottom,
+                }),
                 angle_range_deg: f
                     .angle_range_deg
                     .map(|(a, b)| [round(a, DEG), round(b, DEG)]),

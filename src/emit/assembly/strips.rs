@@ -22,7 +22,7 @@
 
 use super::canvas::{Align, Canvas, BLACK, BLUE, GREY};
 use super::{mm0, Frame, Page, SealedPage};
-use crate::io::plan::{Plan, PlanPart};
+use crate::io::plan::{Plan, PlanFeatureKind, PlanHoleUse, PlanPart};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -383,7 +383,7 @@ fn draw_row(
             for f in p
                 .features
                 .iter()
-                .filter(|f| f.hole_use.as_deref() == Some("shear_block"))
+                .filter(|f| f.hole_use == Some(PlanHoleUse::ShearBlock))
             {
                 let x = f.center_mm[0] + off;
                 if x - 0.5 * bl >= xa && x + 0.5 * bl <= xb {
@@ -407,7 +407,11 @@ fn draw_row(
             }
         }
         c.width(0.15);
-        for f in p.features.iter().filter(|f| f.kind == "hole") {
+        for f in p
+            .features
+            .iter()
+            .filter(|f| f.kind == PlanFeatureKind::Hole)
+        {
             let x = f.center_mm[0] + off;
             if (xa..=xb).contains(&x) {
                 c.circle(

@@ -8,7 +8,7 @@
 use super::canvas::{self, Align, Canvas, Rgb3, BLACK, BLUE, GREY, LIGHT, RED};
 use super::{fixed, mm0, AssemblyInput, Frame, Page};
 use crate::emit::takeoff::Takeoff;
-use crate::io::plan::{Plan, PlanPart};
+use crate::io::plan::{Plan, PlanHoleUse, PlanPart};
 
 /// Height of a table row, mm.
 pub const ROW_MM: f64 = 4.5;
@@ -204,7 +204,7 @@ fn block_stations(parts: &[&PlanPart], n: u32) -> Vec<f64> {
         .flat_map(|p| {
             p.features
                 .iter()
-                .filter(|f| f.hole_use.as_deref() == Some("shear_block"))
+                .filter(|f| f.hole_use == Some(PlanHoleUse::ShearBlock))
                 .filter_map(|f| f.station_mm)
         })
         .collect();
