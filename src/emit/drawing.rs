@@ -33,6 +33,17 @@ pub const MERGE_MM: f64 = 1e-6;
 /// Decimals of the engraving's sheet coordinates (1 µm).
 pub const ENGRAVE_DECIMALS: i32 = 3;
 
+/// `x` mm on the engraving grid, in its units (µm).
+pub fn engrave_units(x: f64) -> i64 {
+    super::round_to_i64(x * 10f64.powi(ENGRAVE_DECIMALS))
+}
+
+/// A point of the engraving grid (units) in mm: the double nearest the
+/// decimal, [`engrave_round`] of it.
+pub fn engrave_mm(units: i64) -> f64 {
+    units as f64 / 10f64.powi(ENGRAVE_DECIMALS)
+}
+
 /// `x` rounded to [`ENGRAVE_DECIMALS`] decimals (the nearest double to the
 /// decimal, so writers print it exactly).
 pub fn engrave_round(x: f64) -> f64 {
@@ -135,14 +146,16 @@ pub enum Shape {
     },
     /// Open polylines of one engraving (a text or a mark), kept together
     /// (one allocation, not one per stroke): stroke k is
-    /// `vertices[ends[k − 1]..ends[k]]` (from 0 for the first), at least two
-    /// vertices each, straight segments.
+    /// `points_um[ends[k − 1]..ends[k]]` (from 0 for the first), at least
+    /// two distinct consecutive points each, straight segments. The points
+    /// are on the engraving's grid ([`ENGRAVE_DECIMALS`]) and kept as whole
+    /// micrometres, so the writers format integers.
     Strokes {
         /// Its operation.
         layer: Layer,
-        /// Every stroke's vertices, one after the other.
-        vertices: Vec<Vertex>,
-        /// Where each stroke ends in `vertices`.
+        /// Every stroke's points, one after the other, sheet frame, µm.
+        points_um: Vec<[i64; 2]>,
+        /// Where each stroke ends in `points_um`.
         ends: Vec<usize>,
     },
 }
@@ -158,11 +171,8 @@ impl Shape {
     }
 }
 
-/// The strokes of a [`Shape::Strokes`]: its vertices split at its ends.
-pub fn strokes<'a>(
-    vertices: &'a [Vertex],
-    ends: &'a [usize],
-) -> impl Iterator<Item = &'a [Vertex]> {
+/// The strokes of a [`Shape::Strokes`]: its points split at its ends.
+pub fn strokes<'a, T>(vertices: &'a [T], ends: &'a [usize]) -> impl Iterator<Item = &'a [T]> {
     ends.iter().scan(0, move |start, &end| {
         let s = &vertices[*start..end];
         *start = end;
@@ -465,39 +475,30 @@ fn part_on_sheet(
     }
     shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm)?);
     for e in part.engraving.iter().filter(|_| engraving) {
-        let mut vertices: Vec<Vertex> = Vec::new();
+        let mut points_um: Vec<[i64; 2]> = Vec::new();
         let mut ends: Vec<usize> = Vec::new();
         font.strokes(e, |points| {
-            // Placed, on the grid, consecutive equal points merged; a
+            // Placed, on the grid, consecutive equal points merged (grid
+            // points apart are 1 µm apart, far more than `MERGE_MM`); a
             // stroke left with one point is dropped.
-            let start = vertices.len();
+            let start = points_um.len();
             for p in points {
                 let [x, y] = map(&p);
-                let v = Vertex {
-                    x_mm: engrave_round(x),
-                    y_mm: engrave_round(y),
-                    bulge: 0.0,
-                };
-                if vertices.len() == start
-                    || !within(
-                        v.x_mm - vertices[vertices.len() - 1].x_mm,
-                        v.y_mm - vertices[vertices.len() - 1].y_mm,
-                        MERGE_MM,
-                    )
-                {
-                    vertices.push(v);
+                let q = [engrave_units(x), engrave_units(y)];
+                if points_um.len() == start || points_um[points_um.len() - 1] != q {
+                    points_um.push(q);
                 }
             }
-            if vertices.len() - start >= 2 {
-                ends.push(vertices.len());
+            if points_um.len() - start >= 2 {
+                ends.push(points_um.len());
             } else {
-                vertices.truncate(start);
+                points_um.truncate(start);
             }
         })?;
         if !ends.is_empty() {
             shapes.push(Shape::Strokes {
                 layer: Layer::Engrave,
-                vertices,
+                points_um,
                 ends,
             });
         }

@@ -119,9 +119,11 @@ pub fn write_dxf(sheet: &SheetDrawing, out: &mut Vec<u8>) -> Result<(), String> 
     let (count, bytes) = shapes().fold((0u64, 0usize), |(n, b), sh| match sh {
         Shape::Polyline { vertices, .. } => (n + 1, b + 100 + 32 * vertices.len()),
         Shape::Circle { .. } => (n + 1, b + 130),
-        Shape::Strokes { vertices, ends, .. } => (
+        Shape::Strokes {
+            points_um, ends, ..
+        } => (
             n + ends.len() as u64,
-            b + 100 * ends.len() + 32 * vertices.len(),
+            b + 100 * ends.len() + 32 * points_um.len(),
         ),
     });
     out.clear();
@@ -150,11 +152,19 @@ fn entity(s: &mut Vec<u8>, shape: &Shape, handle: &mut u64) {
         } => polyline(s, *layer, *closed, vertices, handle),
         Shape::Strokes {
             layer,
-            vertices,
+            points_um,
             ends,
         } => {
-            for stroke in strokes(vertices, ends) {
-                polyline(s, *layer, false, stroke, handle);
+            for stroke in strokes(points_um, ends) {
+                header(s, *layer, false, stroke.len(), handle);
+                for &[x, y] in stroke {
+                    // Whole µm: the digits `push_decimal` gives their mm.
+                    s.extend_from_slice(b" 10\n");
+                    super::push_scaled(s, x < 0, x.unsigned_abs(), 3, true);
+                    s.extend_from_slice(b"\n 20\n");
+                    super::push_scaled(s, y < 0, y.unsigned_abs(), 3, true);
+                    s.push(b'\n');
+                }
             }
         }
         Shape::Circle {
@@ -197,15 +207,7 @@ fn push_hex(s: &mut Vec<u8>, n: u64) {
 
 /// One LWPOLYLINE with its handle.
 fn polyline(s: &mut Vec<u8>, layer: Layer, closed: bool, vertices: &[Vertex], handle: &mut u64) {
-    // Pieces pushed one by one: `write!`'s formatting machinery was a
-    // tenth of writing the engraving's many short polylines.
-    s.extend_from_slice(b"  0\nLWPOLYLINE\n  5\n");
-    push_hex(s, *handle);
-    s.extend_from_slice(b"\n100\nAcDbEntity\n  8\n");
-    s.extend_from_slice(layer.name().as_bytes());
-    s.extend_from_slice(b"\n100\nAcDbPolyline\n 90\n");
-    super::push_scaled(s, false, vertices.len() as u64, 0, false);
-    s.extend_from_slice(if closed { b"\n 70\n1\n" } else { b"\n 70\n0\n" });
+    header(s, layer, closed, vertices.len(), handle);
     for v in vertices {
         s.extend_from_slice(b" 10\n");
         super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
@@ -218,6 +220,19 @@ fn polyline(s: &mut Vec<u8>, layer: Layer, closed: bool, vertices: &[Vertex], ha
             s.push(b'\n');
         }
     }
+}
+
+/// An LWPOLYLINE's group codes up to its vertices, taking the next handle.
+fn header(s: &mut Vec<u8>, layer: Layer, closed: bool, vertices: usize, handle: &mut u64) {
+    // Pieces pushed one by one: `write!`'s formatting machinery was a
+    // tenth of writing the engraving's many short polylines.
+    s.extend_from_slice(b"  0\nLWPOLYLINE\n  5\n");
+    push_hex(s, *handle);
+    s.extend_from_slice(b"\n100\nAcDbEntity\n  8\n");
+    s.extend_from_slice(layer.name().as_bytes());
+    s.extend_from_slice(b"\n100\nAcDbPolyline\n 90\n");
+    super::push_scaled(s, false, vertices as u64, 0, false);
+    s.extend_from_slice(if closed { b"\n 70\n1\n" } else { b"\n 70\n0\n" });
     *handle += 1;
 }
 

@@ -7,7 +7,9 @@
 //! labels are in `ENGRAVE`). Written by hand with fixed decimals, so equal
 //! sheets give equal bytes.
 
-use super::drawing::{strokes, Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS};
+use super::drawing::{
+    engrave_mm, engrave_units, strokes, Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS,
+};
 use std::io::Write;
 
 /// Stroke width of every contour, mm.
@@ -36,9 +38,8 @@ pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut Vec<u8>) {
         .iter()
         .flat_map(|p| &p.shapes)
         .map(|sh| match sh {
-            Shape::Polyline { vertices, .. } | Shape::Strokes { vertices, .. } => {
-                24 + 16 * vertices.len()
-            }
+            Shape::Polyline { vertices, .. } => 24 + 16 * vertices.len(),
+            Shape::Strokes { points_um, .. } => 24 + 16 * points_um.len(),
             Shape::Circle { .. } => 60,
         })
         .sum();
@@ -143,14 +144,24 @@ fn shape(s: &mut Vec<u8>, sh: &Shape, w: f64) {
             }
             s.extend_from_slice(b"\"/>\n");
         }
-        Shape::Strokes { vertices, ends, .. } => {
-            for stroke in strokes(vertices, ends) {
+        Shape::Strokes {
+            points_um, ends, ..
+        } => {
+            for stroke in strokes(points_um, ends) {
+                let vertices = stroke
+                    .iter()
+                    .map(|&[x, y]| Vertex {
+                        x_mm: engrave_mm(x),
+                        y_mm: engrave_mm(y),
+                        bulge: 0.0,
+                    })
+                    .collect();
                 shape(
                     s,
                     &Shape::Polyline {
                         layer: sh.layer(),
                         closed: false,
-                        vertices: stroke.to_vec(),
+                        vertices,
                     },
                     w,
                 );
@@ -168,18 +179,15 @@ fn shape(s: &mut Vec<u8>, sh: &Shape, w: f64) {
 /// whole number of grid units, written exactly: the positions it adds up
 /// to are the DXF's.
 fn engraving(s: &mut Vec<u8>, shapes: &[Shape], w: f64) {
-    let scale = 10f64.powi(ENGRAVE_DECIMALS);
-    let unit = |v: f64| super::round_to_i64(v * scale);
     let mut path = RelativePath::new(s);
     let mut at: Option<(i64, i64)> = None;
-    let mut draw = |vertices: &[Vertex], path: &mut RelativePath| {
-        // Grid units, y down as SVG draws it.
-        let mut points = vertices.iter().map(|v| (unit(v.x_mm), -unit(v.y_mm)));
+    // One stroke, in grid units (y down as SVG draws it).
+    let mut draw = |points: &mut dyn Iterator<Item = (i64, i64)>, path: &mut RelativePath| {
         let Some(first) = points.next() else {
             return;
         };
         match at {
-            None => path.start(vertices[0].x_mm, w - vertices[0].y_mm),
+            None => path.start(engrave_mm(first.0), w + engrave_mm(first.1)),
             Some(last) => path.step(b'm', last, first),
         }
         let mut last = first;
@@ -191,10 +199,17 @@ fn engraving(s: &mut Vec<u8>, shapes: &[Shape], w: f64) {
     };
     for sh in shapes.iter().filter(|sh| sh.layer() == Layer::Engrave) {
         match sh {
-            Shape::Polyline { vertices, .. } => draw(vertices, &mut path),
-            Shape::Strokes { vertices, ends, .. } => {
-                for stroke in strokes(vertices, ends) {
-                    draw(stroke, &mut path);
+            Shape::Polyline { vertices, .. } => draw(
+                &mut vertices
+                    .iter()
+                    .map(|v| (engrave_units(v.x_mm), -engrave_units(v.y_mm))),
+                &mut path,
+            ),
+            Shape::Strokes {
+                points_um, ends, ..
+            } => {
+                for stroke in strokes(points_um, ends) {
+                    draw(&mut stroke.iter().map(|&[x, y]| (x, -y)), &mut path);
                 }
             }
             Shape::Circle { .. } => {}
