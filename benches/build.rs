@@ -62,6 +62,8 @@ fn measure(path: &Path) {
     // 20 s later). Dropping the caches needs root; elsewhere only `sync`.
     support::sync_and_drop_caches();
     let load0 = support::load_average();
+    // The build's CPU, without the deleting and cache dropping above.
+    let (user0, sys0) = support::cpu_s();
     let t0 = Instant::now();
     let r = build(
         path,
@@ -125,6 +127,7 @@ fn measure(path: &Path) {
         .collect();
     println!("      s: {}", stages.join(", "));
     let (user, sys) = support::cpu_s();
+    let (user, sys) = (user - user0, sys - sys0);
     println!(
         "      cpu: user {user:.2} s, sys {sys:.2} s; load before {load0}, after {}",
         support::load_average()

@@ -255,7 +255,7 @@ fn plan_json(plan: &plan::Plan, target: &Path) -> lamella::Result<String> {
 }
 
 fn main() -> ExitCode {
-    lamella::keep_freed_memory();
+    lamella::tune_allocator();
     let cli = Cli::parse();
     match run(cli) {
         Ok(code) => code,

@@ -10,12 +10,12 @@ pub const CHILD_ENV: &str = "LAMELLA_BENCH_CHILD";
 
 /// The network this process is to measure, when it is a child.
 ///
-/// The child keeps freed memory as the CLI does
-/// ([`lamella::keep_freed_memory`]).
+/// The child sets the memory policy the CLI sets
+/// ([`lamella::tune_allocator`]).
 pub fn child_network() -> Option<PathBuf> {
     let path = std::env::var(CHILD_ENV).ok().map(PathBuf::from);
     if path.is_some() {
-        lamella::keep_freed_memory();
+        lamella::tune_allocator();
     }
     path
 }
