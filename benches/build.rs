@@ -56,7 +56,9 @@ fn measure(path: &Path) {
     // and recently deleted inodes, and creating 5,316 files there cost
     // 1.1–1.5 s more system time than in /tmp (`find_get_block_common`,
     // `recently_deleted`): that is the file system's state, not the build.
-    let stem = path.file_stem().map_or("network".into(), |s| s.to_string_lossy());
+    let stem = path
+        .file_stem()
+        .map_or("network".into(), |s| s.to_string_lossy());
     let out = std::env::temp_dir().join(format!("lamella-bench-{stem}.build"));
     let _ = std::fs::remove_dir_all(&out);
     // Earlier runs' files deleted, flushed and out of the kernel's caches
