@@ -39,21 +39,9 @@ pub fn engrave_units(x: f64) -> i64 {
 }
 
 /// A point of the engraving grid (units) in mm: the double nearest the
-/// decimal, [`engrave_round`] of it.
+/// decimal, so writers print it exactly.
 pub fn engrave_mm(units: i64) -> f64 {
     units as f64 / 10f64.powi(ENGRAVE_DECIMALS)
-}
-
-/// `x` rounded to [`ENGRAVE_DECIMALS`] decimals (the nearest double to the
-/// decimal, so writers print it exactly).
-pub fn engrave_round(x: f64) -> f64 {
-    let scale = 10f64.powi(ENGRAVE_DECIMALS);
-    let r = super::round_to_i64(x * scale) as f64 / scale;
-    if r == 0.0 {
-        0.0
-    } else {
-        r
-    }
 }
 
 /// The operation a shape belongs to: a DXF layer, an SVG group.
