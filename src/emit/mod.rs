@@ -86,6 +86,7 @@ pub(crate) fn push_digits(
     keep_point: bool,
     zero_before_point: bool,
 ) {
+    debug_assert!(decimals <= 9, "{decimals} decimals: at most 9 are written");
     // Most numbers of a kit's files: sheet coordinates on the 1 µm grid,
     // PDF coordinates in tenths of a point. Inlined, so that the decimals
     // (a constant where called) fold the test into one division by a
