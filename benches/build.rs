@@ -16,8 +16,8 @@ mod support;
 #[allow(dead_code)]
 mod synth;
 
-use lamella::emit::build::{build, BuildOptions};
-use lamella::io;
+use lamella::formats::read as io;
+use lamella::pipeline::build::{build, BuildOptions};
 use std::path::Path;
 use std::time::Instant;
 

@@ -11,7 +11,7 @@ mod support;
 #[allow(dead_code)]
 mod synth;
 
-use lamella::io::{self, ReadOptions};
+use lamella::formats::read::{self as io, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::Path;

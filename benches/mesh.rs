@@ -8,8 +8,9 @@
 
 mod support;
 
+use lamella::design::mesh::{anticlastic_report, vertex_jets, Topology};
 use lamella::design::surface::{Enneper, Surface};
-use lamella::mesh::{anticlastic_report, read_mesh, vertex_jets, Topology};
+use lamella::formats::read::mesh::read_mesh;
 use std::fmt::Write;
 use std::path::Path;
 use std::time::Instant;

@@ -16,7 +16,7 @@
 mod support;
 
 use glam::DVec3;
-use lamella::minimal::{form_find, FormFindOptions, FormFound};
+use lamella::design::minimal::{form_find, FormFindOptions, FormFound};
 use std::f64::consts::TAU;
 use std::path::Path;
 use std::time::Instant;
@@ -151,7 +151,7 @@ fn trace_on(case: &str) {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join(format!("{case}.trace.yaml"));
     std::fs::write(&path, spec_text).expect("spec");
-    let spec = lamella::io::trace_spec::load(&path).expect("spec reads");
+    let spec = lamella::formats::read::trace_spec::load(&path).expect("spec reads");
     let t0 = Instant::now();
     let _ = film(case);
     let t_film = t0.elapsed().as_secs_f64();

@@ -16,7 +16,7 @@ mod support;
 mod synth;
 
 use lamella::fabricate::fabricate;
-use lamella::io::{self, ReadOptions};
+use lamella::formats::read::{self as io, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::Path;

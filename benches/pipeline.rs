@@ -11,7 +11,8 @@ mod support;
 #[allow(dead_code)]
 mod synth;
 
-use lamella::io::{self, plan, ReadOptions};
+use lamella::formats::read::{self as io, ReadOptions};
+use lamella::plan;
 use lamella::{analyze, AnalysisOptions};
 use rayon::prelude::*;
 use std::path::Path;
@@ -76,7 +77,7 @@ fn measure(path: &Path) {
             })
             .collect::<Vec<_>>();
         let d = Instant::now();
-        let model = lamella::analysis::model::Model::new(&net, &an);
+        let model = lamella::analysis::lines::Model::new(&net, &an);
         let e = Instant::now();
         let p = plan::build(&net, &an, &model);
         let f = Instant::now();
@@ -94,7 +95,7 @@ fn measure(path: &Path) {
         );
         std::hint::black_box(json.len());
     }
-    let model = lamella::analysis::model::Model::new(&net, &an);
+    let model = lamella::analysis::lines::Model::new(&net, &an);
     let p = plan::build(&net, &an, &model);
     let json = plan::to_json(&p);
     let t3 = Instant::now();

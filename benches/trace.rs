@@ -6,7 +6,7 @@
 use glam::DVec2;
 use lamella::design::trace::{trace_through, Everywhere, Field, TraceOptions};
 use lamella::design::{design, placed_surface};
-use lamella::io::trace_spec;
+use lamella::formats::read::trace_spec;
 use std::path::Path;
 use std::time::Instant;
 

@@ -19,17 +19,17 @@
 pub mod analysis;
 pub mod check;
 pub mod design;
-pub mod emit;
 pub mod error;
 pub mod fabricate;
 pub mod flat;
+pub mod formats;
 pub mod geom;
-pub mod io;
-pub mod mesh;
-pub mod minimal;
 pub mod nest;
 pub mod network;
+pub mod pipeline;
+pub mod plan;
 pub mod profile;
+pub mod spec;
 
 /// Every program built on lamella (the CLI, the tests and the benchmarks)
 /// allocates through mimalloc: writing a big kit's files makes and frees

@@ -336,17 +336,17 @@ fn unknown_paper_is_a_usage_error() {
 fn a_plan_without_parts_is_an_error() {
     let out = scratch("noparts");
     ok(&build("hypar-small", "steel-1.5", &out, &[]));
-    let mut plan: lamella::io::plan::Plan =
+    let mut plan: lamella::plan::Plan =
         serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("plan");
     plan.parts = None;
-    let takeoff = lamella::emit::takeoff::Takeoff {
+    let takeoff = lamella::plan::takeoff::Takeoff {
         project: "x".into(),
         profile: "y".into(),
         currency: None,
         parts: vec![],
         stock: vec![],
         hardware: vec![],
-        totals: lamella::emit::takeoff::Totals {
+        totals: lamella::plan::takeoff::Totals {
             pieces: 0,
             lamella_length_m: 0.0,
             mass_kg: 0.0,
@@ -354,13 +354,15 @@ fn a_plan_without_parts_is_an_error() {
             stock_cost: None,
         },
     };
-    let e = lamella::emit::assembly::assembly_pdf(&lamella::emit::assembly::AssemblyInput {
-        plan: &plan,
-        takeoff: &takeoff,
-        curves: &[],
-        paper: lamella::emit::assembly::Paper::A4,
-        plan_path: Path::new("plan.json"),
-    })
+    let e = lamella::formats::write::assembly::assembly_pdf(
+        &lamella::formats::write::assembly::AssemblyInput {
+            plan: &plan,
+            takeoff: &takeoff,
+            curves: &[],
+            paper: lamella::formats::write::assembly::Paper::A4,
+            plan_path: Path::new("plan.json"),
+        },
+    )
     .expect_err("no parts");
     let msg = e.to_string();
     assert!(!msg.contains('\n') && msg.contains("parts"), "{msg}");

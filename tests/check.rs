@@ -499,7 +499,7 @@ fn suggest_ignores_edge_strips_as_check_does() {
 
 #[test]
 fn profile_is_built_from_the_file_type_and_back() {
-    use lamella::io::profile_file::ProfileFile;
+    use lamella::formats::read::profile_file::ProfileFile;
     for name in ["steel-1.5.yaml", "poplar-ply-4.yaml", "beech-veneer.yaml"] {
         let text = std::fs::read_to_string(
             Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -13,7 +13,7 @@ use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, Point};
 use glam::{DVec2, DVec3};
 use lamella::check::check;
-use lamella::io::{read_network, ReadOptions};
+use lamella::formats::read::{read_network, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};

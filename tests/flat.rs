@@ -6,7 +6,7 @@ mod common;
 
 use glam::DVec3;
 use lamella::flat::{problem, solve};
-use lamella::io::{self, ReadOptions};
+use lamella::formats::read::{self as io, ReadOptions};
 use lamella::network::{Family, RawCurve, RawNetwork, Unit};
 use lamella::profile::Profile;
 use std::path::Path;

@@ -6,7 +6,7 @@ mod common;
 use common::synth::{self, Enneper, Sampling};
 use common::*;
 use glam::DVec2;
-use lamella::analysis::model::Model;
+use lamella::analysis::lines::Model;
 use lamella::network::{RawNetwork, Unit};
 use lamella::profile::Profile;
 

@@ -2,11 +2,11 @@
 //! coordinates to 0.001 mm, no normals, quads and triangles mixed, 1-based
 //! indices; the same surface as binary STL.
 
-use lamella::mesh::curvature::SIGNIFICANT;
-use lamella::mesh::{
-    anticlastic_report, read_mesh, require_anticlastic, vertex_curvatures, vertex_jets,
-    SingularKind, Topology,
+use lamella::design::mesh::curvature::SIGNIFICANT;
+use lamella::design::mesh::{
+    anticlastic_report, require_anticlastic, vertex_curvatures, vertex_jets, SingularKind, Topology,
 };
+use lamella::formats::read::mesh::read_mesh;
 use std::fmt::Write;
 use std::path::PathBuf;
 

@@ -12,7 +12,7 @@ use common::*;
 use glam::{DMat3, DVec2, DVec3};
 use lamella::design::design;
 use lamella::design::surface::{Enneper, Placed, Surface};
-use lamella::io::trace_spec;
+use lamella::formats::read::trace_spec;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;

@@ -3,7 +3,7 @@
 //! Gaussian curvature of a saddle, a boundary with a hole.
 
 use glam::DVec3;
-use lamella::minimal::{form_find, FormFindOptions, FormFound, InitialMesh, Tangential};
+use lamella::design::minimal::{form_find, FormFindOptions, FormFound, InitialMesh, Tangential};
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 
@@ -398,13 +398,13 @@ fn a_boundary_with_a_hole_spans_a_ring_shaped_film() {
         }
         b
     };
-    let film = lamella::minimal::Film {
+    let film = lamella::design::minimal::Film {
         positions: x.clone(),
         chart: f.chart_uv.clone(),
         triangles: f.mesh.triangles.clone(),
         fixed: fixed.clone(),
     };
-    let h = lamella::minimal::solve::mean_curvature(&film, x).expect("H");
+    let h = lamella::design::minimal::solve::mean_curvature(&film, x).expect("H");
     let interior: Vec<usize> = (0..x.len()).filter(|&v| !fixed[v]).collect();
     let near_corner = |p: DVec3| {
         outer

@@ -9,7 +9,7 @@
 mod common;
 
 use lamella::fabricate::fabricate;
-use lamella::io::{read_network, ReadOptions};
+use lamella::formats::read::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, placed_bbox};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};

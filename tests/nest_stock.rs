@@ -10,7 +10,7 @@ mod common;
 use kurbo::Point;
 use lamella::fabricate::part::{Part, PartKind};
 use lamella::fabricate::{fabricate, Kit, KitSummary};
-use lamella::io::{read_network, ReadOptions};
+use lamella::formats::read::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, Nest};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
@@ -92,7 +92,7 @@ fn every_stock_form_reads_and_writes_back() {
         "stock:\n  kind: coil\n  width_mm: 130\n  length_mm: 6000\n  price_per_unit: 40\n",
     ] {
         let text = steel_with(stock);
-        let file: lamella::io::profile_file::ProfileFile = serde_yaml::from_str(&text).unwrap();
+        let file: lamella::formats::read::profile_file::ProfileFile = serde_yaml::from_str(&text).unwrap();
         let p = parse(&text).unwrap_or_else(|e| panic!("{stock}: {e}"));
         assert_eq!(p.resolved(), file, "{stock}");
     }

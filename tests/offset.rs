@@ -8,7 +8,7 @@ mod common;
 use common::synth::{self, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 use common::*;
 use glam::{DVec2, DVec3};
-use lamella::analysis::model::LamellaLine;
+use lamella::analysis::lines::LamellaLine;
 use lamella::profile::LamellaOffset;
 
 /// Length of t ↦ X(t) + dy·y(t) + dz·z(t) over the whole line (fine polygon with

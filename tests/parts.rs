@@ -7,10 +7,10 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
-use lamella::analysis::model::LamellaLine;
+use lamella::analysis::lines::LamellaLine;
 use lamella::fabricate::part::{FeatureKind, HoleUse, Part, PartKind};
 use lamella::fabricate::{fabricate, Kit};
-use lamella::io::{read_network, ReadOptions};
+use lamella::formats::read::{read_network, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, Analysis, AnalysisOptions, Family, Network};
 use std::collections::HashMap;

@@ -11,7 +11,7 @@ use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Spline, Vert
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, LwPolylineVertex, Point, Vector};
 use glam::DVec3;
-use lamella::io::{network_file, read_network, read_raw, ReadOptions};
+use lamella::formats::read::{network_file, read_network, read_raw, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork, Unit};
 use lamella::{analyze, AnalysisOptions};
 use std::fmt::Write as _;
@@ -337,7 +337,7 @@ fn all_formats_give_the_same_network() {
             "B01" => {
                 // The cubic SPLINE is sampled along its 3 knot spans, not
                 // taken as its 6 control points, and stays on the ruling.
-                let n = 3 * lamella::io::dxf_in::SPLINE_SAMPLES_PER_SPAN + 1;
+                let n = 3 * lamella::formats::read::dxf::SPLINE_SAMPLES_PER_SPAN + 1;
                 assert_eq!(c.points_world_mm.len(), n, "spline samples");
                 let (a, b) = (r.points[0], r.points[r.points.len() - 1]);
                 assert!(c.points_world_mm[0].distance(a) < 1e-9);
@@ -410,7 +410,7 @@ fn dxf_spline_is_evaluated_not_its_control_points() {
 
     let raw = read_raw(&path, ReadOptions::default()).expect("read DXF");
     assert_eq!(raw.curves.len(), 3);
-    let per_span = lamella::io::dxf_in::SPLINE_SAMPLES_PER_SPAN;
+    let per_span = lamella::formats::read::dxf::SPLINE_SAMPLES_PER_SPAN;
 
     // Bézier: points at u = j/per_span against the Bernstein form.
     let c = &raw.curves[0];

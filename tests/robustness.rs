@@ -6,7 +6,7 @@
 use dxf::entities::{Entity, EntityType, Line, LwPolyline};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, LwPolylineVertex, Point};
-use lamella::io::{read_network, ReadOptions};
+use lamella::formats::read::{read_network, ReadOptions};
 use lamella::{analyze, AnalysisOptions};
 use std::path::PathBuf;
 use std::process::Command;
@@ -541,7 +541,7 @@ fn a_byte_order_mark_is_accepted_by_every_reader() {
     let spec = dir.join("s.trace.yaml");
     let text = std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml")).unwrap();
     std::fs::write(&spec, format!("\u{feff}{text}")).unwrap();
-    assert!(lamella::io::trace_spec::load(&spec).is_ok());
+    assert!(lamella::formats::read::trace_spec::load(&spec).is_ok());
     std::fs::remove_dir_all(dir).unwrap();
 }
 
@@ -586,11 +586,15 @@ fn deep_profiles_and_specs_are_refused() {
     assert!(e.contains("line 2") && e.contains("deeper than 64"), "{e}");
     let s = dir.join("deep.trace.yaml");
     std::fs::write(&s, "name: x\nalias: *x\n").unwrap();
-    let e = lamella::io::trace_spec::load(&s).unwrap_err().to_string();
+    let e = lamella::formats::read::trace_spec::load(&s)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("line 2, column 8") && e.contains("alias"), "{e}");
     // Specs and profiles are small: a 2 MiB one is refused before parsing.
     std::fs::write(&s, "#".repeat(2 << 20)).unwrap();
-    let e = lamella::io::trace_spec::load(&s).unwrap_err().to_string();
+    let e = lamella::formats::read::trace_spec::load(&s)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("more than the 1 MiB"), "{e}");
     std::fs::remove_dir_all(dir).unwrap();
 }

@@ -10,7 +10,8 @@ use common::*;
 use glam::DVec2;
 use lamella::design::surface::Surface;
 use lamella::design::{design, placed_surface};
-use lamella::io::trace_spec::{self, TraceSpec};
+use lamella::formats::read::trace_spec;
+use lamella::spec::TraceSpec;
 #[allow(unused_imports)]
 use serde_yaml as _;
 use std::path::{Path, PathBuf};
@@ -263,7 +264,7 @@ fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
     // The façade web: principal curvature lines cross at 90° everywhere and
     // make 45° with the asymptotic lines on a minimal surface.
     let (mut s, p) = spec("enneper-4m");
-    s.net = lamella::io::trace_spec::Net::Principal;
+    s.net = lamella::spec::Net::Principal;
     s.seed = Some([0.05, 0.02]); // the saddle itself is not umbilic, but keep off the axes
     let (raw, _) = design(&s, &p).unwrap();
     let (net, an) = run(raw);
@@ -414,7 +415,7 @@ fn a_plane_clip_cuts_with_an_edge_on_the_plane() {
 #[test]
 fn alternating_design_keeps_diagonal_cells_square() {
     let (s, p) = spec("scherk");
-    assert_eq!(s.design, lamella::io::trace_spec::Design::Alternating);
+    assert_eq!(s.design, lamella::spec::Design::Alternating);
     let (raw, report) = design(&s, &p).unwrap();
     assert_eq!(
         report.a_curves, report.b_curves,

@@ -5,7 +5,7 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
-use lamella::io::{read_network, ReadOptions};
+use lamella::formats::read::{read_network, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions, Family, Network};
 use std::path::{Path, PathBuf};

@@ -428,7 +428,7 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::{read_network, ReadOptions};
+    use crate::formats::read::{read_network, ReadOptions};
     use crate::{analyze, AnalysisOptions};
     use std::path::Path;
 

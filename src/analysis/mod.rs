@@ -1,7 +1,7 @@
 //! Runs the geometric stages in order: smooth curves → topology (nodes) →
 //! strip geometry. Plain data in ([`Network`]), plain data out ([`Analysis`]).
 
-pub mod model;
+pub mod lines;
 pub mod normal_field;
 pub mod strip;
 pub mod topology;

@@ -16,7 +16,7 @@
 //! frame turns by the same angle on it over a longer or shorter length, so
 //! its curvatures are the curve's divided by the stretch ds'/ds.
 
-use crate::analysis::model::{LamellaLine, NetworkLines, StripLines};
+use crate::analysis::lines::{LamellaLine, NetworkLines, StripLines};
 use crate::analysis::Analysis;
 use crate::profile::{LamellaOffset, Profile};
 use rayon::prelude::*;

@@ -1,9 +1,10 @@
 //! The `lamella` command line.
 
 use clap::{Parser, Subcommand};
-use lamella::analysis::model::Model;
-use lamella::io::{self, plan, ReadOptions};
+use lamella::analysis::lines::Model;
+use lamella::formats::read::{self as io, ReadOptions};
 use lamella::network::Unit;
+use lamella::plan;
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::{Path, PathBuf};
@@ -245,7 +246,7 @@ fn refuse_overwriting_input(out: &Path, inputs: &[(&str, &Path)]) -> lamella::Re
 /// Serialise a plan, refusing one with a NaN or infinite number (JSON would
 /// write it as null).
 fn plan_json(plan: &plan::Plan, target: &Path) -> lamella::Result<String> {
-    if let Some(field) = io::finite::first_non_finite(plan) {
+    if let Some(field) = lamella::formats::write::finite::first_non_finite(plan) {
         return Err(lamella::Error::network(
             target,
             format!("not written: {field} is not a finite number"),
@@ -288,12 +289,12 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             &network,
             &profile,
             &out,
-            &lamella::emit::build::BuildOptions {
+            &lamella::pipeline::build::BuildOptions {
                 read: read.options(),
                 kerf_compensation,
                 allow_overstress,
                 slots_from_flat,
-                paper: lamella::emit::assembly::Paper::parse(&paper).unwrap_or_default(),
+                paper: lamella::formats::write::assembly::Paper::parse(&paper).unwrap_or_default(),
             },
             quiet,
         ),
@@ -352,7 +353,7 @@ fn flat(
     let model = Model::checked(&net, &an, profile.clone(), report, None);
     let mut plan = plan::build(&net, &an, &model);
     plan::add_flat(&mut plan, &st);
-    let svg = lamella::flat::svg::to_svg(
+    let svg = lamella::formats::write::flat_svg::to_svg(
         &problem,
         &st,
         &format!("{} — flat assembly layout ({}), mm", net.name, profile.name),
@@ -428,7 +429,7 @@ fn build(
     network: &Path,
     profile: &Path,
     out: &Path,
-    opts: &lamella::emit::build::BuildOptions,
+    opts: &lamella::pipeline::build::BuildOptions,
     quiet: bool,
 ) -> lamella::Result<ExitCode> {
     // Hidden when stderr is not a terminal (indicatif's default target).
@@ -442,7 +443,7 @@ fn build(
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
     pb.enable_steady_tick(std::time::Duration::from_millis(120));
-    let r = lamella::emit::build::build(network, profile, out, opts, &pb);
+    let r = lamella::pipeline::build::build(network, profile, out, opts, &pb);
     pb.finish_and_clear();
     let r = r?;
     for w in &r.warnings {
@@ -463,7 +464,7 @@ fn build(
     Ok(ExitCode::SUCCESS)
 }
 
-fn print_build_summary(r: &lamella::emit::build::BuildReport) {
+fn print_build_summary(r: &lamella::pipeline::build::BuildReport) {
     let t = &r.takeoff;
     println!(
         "{} with {}: {} strips, {} edge strips, {} nodes",
@@ -542,7 +543,7 @@ fn parts(
             let n = lamella::nest::nest(&kit, &profile)?;
             plan::add_nest(&mut plan, &kit, &n);
             if let Some(file) = instance {
-                let inst = lamella::nest::export::instance(&net.name, &kit, &profile);
+                let inst = lamella::plan::sparrow::instance(&net.name, &kit, &profile);
                 let text = serde_json::to_string_pretty(&inst).map_err(|e| {
                     lamella::Error::input(file, lamella::error::Location::File, e.to_string())
                 })?;

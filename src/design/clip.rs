@@ -8,7 +8,7 @@
 
 use super::trace::Region;
 use crate::error::{Error, Location, Result};
-use crate::io::trace_spec::ClipSpec;
+use crate::spec::ClipSpec;
 use glam::{DMat3, DVec2, DVec3};
 use std::path::Path;
 

@@ -1,16 +1,16 @@
 //! The surfaces of `surface: mesh` and `surface: minimal` specs: a triangle
 //! mesh read from a file, or the soap film form-found over boundary
-//! polylines ([`crate::minimal`]), checked (manifold, not degenerate,
+//! polylines ([`crate::design::minimal`]), checked (manifold, not degenerate,
 //! anticlastic somewhere), its curvature tensors estimated
-//! ([`crate::mesh::curvature`]), its singular points found
-//! ([`crate::mesh::singular`]), charted ([`crate::mesh::chart`]) and
+//! ([`crate::design::mesh::curvature`]), its singular points found
+//! ([`crate::design::mesh::singular`]), charted ([`crate::design::mesh::chart`]) and
 //! wrapped as a [`MeshSurface`] for the tracer.
 
+use crate::design::mesh::chart::{make_chart, ChartError, ChartKind};
+use crate::design::mesh::surface::MeshSurface;
+use crate::design::mesh::TriMesh;
 use crate::error::{Error, Location, Result};
-use crate::io::trace_spec::{SurfaceName, TraceSpec};
-use crate::mesh::chart::{make_chart, ChartError, ChartKind};
-use crate::mesh::surface::MeshSurface;
-use crate::mesh::TriMesh;
+use crate::spec::{SurfaceName, TraceSpec};
 use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -48,11 +48,11 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
                 .flatten()
                 .map(|l| l.iter().map(|p| DVec3::from_array(*p)).collect())
                 .collect();
-            let opts = crate::minimal::FormFindOptions {
+            let opts = crate::design::minimal::FormFindOptions {
                 target_edge_mm: spec.film_edge_mm.unwrap_or(spec.spacing_mm / 6.0),
                 ..Default::default()
             };
-            let found = crate::minimal::form_find(&boundaries, &opts, spec_path)?;
+            let found = crate::design::minimal::form_find(&boundaries, &opts, spec_path)?;
             let r = &found.report;
             notes.push(format!(
                 "film: {} triangles, {} iterations{}, area {:.3} m², mean-curvature residual {:.2e}/mm mean, {:.2e}/mm max, smallest angle {:.1}°",
@@ -75,14 +75,14 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
                     format!("no such file {}", file.display()),
                 ));
             }
-            (crate::mesh::read::read_mesh(&file)?, None, file)
+            (crate::formats::read::mesh::read_mesh(&file)?, None, file)
         }
     };
-    let topo = crate::mesh::topology::Topology::build(&mesh, &named)?;
+    let topo = crate::design::mesh::topology::Topology::build(&mesh, &named)?;
     let mesh = topo.mesh().clone();
-    let jets = crate::mesh::curvature::vertex_jets(&mesh, &topo);
-    let report = crate::mesh::singular::anticlastic_report(&topo, &jets);
-    crate::mesh::singular::require_anticlastic(&report, &named)?;
+    let jets = crate::design::mesh::curvature::vertex_jets(&mesh, &topo);
+    let report = crate::design::mesh::singular::anticlastic_report(&topo, &jets);
+    crate::design::mesh::singular::require_anticlastic(&report, &named)?;
     // Singular points are notes (with their index), the rest warnings.
     let warnings: Vec<String> = report
         .warnings()
@@ -92,8 +92,8 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
         .collect();
     for s in &report.singularities {
         let kind = match s.kind {
-            crate::mesh::singular::SingularKind::FlatPoint => "flat point",
-            crate::mesh::singular::SingularKind::Umbilic => "umbilic",
+            crate::design::mesh::singular::SingularKind::FlatPoint => "flat point",
+            crate::design::mesh::singular::SingularKind::Umbilic => "umbilic",
         };
         notes.push(format!(
             "singular point ({kind}, index {}) at ({:.1}, {:.1}, {:.1}) mm: the net changes valence there",

@@ -12,15 +12,17 @@
 
 mod clip;
 mod edges;
+pub mod mesh;
 pub mod mesh_source;
+pub mod minimal;
 pub mod periodic;
 mod seed;
 pub mod surface;
 pub mod trace;
 
 use crate::error::{Error, Location, Result};
-use crate::io::trace_spec::{ClipSpec, Design, Net, SurfaceName, TraceSpec};
 use crate::network::{Family, RawCurve, RawNetwork, Unit};
+use crate::spec::{ClipSpec, Design, Net, SurfaceName, TraceSpec};
 use glam::{DMat3, DVec2, DVec3};
 use std::path::Path;
 use std::sync::Arc;
@@ -44,7 +46,7 @@ pub fn placed_surface(spec: &TraceSpec) -> Placed {
         SurfaceName::SchwarzD => Arc::new(surface::SchwarzD),
         SurfaceName::Hypar => Arc::new(surface::Hypar { c: spec.c }),
         SurfaceName::Mesh | SurfaceName::Minimal => Arc::new(
-            crate::mesh::surface::MeshSurface::new(&Default::default(), Vec::new(), &[]),
+            crate::design::mesh::surface::MeshSurface::new(&Default::default(), Vec::new(), &[]),
         ),
     };
     place(spec, base, spec.scale_mm.unwrap_or(1.0))

@@ -12,10 +12,10 @@
 use super::blocks;
 use super::part::{Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge};
 use super::slots::{node_slots_in, range_between_rad, sweep_range_rad, SlotSpan, SweepRange};
-use crate::analysis::model::StripLines;
+use crate::analysis::lines::StripLines;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
-use crate::io::profile_file::JointSystem;
+use crate::formats::read::profile_file::JointSystem;
 use crate::network::{Family, Network};
 use crate::profile::Profile;
 use kurbo::Point;

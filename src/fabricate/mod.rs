@@ -20,7 +20,7 @@ pub mod slots;
 pub mod stud;
 pub mod washer;
 
-use crate::analysis::model::{NetworkLines, StripLines};
+use crate::analysis::lines::{NetworkLines, StripLines};
 use crate::analysis::Analysis;
 use crate::error::Result;
 use crate::network::Network;

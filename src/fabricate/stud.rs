@@ -28,7 +28,7 @@
 
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
-use crate::io::profile_file::JointSystem;
+use crate::formats::read::profile_file::JointSystem;
 use crate::profile::Profile;
 use kurbo::Point;
 

@@ -27,7 +27,7 @@
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
-use crate::io::profile_file::JointSystem;
+use crate::formats::read::profile_file::JointSystem;
 use crate::network::Family;
 use crate::profile::Profile;
 use kurbo::{Point, Vec2};

@@ -32,11 +32,9 @@
 //! Start: the erected nodes projected onto their best-fit plane, seen from
 //! the side the surface normals point to (so angles keep their sense).
 
-pub mod svg;
-
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
-use crate::io::profile_file::JointSystem;
+use crate::formats::read::profile_file::JointSystem;
 use crate::network::Family;
 use crate::profile::Profile;
 use faer::linalg::solvers::Solve;

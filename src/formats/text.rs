@@ -1,23 +1,5 @@
-//! Emit: the files a workshop cuts and buys from (issue 10). Plain data in
-//! (a plan with parts and sheets, the kit, the nest), files out:
-//!
-//! * [`drawing`]: every placed part in sheet coordinates, by operation;
-//! * [`dxf_out`], [`svg_out`]: one cutting file per sheet in each format;
-//! * [`takeoff`]: parts, stock, hardware and totals as CSV and JSON;
-//! * [`assembly`]: the assembly sheets, `assembly.pdf`;
-//! * [`direct`]: big files written past the page cache;
-//! * [`outdir`]: staging beside the output directory, moved into place
-//!   only once complete;
-//! * [`build`]: `lamella build`, every stage from the network to the files.
-
-pub mod assembly;
-pub mod build;
-pub mod direct;
-pub mod drawing;
-pub mod dxf_out;
-pub mod outdir;
-pub mod svg_out;
-pub mod takeoff;
+//! The one byte formatter every writer shares: numbers written in place at
+//! the end of a byte buffer, at fixed decimals, by integer arithmetic.
 
 /// Append `x` with at most `decimals` decimals (at most 9), trailing zeros
 /// dropped, `-0` written as `0`; with `keep_point`, at least one decimal

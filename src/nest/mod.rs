@@ -36,7 +36,6 @@
 //! sheet's x runs along its length.
 
 pub mod binpack;
-pub mod export;
 pub mod lattice;
 pub mod outline;
 

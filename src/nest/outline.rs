@@ -21,8 +21,8 @@
 //! lower-left by halving steps. Deterministic (no threads, fixed orders) and
 //! bounded ([`MAX_ATTEMPTS`] sheets tried, [`MAX_TARGETS`] target sheets).
 
-use super::export::grown_outline;
 use super::{placed_bbox, rotate, Placement, SheetNest};
+use crate::fabricate::part::{FeatureKind, SlotEdge};
 use crate::fabricate::part::{Part, PartKind};
 use crate::fabricate::Kit;
 use jagua_rs::collision_detection::hazards::filter::NoFilter;
@@ -963,6 +963,70 @@ fn try_empty(
         }
     }
     None
+}
+
+/// The outline of a part grown by `d` mm: exact for lamellas (a rectangle
+/// with notches, each notch narrowed by 2d and made d shallower, dropped when
+/// it closes), a miter offset for every other part (whose corners are right
+/// angles or smooth).
+pub fn grown_outline(p: &Part, d: f64) -> Vec<Point> {
+    if p.kind == PartKind::Lamella {
+        let (len, h) = (p.length_mm, p.height_mm);
+        let mut out = vec![Point::new(-d, -d)];
+        let notches = |edge: SlotEdge| -> Vec<(f64, f64, f64)> {
+            p.features
+                .iter()
+                .filter(|f| f.kind == FeatureKind::Slot && f.edge == Some(edge))
+                .map(|f| {
+                    (
+                        f.center_part_mm.x - 0.5 * f.width_mm + d,
+                        f.center_part_mm.x + 0.5 * f.width_mm - d,
+                        f.depth_mm - d,
+                    )
+                })
+                .filter(|&(a, b, depth)| b > a && depth > 0.0)
+                .collect()
+        };
+        for (a, b, depth) in notches(SlotEdge::Bottom) {
+            out.extend([
+                Point::new(a, -d),
+                Point::new(a, depth),
+                Point::new(b, depth),
+                Point::new(b, -d),
+            ]);
+        }
+        out.push(Point::new(len + d, -d));
+        out.push(Point::new(len + d, h + d));
+        for (a, b, depth) in notches(SlotEdge::Top).into_iter().rev() {
+            out.extend([
+                Point::new(b, h + d),
+                Point::new(b, h - depth),
+                Point::new(a, h - depth),
+                Point::new(a, h + d),
+            ]);
+        }
+        out.push(Point::new(-d, h + d));
+        return out;
+    }
+    let v = &p.outline_part_mm;
+    let n = v.len();
+    (0..n)
+        .map(|i| {
+            let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+            let e1 = (b - a).normalize();
+            let e2 = (c - b).normalize();
+            // Outward normals of a counter-clockwise polygon: (dy, −dx).
+            let n1 = kurbo::Vec2::new(e1.y, -e1.x);
+            let n2 = kurbo::Vec2::new(e2.y, -e2.x);
+            let m = n1 + n2;
+            let k = 1.0 + n1.dot(n2);
+            if k < 1e-6 {
+                b + n1 * d
+            } else {
+                b + m * (d / k)
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -3,19 +3,21 @@
 //! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
 //! `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
 //! `DIR/assembly.pdf` — staged beside DIR and moved
-//! into place only once complete ([`super::outdir`]).
+//! into place only once complete ([`crate::formats::out::staging`]).
 //!
 //! Everything is computed before anything is written; an overstressed
 //! strip stops the build before the first file (unless allowed).
 
-use super::drawing::Drawer;
-use super::outdir::Staging;
-use super::{dxf_out, svg_out, takeoff};
-use crate::analysis::model::Model;
+use crate::analysis::lines::Model;
 use crate::check::CheckReport;
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
-use crate::io::{self, plan, ReadOptions};
+use crate::formats::out::staging::Staging;
+use crate::formats::read::{self, ReadOptions};
+use crate::formats::write::drawing::Drawer;
+use crate::formats::write::{dxf as dxf_out, svg as svg_out};
+use crate::plan;
+use crate::plan::takeoff;
 use crate::profile::Profile;
 use crate::{analyze, AnalysisOptions};
 use indicatif::ProgressBar;
@@ -35,7 +37,7 @@ pub struct BuildOptions {
     /// the erected one ([`crate::flat`]) instead of the blanket tolerance.
     pub slots_from_flat: bool,
     /// Paper of the assembly sheets.
-    pub paper: super::assembly::Paper,
+    pub paper: crate::formats::write::assembly::Paper,
 }
 
 /// The time one stage of a build took.
@@ -130,7 +132,7 @@ pub fn build(
     for name in FIXED_FILES {
         let target = out.join(name);
         for (what, input) in [("network", network), ("profile", profile_path)] {
-            if target.exists() && io::same_file(&target, input) {
+            if target.exists() && read::same_file(&target, input) {
                 return Err(Error::output(
                     &target,
                     format!(
@@ -144,7 +146,7 @@ pub fn build(
     let mut clock = Clock::start();
     progress.set_message("reading");
     let profile = Profile::load(profile_path)?;
-    let net = io::read_network(network, opts.read)?;
+    let net = read::read_network(network, opts.read)?;
     clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
@@ -210,12 +212,13 @@ pub fn build(
     progress.set_message("nesting");
     // The nest is mostly one thread: the plan's parts are converted and
     // the assembly sheets' strip sheets (which need no nest) drawn beside it.
-    let frame = super::assembly::Frame::of(opts.paper);
+    let frame = crate::formats::write::assembly::Frame::of(opts.paper);
     let (nest, (plan_parts, strip_pages)) = rayon::join(
         || crate::nest::nest(&kit, &profile),
         || {
             let parts = plan::plan_parts(&kit);
-            let pages = super::assembly::strips::pages_of(&the_plan, &parts, &frame);
+            let pages =
+                crate::formats::write::assembly::strips::pages_of(&the_plan, &parts, &frame);
             (parts, pages)
         },
     );
@@ -251,10 +254,10 @@ pub fn build(
     progress.set_position(0);
     // The network's points live on as the overview's curves.
     let network_name = net.name.clone();
-    let curves: Vec<super::assembly::CurvePoints> = net
+    let curves: Vec<crate::formats::write::assembly::CurvePoints> = net
         .curves
         .into_iter()
-        .map(|c| super::assembly::CurvePoints {
+        .map(|c| crate::formats::write::assembly::CurvePoints {
             id: c.id,
             points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
         })
@@ -264,7 +267,7 @@ pub fn build(
         let r = f();
         (r, t.elapsed().as_secs_f64())
     }
-    let assembly_input = super::assembly::AssemblyInput {
+    let assembly_input = crate::formats::write::assembly::AssemblyInput {
         plan: &the_plan,
         takeoff: &takeoff,
         curves: &curves,
@@ -301,7 +304,7 @@ pub fn build(
                                 // Each worker's text buffers serve sheet after sheet.
                                 .map_init(
                                     || (Vec::new(), Vec::new()),
-                                    |(dxf, svg), i| -> Result<super::assembly::SealedPage> {
+                                    |(dxf, svg), i| -> Result<crate::formats::write::assembly::SealedPage> {
                                         let sheet = drawer.sheet(i)?;
                                         let stem = sheet.file_stem();
                                         dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
@@ -324,13 +327,13 @@ pub fn build(
                                         svg_out::write_svg(&sheet, &title, svg);
                                         staging.write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
-                                            Some(d) => super::assembly::nested::page(
+                                            Some(d) => crate::formats::write::assembly::nested::page(
                                                 &d.sheet_cuts(i)?,
                                                 &sheets_meta[i],
                                                 sheet_count,
                                                 &frame,
                                             ),
-                                            None => super::assembly::nested::page(
+                                            None => crate::formats::write::assembly::nested::page(
                                                 &sheet,
                                                 &sheets_meta[i],
                                                 sheet_count,
@@ -344,7 +347,7 @@ pub fn build(
                                 .collect::<Result<Vec<_>>>()
                         })
                     },
-                    || timed(|| super::assembly::sections_with(&assembly_input, Some(strip_pages))),
+                    || timed(|| crate::formats::write::assembly::sections_with(&assembly_input, Some(strip_pages))),
                 )
             },
         )
@@ -355,7 +358,8 @@ pub fn build(
     let (sections, sections_s) = (sections.0?, sections.1);
     let mut assembly_pages = 0;
     staging.write_with("assembly.pdf", |w| {
-        assembly_pages = super::assembly::assemble_into(&assembly_input, sections, nested, w)?;
+        assembly_pages =
+            crate::formats::write::assembly::assemble_into(&assembly_input, sections, nested, w)?;
         Ok(())
     })?;
     let pdf_s = sections_s + t.elapsed().as_secs_f64();

@@ -2,16 +2,19 @@
 //! output is drawn from. Later stages add fields; they never rename these.
 //! Numbers are rounded to fixed precision so the file is byte-stable.
 
-use crate::analysis::model::Model;
+use crate::analysis::lines::Model;
 use crate::analysis::Analysis;
 use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
 use crate::error::{Error, Result};
-use crate::io::profile_file::JointSystem;
+use crate::formats::read::profile_file::JointSystem;
 use crate::network::Network;
 use crate::profile::Profile;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+
+pub mod sparrow;
+pub mod takeoff;
 
 /// The schema name written into every plan; later stages add fields, never rename.
 pub const SCHEMA: &str = "lamella-plan/3";
@@ -684,7 +687,7 @@ fn v3(v: glam::DVec3, d: i32) -> [f64; 3] {
 }
 
 /// Format a finished model as a plan: ids for indices, rounded numbers.
-/// Nothing is computed here (see [`crate::analysis::model`]).
+/// Nothing is computed here (see [`crate::analysis::lines`]).
 pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
     let per_m = 1000.0;
     let id = |i: usize| net.curves[i].id.clone();
@@ -1108,17 +1111,18 @@ fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanChec
 }
 
 /// The dotted path of a NaN or infinite number in `plan`, if any
-/// ([`crate::io::finite::first_non_finite`]): the first outside its parts,
+/// ([`crate::formats::write::finite::first_non_finite`]): the first outside its parts,
 /// else the first in them (walked in parallel).
 pub fn first_non_finite(plan: &mut Plan) -> Option<String> {
     use rayon::prelude::*;
     let parts = plan.parts.take();
-    let rest = crate::io::finite::first_non_finite(plan);
+    let rest = crate::formats::write::finite::first_non_finite(plan);
     plan.parts = parts;
     rest.or_else(|| {
         plan.parts.as_deref().and_then(|parts| {
             parts.par_iter().enumerate().find_map_first(|(i, p)| {
-                crate::io::finite::first_non_finite(p).map(|f| format!("parts[{i}].{f}"))
+                crate::formats::write::finite::first_non_finite(p)
+                    .map(|f| format!("parts[{i}].{f}"))
             })
         })
     })
@@ -1135,7 +1139,7 @@ pub fn to_json(plan: &Plan) -> String {
 
 /// Stream the plan as JSON into `w` (the layout of [`to_json`]).
 pub fn write_json<W: std::io::Write + ?Sized>(plan: &Plan, w: &mut W) -> std::io::Result<()> {
-    crate::io::json_format::write(plan, w)
+    crate::formats::write::plan_json::write(plan, w)
 }
 
 /// Write `contents` to `path` atomically: a temporary file beside it, then a

@@ -7,7 +7,7 @@
 //! rotations are quarter turns; timber cut along the grain allows only 0/180°.
 
 use crate::error::{one_line, Error, Location, Result};
-use crate::io::profile_file::{
+use crate::formats::read::profile_file::{
     self, Bolt, Cutting, Grain, JointSystem, ProfileFile, ShearBlock, Splice, StockKind, Stud,
     Washer, CURRENT_VERSION,
 };
@@ -405,7 +405,7 @@ impl Profile {
         if !path.exists() {
             return Err(Error::input(path, Location::File, "no such file"));
         }
-        let text = crate::io::read_text(path)?;
+        let text = crate::formats::read::read_text(path)?;
         Profile::parse(&text, path)
     }
 
@@ -414,7 +414,7 @@ impl Profile {
         if text.trim().is_empty() {
             return Err(Error::input(path, Location::File, "the file is empty"));
         }
-        crate::io::yaml_guard::check(text, path)?;
+        crate::formats::read::yaml_guard::check(text, path)?;
         let value: serde_yaml::Value =
             serde_yaml::from_str(text).map_err(|e| yaml_error(path, &e))?;
         let version = match value.get("version") {

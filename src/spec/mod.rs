@@ -1,25 +1,10 @@
-//! The trace spec (YAML): which surface, its scale and placement, the seed,
-//! the spacing, the clip and the sampling of a network to trace.
+//! The trace spec: which surface, its scale and placement, the seed, the
+//! spacing, the clip and the sampling of a network to trace — what the
+//! design stage takes. Its serde names are the schema of `X.trace.yaml`;
+//! reading the file (size, YAML guard, one-line errors) is
+//! `formats::read::trace_spec`.
 
-use crate::error::{Error, Location, Result};
 use serde::Deserialize;
-use std::path::Path;
-
-/// Read a trace spec (one-line errors with line and column).
-pub fn load(path: &Path) -> Result<TraceSpec> {
-    if !path.exists() {
-        return Err(Error::input(path, Location::File, "no such file"));
-    }
-    let text = crate::io::read_text(path)?;
-    if text.trim().is_empty() {
-        return Err(Error::input(path, Location::File, "the file is empty"));
-    }
-    crate::io::yaml_guard::check(&text, path)?;
-    serde_yaml::from_str(&text).map_err(|e| {
-        let (at, msg) = crate::error::yaml_error_parts(&e);
-        Error::input(path, at, msg)
-    })
-}
 
 /// A trace spec as written (`X.trace.yaml`): what to trace and how finely.
 /// Validated by [`design`](crate::design::design), which names the field on error.

@@ -140,7 +140,8 @@ pub const BUILDABLE_SAMPLES: [&str; 6] = [
 pub fn analysed_sample(name: &str) -> (Network, Analysis) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("samples/{name}.yaml"));
     let net =
-        lamella::io::read_network(&path, lamella::io::ReadOptions::default()).expect("read sample");
+        lamella::formats::read::read_network(&path, lamella::formats::read::ReadOptions::default())
+            .expect("read sample");
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analyse sample");
     (net, an)
 }

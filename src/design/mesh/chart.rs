@@ -14,7 +14,7 @@
 //! is checked like the projection. Charts are in mm-like units: the
 //! projection is in mm, the embedding is scaled to the boundary's length.
 
-use crate::mesh::TriMesh;
+use crate::design::mesh::TriMesh;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;

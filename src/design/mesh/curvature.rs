@@ -400,7 +400,7 @@ fn least_squares(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::samples;
+    use crate::design::mesh::samples;
     use glam::DVec2;
     use std::path::Path;
 

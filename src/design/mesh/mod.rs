@@ -7,7 +7,7 @@
 //! its cleaned [`Topology::mesh`]), curvature tensors are estimated per
 //! vertex by fitting cubic jets (`curvature`), and the asymptotic net's
 //! extent and singular points (flat points, umbilics) are found from them
-//! (`singular`). Form finding (`crate::minimal`) produces a mesh with a
+//! (`singular`). Form finding (`crate::design::minimal`) produces a mesh with a
 //! planar chart, and tracing on meshes walks it through a chart (`surface`).
 //!
 //! ```text
@@ -21,14 +21,12 @@
 use glam::DVec3;
 
 pub mod curvature;
-pub mod read;
 #[cfg(test)]
 pub(crate) mod samples;
 pub mod singular;
 pub mod topology;
 
 pub use curvature::{vertex_curvatures, vertex_jets, VertexJet};
-pub use read::read_mesh;
 pub use singular::{
     anticlastic_report, require_anticlastic, singularities, AnticlasticReport, SingularKind,
     Singularity,

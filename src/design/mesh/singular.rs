@@ -130,7 +130,7 @@ fn line_step(d: f64) -> f64 {
 }
 
 /// The singular points of the principal net of the mesh `topo.mesh()`
-/// from its jets ([`crate::mesh::curvature::vertex_jets`]), in order of
+/// from its jets ([`crate::design::mesh::curvature::vertex_jets`]), in order of
 /// their first vertex.
 pub fn singularities(topo: &Topology, jets: &[VertexJet]) -> Vec<Singularity> {
     let nv = topo.vertex_count();
@@ -364,8 +364,8 @@ pub fn require_anticlastic(report: &AnticlasticReport, path: &Path) -> Result<()
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::curvature::vertex_jets;
-    use crate::mesh::samples;
+    use crate::design::mesh::curvature::vertex_jets;
+    use crate::design::mesh::samples;
     use glam::DVec2;
 
     /// The report of a jittered, rounded grid of `n`² cells over

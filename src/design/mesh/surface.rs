@@ -1,7 +1,7 @@
 //! A triangle mesh seen as a [`Surface`], so that the same tracer, seeds,
 //! spacing, alternation and clips work on meshes as on analytic surfaces.
 //!
-//! The parameter plane is a [`Chart`](crate::mesh::chart::Chart); a point
+//! The parameter plane is a [`Chart`](crate::design::mesh::chart::Chart); a point
 //! (u, v) is on the surface when it lies in a chart triangle.
 //! * Each vertex i carries a local patch Xᵢ(u, v) = Xᵢ + Bᵢ Δ + ½ Cᵢ(Δ, Δ)
 //!   (Δ = (u, v) − (uᵢ, vᵢ)): a quadratic in the chart through the vertex,
@@ -13,7 +13,7 @@
 //!   at spacing h; its partials are exact derivatives of it, so a step in
 //!   the chart moves along the points written, without kinks at edges.
 //! * The curvature is the per-vertex shape operators (from
-//!   [`vertex_curvatures`](crate::mesh::curvature), O(h²)) of the chart
+//!   [`vertex_curvatures`](crate::design::mesh::curvature), O(h²)) of the chart
 //!   triangle's corners, each turned by the smallest rotation taking its
 //!   vertex normal to the point's normal (as Rusinkiewicz 2004 moves
 //!   tensors between frames), interpolated barycentrically: continuous
@@ -24,8 +24,8 @@
 //!   asymptotic and principal directions come out of the estimated tensor
 //!   field.
 
+use crate::design::mesh::TriMesh;
 use crate::design::surface::{Curvature, Surface, SurfaceJet};
-use crate::mesh::TriMesh;
 use glam::{DMat3, DVec2, DVec3};
 
 /// A mesh with a chart and curvature tensors, as a surface.

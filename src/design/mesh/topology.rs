@@ -529,7 +529,7 @@ fn check_degenerate(mesh: &TriMesh, path: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::samples;
+    use crate::design::mesh::samples;
 
     fn build(m: &TriMesh) -> Result<Topology> {
         Topology::build(m, Path::new("m.obj"))

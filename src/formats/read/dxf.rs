@@ -133,7 +133,7 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
         ));
     }
     Ok(RawNetwork {
-        name: crate::io::default_name(path),
+        name: crate::formats::read::default_name(path),
         unit,
         tolerance: None,
         curves,

@@ -19,9 +19,9 @@
 //!   deterministic. Errors name the triangle.
 //!
 //! Non-finite coordinates are refused here, where the file position is
-//! known; the mesh's topology is checked by [`crate::mesh::topology`].
+//! known; the mesh's topology is checked by [`crate::design::mesh::topology`].
 
-use super::TriMesh;
+use crate::design::mesh::TriMesh;
 use crate::error::{Error, Location, Result};
 use glam::DVec3;
 use std::collections::HashMap;

@@ -2,12 +2,10 @@
 //! JSON, OBJ, DXF) in, plan.json out. Each reader returns a [`RawNetwork`]
 //! in file units; [`read_network`] validates it into a [`Network`] in mm.
 
-pub mod dxf_in;
-pub mod finite;
-pub mod json_format;
+pub mod dxf;
+pub mod mesh;
 pub mod network_file;
 pub mod obj;
-pub mod plan;
 pub mod profile_file;
 pub mod trace_spec;
 pub mod yaml_guard;
@@ -74,7 +72,7 @@ pub fn read_raw(path: &Path, opts: ReadOptions) -> Result<RawNetwork> {
             let text = read_text_limited(path, yaml_guard::MAX_NETWORK_FILE_BYTES)?;
             obj::parse(&text, opts.unit.unwrap_or(crate::network::Unit::Mm), path)
         }
-        "dxf" => dxf_in::read(path, opts.unit),
+        "dxf" => dxf::read(path, opts.unit),
         _ => Err(Error::input(
             path,
             Location::File,

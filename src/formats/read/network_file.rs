@@ -47,7 +47,7 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
     if syntax == Syntax::Yaml {
-        crate::io::yaml_guard::check(text, path)?;
+        crate::formats::read::yaml_guard::check(text, path)?;
     }
     let file: NetworkFile = match syntax {
         Syntax::Yaml => serde_yaml::from_str(text).map_err(|e| {
@@ -98,7 +98,9 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
                 .map(|n| n.into_iter().map(DVec3::from_array).collect()),
         });
     }
-    let name = file.name.unwrap_or_else(|| crate::io::default_name(path));
+    let name = file
+        .name
+        .unwrap_or_else(|| crate::formats::read::default_name(path));
     Ok(RawNetwork {
         name,
         unit,

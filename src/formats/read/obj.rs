@@ -164,7 +164,7 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
         });
     }
     Ok(RawNetwork {
-        name: crate::io::default_name(path),
+        name: crate::formats::read::default_name(path),
         unit,
         tolerance: None,
         curves,

@@ -20,7 +20,7 @@
 //! round joins: convex corners become arcs, written as bulges).
 
 use crate::error::{Error, Result};
-use crate::io::plan::{
+use crate::plan::{
     Plan, PlanEngraving, PlanFeatureKind, PlanFont, PlanGlyph, PlanPart, PlanPlacement, PlanSheet,
 };
 use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
@@ -35,7 +35,7 @@ pub const ENGRAVE_DECIMALS: i32 = 3;
 
 /// `x` mm on the engraving grid, in its units (µm).
 pub fn engrave_units(x: f64) -> i64 {
-    super::round_to_i64(x * 10f64.powi(ENGRAVE_DECIMALS))
+    crate::formats::text::round_to_i64(x * 10f64.powi(ENGRAVE_DECIMALS))
 }
 
 /// A point of the engraving grid (units) in mm: the double nearest the

@@ -160,9 +160,9 @@ fn entity(s: &mut Vec<u8>, shape: &Shape, handle: &mut u64) {
                 for &[x, y] in stroke {
                     // Whole µm: the digits `push_decimal` gives their mm.
                     s.extend_from_slice(b" 10\n");
-                    super::push_scaled(s, x < 0, x.unsigned_abs(), 3, true);
+                    crate::formats::text::push_scaled(s, x < 0, x.unsigned_abs(), 3, true);
                     s.extend_from_slice(b"\n 20\n");
-                    super::push_scaled(s, y < 0, y.unsigned_abs(), 3, true);
+                    crate::formats::text::push_scaled(s, y < 0, y.unsigned_abs(), 3, true);
                     s.push(b'\n');
                 }
             }
@@ -177,11 +177,11 @@ fn entity(s: &mut Vec<u8>, shape: &Shape, handle: &mut u64) {
             s.extend_from_slice(b"\n100\nAcDbEntity\n  8\n");
             s.extend_from_slice(layer.name().as_bytes());
             s.extend_from_slice(b"\n100\nAcDbCircle\n 10\n");
-            super::push_decimal(s, center_mm[0], COORD_DECIMALS, true);
+            crate::formats::text::push_decimal(s, center_mm[0], COORD_DECIMALS, true);
             s.extend_from_slice(b"\n 20\n");
-            super::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
+            crate::formats::text::push_decimal(s, center_mm[1], COORD_DECIMALS, true);
             s.extend_from_slice(b"\n 30\n0.0\n 40\n");
-            super::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
+            crate::formats::text::push_decimal(s, *radius_mm, COORD_DECIMALS, true);
             s.push(b'\n');
             *handle += 1;
         }
@@ -210,13 +210,13 @@ fn polyline(s: &mut Vec<u8>, layer: Layer, closed: bool, vertices: &[Vertex], ha
     header(s, layer, closed, vertices.len(), handle);
     for v in vertices {
         s.extend_from_slice(b" 10\n");
-        super::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
+        crate::formats::text::push_decimal(s, v.x_mm, COORD_DECIMALS, true);
         s.extend_from_slice(b"\n 20\n");
-        super::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
+        crate::formats::text::push_decimal(s, v.y_mm, COORD_DECIMALS, true);
         s.push(b'\n');
         if v.bulge != 0.0 {
             s.extend_from_slice(b" 42\n");
-            super::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
+            crate::formats::text::push_decimal(s, v.bulge, BULGE_DECIMALS, true);
             s.push(b'\n');
         }
     }
@@ -231,7 +231,7 @@ fn header(s: &mut Vec<u8>, layer: Layer, closed: bool, vertices: usize, handle: 
     s.extend_from_slice(b"\n100\nAcDbEntity\n  8\n");
     s.extend_from_slice(layer.name().as_bytes());
     s.extend_from_slice(b"\n100\nAcDbPolyline\n 90\n");
-    super::push_scaled(s, false, vertices as u64, 0, false);
+    crate::formats::text::push_scaled(s, false, vertices as u64, 0, false);
     s.extend_from_slice(if closed { b"\n 70\n1\n" } else { b"\n 70\n0\n" });
     *handle += 1;
 }

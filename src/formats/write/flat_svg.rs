@@ -4,7 +4,7 @@
 //! rotation it turns through on erection (degrees, counter-clockwise
 //! positive, A → B). Deterministic: fixed decimals.
 
-use super::{FlatProblem, FlatState};
+use crate::flat::{FlatProblem, FlatState};
 use std::fmt::Write;
 
 /// Margin round the grid, mm.

@@ -174,10 +174,10 @@ impl Formatter for PlanFormatter {
             return CompactFormatter.write_f64(out!(self, w), v);
         };
         match self.line.as_mut() {
-            Some(l) => crate::emit::push_scaled(&mut l.text, v < 0.0, micro, 6, true),
+            Some(l) => crate::formats::text::push_scaled(&mut l.text, v < 0.0, micro, 6, true),
             None => {
                 self.number.clear();
-                crate::emit::push_scaled(&mut self.number, v < 0.0, micro, 6, true);
+                crate::formats::text::push_scaled(&mut self.number, v < 0.0, micro, 6, true);
                 w.write_all(&self.number)?;
             }
         }
@@ -328,7 +328,7 @@ fn on_micro_grid(v: f64) -> Option<u64> {
     if !(1e-3..1e9).contains(&a) {
         return None;
     }
-    let micro = crate::emit::round_to_i64(a * 1e6) as u64;
+    let micro = crate::formats::text::round_to_i64(a * 1e6) as u64;
     (micro as f64 / 1e6 == a).then_some(micro)
 }
 

@@ -115,11 +115,11 @@ fn shape(s: &mut Vec<u8>, sh: &Shape, w: f64) {
             ..
         } => {
             s.extend_from_slice(br#"<circle cx=""#);
-            super::push_decimal(s, center_mm[0], DECIMALS, false);
+            crate::formats::text::push_decimal(s, center_mm[0], DECIMALS, false);
             s.extend_from_slice(br#"" cy=""#);
-            super::push_decimal(s, w - center_mm[1], DECIMALS, false);
+            crate::formats::text::push_decimal(s, w - center_mm[1], DECIMALS, false);
             s.extend_from_slice(br#"" r=""#);
-            super::push_decimal(s, *radius_mm, DECIMALS, false);
+            crate::formats::text::push_decimal(s, *radius_mm, DECIMALS, false);
             s.extend_from_slice(b"\"/>\n");
         }
         Shape::Polyline {
@@ -128,9 +128,9 @@ fn shape(s: &mut Vec<u8>, sh: &Shape, w: f64) {
             s.extend_from_slice(br#"<path d=""#);
             let n = vertices.len();
             s.push(b'M');
-            super::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
+            crate::formats::text::push_decimal(s, vertices[0].x_mm, DECIMALS, false);
             s.push(b' ');
-            super::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
+            crate::formats::text::push_decimal(s, w - vertices[0].y_mm, DECIMALS, false);
             let segments = if *closed { n } else { n - 1 };
             for i in 0..segments {
                 let (a, b) = (vertices[i], vertices[(i + 1) % n]);
@@ -241,9 +241,9 @@ impl<'a> RelativePath<'a> {
     /// `<path d="M x y` (absolute, mm).
     fn start(&mut self, x: f64, y: f64) {
         self.s.extend_from_slice(br#"<path d="M"#);
-        super::push_decimal(self.s, x, DECIMALS, false);
+        crate::formats::text::push_decimal(self.s, x, DECIMALS, false);
         self.s.push(b' ');
-        super::push_decimal(self.s, y, DECIMALS, false);
+        crate::formats::text::push_decimal(self.s, y, DECIMALS, false);
         // Numbers after an `M` pair would be absolute lines.
         self.command = b'L';
         self.after_number = true;
@@ -292,7 +292,7 @@ impl<'a> RelativePath<'a> {
         if self.after_number && units >= 0 {
             self.s.push(b' ');
         }
-        super::push_digits(
+        crate::formats::text::push_digits(
             self.s,
             units < 0,
             units.unsigned_abs(),
@@ -308,9 +308,9 @@ impl<'a> RelativePath<'a> {
 fn segment(s: &mut Vec<u8>, a: Vertex, b: Vertex, w: f64) {
     if a.bulge == 0.0 {
         s.extend_from_slice(b" L");
-        super::push_decimal(s, b.x_mm, DECIMALS, false);
+        crate::formats::text::push_decimal(s, b.x_mm, DECIMALS, false);
         s.push(b' ');
-        super::push_decimal(s, w - b.y_mm, DECIMALS, false);
+        crate::formats::text::push_decimal(s, w - b.y_mm, DECIMALS, false);
         return;
     }
     let (bx, by) = (num(b.x_mm), num(w - b.y_mm));
@@ -328,7 +328,7 @@ fn segment(s: &mut Vec<u8>, a: Vertex, b: Vertex, w: f64) {
 /// never `-0`.
 fn num(x: f64) -> String {
     let mut t = String::with_capacity(16);
-    super::push_decimal_str(&mut t, x, DECIMALS, false);
+    crate::formats::text::push_decimal_str(&mut t, x, DECIMALS, false);
     t
 }
 

@@ -4,7 +4,7 @@
 //! line width, font) emitted only when it changes and consecutive text
 //! kept in one text object, so big pages stay small.
 
-use crate::emit::{push_decimal, push_scaled};
+use crate::formats::text::{push_decimal, push_scaled};
 
 /// Points per millimetre.
 const PT_PER_MM: f64 = 72.0 / 25.4;
@@ -60,7 +60,7 @@ pub struct Canvas {
 
 /// Millimetres to tenths of a point (0.035 mm, finer than print).
 fn hpt(mm: f64) -> i64 {
-    crate::emit::round_to_i64(mm * PT_PER_MM * 10.0)
+    crate::formats::text::round_to_i64(mm * PT_PER_MM * 10.0)
 }
 
 impl Canvas {

@@ -31,9 +31,9 @@ pub mod overview;
 pub mod strips;
 pub mod tables;
 
-use crate::emit::takeoff::Takeoff;
 use crate::error::{Error, Result};
-use crate::io::plan::Plan;
+use crate::plan::takeoff::Takeoff;
+use crate::plan::Plan;
 use canvas::{Align, Canvas, BLACK, GREY};
 use rayon::prelude::*;
 use std::path::Path;

@@ -1,14 +1,14 @@
 //! Sheets as nested: one stock sheet per page, drawn by
-//! [`crate::emit::drawing::Drawer`] (the cutting files' own geometry,
+//! [`crate::formats::write::drawing::Drawer`] (the cutting files' own geometry,
 //! nominal) at the largest standard scale at which the sheet fits, every
 //! placed part outlined and labelled with its id. Engraving is left out
 //! (too fine at these scales); outlines are thinned to 0.1 mm on paper.
 
 use super::canvas::{self, Align, BLACK, GREY};
 use super::{fixed, standard_scale, Frame, Page, SealedPage};
-use crate::emit::drawing::{within, Drawer, Layer, Shape, SheetDrawing};
 use crate::error::Result;
-use crate::io::plan::{Plan, PlanSheet};
+use crate::formats::write::drawing::{within, Drawer, Layer, Shape, SheetDrawing};
+use crate::plan::{Plan, PlanSheet};
 use rayon::prelude::*;
 use std::path::Path;
 

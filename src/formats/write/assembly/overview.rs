@@ -128,7 +128,7 @@ pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
             0.35
         };
         // A big grid's nodes are dotted in plan only (elevations would be solid).
-        let nodes: &[crate::io::plan::PlanNode] = if input.plan.nodes.len() > 2000 && vi > 0 {
+        let nodes: &[crate::plan::PlanNode] = if input.plan.nodes.len() > 2000 && vi > 0 {
             &[]
         } else {
             &input.plan.nodes
@@ -274,7 +274,7 @@ const NODE_PT: f64 = 5.0;
 /// computed): every A/B strip through its nodes' floor positions at one
 /// standard scale, A red, B blue, labelled at both ends; every node a
 /// circle with its id and the rotation it turns through on erection.
-pub fn flat_page(plan: &crate::io::plan::Plan, frame: &Frame) -> Option<Page> {
+pub fn flat_page(plan: &crate::plan::Plan, frame: &Frame) -> Option<Page> {
     let flat = plan.flat.as_ref()?;
     let pos: HashMap<usize, [f64; 2]> =
         flat.nodes.iter().map(|n| (n.node, n.position_mm)).collect();

@@ -22,7 +22,7 @@
 
 use super::canvas::{Align, Canvas, BLACK, BLUE, GREY};
 use super::{mm0, Frame, Page, SealedPage};
-use crate::io::plan::{Plan, PlanFeatureKind, PlanHoleUse, PlanPart};
+use crate::plan::{Plan, PlanFeatureKind, PlanHoleUse, PlanPart};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -168,7 +168,7 @@ pub fn pages_of(plan: &Plan, parts: &[PlanPart], frame: &Frame) -> Vec<SealedPag
 
 /// One strip ready to lay out: its lamellas and their rows.
 struct StripRows<'a> {
-    strip: &'a crate::io::plan::PlanStrip,
+    strip: &'a crate::plan::PlanStrip,
     lamellas: Vec<Lamella<'a>>,
 }
 

@@ -7,8 +7,8 @@
 
 use super::canvas::{self, Align, Canvas, Rgb3, BLACK, BLUE, GREY, LIGHT, RED};
 use super::{fixed, mm0, AssemblyInput, Frame, Page};
-use crate::emit::takeoff::Takeoff;
-use crate::io::plan::{Plan, PlanHoleUse, PlanPart};
+use crate::plan::takeoff::Takeoff;
+use crate::plan::{Plan, PlanHoleUse, PlanPart};
 
 /// Height of a table row, mm.
 pub const ROW_MM: f64 = 4.5;
@@ -277,7 +277,7 @@ pub fn order_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         .as_ref()
         .is_some_and(|p| p.joint_system == "two_level");
     let mut rows: Vec<Row> = Vec::new();
-    let push = |rows: &mut Vec<Row>, s: &crate::io::plan::PlanStrip, what: &str| {
+    let push = |rows: &mut Vec<Row>, s: &crate::plan::PlanStrip, what: &str| {
         let step = rows.len() + 1;
         rows.push((
             vec![

@@ -1,0 +1,9 @@
+//! Writers: each formats a finished plan (and nothing else) as bytes.
+
+pub mod assembly;
+pub mod drawing;
+pub mod dxf;
+pub mod finite;
+pub mod flat_svg;
+pub mod plan_json;
+pub mod svg;

@@ -1,0 +1,3 @@
+//! The pipeline: every stage from the input files to the kit.
+
+pub mod build;
