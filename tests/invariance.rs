@@ -6,8 +6,8 @@ mod common;
 use common::synth::{self, Enneper, Sampling};
 use common::*;
 use glam::DVec2;
-use lamella::analysis::lines::Model;
 use lamella::network::{RawNetwork, Unit};
+use lamella::plan::model::Model;
 use lamella::profile::Profile;
 
 fn base(normals: bool) -> RawNetwork {

@@ -1,10 +1,10 @@
 //! The `lamella` command line.
 
 use clap::{Parser, Subcommand};
-use lamella::analysis::lines::Model;
 use lamella::formats::read::{self as io, ReadOptions};
 use lamella::network::Unit;
 use lamella::plan;
+use lamella::plan::model::Model;
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::{Path, PathBuf};

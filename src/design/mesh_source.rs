@@ -103,7 +103,7 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
             s.position_mm.z
         ));
     }
-    let curvatures: Vec<crate::design::surface::Curvature> =
+    let curvatures: Vec<crate::geom::surface::Curvature> =
         jets.iter().map(|j| j.curvature).collect();
     // A film's chart is per vertex of the film; cleaning keeps a film's
     // vertices (it has none unreferenced), which the count confirms.

@@ -10,7 +10,7 @@
 //! points (K → 0, where the asymptotic net is singular), on closing a loop,
 //! or at a length limit.
 
-use crate::design::surface::{curvature_of, to_parameter, Surface, SurfaceJet};
+use crate::geom::surface::{curvature_of, to_parameter, Surface, SurfaceJet};
 use glam::{DVec2, DVec3};
 
 /// A direction field on the surface.

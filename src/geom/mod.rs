@@ -1,7 +1,10 @@
-//! Geometry shared by the stages, free of file formats and of the network:
+//! Geometry every stage shares, knowing no stage and no file format:
 //! smooth curves through samples ([`curve`]), NURBS evaluation ([`nurbs`]),
-//! closest points of segments ([`closest`]).
+//! closest points of segments ([`closest`]), the surface interface
+//! ([`surface`]) and triangle meshes ([`mesh`]).
 
 pub mod closest;
 pub mod curve;
+pub mod mesh;
 pub mod nurbs;
+pub mod surface;

@@ -8,7 +8,6 @@
 //! Everything is computed before anything is written; an overstressed
 //! strip stops the build before the first file (unless allowed).
 
-use crate::analysis::lines::Model;
 use crate::check::CheckReport;
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
@@ -17,6 +16,7 @@ use crate::formats::read::{self, ReadOptions};
 use crate::formats::write::drawing::Drawer;
 use crate::formats::write::{dxf as dxf_out, svg as svg_out};
 use crate::plan;
+use crate::plan::model::Model;
 use crate::plan::takeoff;
 use crate::profile::Profile;
 use crate::{analyze, AnalysisOptions};

@@ -2,17 +2,18 @@
 //! output is drawn from. Later stages add fields; they never rename these.
 //! Numbers are rounded to fixed precision so the file is byte-stable.
 
-use crate::analysis::lines::Model;
 use crate::analysis::Analysis;
 use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
 use crate::error::{Error, Result};
 use crate::formats::read::profile_file::JointSystem;
 use crate::network::Network;
+use crate::plan::model::Model;
 use crate::profile::Profile;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+pub mod model;
 pub mod sparrow;
 pub mod takeoff;
 

@@ -32,7 +32,7 @@
 
 use super::topology::Topology;
 use super::TriMesh;
-use crate::design::surface::{curvature_of, Curvature, SurfaceJet};
+use crate::geom::surface::{curvature_of, Curvature, SurfaceJet};
 use glam::DVec3;
 use rayon::prelude::*;
 

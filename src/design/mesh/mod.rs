@@ -18,8 +18,6 @@
 //! require_anticlastic(&report, path)?;
 //! ```
 
-use glam::DVec3;
-
 pub mod curvature;
 #[cfg(test)]
 pub(crate) mod samples;
@@ -33,14 +31,7 @@ pub use singular::{
 };
 pub use topology::Topology;
 
-/// A triangle mesh in mm.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct TriMesh {
-    /// Vertex positions, mm.
-    pub positions_mm: Vec<DVec3>,
-    /// Triangles as vertex indices, counter-clockwise seen from the normals' side.
-    pub triangles: Vec<[u32; 3]>,
-}
+pub use crate::geom::mesh::TriMesh;
 
 pub mod chart;
 pub mod surface;

@@ -20,12 +20,12 @@
 //!   across edges. (Blending them with the patches' wider weights smooths
 //!   them over 1.5 edges and doubled the traced error on Enneper.) The jet's second derivatives are set to (II(∂u, ∂u),
 //!   II(∂u, ∂v), II(∂v, ∂v)) · n, which is all
-//!   [`curvature_of`](crate::design::surface::curvature_of) reads, so the
+//!   [`curvature_of`](crate::geom::surface::curvature_of) reads, so the
 //!   asymptotic and principal directions come out of the estimated tensor
 //!   field.
 
 use crate::design::mesh::TriMesh;
-use crate::design::surface::{Curvature, Surface, SurfaceJet};
+use crate::geom::surface::{Curvature, Surface, SurfaceJet};
 use glam::{DMat3, DVec2, DVec3};
 
 /// A mesh with a chart and curvature tensors, as a surface.

@@ -82,8 +82,8 @@ pub mod initial;
 pub mod refine;
 pub mod solve;
 
-use crate::design::mesh::TriMesh;
 use crate::error::{Error, Location, Result};
+use crate::geom::mesh::TriMesh;
 use glam::{DVec2, DVec3};
 use std::path::Path;
 

@@ -21,8 +21,8 @@
 //! Non-finite coordinates are refused here, where the file position is
 //! known; the mesh's topology is checked by [`crate::design::mesh::topology`].
 
-use crate::design::mesh::TriMesh;
 use crate::error::{Error, Location, Result};
+use crate::geom::mesh::TriMesh;
 use glam::DVec3;
 use std::collections::HashMap;
 use std::path::Path;
