@@ -81,7 +81,7 @@ fn measure(path: &Path) {
         let e = Instant::now();
         let p = plan::build(&net, &an, &model);
         let f = Instant::now();
-        let json = plan::to_json(&p);
+        let json = lamella::formats::write::plan_json::to_json(&p);
         let g = Instant::now();
         eprintln!(
             "stages: smooth {:.3} s, nodes {:.3} s, strips {:.3} s ({} strips), model {:.3} s, plan {:.3} s, json {:.3} s",
@@ -97,7 +97,7 @@ fn measure(path: &Path) {
     }
     let model = lamella::plan::model::Model::new(&net, &an);
     let p = plan::build(&net, &an, &model);
-    let json = plan::to_json(&p);
+    let json = lamella::formats::write::plan_json::to_json(&p);
     let t3 = Instant::now();
     let n = net.curves.len() / 2;
     assert_eq!(an.topology.nodes.len(), n * n, "every node found once");

@@ -252,7 +252,7 @@ fn plan_json(plan: &plan::Plan, target: &Path) -> lamella::Result<String> {
             format!("not written: {field} is not a finite number"),
         ));
     }
-    Ok(plan::to_json(plan))
+    Ok(lamella::formats::write::plan_json::to_json(plan))
 }
 
 fn main() -> ExitCode {
@@ -358,8 +358,8 @@ fn flat(
         &st,
         &format!("{} — flat assembly layout ({}), mm", net.name, profile.name),
     );
-    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
-    plan::write_atomic(&svg_target, svg.as_bytes())?;
+    lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+    lamella::formats::out::write_atomic(&svg_target, svg.as_bytes())?;
     for w in an.warnings() {
         eprintln!("warning: {w}");
     }
@@ -553,9 +553,9 @@ fn parts(
         }
         None => None,
     };
-    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+    lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     if let Some((file, text)) = &instance_text {
-        plan::write_atomic(file, text.as_bytes())?;
+        lamella::formats::out::write_atomic(file, text.as_bytes())?;
         println!("wrote {}", file.display());
     }
     for w in an.warnings() {
@@ -665,7 +665,7 @@ fn check(
         );
         let plan = plan::build(&net, &an, &model);
         let target = dir.join("plan.json");
-        plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+        lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     }
     for w in an.warnings() {
         eprintln!("warning: {w}");
@@ -751,7 +751,7 @@ fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> 
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     let model = Model::new(&net, &an);
     let plan = plan::build(&net, &an, &model);
-    plan::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
+    lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
     for w in an.warnings() {
         eprintln!("warning: {w}");
     }
@@ -848,7 +848,7 @@ fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
         Some("json") => io::network_file::to_json(&net, COORDINATE_DECIMALS),
         _ => io::network_file::to_yaml(&net, COORDINATE_DECIMALS, &comment),
     };
-    plan::write_atomic(out, text.as_bytes())?;
+    lamella::formats::out::write_atomic(out, text.as_bytes())?;
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }

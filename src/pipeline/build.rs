@@ -14,7 +14,7 @@ use crate::fabricate::part::PartKind;
 use crate::formats::out::staging::Staging;
 use crate::formats::read::{self, ReadOptions};
 use crate::formats::write::drawing::Drawer;
-use crate::formats::write::{dxf as dxf_out, svg as svg_out};
+use crate::formats::write::{dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file};
 use crate::plan;
 use crate::plan::model::Model;
 use crate::plan::takeoff;
@@ -229,7 +229,7 @@ pub fn build(
     let kinds = kit.summary.kinds.clone();
     plan::set_parts(&mut the_plan, plan_parts, &kit);
     let plan_target = out.join("plan.json");
-    if let Some(field) = plan::first_non_finite(&mut the_plan) {
+    if let Some(field) = plan_json::first_non_finite(&mut the_plan) {
         return Err(Error::output(
             &plan_target,
             format!("not written: {field} is not a finite number"),
@@ -244,9 +244,9 @@ pub fn build(
     drop(kit);
     clock.lap("plan");
     progress.set_message("writing plan, takeoff, sheets and assembly sheets");
-    let csv = takeoff::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
+    let csv = takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
-    staging.write("takeoff.json", takeoff::to_json(&takeoff).as_bytes())?;
+    staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
     let kerf = opts.kerf_compensation.then_some(profile.cutting.kerf_mm);
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
     let sheet_count = drawer.len();
@@ -294,7 +294,7 @@ pub fn build(
         .map_err(|e| Error::output(out, format!("cannot start the writer threads: {e}")))?;
     let (plan_written, (sheets_written, sections)) = write_pool.install(|| {
         rayon::join(
-            || timed(|| staging.write_with("plan.json", |w| plan::write_json(&the_plan, w))),
+            || timed(|| staging.write_with("plan.json", |w| plan_json::write_json(&the_plan, w))),
             || {
                 rayon::join(
                     || {

@@ -7,3 +7,4 @@ pub mod finite;
 pub mod flat_svg;
 pub mod plan_json;
 pub mod svg;
+pub mod takeoff;

@@ -12,6 +12,7 @@
 //! learns that it holds another only when that one begins, so it is kept
 //! on one line in a buffer until then, and laid out key per line if so.
 
+use crate::plan::Plan;
 use serde_json::ser::{CharEscape, CompactFormatter, Formatter};
 use std::io::{self, Write};
 
@@ -342,6 +343,38 @@ pub fn write<T: serde::Serialize + ?Sized, W: Write + ?Sized>(
     w.write_all(b"\n")
 }
 
+/// The dotted path of a NaN or infinite number in `plan`, if any
+/// ([`super::finite::first_non_finite`]): the first outside its parts,
+/// else the first in them (walked in parallel).
+pub fn first_non_finite(plan: &mut Plan) -> Option<String> {
+    use rayon::prelude::*;
+    let parts = plan.parts.take();
+    let rest = super::finite::first_non_finite(plan);
+    plan.parts = parts;
+    rest.or_else(|| {
+        plan.parts.as_deref().and_then(|parts| {
+            parts.par_iter().enumerate().find_map_first(|(i, p)| {
+                super::finite::first_non_finite(p)
+                    .map(|f| format!("parts[{i}].{f}"))
+            })
+        })
+    })
+}
+
+/// Serialise a plan (pretty JSON, trailing newline).
+pub fn to_json(plan: &Plan) -> String {
+    let mut out = Vec::new();
+    if let Err(e) = write_json(plan, &mut out) {
+        return format!("{{\"error\":\"{e}\"}}\n");
+    }
+    String::from_utf8(out).unwrap_or_default()
+}
+
+/// Stream the plan as JSON into `w` (the layout of [`to_json`]).
+pub fn write_json<W: std::io::Write + ?Sized>(plan: &Plan, w: &mut W) -> std::io::Result<()> {
+    write(plan, w)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -453,5 +486,57 @@ mod tests {
     ]]]
 "#;
         assert_eq!(layout(&v), want);
+    }
+}
+
+#[cfg(test)]
+mod plan_tests {
+    use super::*;
+    use crate::plan::{Plan, PlanPart, SCHEMA};
+
+    fn part(id: &str, length_mm: f64) -> PlanPart {
+        PlanPart {
+            id: id.into(),
+            kind: "washer".into(),
+            strip: None,
+            lamella: None,
+            count: 1,
+            length_mm,
+            height_mm: 10.0,
+            station_start_mm: None,
+            outline: vec![[0.0, 0.0], [length_mm, 0.0], [0.0, 10.0]],
+            holes: vec![],
+            engraving: vec![],
+            features: vec![],
+        }
+    }
+
+    /// The parts are walked in parallel, the rest as a whole walk would.
+    #[test]
+    fn non_finite_numbers_named_in_the_parts_and_outside() {
+        let mut plan: Plan = serde_json::from_value(serde_json::json!({
+            "schema": SCHEMA, "generator": "t", "units": "mm",
+            "network": {"name": "n", "source": "n.yaml", "file_units": "mm", "tolerance_mm": 0.5},
+            "summary": {"curves": 0, "nodes": 0, "total_length_mm": 0.0,
+                "shortest_node_to_node_mm": null, "longest_node_to_node_mm": null,
+                "max_normal_curvature_per_m": 0.0, "min_angle_deg": null, "max_angle_deg": null},
+            "strips": [], "nodes": [], "warnings": []
+        }))
+        .expect("plan");
+        plan.parts = Some((0..50).map(|i| part(&format!("P{i}"), 10.0)).collect());
+        assert_eq!(first_non_finite(&mut plan), None);
+        let parts = plan.parts.as_mut().expect("parts");
+        parts[40].outline[2][1] = f64::INFINITY;
+        parts[7].length_mm = f64::NAN;
+        assert_eq!(
+            first_non_finite(&mut plan).as_deref(),
+            Some("parts[7].length_mm")
+        );
+        plan.network.tolerance_mm = f64::NAN;
+        assert_eq!(
+            first_non_finite(&mut plan).as_deref(),
+            Some("network.tolerance_mm")
+        );
+        assert_eq!(plan.parts.as_ref().map(Vec::len), Some(50));
     }
 }

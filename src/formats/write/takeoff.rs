@@ -1,0 +1,95 @@
+//! The takeoff as JSON for tools and as CSV for spreadsheets (one header
+//! row, units in the column names, one `section` column).
+
+use crate::plan::round;
+use crate::plan::takeoff::Takeoff;
+use serde::Serialize;
+
+/// The takeoff as pretty JSON.
+pub fn to_json(t: &Takeoff) -> String {
+    let mut s = serde_json::to_string_pretty(t).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+/// One CSV row; every section fills the columns that apply.
+#[derive(Serialize, Default)]
+struct Row<'a> {
+    section: &'a str,
+    item: &'a str,
+    designation: &'a str,
+    material: &'a str,
+    thickness_mm: Option<f64>,
+    distinct: Option<usize>,
+    count: Option<u64>,
+    length_mm: Option<f64>,
+    area_m2: Option<f64>,
+    mass_kg: Option<f64>,
+    grip_mm: Option<f64>,
+    utilization: Option<f64>,
+    unit_price: Option<f64>,
+    cost: Option<f64>,
+    currency: &'a str,
+}
+
+/// The takeoff as CSV: one header row, then parts, stock, hardware and a
+/// total row.
+pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let cur = t.currency.as_deref().unwrap_or("");
+    let mut rows: Vec<Row> = Vec::new();
+    for p in &t.parts {
+        rows.push(Row {
+            section: "part",
+            item: &p.kind,
+            material: &p.material,
+            thickness_mm: Some(p.thickness_mm),
+            distinct: Some(p.distinct),
+            count: Some(p.count),
+            length_mm: Some(p.length_mm),
+            area_m2: Some(p.area_m2),
+            mass_kg: Some(p.mass_kg),
+            ..Default::default()
+        });
+    }
+    for s in &t.stock {
+        rows.push(Row {
+            section: "stock",
+            item: &s.item,
+            count: Some(s.count),
+            utilization: s.utilization,
+            unit_price: s.unit_price,
+            cost: s.cost,
+            currency: if s.cost.is_some() { cur } else { "" },
+            ..Default::default()
+        });
+    }
+    for h in &t.hardware {
+        rows.push(Row {
+            section: "hardware",
+            item: &h.item,
+            designation: &h.designation,
+            count: Some(h.count),
+            grip_mm: h.grip_mm,
+            ..Default::default()
+        });
+    }
+    rows.push(Row {
+        section: "total",
+        item: "all parts",
+        count: Some(t.totals.pieces),
+        length_mm: Some(round(t.totals.lamella_length_m * 1000.0, 1)),
+        mass_kg: Some(t.totals.mass_kg),
+        cost: t.totals.stock_cost,
+        currency: if t.totals.stock_cost.is_some() {
+            cur
+        } else {
+            ""
+        },
+        ..Default::default()
+    });
+    for r in rows {
+        w.serialize(r).map_err(|e| e.to_string())?;
+    }
+    w.into_inner().map_err(|e| e.to_string())
+}

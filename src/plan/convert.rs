@@ -1,0 +1,497 @@
+//! From the stages' outputs to the plan: ids for indices, numbers rounded
+//! to fixed decimals. Nothing is computed here that a stage could compute
+//! (the finished model is [`super::model::Model`]).
+
+use super::*;
+use crate::analysis::Analysis;
+use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
+use crate::formats::read::profile_file::JointSystem;
+use crate::network::Network;
+use crate::plan::model::Model;
+use crate::profile::Profile;
+use rayon::prelude::*;
+use std::path::Path;
+
+/// Add the flat state to a plan.
+pub fn add_flat(plan: &mut Plan, st: &crate::flat::FlatState) {
+    plan.flat = Some(PlanFlat {
+        converged: st.converged,
+        iterations: st.iterations,
+        energy: round(st.energy_nmm, 6),
+        start_energy: round(st.start_energy_nmm, 6),
+        gradient_norm: st.gradient_norm,
+        max_length_error: st.max_length_error,
+        max_rotation_deg: round(
+            st.max_rotation()
+                .map_or(0.0, |i| st.nodes[i].rotation_deg.abs()),
+            DEG,
+        ),
+        footprint_mm: [round(st.footprint_mm[0], MM), round(st.footprint_mm[1], MM)],
+        nodes: st
+            .nodes
+            .iter()
+            .map(|n| PlanFlatNode {
+                node: n.node,
+                position_mm: [round(n.position_mm[0], MM), round(n.position_mm[1], MM)],
+                angle_deg: round(n.angle_deg, DEG),
+                rotation_deg: round(n.rotation_deg, DEG),
+                angle_range_deg: {
+                    let (a, b) = (n.angle_deg, n.angle_deg + n.rotation_deg);
+                    [round(a.min(b), DEG), round(a.max(b), DEG)]
+                },
+            })
+            .collect(),
+        strips: st
+            .strips
+            .iter()
+            .map(|s| PlanFlatStrip {
+                strip: s.strip.clone(),
+                max_bending_stress_mpa: round(s.max_bending_stress_mpa, MPA),
+                utilization: round(s.utilization, UTIL),
+            })
+            .collect(),
+    });
+}
+
+/// Round to `decimals` places (and drop negative zero) for stable output.
+pub fn round(x: f64, decimals: i32) -> f64 {
+    let f = 10f64.powi(decimals);
+    let r = (x * f).round() / f;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+const MM: i32 = 4;
+
+const DEG: i32 = 6;
+
+const CURV: i32 = 6;
+
+fn v3(v: glam::DVec3, d: i32) -> [f64; 3] {
+    [round(v.x, d), round(v.y, d), round(v.z, d)]
+}
+
+/// Format a finished model as a plan: ids for indices, rounded numbers.
+/// Nothing is computed here (see [`crate::analysis::lines`]).
+pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
+    let per_m = 1000.0;
+    let id = |i: usize| net.curves[i].id.clone();
+    let checks: Vec<Option<&StripCheck>> = {
+        let mut v = vec![None; an.strips.len()];
+        if let Some(c) = &model.check {
+            for sc in &c.report.strips {
+                v[sc.strip] = Some(sc);
+            }
+        }
+        v
+    };
+    // Strips and nodes formatted in parallel (in order).
+    let strips: Vec<PlanStrip> = an
+        .strips
+        .par_iter()
+        .zip(model.strips.par_iter())
+        .zip(checks.par_iter())
+        .map(|((s, m), sc)| {
+            let nodes = s
+                .nodes
+                .iter()
+                .map(|cn| PlanStripNode {
+                    node: cn.node,
+                    crossing: id(cn.crossing),
+                    station_mm: round(cn.station_mm, MM),
+                    angle_deg: round(an.topology.nodes[cn.node].angle_deg, DEG),
+                })
+                .collect();
+            let lamellas: Vec<PlanLamella> = m
+                .lamellas
+                .iter()
+                .enumerate()
+                .map(|(k, line)| PlanLamella {
+                    lamella: line.offset.number,
+                    dy_mm: round(line.offset.dy_mm, MM),
+                    dz_mm: round(line.offset.dz_mm, MM),
+                    length_mm: round(line.length_mm, MM),
+                    nodes: line
+                        .nodes
+                        .iter()
+                        .map(|n| PlanLamellaNode {
+                            node: n.node,
+                            station_mm: round(n.station_mm, MM),
+                        })
+                        .collect(),
+                    checked: sc
+                        .and_then(|sc| sc.lamellas.get(k))
+                        .map(|l| PlanLamellaCheck {
+                            min_bending_radius_mm: l.min_bending_radius_mm.map(|r| round(r, MM)),
+                            max_twist_deg_per_m: round(l.max_twist_deg_per_m, DEG),
+                            check: plan_stress(l),
+                        }),
+                })
+                .collect();
+            PlanStrip {
+                id: s.id.clone(),
+                family: s.family.as_str().to_string(),
+                length_mm: round(s.length_mm, MM),
+                nodes,
+                node_to_node_mm: m.node_to_node_mm.iter().map(|&l| round(l, MM)).collect(),
+                start_to_first_node_mm: m.start_to_first_node_mm.map(|x| round(x, MM)),
+                last_node_to_end_mm: m.last_node_to_end_mm.map(|x| round(x, MM)),
+                min_bending_radius_mm: s.min_bending_radius_mm().map(|r| round(r, MM)),
+                max_twist_deg_per_m: round(s.max_abs_tg_per_mm.to_degrees() * per_m, DEG),
+                max_normal_curvature_per_m: round(s.max_abs_kn_per_mm * per_m, CURV),
+                normals: s.normal_source.as_str().to_string(),
+                check: sc.map(|sc| {
+                    let worst = sc.worst();
+                    PlanStripCheck {
+                        lamella: worst.line.offset.number,
+                        stress: plan_stress(worst),
+                    }
+                }),
+                lamellas: (!lamellas.is_empty()).then_some(lamellas),
+            }
+        })
+        .collect();
+    let nodes: Vec<PlanNode> = an
+        .topology
+        .nodes
+        .par_iter()
+        .map(|n| PlanNode {
+            id: n.id,
+            a: id(n.a),
+            b: id(n.b),
+            station_a_mm: round(n.station_a_mm, MM),
+            station_b_mm: round(n.station_b_mm, MM),
+            position_mm: v3(n.position_world_mm, MM),
+            normal: v3(n.normal_world, 7),
+            angle_deg: round(n.angle_deg, DEG),
+            oriented_angle_deg: round(n.oriented_angle_deg, DEG),
+            gap_mm: round(n.gap_mm, MM),
+        })
+        .collect();
+    let sm = &model.summary;
+    let summary = Summary {
+        curves: sm.curves,
+        nodes: sm.nodes,
+        total_length_mm: round(sm.total_length_mm, MM),
+        shortest_node_to_node_mm: sm.shortest_node_to_node_mm.map(|x| round(x, MM)),
+        longest_node_to_node_mm: sm.longest_node_to_node_mm.map(|x| round(x, MM)),
+        max_normal_curvature_per_m: round(sm.max_normal_curvature_per_mm * per_m, CURV),
+        min_angle_deg: sm.min_angle_deg.map(|x| round(x, DEG)),
+        max_angle_deg: sm.max_angle_deg.map(|x| round(x, DEG)),
+    };
+    let warnings = an
+        .warnings()
+        .iter()
+        .map(|w| PlanWarning {
+            kind: w.kind.as_str().into(),
+            message: w.message.clone(),
+            curves: w.curves.iter().map(|&c| id(c)).collect(),
+            station_mm: w.station_mm.map(|x| round(x, MM)),
+        })
+        .collect();
+    let (profile, check) = match &model.check {
+        Some(c) => (
+            Some(plan_profile(&c.profile)),
+            Some(plan_check(&c.report, c.suggestion.as_ref())),
+        ),
+        None => (None, None),
+    };
+    Plan {
+        schema: SCHEMA.into(),
+        generator: format!("lamella {}", env!("CARGO_PKG_VERSION")),
+        units: "mm".into(),
+        network: NetworkSummary {
+            name: net.name.clone(),
+            source: file_name(&net.source),
+            file_units: net.file_unit.as_str().into(),
+            tolerance_mm: round(net.tolerance_mm, MM),
+        },
+        summary,
+        strips,
+        nodes,
+        warnings,
+        profile,
+        check,
+        parts: None,
+        parts_summary: None,
+        engraving_font: None,
+        sheets: None,
+        nesting: None,
+        flat: None,
+    }
+}
+
+/// Add a nest to a plan (formatting only).
+pub fn add_nest(plan: &mut Plan, kit: &crate::fabricate::Kit, nest: &crate::nest::Nest) {
+    plan.sheets = Some(
+        nest.sheets
+            .iter()
+            .map(|s| PlanSheet {
+                id: s.id.clone(),
+                width_mm: round(s.width_mm, MM),
+                length_mm: round(s.length_mm, MM),
+                utilization: round(s.utilization(), 6),
+                stock: s.stock.clone(),
+                price_per_unit: s.price_per_unit.map(money),
+                placements: s
+                    .placements
+                    .iter()
+                    .map(|p| PlanPlacement {
+                        part: kit.parts[p.part].id.clone(),
+                        copy: p.copy,
+                        x_mm: round(p.x_mm, MM),
+                        y_mm: round(p.y_mm, MM),
+                        rotation_deg: p.rotation_deg,
+                    })
+                    .collect(),
+            })
+            .collect(),
+    );
+    let n = &nest.summary;
+    plan.nesting = Some(PlanNesting {
+        sheets_used: n.sheets_used,
+        lower_bound_sheets: n.lower_bound_sheets,
+        area_bound_sheets: n.area_bound_sheets,
+        lane_bound_sheets: n.lane_bound_sheets,
+        lanes_per_sheet: n.lanes_per_sheet,
+        lanes_used: n.lanes_used,
+        lane_bound_lanes: n.lane_bound_lanes,
+        utilization: round(n.utilization, 6),
+        stock_used: nest
+            .stock_used
+            .iter()
+            .map(|u| PlanStockUse {
+                stock: u.stock.clone(),
+                sheets: u.sheets,
+                width_mm: round(u.width_mm, MM),
+                length_mm: round(u.length_mm, MM),
+                price_per_unit: u.price_per_unit.map(money),
+                cost: u.cost.map(money),
+            })
+            .collect(),
+        total_cost: n.cost.map(money),
+        cost_bound: n.cost_bound.map(money),
+        currency: nest.currency.clone(),
+        coil_length_mm: n.length_used_mm.map(|x| round(x, MM)),
+        coil_length_bound_mm: n.length_bound_mm.map(|x| round(x, MM)),
+    });
+}
+
+/// A price rounded to 1e-4 of its unit (cents and below stay exact).
+fn money(x: f64) -> f64 {
+    round(x, 4)
+}
+
+/// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).
+pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
+    set_parts(plan, plan_parts(kit), kit);
+}
+
+/// The font entry of every character and mark the parts engrave.
+fn engraving_font(parts: &[PlanPart]) -> PlanFont {
+    use crate::fabricate::{font, label};
+    let glyph = |width: f64, strokes: Vec<Vec<kurbo::Point>>| PlanGlyph {
+        width,
+        strokes: strokes
+            .iter()
+            .map(|s| s.iter().map(|p| [p.x, p.y]).collect())
+            .collect(),
+    };
+    let mut chars = std::collections::BTreeSet::new();
+    let mut marks = std::collections::BTreeMap::new();
+    for e in parts.iter().flat_map(|p| &p.engraving) {
+        chars.extend(e.text.iter().flat_map(|t| t.chars()));
+        if e.mark.as_deref() == Some(ORIENTATION_MARK) && marks.is_empty() {
+            marks.insert(
+                ORIENTATION_MARK.to_string(),
+                glyph(
+                    label::ORIENTATION_MARK_LENGTH,
+                    label::orientation_mark_strokes(1.0),
+                ),
+            );
+        }
+    }
+    let glyphs = chars
+        .into_iter()
+        .map(|c| {
+            (
+                c.to_string(),
+                glyph(font::glyph_width(c), font::glyph_strokes(c)),
+            )
+        })
+        .collect();
+    PlanFont {
+        name: font::NAME.into(),
+        letter_spacing: font::LETTER_SPACING,
+        glyphs,
+        marks,
+    }
+}
+
+/// Every part of `kit` as plan.json writes it, in order (converted in
+/// parallel; the kit is left as it is).
+pub fn plan_parts(kit: &crate::fabricate::Kit) -> Vec<PlanPart> {
+    use rayon::prelude::*;
+    kit.parts.par_iter().map(plan_part).collect()
+}
+
+/// Put `parts` (from [`plan_parts`] of `kit`) into the plan, with the
+/// engraving font and the kit's summary: what [`add_parts`] does.
+pub fn set_parts(plan: &mut Plan, parts: Vec<PlanPart>, kit: &crate::fabricate::Kit) {
+    plan.parts = Some(parts);
+    add_kit_summary(plan, kit);
+}
+
+/// One part as plan.json writes it (rounded); its round holes only as
+/// its `hole` features.
+fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
+    use crate::fabricate::part::{round_hole, Engraved, FeatureKind, HoleUse, SlotEdge};
+    let pt = |p: &kurbo::Point| [round(p.x, MM), round(p.y, MM)];
+    let poly = |v: &[kurbo::Point]| v.iter().map(pt).collect::<Vec<_>>();
+    PlanPart {
+        id: p.id.clone(),
+        kind: p.kind.as_str().into(),
+        strip: p.strip.clone(),
+        lamella: p.lamella,
+        count: p.count,
+        length_mm: round(p.length_mm, MM),
+        height_mm: round(p.height_mm, MM),
+        station_start_mm: p.station_start_mm.map(|s| round(s, MM)),
+        outline: poly(&p.outline_part_mm),
+        holes: p
+            .holes_part_mm
+            .iter()
+            .filter(|h| round_hole(p, h).is_none())
+            .map(|h| poly(h))
+            .collect(),
+        engraving: p
+            .engraving
+            .iter()
+            .map(|e| {
+                let (text, mark) = match &e.what {
+                    Engraved::Text(t) => (Some(t.clone()), None),
+                    Engraved::OrientationMark => (None, Some(ORIENTATION_MARK.into())),
+                };
+                PlanEngraving {
+                    text,
+                    mark,
+                    at_mm: pt(&e.at_part_mm),
+                    height_mm: round(e.height_mm, MM),
+                }
+            })
+            .collect(),
+        features: p
+            .features
+            .iter()
+            .map(|f| PlanFeature {
+                kind: match f.kind {
+                    FeatureKind::Slot => PlanFeatureKind::Slot,
+                    FeatureKind::Hole => PlanFeatureKind::Hole,
+                },
+                hole_use: f.hole_use.map(|u| match u {
+                    HoleUse::Node => PlanHoleUse::Node,
+                    HoleUse::ShearBlock => PlanHoleUse::ShearBlock,
+                    HoleUse::Splice => PlanHoleUse::Splice,
+                    HoleUse::EdgeNode => PlanHoleUse::EdgeNode,
+                }),
+                node: f.node,
+                crossing: f.crossing.clone(),
+                center_mm: pt(&f.center_part_mm),
+                width_mm: round(f.width_mm, MM),
+                depth_mm: round(f.depth_mm, MM),
+                edge: f.edge.map(|e| match e {
+                    SlotEdge::Top => PlanSlotEdge::Top,
+                    SlotEdge::Bottom => PlanSlotEdge::Bottom,
+                }),
+                angle_range_deg: f
+                    .angle_range_deg
+                    .map(|(a, b)| [round(a, DEG), round(b, DEG)]),
+                station_mm: f.station_mm.map(|s| round(s, MM)),
+            })
+            .collect(),
+    }
+}
+
+fn add_kit_summary(plan: &mut Plan, kit: &crate::fabricate::Kit) {
+    plan.engraving_font = plan.parts.as_deref().map(engraving_font);
+    plan.parts_summary = Some(PlanKitSummary {
+        kinds: kit
+            .summary
+            .kinds
+            .iter()
+            .map(|&(k, parts, count)| PlanKindCount {
+                kind: k.as_str().into(),
+                parts,
+                count,
+            })
+            .collect(),
+        lamella_length_mm: round(kit.summary.lamella_length_mm, MM),
+        mass_kg: round(kit.summary.mass_kg, 3),
+    });
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+const MPA: i32 = 4;
+
+const UTIL: i32 = 6;
+
+fn plan_stress(l: &LamellaCheck) -> PlanStress {
+    PlanStress {
+        utilization: round(l.utilization, UTIL),
+        governing_station_mm: round(l.governing_station_mm, MM),
+        bending_stress_mpa: round(l.stresses.bending_stress_mpa, MPA),
+        torsion_shear_mpa: round(l.stresses.torsion_shear_mpa, MPA),
+        trapeze_stress_mpa: round(l.stresses.trapeze_stress_mpa, MPA),
+        combined_stress_mpa: round(l.stresses.combined_stress_mpa, MPA),
+        governs: l.governs.as_str().into(),
+    }
+}
+
+fn plan_profile(p: &Profile) -> PlanProfile {
+    PlanProfile {
+        name: p.name.clone(),
+        source: file_name(&p.source),
+        material: p.material.name.clone(),
+        thickness_mm: p.section.thickness_mm,
+        height_mm: p.section.height_mm,
+        lamellas_per_strip: p.section.per_strip,
+        gap_mm: p.section.gap_mm,
+        youngs_modulus_mpa: p.material.youngs_modulus_mpa,
+        shear_modulus_mpa: p.material.shear_modulus_mpa,
+        characteristic_strength_mpa: p.material.characteristic_strength_mpa,
+        partial_factor: p.material.partial_factor,
+        modification_factor: p.material.modification_factor,
+        design_strength_mpa: round(p.design_strength_mpa(), MPA),
+        joint_system: match p.joint.system {
+            JointSystem::Interlocking => "interlocking".into(),
+            JointSystem::TwoLevel => "two_level".into(),
+        },
+        level_offset_mm: p.joint.level_offset_mm,
+        resolved: serde_json::to_value(p.resolved()).unwrap_or(serde_json::Value::Null),
+    }
+}
+
+fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanCheckSummary {
+    PlanCheckSummary {
+        passes: report.passes(),
+        strips_overstressed: report.overstressed(),
+        max_utilization: round(report.max_utilization(), UTIL),
+        limit_bending_radius_mm: round(report.limit_bending_radius_mm, MM),
+        limit_twist_deg_per_m: round(report.limit_twist_deg_per_m, DEG),
+        suggestion: suggestion.map(|s| PlanSuggestion {
+            max_thickness_mm: s.max_thickness_mm.map(|x| round(x, MM)),
+            max_height_mm: s.max_height_mm.map(|x| round(x, MM)),
+            height_mm_with_thickness_mm: s
+                .height_and_thickness_mm
+                .map(|(h, t)| [round(h, MM), round(t, MM)]),
+        }),
+    }
+}
