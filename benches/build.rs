@@ -75,8 +75,11 @@ fn measure(path: &Path) {
     let (user0, sys0) = support::cpu_s();
     let t0 = Instant::now();
     let r = build(
-        path,
-        &profile,
+        lamella::pipeline::Inputs {
+            network: path.to_path_buf(),
+            profile: Some(profile.clone()),
+            ..Default::default()
+        },
         &out,
         &BuildOptions::default(),
         &indicatif::ProgressBar::hidden(),

@@ -156,11 +156,15 @@ fn trace_on(case: &str) {
     let _ = film(case);
     let t_film = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
-    let prepared = lamella::design::prepare_surface(&spec, &path).expect("surface");
+    let prepared =
+        lamella::design::prepare_surface(&spec, &path, &lamella::formats::read::mesh::read_mesh)
+            .expect("surface");
     let t_prepare = t1.elapsed().as_secs_f64();
     drop(prepared);
     let t2 = Instant::now();
-    let (net, report) = lamella::design::design(&spec, &path).expect("design");
+    let (net, report) =
+        lamella::design::design(&spec, &path, &lamella::formats::read::mesh::read_mesh)
+            .expect("design");
     let t_design = t2.elapsed().as_secs_f64();
     let points: usize = net.curves.iter().map(|c| c.points.len()).sum();
     println!(

@@ -64,7 +64,7 @@ fn measure(path: &Path) {
         user + sys
     };
     let (t1, c1) = (Instant::now(), cpu());
-    let kit = fabricate(&net, &an, &profile).expect("fabricate");
+    let kit = fabricate(&net, &an, &profile, None, Default::default()).expect("fabricate");
     let (t2, c2) = (Instant::now(), cpu());
     let nested = lamella::nest::nest(&kit, &profile).expect("nest");
     let (t3, c3) = (Instant::now(), cpu());

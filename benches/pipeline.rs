@@ -77,7 +77,7 @@ fn measure(path: &Path) {
             })
             .collect::<Vec<_>>();
         let d = Instant::now();
-        let model = lamella::plan::model::Model::new(&net, &an);
+        let model = lamella::plan::model::Model::new(&net, &an, None);
         let e = Instant::now();
         let p = plan::build(&net, &an, &model);
         let f = Instant::now();
@@ -95,7 +95,7 @@ fn measure(path: &Path) {
         );
         std::hint::black_box(json.len());
     }
-    let model = lamella::plan::model::Model::new(&net, &an);
+    let model = lamella::plan::model::Model::new(&net, &an, None);
     let p = plan::build(&net, &an, &model);
     let json = lamella::formats::write::plan_json::to_json(&p);
     let t3 = Instant::now();

@@ -32,7 +32,8 @@ fn main() {
         let mut curves = 0;
         let mut points = 0;
         for _ in 0..reps {
-            let (net, _) = design(&spec, &path).expect("design");
+            let (net, _) =
+                design(&spec, &path, &lamella::formats::read::mesh::read_mesh).expect("design");
             curves = net.curves.len();
             points = net.curves.iter().map(|c| c.points.len()).sum::<usize>();
         }

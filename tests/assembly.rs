@@ -339,7 +339,7 @@ fn a_plan_without_parts_is_an_error() {
     let mut plan: lamella::plan::Plan =
         serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("plan");
     plan.parts = None;
-    let takeoff = lamella::plan::takeoff::Takeoff {
+    plan.takeoff = Some(lamella::plan::takeoff::Takeoff {
         project: "x".into(),
         profile: "y".into(),
         currency: None,
@@ -353,12 +353,10 @@ fn a_plan_without_parts_is_an_error() {
             sheets: 0,
             stock_cost: None,
         },
-    };
+    });
     let e = lamella::formats::write::assembly::assembly_pdf(
         &lamella::formats::write::assembly::AssemblyInput {
             plan: &plan,
-            takeoff: &takeoff,
-            curves: &[],
             paper: lamella::formats::write::assembly::Paper::A4,
             plan_path: Path::new("plan.json"),
         },

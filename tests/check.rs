@@ -66,7 +66,7 @@ fn helicoid() -> (lamella::Network, lamella::Analysis, Vec<f64>) {
 fn helicoid_rulings_are_pure_twist() {
     let (net, an, vs) = helicoid();
     for p in [profile("steel-1.5.yaml"), profile("beech-veneer.yaml")] {
-        let report = check(&an, &p);
+        let report = check(&an, &p, false).0;
         for sc in report
             .strips
             .iter()
@@ -106,7 +106,7 @@ fn helicoid_rulings_are_pure_twist() {
 fn helicoid_helices_bend_and_twist_in_closed_form() {
     let (net, an, _vs) = helicoid();
     let p = profile("steel-1.5.yaml");
-    let report = check(&an, &p);
+    let report = check(&an, &p, false).0;
     for sc in report
         .strips
         .iter()
@@ -169,7 +169,7 @@ fn enneper_twist_is_two_over_lambda_squared() {
     );
     let (net, an) = run(raw);
     let p = profile("steel-1.5.yaml");
-    let report = check(&an, &p);
+    let report = check(&an, &p, false).0;
     // A03 and B03 are the straight lines through the centre (u = ±v), where
     // λ = 1: tg = 2/scale, kg = 0; that is the worst point of the network.
     for id in ["A03", "B03"] {
@@ -231,7 +231,7 @@ fn suggested_thickness_passes_and_five_percent_more_fails() {
     let (_net, an) = run(raw);
     // Too thick a steel: overstressed.
     let thick = profile("steel-1.5.yaml").with_section(9.0, 50.0);
-    assert!(!check(&an, &thick).passes());
+    assert!(!check(&an, &thick, false).0.passes());
     let s = suggest(&an, &thick);
     let t = s.max_thickness_mm.unwrap();
     assert!(t < 9.0);
@@ -335,7 +335,7 @@ fn bending_stress_by_hand_on_a_one_metre_arc() {
     let (net, an) = run(planar_arc());
     let a0 = net.curve_index("A0").unwrap();
     // σb = E·|kg|·t/2 = 210 000 MPa × (1/1000 mm) × 1.5 mm / 2 = 157.5 MPa.
-    let report = check(&an, &single_steel());
+    let report = check(&an, &single_steel(), false).0;
     let l = report
         .strips
         .iter()
@@ -355,7 +355,7 @@ fn bending_stress_by_hand_on_a_one_metre_arc() {
     // Doubled (dy = ±(10 + 1.5)/2 = ±5.75 mm): the lamellas are arcs of radius
     // 1000 ∓ 5.75 mm, so σb = 315 000 / (2 × 994.25) = 158.4109 MPa on the
     // inner one and 315 000 / (2 × 1005.75) = 156.5996 MPa on the outer one.
-    let report = check(&an, &profile("steel-1.5.yaml"));
+    let report = check(&an, &profile("steel-1.5.yaml"), false).0;
     let sc = report.strips.iter().find(|s| s.strip == a0).unwrap();
     let mut sb: Vec<f64> = sc
         .lamellas
@@ -402,7 +402,7 @@ fn torsion_and_trapeze_stress_by_hand_on_a_helicoid_ruling() {
         },
     );
     let (net, an) = run(raw);
-    let report = check(&an, &single_steel());
+    let report = check(&an, &single_steel(), false).0;
     let mut rulings = 0;
     for sc in report
         .strips
@@ -483,7 +483,7 @@ fn suggest_ignores_edge_strips_as_check_does() {
         profile("beech-veneer.yaml"),
     ] {
         // The same verdict, the same worst lamella, the same suggestion.
-        let (a, b) = (check(&plain, &p), check(&edged, &p));
+        let (a, b) = (check(&plain, &p, false).0, check(&edged, &p, false).0);
         assert_eq!(a.strips.len(), b.strips.len());
         assert_eq!(a.max_utilization(), b.max_utilization());
         assert_eq!(max_utilization(&plain, &p), max_utilization(&edged, &p));
@@ -492,7 +492,7 @@ fn suggest_ignores_edge_strips_as_check_does() {
     }
     // A passing grid keeps its headroom: edges do not make it thinner.
     let steel = profile("steel-1.5.yaml");
-    assert!(check(&edged, &steel).passes());
+    assert!(check(&edged, &steel, false).0.passes());
     let t = suggest(&edged, &steel).max_thickness_mm.unwrap();
     assert!(t > 1.5, "suggested {t} mm for a passing 1.5 mm grid");
 }

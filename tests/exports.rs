@@ -92,7 +92,7 @@ struct Result {
 
 fn evaluate(net: &Network, profile: &Profile) -> Result {
     let an = analyze(net, AnalysisOptions::for_network(net)).expect("analysis");
-    let report = check(&an, profile);
+    let report = check(&an, profile, false).0;
     let mut r = Result {
         ids: Vec::new(),
         max_tg: Vec::new(),

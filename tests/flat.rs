@@ -211,8 +211,9 @@ fn slots_from_the_flat_state_are_narrower_where_joints_turn_less() {
     let steel = profile("steel-1.5");
     let st = solve(&problem(&an, &steel).expect("problem"));
     let rot = st.rotations();
-    let blanket = lamella::fabricate::fabricate(&net, &an, &steel).expect("blanket");
-    let flat = lamella::fabricate::fabricate_with_rotations(&net, &an, &steel, Some(&rot))
+    let blanket = lamella::fabricate::fabricate(&net, &an, &steel, None, Default::default())
+        .expect("blanket");
+    let flat = lamella::fabricate::fabricate(&net, &an, &steel, Some(&rot), Default::default())
         .expect("from flat");
     let mut compared = 0;
     for (a, b) in blanket.parts.iter().zip(&flat.parts) {

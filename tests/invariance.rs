@@ -39,8 +39,16 @@ fn summary(raw: RawNetwork) -> Summary {
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"),
     )
     .unwrap();
-    let report = lamella::check::check(&an, &steel);
-    let model = Model::checked(&net, &an, steel, report, None);
+    let report = lamella::check::check(&an, &steel, false).0;
+    let model = Model::new(
+        &net,
+        &an,
+        Some(lamella::plan::model::Checked {
+            profile: &steel,
+            report: &report,
+            suggestion: None,
+        }),
+    );
     let strips = an
         .strips
         .iter()

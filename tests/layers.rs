@@ -222,9 +222,9 @@ fn paths_in(line: &str, here: &[String]) -> Vec<Vec<String>> {
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect();
             if name.is_empty() {
-                if rest.starts_with('{') {
+                if let Some(group) = rest.strip_prefix('{') {
                     // Branches of a group: each one its own path.
-                    let inner: String = rest[1..].chars().take_while(|c| *c != '}').collect();
+                    let inner: String = group.chars().take_while(|c| *c != '}').collect();
                     for b in inner.split(',') {
                         let b = b.trim();
                         let b: Vec<String> = b
@@ -376,64 +376,13 @@ fn no_files_import_each_other_in_a_circle() {
                 .map_or(Vec::new(), |s| s.iter().map(|t| index_of[t]).collect())
         })
         .collect();
-    let n = nodes.len();
-    let (mut index, mut low, mut on) = (vec![usize::MAX; n], vec![0; n], vec![false; n]);
-    let (mut stack, mut counter, mut circles) = (Vec::new(), 0, Vec::new());
-    fn strong(
-        v: usize,
-        adj: &[Vec<usize>],
-        st: &mut (
-            &mut Vec<usize>,
-            &mut Vec<usize>,
-            &mut Vec<bool>,
-            &mut Vec<usize>,
-            &mut usize,
-            &mut Vec<Vec<usize>>,
-        ),
-    ) {
-        st.0[v] = *st.4;
-        st.1[v] = *st.4;
-        *st.4 += 1;
-        st.3.push(v);
-        st.2[v] = true;
-        for &w in &adj[v] {
-            if st.0[w] == usize::MAX {
-                strong(w, adj, st);
-                st.1[v] = st.1[v].min(st.1[w]);
-            } else if st.2[w] {
-                st.1[v] = st.1[v].min(st.0[w]);
-            }
-        }
-        if st.1[v] == st.0[v] {
-            let mut comp = Vec::new();
-            while let Some(w) = st.3.pop() {
-                st.2[w] = false;
-                comp.push(w);
-                if w == v {
-                    break;
-                }
-            }
-            if comp.len() > 1 {
-                st.5.push(comp);
-            }
+    let mut t = Tarjan::new(adj);
+    for v in 0..nodes.len() {
+        if t.index[v] == usize::MAX {
+            t.visit(v);
         }
     }
-    for v in 0..n {
-        if index[v] == usize::MAX {
-            strong(
-                v,
-                &adj,
-                &mut (
-                    &mut index,
-                    &mut low,
-                    &mut on,
-                    &mut stack,
-                    &mut counter,
-                    &mut circles,
-                ),
-            );
-        }
-    }
+    let circles = t.circles;
     let report: Vec<String> = circles
         .iter()
         .map(|c| {
@@ -463,4 +412,61 @@ fn no_files_import_each_other_in_a_circle() {
         "files importing each other in a circle:\n{}",
         report.join("\n")
     );
+}
+
+/// Tarjan's algorithm: the strongly connected components of more than one
+/// file are the circles.
+struct Tarjan {
+    adj: Vec<Vec<usize>>,
+    index: Vec<usize>,
+    low: Vec<usize>,
+    on_stack: Vec<bool>,
+    stack: Vec<usize>,
+    counter: usize,
+    circles: Vec<Vec<usize>>,
+}
+
+impl Tarjan {
+    fn new(adj: Vec<Vec<usize>>) -> Tarjan {
+        let n = adj.len();
+        Tarjan {
+            adj,
+            index: vec![usize::MAX; n],
+            low: vec![0; n],
+            on_stack: vec![false; n],
+            stack: Vec::new(),
+            counter: 0,
+            circles: Vec::new(),
+        }
+    }
+
+    fn visit(&mut self, v: usize) {
+        self.index[v] = self.counter;
+        self.low[v] = self.counter;
+        self.counter += 1;
+        self.stack.push(v);
+        self.on_stack[v] = true;
+        for k in 0..self.adj[v].len() {
+            let w = self.adj[v][k];
+            if self.index[w] == usize::MAX {
+                self.visit(w);
+                self.low[v] = self.low[v].min(self.low[w]);
+            } else if self.on_stack[w] {
+                self.low[v] = self.low[v].min(self.index[w]);
+            }
+        }
+        if self.low[v] == self.index[v] {
+            let mut comp = Vec::new();
+            while let Some(w) = self.stack.pop() {
+                self.on_stack[w] = false;
+                comp.push(w);
+                if w == v {
+                    break;
+                }
+            }
+            if comp.len() > 1 {
+                self.circles.push(comp);
+            }
+        }
+    }
 }

@@ -12,6 +12,7 @@ use common::*;
 use glam::{DMat3, DVec2, DVec3};
 use lamella::design::design;
 use lamella::design::surface::{Enneper, Placed, Surface};
+use lamella::formats::read::mesh::read_mesh;
 use lamella::formats::read::trace_spec;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -55,7 +56,7 @@ fn enneper_mesh_error(n: usize) -> (f64, usize) {
     )
     .unwrap();
     let spec = trace_spec::load(&spec_path).unwrap();
-    let (net, _) = design(&spec, &spec_path).unwrap();
+    let (net, _) = design(&spec, &spec_path, &read_mesh).unwrap();
     let surface = enneper_4m();
     let (mut worst, mut points) = (0.0f64, 0);
     for c in net

@@ -26,7 +26,7 @@ fn every_buildable_kit_nests_within_the_rules() {
         let (net, an) = common::analysed_sample(sample);
         for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
             let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
-            let kit = fabricate(&net, &an, &p).unwrap();
+            let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
             let n = nest(&kit, &p).unwrap();
             assert_eq!(check_nest(&kit, &n, &p), Ok(()), "{sample} {profile}");
             let s = &n.summary;
@@ -103,7 +103,7 @@ fn every_shipped_sample_keeps_the_readme_table() {
             }
             let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
             let what = format!("{sample} {profile}");
-            match (fabricate(&net, &an, &p), promise) {
+            match (fabricate(&net, &an, &p, None, Default::default()), promise) {
                 (Err(e), Promise::PartsRefuse(msg)) => {
                     assert!(e.to_string().contains(msg), "{what}: {e}");
                 }
@@ -241,7 +241,7 @@ fn the_small_pavilion_nests_within_the_rules_by_outline() {
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
     let p = Profile::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
-    let kit = fabricate(&net, &an, &p).unwrap();
+    let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let n = nest(&kit, &p).unwrap();
     assert_eq!(check_nest(&kit, &n, &p), Ok(()));
     let g = p.cutting.kerf_mm + p.cutting.part_spacing_mm;
@@ -411,7 +411,7 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     p.stock.sizes[0].width_mm = 20.0;
     // Edge bands are split to fit the stock when the parts are made; when
     // no split can, that stage says so; lamellas are caught by the nest.
-    let e = fabricate(&net, &an, &p)
+    let e = fabricate(&net, &an, &p, None, Default::default())
         .and_then(|kit| nest(&kit, &p).map(|_| ()))
         .unwrap_err()
         .to_string();
@@ -421,7 +421,7 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     // Without edges in the way: the lamellas themselves.
     let mut wide = p.clone();
     wide.stock.sizes[0].width_mm = 300.0;
-    let kit = fabricate(&net, &an, &wide).unwrap();
+    let kit = fabricate(&net, &an, &wide, None, Default::default()).unwrap();
     let mut narrow = wide.clone();
     narrow.stock.sizes[0].width_mm = 20.0;
     let e = nest(&kit, &narrow).unwrap_err().to_string();
@@ -439,7 +439,7 @@ fn rotations_that_fit_nothing_are_an_error_not_a_hang() {
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
     let mut p = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
-    let kit = fabricate(&net, &an, &p).unwrap();
+    let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     p.cutting.allowed_rotations_deg = vec![90];
     let e = nest(&kit, &p).unwrap_err().to_string();
     assert!(e.contains("part ") && !e.contains('\n'), "{e}");

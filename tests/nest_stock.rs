@@ -346,7 +346,7 @@ fn coil_is_cut_to_the_hand_computed_lane_length() {
         "stock:\n  kind: coil\n  width_mm: 1500\n  price_per_m: 60\n",
     ))
     .unwrap();
-    let kit = fabricate(&net, &an, &coil).unwrap();
+    let kit = fabricate(&net, &an, &coil, None, Default::default()).unwrap();
     assert!(kit.parts.iter().all(|p| p.kind != PartKind::SplicePlate));
     let n = nest(&kit, &coil).unwrap();
     assert_eq!(check_nest(&kit, &n, &coil), Ok(()));
@@ -368,9 +368,9 @@ fn shipped_samples_nest_on_two_sizes_within_the_rules() {
     .unwrap();
     for sample in common::BUILDABLE_SAMPLES {
         let (net, an) = common::analysed_sample(sample);
-        let kit = fabricate(&net, &an, &mixed).unwrap();
+        let kit = fabricate(&net, &an, &mixed, None, Default::default()).unwrap();
         // The same parts as with the large size alone (splices at 2980 mm).
-        let kit_single = fabricate(&net, &an, &single).unwrap();
+        let kit_single = fabricate(&net, &an, &single, None, Default::default()).unwrap();
         assert_eq!(kit.parts, kit_single.parts, "{sample}");
         let n = nest(&kit, &mixed).unwrap();
         assert_eq!(check_nest(&kit, &n, &mixed), Ok(()), "{sample}");
@@ -387,7 +387,7 @@ fn shipped_samples_nest_on_two_sizes_within_the_rules() {
             "{sample}: deterministic"
         );
         // With only the small size, more lamella pieces (splices at 1980).
-        if let Ok(k) = fabricate(&net, &an, &small) {
+        if let Ok(k) = fabricate(&net, &an, &small, None, Default::default()) {
             let pieces = |k: &Kit| {
                 k.parts
                     .iter()

@@ -100,7 +100,7 @@ fn sampled_sweep(t: f64, s: f64, crossing: &[f64], lo_deg: f64, hi_deg: f64) -> 
 /// around its node's station on the lamella's own line (0.01 mm).
 fn check_slots(sample: &str, profile: &str) -> usize {
     let (net, an, p) = load(sample, profile);
-    let kit = fabricate(&net, &an, &p).unwrap();
+    let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let stations = line_stations(&an, &p);
     let t = p.section.thickness_mm;
     let clearance = p.joint.slot_clearance_mm;
@@ -179,7 +179,7 @@ fn doubled_steel_slots_at_90_degrees() {
     let n = check_slots("enneper-4m", "steel-1.5");
     assert!(n > 300, "{n} slots");
     let (net, an, p) = load("enneper-4m", "steel-1.5");
-    let kit = fabricate(&net, &an, &p).unwrap();
+    let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let s = 5.75;
     let half = s / 15f64.to_radians().tan() + 1.5 * (1.0 + 30f64.to_radians().cos()) / 1.0 + 0.15;
     let widths: Vec<f64> = lamellas(&kit)
@@ -200,7 +200,7 @@ fn single_veneer_slots_match_the_closed_form() {
     let n = check_slots("enneper-4m", "beech-veneer");
     assert!(n > 150, "{n} slots");
     let (net, an, p) = load("enneper-4m", "beech-veneer");
-    let kit = fabricate(&net, &an, &p).unwrap();
+    let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let th = 10f64.to_radians();
     let want = 0.6 * (1.0 + th.sin()) / th.cos() + 0.1;
     for f in lamellas(&kit).flat_map(|p| p.features.iter()) {
@@ -224,7 +224,7 @@ fn slots_off_90_degrees() {
 #[test]
 fn two_level_node_holes_sit_at_the_nodes() {
     let (net, an, p) = load("catenoid", "poplar-ply-4");
-    let kit = fabricate(&net, &an, &p).unwrap();
+    let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let stations = line_stations(&an, &p);
     let mut holes = 0;
     for part in lamellas(&kit) {
@@ -268,10 +268,10 @@ fn two_level_node_holes_sit_at_the_nodes() {
 fn parts_on_the_checks_lines_are_the_same() {
     for (sample, profile) in [("enneper-4m", "steel-1.5"), ("catenoid", "poplar-ply-4")] {
         let (net, an, p) = load(sample, profile);
-        let own = fabricate(&net, &an, &p).unwrap();
-        let (report, lines) = lamella::check::check_with_lines(&an, &p);
-        assert_eq!(report, lamella::check::check(&an, &p), "{sample}");
-        let shared = lamella::fabricate::fabricate_with_lines(&net, &an, &p, None, lines).unwrap();
+        let own = fabricate(&net, &an, &p, None, Default::default()).unwrap();
+        let (report, lines) = lamella::check::check(&an, &p, true);
+        assert_eq!(report, lamella::check::check(&an, &p, false).0, "{sample}");
+        let shared = lamella::fabricate::fabricate(&net, &an, &p, None, lines).unwrap();
         assert_eq!(own.parts, shared.parts, "{sample} with {profile}");
         // The nodes where the parts put them: where the check's lines have them.
         for sc in &report.strips {
@@ -294,7 +294,7 @@ fn shear_blocks_keep_both_limits_and_clear_the_nodes() {
         ("schwarz-d-pavilion", "steel-1.5"),
     ] {
         let (net, an, p) = load(sample, profile);
-        let kit = fabricate(&net, &an, &p).unwrap();
+        let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
         let b = p.shear_block.clone().unwrap();
         let limit = b
             .max_spacing_mm
@@ -375,7 +375,7 @@ fn every_profile_builds_every_sample_or_says_why() {
     for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
         for sample in samples {
             let (net, an, p) = load(sample, profile);
-            match fabricate(&net, &an, &p) {
+            match fabricate(&net, &an, &p, None, Default::default()) {
                 Ok(kit) => {
                     assert!(lamellas(&kit).count() >= an.lamella_strips().count());
                     // Every outline closed, simple, counter-clockwise; holes

@@ -10,6 +10,7 @@ use common::*;
 use glam::DVec2;
 use lamella::design::surface::Surface;
 use lamella::design::{design, placed_surface};
+use lamella::formats::read::mesh::read_mesh;
 use lamella::formats::read::trace_spec;
 use lamella::spec::TraceSpec;
 #[allow(unused_imports)]
@@ -38,7 +39,7 @@ const SPECS: [&str; 5] = [
 /// u ± v = const through its curve's first point (Enneper and catenoid).
 fn closed_form_error(name: &str) -> (f64, f64) {
     let (s, p) = spec(name);
-    let (net, _) = design(&s, &p).unwrap();
+    let (net, _) = design(&s, &p, &read_mesh).unwrap();
     let surface = placed_surface(&s);
     let mut worst: f64 = 0.0;
     let mut longest: f64 = 0.0;
@@ -84,7 +85,7 @@ fn traced_enneper_and_catenoid_follow_the_closed_form() {
 fn minimal_surface_nets_cross_at_90_degrees_and_satisfy_beltrami_enneper() {
     for name in ["enneper-4m", "catenoid", "scherk", "schwarz-d-patch"] {
         let (s, p) = spec(name);
-        let (raw, _) = design(&s, &p).unwrap();
+        let (raw, _) = design(&s, &p, &read_mesh).unwrap();
         let surface = placed_surface(&s);
         // tg² = −K along every traced curve: the surface's geodesic torsion in
         // the direction of the traced curve (its smooth interpolant's tangent).
@@ -266,7 +267,7 @@ fn principal_net_is_orthogonal_and_bisected_by_the_asymptotic_one() {
     let (mut s, p) = spec("enneper-4m");
     s.net = lamella::spec::Net::Principal;
     s.seed = Some([0.05, 0.02]); // the saddle itself is not umbilic, but keep off the axes
-    let (raw, _) = design(&s, &p).unwrap();
+    let (raw, _) = design(&s, &p, &read_mesh).unwrap();
     let (net, an) = run(raw);
     let ab: Vec<_> = an
         .topology
@@ -390,7 +391,7 @@ fn a_plane_clip_cuts_with_an_edge_on_the_plane() {
     s.clip =
         Some(serde_yaml::from_str("plane: {point_mm: [0, 0, 600], normal: [0, 0, 1]}").unwrap());
     s.max_curves_per_side = 6;
-    let (raw, report) = design(&s, &p).unwrap();
+    let (raw, report) = design(&s, &p, &read_mesh).unwrap();
     assert!(report.edges >= 1);
     for c in raw
         .curves
@@ -416,7 +417,7 @@ fn a_plane_clip_cuts_with_an_edge_on_the_plane() {
 fn alternating_design_keeps_diagonal_cells_square() {
     let (s, p) = spec("scherk");
     assert_eq!(s.design, lamella::spec::Design::Alternating);
-    let (raw, report) = design(&s, &p).unwrap();
+    let (raw, report) = design(&s, &p, &read_mesh).unwrap();
     assert_eq!(
         report.a_curves, report.b_curves,
         "alternating adds A and B curves in pairs"
@@ -471,7 +472,7 @@ fn the_unfolded_pavilion_is_an_orthogonal_asymptotic_net() {
     // about its edges: the copies join into one asymptotic net.
     let (s, p) = spec("schwarz-d-pavilion-1to5");
     assert!(s.periodic);
-    let (raw, report) = design(&s, &p).unwrap();
+    let (raw, report) = design(&s, &p, &read_mesh).unwrap();
     assert!(report.a_curves > 20 && report.b_curves > 20 && report.edges > 4);
     // The net spans several copies of the patch: far beyond the quadrilateral
     // (edge 715 mm) around the seed.
@@ -547,9 +548,9 @@ fn a_4_m_catenoid_asymptotic_line_follows_the_closed_form() {
 #[test]
 fn fill_covers_the_gaps_the_central_design_leaves() {
     let (mut s, p) = spec("schwarz-d-pavilion-1to5");
-    let (plain, plain_report) = design(&s, &p).unwrap();
+    let (plain, plain_report) = design(&s, &p, &read_mesh).unwrap();
     s.fill = true;
-    let (filled, report) = design(&s, &p).unwrap();
+    let (filled, report) = design(&s, &p, &read_mesh).unwrap();
     assert!(
         report.a_curves > 2 * plain_report.a_curves && report.b_curves > 2 * plain_report.b_curves
     );
@@ -574,7 +575,7 @@ fn fill_covers_the_gaps_the_central_design_leaves() {
     // Filling is only for periodic designs.
     let (mut flat, fp) = spec("enneper-4m");
     flat.fill = true;
-    assert!(design(&flat, &fp).is_err());
+    assert!(design(&flat, &fp, &read_mesh).is_err());
 }
 
 /// Tangents of traced asymptotic lines (the smooth interpolant of finely
@@ -854,7 +855,7 @@ fn traced_curves_are_sampled_uniformly() {
     // steps, and to end with whatever the bisection for the clip left.
     for name in ["enneper-4m", "catenoid", "scherk", "schwarz-d-pavilion"] {
         let (s, p) = spec(name);
-        let (raw, _) = design(&s, &p).unwrap();
+        let (raw, _) = design(&s, &p, &read_mesh).unwrap();
         let step = s.sampling.step_mm;
         for c in &raw.curves {
             let chords: Vec<f64> = c.points.windows(2).map(|w| w[1].distance(w[0])).collect();

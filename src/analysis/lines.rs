@@ -224,9 +224,9 @@ fn is_centre(o: &LamellaOffset) -> bool {
 
 /// The [`StripLines`] of every A and B strip for one profile, by strip
 /// (`Analysis::strips`; none on edges): what the check integrated
-/// ([`crate::check::check_with_lines`]), for fabrication to carry its
+/// ([`crate::check::check`] keeping its lines), for fabrication to carry its
 /// stations onto without integrating the lines again
-/// ([`crate::fabricate::fabricate_with_lines`]).
+/// ([`crate::fabricate::fabricate`]).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct NetworkLines {
     by_strip: Vec<Option<StripLines>>,

@@ -238,17 +238,16 @@ pub fn max_utilization(an: &Analysis, profile: &Profile) -> f64 {
 }
 
 /// Check every lamella of every A and B strip. Edge strips are not checked
-/// here: they lie tangential to the surface and are cut as curved bands
-/// (fabrication.md), so kg does not bend them about their weak axis.
-pub fn check(an: &Analysis, profile: &Profile) -> CheckReport {
-    check_strips(an, profile, false).0
-}
-
-/// [`check`], and every lamella line it integrated, for fabrication to
-/// carry its own stations onto ([`crate::fabricate::fabricate_with_lines`])
-/// instead of integrating the lines again. The report's lines are the same.
-pub fn check_with_lines(an: &Analysis, profile: &Profile) -> (CheckReport, NetworkLines) {
-    let (report, lines) = check_strips(an, profile, true);
+/// here: they lie tangential to the surface and are cut as curved bands,
+/// so kg does not bend them about their weak axis.
+///
+/// With `keep_lines`, every lamella line the check integrated is returned
+/// too, for fabrication to carry its own stations onto
+/// ([`crate::fabricate::fabricate`]) instead of integrating the lines
+/// again; otherwise each strip's are dropped once it is checked and the
+/// [`NetworkLines`] are empty. The report is the same either way.
+pub fn check(an: &Analysis, profile: &Profile, keep_lines: bool) -> (CheckReport, NetworkLines) {
+    let (report, lines) = check_strips(an, profile, keep_lines);
     (report, NetworkLines::new(lines.into_iter().flatten()))
 }
 

@@ -1,13 +1,13 @@
-//! The `lamella` command line.
+//! The `lamella` command line: clap parses, [`lamella::pipeline`] runs the
+//! stages and writes, [`report`] prints.
+
+mod report;
 
 use clap::{Parser, Subcommand};
-use lamella::formats::read::{self as io, ReadOptions};
+use lamella::formats::read::ReadOptions;
 use lamella::network::Unit;
-use lamella::plan;
-use lamella::plan::model::Model;
-use lamella::profile::Profile;
-use lamella::{analyze, AnalysisOptions};
-use std::path::{Path, PathBuf};
+use lamella::pipeline::{self, commands, Inputs};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -222,39 +222,6 @@ fn parse_tolerance(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Refuse to write `out` when it is one of the `inputs` (the same file by
-/// canonical path, or by device and inode: symlinks and hard links too).
-fn refuse_overwriting_input(out: &Path, inputs: &[(&str, &Path)]) -> lamella::Result<()> {
-    if !out.exists() {
-        return Ok(());
-    }
-    for (what, input) in inputs {
-        if io::same_file(out, input) {
-            return Err(lamella::Error::input(
-                out,
-                lamella::error::Location::File,
-                format!(
-                    "is the {what} ({}): refusing to overwrite an input; choose another output",
-                    input.display()
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Serialise a plan, refusing one with a NaN or infinite number (JSON would
-/// write it as null).
-fn plan_json(plan: &plan::Plan, target: &Path) -> lamella::Result<String> {
-    if let Some(field) = lamella::formats::write::finite::first_non_finite(plan) {
-        return Err(lamella::Error::network(
-            target,
-            format!("not written: {field} is not a finite number"),
-        ));
-    }
-    Ok(lamella::formats::write::plan_json::to_json(plan))
-}
-
 fn main() -> ExitCode {
     lamella::tune_allocator();
     let cli = Cli::parse();
@@ -267,14 +234,23 @@ fn main() -> ExitCode {
     }
 }
 
+/// The session's inputs from the command's arguments.
+fn inputs(
+    network: PathBuf,
+    profile: Option<PathBuf>,
+    read: &ReadArgs,
+    slots_from_flat: bool,
+) -> Inputs {
+    Inputs {
+        network,
+        profile,
+        read: read.options(),
+        slots_from_flat,
+    }
+}
+
 fn run(cli: Cli) -> lamella::Result<ExitCode> {
     match cli.command {
-        Command::Flat {
-            network,
-            profile,
-            out,
-            read,
-        } => flat(&network, &profile, &out, &read),
         Command::Build {
             network,
             profile,
@@ -285,21 +261,36 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             paper,
             quiet,
             read,
-        } => build(
-            &network,
-            &profile,
-            &out,
-            &lamella::pipeline::build::BuildOptions {
-                read: read.options(),
+        } => {
+            let opts = pipeline::build::BuildOptions {
                 kerf_compensation,
                 allow_overstress,
-                slots_from_flat,
                 paper: lamella::formats::write::assembly::Paper::parse(&paper).unwrap_or_default(),
-            },
-            quiet,
-        ),
-        Command::Nodes { network, out, read } => nodes(&network, &out, &read),
-        Command::Trace { spec, out } => trace(&spec, &out),
+            };
+            let progress = report::progress(quiet);
+            let r = pipeline::build::build(
+                inputs(network, Some(profile), &read, slots_from_flat),
+                &out,
+                &opts,
+                &progress,
+            );
+            progress.finish_and_clear();
+            Ok(report::build(&r?, quiet))
+        }
+        Command::Flat {
+            network,
+            profile,
+            out,
+            read,
+        } => Ok(report::flat(&commands::flat(
+            inputs(network, Some(profile), &read, false),
+            &out,
+        )?)),
+        Command::Nodes { network, out, read } => Ok(report::nodes(&commands::nodes(
+            inputs(network, None, &read, false),
+            &out,
+        )?)),
+        Command::Trace { spec, out } => Ok(report::trace(&commands::trace(&spec, &out)?)),
         Command::Check {
             network,
             profile,
@@ -307,14 +298,25 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             suggest,
             top,
             read,
-        } => check(&network, &profile, out.as_deref(), suggest, top, &read),
+        } => Ok(report::check(
+            &commands::check(
+                inputs(network, Some(profile), &read, false),
+                out.as_deref(),
+                suggest,
+            )?,
+            top,
+        )),
         Command::Parts {
             network,
             profile,
             out,
             slots_from_flat,
             read,
-        } => parts(&network, &profile, &out, &read, None, slots_from_flat),
+        } => Ok(report::parts(&commands::parts(
+            inputs(network, Some(profile), &read, slots_from_flat),
+            &out,
+            &commands::PartsGoal::Parts,
+        )?)),
         Command::Nest {
             network,
             profile,
@@ -322,580 +324,12 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             export_instance,
             slots_from_flat,
             read,
-        } => parts(
-            &network,
-            &profile,
+        } => Ok(report::parts(&commands::parts(
+            inputs(network, Some(profile), &read, slots_from_flat),
             &out,
-            &read,
-            Some(export_instance),
-            slots_from_flat,
-        ),
+            &commands::PartsGoal::Nest {
+                instance: export_instance,
+            },
+        )?)),
     }
-}
-
-fn flat(
-    path: &Path,
-    profile_path: &Path,
-    out: &Path,
-    read: &ReadArgs,
-) -> lamella::Result<ExitCode> {
-    let target = out.join("plan.json");
-    let svg_target = out.join("flat.svg");
-    for t in [&target, &svg_target] {
-        refuse_overwriting_input(t, &[("network", path), ("profile", profile_path)])?;
-    }
-    let profile = Profile::load(profile_path)?;
-    let net = io::read_network(path, read.options())?;
-    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
-    let problem = lamella::flat::problem(&an, &profile)?;
-    let st = lamella::flat::solve(&problem);
-    let report = lamella::check::check(&an, &profile);
-    let model = Model::checked(&net, &an, profile.clone(), report, None);
-    let mut plan = plan::build(&net, &an, &model);
-    plan::add_flat(&mut plan, &st);
-    let svg = lamella::formats::write::flat_svg::to_svg(
-        &problem,
-        &st,
-        &format!("{} — flat assembly layout ({}), mm", net.name, profile.name),
-    );
-    lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
-    lamella::formats::out::write_atomic(&svg_target, svg.as_bytes())?;
-    for w in an.warnings() {
-        eprintln!("warning: {w}");
-    }
-    println!(
-        "{} flat ({}): {} nodes, {} strips; footprint {:.0} × {:.0} mm; energy {:.1} N·mm (start {:.1}); {} iterations, {}",
-        net.name,
-        profile.name,
-        st.nodes.len(),
-        st.strips.len(),
-        st.footprint_mm[0],
-        st.footprint_mm[1],
-        st.energy_nmm,
-        st.start_energy_nmm,
-        st.iterations,
-        if st.converged {
-            format!("converged (projected gradient {:.1e}, lengths to {:.1e})", st.gradient_norm, st.max_length_error)
-        } else {
-            format!("NOT converged (projected gradient {:.1e}, lengths to {:.1e})", st.gradient_norm, st.max_length_error)
-        }
-    );
-    let tolerance = profile.joint.rotation_tolerance_deg;
-    let mut fails = Vec::new();
-    if let Some(i) = st.max_rotation() {
-        let n = &st.nodes[i];
-        println!(
-            "largest rotation: {:+.2}° at node {} (flat {:.2}°, erected {:.2}°); the slots allow ±{tolerance}°",
-            n.rotation_deg, n.node, n.angle_deg, n.erected_angle_deg
-        );
-        if n.rotation_deg.abs() > tolerance {
-            fails.push(format!(
-                "node {} turns {:.2}° on erection, past the rotation tolerance {tolerance}°",
-                n.node,
-                n.rotation_deg.abs()
-            ));
-        }
-    }
-    if let Some(s) = st
-        .strips
-        .iter()
-        .max_by(|a, b| a.utilization.total_cmp(&b.utilization))
-    {
-        println!(
-            "largest stress while flat: {:.1} MPa in {} (utilisation {:.2})",
-            s.max_bending_stress_mpa, s.strip, s.utilization
-        );
-        if s.utilization > 1.0 {
-            fails.push(format!(
-                "strip {} is overstressed while flat ({:.2} × the design strength)",
-                s.strip, s.utilization
-            ));
-        }
-    }
-    if !st.converged {
-        fails.push("the flat state did not converge".into());
-    }
-    println!("wrote {} and {}", target.display(), svg_target.display());
-    if fails.is_empty() {
-        println!("PASS: the grid assembles flat and erects within the slots and the strength");
-        Ok(ExitCode::SUCCESS)
-    } else {
-        println!("FAIL: {}", fails.join("; "));
-        Ok(ExitCode::from(3))
-    }
-}
-
-fn build(
-    network: &Path,
-    profile: &Path,
-    out: &Path,
-    opts: &lamella::pipeline::build::BuildOptions,
-    quiet: bool,
-) -> lamella::Result<ExitCode> {
-    // Hidden when stderr is not a terminal (indicatif's default target).
-    let pb = if quiet {
-        indicatif::ProgressBar::hidden()
-    } else {
-        indicatif::ProgressBar::new_spinner()
-    };
-    pb.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg} {bar:30} {pos}/{len} [{elapsed}]")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-    );
-    pb.enable_steady_tick(std::time::Duration::from_millis(120));
-    let r = lamella::pipeline::build::build(network, profile, out, opts, &pb);
-    pb.finish_and_clear();
-    let r = r?;
-    for w in &r.warnings {
-        eprintln!("warning: {w}");
-    }
-    if r.files.is_empty() {
-        if let Some(g) = &r.governing {
-            eprintln!(
-                "error: {} of {} strips overstressed (worst {} lamella {} at {:.2} × the design strength, {} governs): nothing written; see `lamella check`, or pass --allow-overstress",
-                r.overstressed, r.strips, g.strip, g.lamella, g.utilization, g.governs
-            );
-        }
-        return Ok(ExitCode::from(3));
-    }
-    if !quiet {
-        print_build_summary(&r);
-    }
-    Ok(ExitCode::SUCCESS)
-}
-
-fn print_build_summary(r: &lamella::pipeline::build::BuildReport) {
-    let t = &r.takeoff;
-    println!(
-        "{} with {}: {} strips, {} edge strips, {} nodes",
-        r.network, r.profile, r.strips, r.edges, r.nodes
-    );
-    for (kind, distinct, count) in &r.kinds {
-        println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
-    }
-    println!(
-        "sheets: {} (lower bound {}), utilisation {:.1} %",
-        r.sheets_used,
-        r.lower_bound_sheets,
-        100.0 * r.utilization
-    );
-    println!(
-        "lamellas: {:.1} m of strip; mass {:.1} kg",
-        t.totals.lamella_length_m, t.totals.mass_kg
-    );
-    if let (Some(cost), Some(cur)) = (t.totals.stock_cost, &t.currency) {
-        println!("stock cost: {cost:.2} {cur}");
-    }
-    for h in t.hardware.iter().filter(|h| !h.made) {
-        println!("  {:<17} {:>8}  {}", h.item, h.count, h.designation);
-    }
-    match &r.governing {
-        Some(g) if r.passes() => println!(
-            "elastic check: PASS, highest utilisation {:.2} ({} lamella {}, {} governs)",
-            g.utilization, g.strip, g.lamella, g.governs
-        ),
-        Some(g) => println!(
-            "elastic check: FAIL (--allow-overstress): {} strips overstressed, worst {} lamella {} at {:.2}",
-            r.overstressed, g.strip, g.lamella, g.utilization
-        ),
-        None => println!("elastic check: no strips"),
-    }
-    println!(
-        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, assembly.pdf, sheets/)",
-        r.files.len(),
-        r.out.display()
-    );
-}
-
-fn parts(
-    path: &Path,
-    profile_path: &Path,
-    out: &Path,
-    read: &ReadArgs,
-    nest: Option<Option<PathBuf>>,
-    slots_from_flat: bool,
-) -> lamella::Result<ExitCode> {
-    let target = out.join("plan.json");
-    refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
-    if let Some(Some(instance)) = &nest {
-        refuse_overwriting_input(instance, &[("network", path), ("profile", profile_path)])?;
-    }
-    let profile = Profile::load(profile_path)?;
-    let net = io::read_network(path, read.options())?;
-    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
-    let rotations = if slots_from_flat {
-        let pr = lamella::flat::problem(&an, &profile)?;
-        Some(lamella::flat::solve(&pr).rotations())
-    } else {
-        None
-    };
-    // The lamella lines the check integrates serve fabrication too.
-    let (report, lines) = lamella::check::check_with_lines(&an, &profile);
-    let kit =
-        lamella::fabricate::fabricate_with_lines(&net, &an, &profile, rotations.as_ref(), lines)?;
-    let model = Model::checked(&net, &an, profile.clone(), report, None);
-    let mut plan = plan::build(&net, &an, &model);
-    plan::add_parts(&mut plan, &kit);
-    // Everything is computed before anything is written.
-    let mut instance_text: Option<(PathBuf, String)> = None;
-    let nested = match &nest {
-        Some(instance) => {
-            let n = lamella::nest::nest(&kit, &profile)?;
-            plan::add_nest(&mut plan, &kit, &n);
-            if let Some(file) = instance {
-                let inst = lamella::plan::sparrow::instance(&net.name, &kit, &profile);
-                let text = serde_json::to_string_pretty(&inst).map_err(|e| {
-                    lamella::Error::input(file, lamella::error::Location::File, e.to_string())
-                })?;
-                instance_text = Some((file.clone(), text));
-            }
-            Some(n)
-        }
-        None => None,
-    };
-    lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
-    if let Some((file, text)) = &instance_text {
-        lamella::formats::out::write_atomic(file, text.as_bytes())?;
-        println!("wrote {}", file.display());
-    }
-    for w in an.warnings() {
-        eprintln!("warning: {w}");
-    }
-    for w in &kit.warnings {
-        eprintln!("warning: {w}");
-    }
-    let s = &kit.summary;
-    println!(
-        "{} on {}: {} parts to make",
-        profile.name,
-        net.name,
-        s.kinds.iter().map(|k| k.2).sum::<u64>()
-    );
-    for (kind, distinct, count) in &s.kinds {
-        println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
-    }
-    println!(
-        "lamellas: {:.1} m of strip; mass {:.1} kg",
-        s.lamella_length_mm / 1000.0,
-        s.mass_kg
-    );
-    if s.stud_bars > 0 {
-        println!("studs: {} bars of stud stock", s.stud_bars);
-    }
-    if let Some(n) = nested {
-        println!("nest: {}", nest_line(&profile, &n));
-    }
-    println!("wrote {}", target.display());
-    Ok(ExitCode::SUCCESS)
-}
-
-/// The nest's line: sheets (or coil length) per stock size, the bounds,
-/// utilisation, cost where priced, time.
-fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
-    let ns = &n.summary;
-    let stock = &profile.stock;
-    let size = |u: &lamella::nest::StockUse| {
-        if stock.sizes[u.size].name.is_some() {
-            u.stock.clone()
-        } else {
-            format!("{} mm", u.stock)
-        }
-    };
-    let mut line = if let (true, Some(used), Some(bound)) =
-        (stock.is_coil(), ns.length_used_mm, ns.length_bound_mm)
-    {
-        format!(
-            "{:.3} m of {} mm coil in {} piece(s) (lower bound {:.3} m)",
-            used / 1000.0,
-            stock.sizes[0].width_mm,
-            ns.sheets_used,
-            bound / 1000.0
-        )
-    } else {
-        let sizes: Vec<String> = n
-            .stock_used
-            .iter()
-            .map(|u| format!("{} of {}", u.sheets, size(u)))
-            .collect();
-        let what = if n.stock_used.len() == 1 {
-            format!("{} sheets of {}", ns.sheets_used, size(&n.stock_used[0]))
-        } else {
-            format!("{} sheets ({})", ns.sheets_used, sizes.join(" + "))
-        };
-        format!(
-            "{what} (lower bound {}: area {}, lanes {})",
-            ns.lower_bound_sheets, ns.area_bound_sheets, ns.lane_bound_sheets
-        )
-    };
-    line += &format!("; utilisation {:.1} %", 100.0 * ns.utilization);
-    if let Some(cost) = ns.cost {
-        let currency = n.currency.as_deref().unwrap_or("");
-        line += &format!(
-            "; cost {cost:.2} {currency} (lower bound {:.2})",
-            ns.cost_bound.unwrap_or(0.0)
-        );
-    }
-    line + &format!("; {:.3} s", ns.seconds)
-}
-
-fn check(
-    path: &Path,
-    profile_path: &Path,
-    out: Option<&Path>,
-    want_suggestion: bool,
-    top: Option<usize>,
-    read: &ReadArgs,
-) -> lamella::Result<ExitCode> {
-    if let Some(dir) = out {
-        let target = dir.join("plan.json");
-        refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
-    }
-    let profile = Profile::load(profile_path)?;
-    let net = io::read_network(path, read.options())?;
-    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
-    let report = lamella::check::check(&an, &profile);
-    let suggestion = want_suggestion.then(|| lamella::check::suggest(&an, &profile));
-    if let Some(dir) = out {
-        let model = Model::checked(
-            &net,
-            &an,
-            profile.clone(),
-            report.clone(),
-            suggestion.clone(),
-        );
-        let plan = plan::build(&net, &an, &model);
-        let target = dir.join("plan.json");
-        lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
-    }
-    for w in an.warnings() {
-        eprintln!("warning: {w}");
-    }
-    println!(
-        "{} on {}: {} × {} mm, {} per strip; f_d = {:.1} MPa; limits: R ≥ {:.0} mm in pure bending, twist ≤ {:.1} °/m in pure twist",
-        profile.name,
-        net.name,
-        profile.section.thickness_mm,
-        profile.section.height_mm,
-        profile.section.per_strip,
-        report.design_strength_mpa,
-        report.limit_bending_radius_mm,
-        report.limit_twist_deg_per_m
-    );
-    println!(
-        "{:<12} {:>7} {:>11} {:>11} {:>13} {:>10}  governs",
-        "strip", "lamella", "utilisation", "station mm", "min radius mm", "twist °/m"
-    );
-    let ranking = report.ranking();
-    for &i in ranking.iter().take(top.unwrap_or(usize::MAX)) {
-        let s = &report.strips[i];
-        let l = s.worst();
-        println!(
-            "{:<12} {:>7} {:>11.3} {:>11.1} {:>13} {:>10.2}  {}{}",
-            s.id,
-            l.line.offset.number,
-            l.utilization,
-            l.governing_station_mm,
-            l.min_bending_radius_mm
-                .map_or("straight".to_string(), |r| format!("{r:.0}")),
-            l.max_twist_deg_per_m,
-            l.governs.as_str(),
-            if l.utilization > 1.0 {
-                "  OVERSTRESSED"
-            } else {
-                ""
-            }
-        );
-    }
-    if let Some(n) = top.filter(|n| *n < ranking.len()) {
-        println!("… {} more strips", ranking.len() - n);
-    }
-    let worst = ranking.first().map(|&i| &report.strips[i]);
-    let passes = report.passes();
-    match worst {
-        Some(w) if passes => println!(
-            "PASS: all {} strips bend and twist into place elastically; highest utilisation {:.2} ({} lamella {}, {} governs)",
-            report.strips.len(),
-            w.worst().utilization,
-            w.id,
-            w.worst().line.offset.number,
-            w.worst().governs.as_str()
-        ),
-        Some(w) => println!(
-            "FAIL: {} of {} strips overstressed; worst {} lamella {} at {:.2} × the design strength ({} governs)",
-            report.overstressed(),
-            report.strips.len(),
-            w.id,
-            w.worst().line.offset.number,
-            w.worst().utilization,
-            w.worst().governs.as_str()
-        ),
-        None => println!("no strips"),
-    }
-    if let Some(s) = &suggestion {
-        print_suggestion(s, &profile, passes);
-    }
-    if let Some(dir) = out {
-        println!("wrote {}", dir.join("plan.json").display());
-    }
-    Ok(if passes {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(3)
-    })
-}
-
-fn nodes(path: &Path, out: &Path, read: &ReadArgs) -> lamella::Result<ExitCode> {
-    let target = out.join("plan.json");
-    refuse_overwriting_input(&target, &[("network", path)])?;
-    let net = io::read_network(path, read.options())?;
-    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
-    let model = Model::new(&net, &an);
-    let plan = plan::build(&net, &an, &model);
-    lamella::formats::out::write_atomic(&target, plan_json(&plan, &target)?.as_bytes())?;
-    for w in an.warnings() {
-        eprintln!("warning: {w}");
-    }
-    let s = &plan.summary;
-    println!(
-        "{}: {} curves ({} points), {} nodes, {:.1} m of strip",
-        net.name,
-        s.curves,
-        net.point_count(),
-        s.nodes,
-        s.total_length_mm / 1000.0
-    );
-    if let (Some(lo), Some(hi)) = (s.shortest_node_to_node_mm, s.longest_node_to_node_mm) {
-        println!("node-to-node length: shortest {lo:.2} mm, longest {hi:.2} mm");
-    }
-    if let (Some(lo), Some(hi)) = (s.min_angle_deg, s.max_angle_deg) {
-        println!("crossing angle: {lo:.3}° to {hi:.3}°");
-    }
-    println!(
-        "largest normal-curvature residual kn: {:.6} 1/m",
-        s.max_normal_curvature_per_m
-    );
-    println!("wrote {}", target.display());
-    Ok(ExitCode::SUCCESS)
-}
-
-/// The `--suggest` lines: what to change when failing, the headroom when passing.
-fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: bool) {
-    let (t0, h0) = (profile.thickness_mm(), profile.height_mm());
-    // The searches stop at 4 × the profile's value.
-    let bound = |x: f64, cap: f64| {
-        if x >= cap - 1e-9 {
-            format!("{x:.4} mm or more")
-        } else {
-            format!("{x:.4} mm")
-        }
-    };
-    if passes {
-        if let Some(t) = s.max_thickness_mm {
-            println!(
-                "headroom: every strip still passes with lamellas {} thick (now {t0} mm)",
-                bound(t, 4.0 * t0)
-            );
-        }
-        if let Some(h) = s.max_height_mm {
-            println!(
-                "headroom: or {} high at {t0} mm thick (now {h0} mm)",
-                bound(h, 4.0 * h0)
-            );
-        }
-        return;
-    }
-    match s.max_thickness_mm {
-        Some(t) => println!("suggest: every strip passes with lamellas at most {t:.4} mm thick (now {t0} mm)"),
-        None => println!(
-            "suggest: no thickness passes at {h0} mm height: the trapeze stress of the twist alone exceeds f_d"
-        ),
-    }
-    if let Some(h) = s.max_height_mm {
-        println!(
-            "suggest: or keep {t0} mm and make the lamellas at most {h:.4} mm high (now {h0} mm)"
-        );
-    }
-    if let Some((h, t)) = s.height_and_thickness_mm {
-        println!(
-            "suggest: or lower the lamellas to {h:.4} mm and make them at most {t:.4} mm thick"
-        );
-    }
-}
-
-/// Decimals of a traced network's coordinates (mm): 1e-6 mm, so rounding
-/// (±5e-7 mm) stays far below what curvature between samples 25 mm apart
-/// can resolve (4·5e-7 / 25² ≈ 3e-9 1/mm).
-const COORDINATE_DECIMALS: usize = 6;
-
-fn trace(spec_path: &Path, out: &Path) -> lamella::Result<ExitCode> {
-    refuse_overwriting_input(out, &[("trace spec", spec_path)])?;
-    let spec = io::trace_spec::load(spec_path)?;
-    if let Some(mesh) = lamella::design::mesh_source::mesh_path(&spec, spec_path) {
-        refuse_overwriting_input(out, &[("mesh", &mesh)])?;
-    }
-    let (net, report) = lamella::design::design(&spec, spec_path)?;
-    let comment = format!(
-        "Traced by lamella {} from {}.\nRegenerate: lamella trace {} --out {}",
-        env!("CARGO_PKG_VERSION"),
-        spec_path
-            .file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default(),
-        spec_path.display(),
-        out.display()
-    );
-    let text = match out.extension().and_then(|e| e.to_str()) {
-        Some("json") => io::network_file::to_json(&net, COORDINATE_DECIMALS),
-        _ => io::network_file::to_yaml(&net, COORDINATE_DECIMALS, &comment),
-    };
-    lamella::formats::out::write_atomic(out, text.as_bytes())?;
-    for w in &report.warnings {
-        eprintln!("warning: {w}");
-    }
-    let length_m: f64 = net
-        .curves
-        .iter()
-        .map(|c| {
-            c.points
-                .windows(2)
-                .map(|w| w[1].distance(w[0]))
-                .sum::<f64>()
-        })
-        .sum::<f64>()
-        / 1000.0;
-    println!(
-        "{}: {} A, {} B and {} edge curves, {} points, {:.1} m of curve",
-        net.name,
-        report.a_curves,
-        report.b_curves,
-        report.edges,
-        net.curves.iter().map(|c| c.points.len()).sum::<usize>(),
-        length_m
-    );
-    for note in &report.notes {
-        println!("{note}");
-    }
-    let unusual: Vec<String> = report
-        .stops
-        .iter()
-        .filter(|(_, a, b)| {
-            *a != lamella::design::trace::Stop::Clip || *b != lamella::design::trace::Stop::Clip
-        })
-        .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
-        .collect();
-    if !unusual.is_empty() {
-        const SHOWN: usize = 8;
-        let more = unusual.len().saturating_sub(SHOWN);
-        println!(
-            "curves ending elsewhere than the clip: {}{}",
-            unusual[..unusual.len().min(SHOWN)].join(", "),
-            if more > 0 {
-                format!(" and {more} more")
-            } else {
-                String::new()
-            }
-        );
-    }
-    println!("wrote {}", out.display());
-    Ok(ExitCode::SUCCESS)
 }

@@ -38,7 +38,11 @@ pub fn mesh_path(spec: &TraceSpec, spec_path: &Path) -> Option<PathBuf> {
 }
 
 /// Read or form-find the mesh of a validated spec and make it a surface.
-pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
+pub fn prepare(
+    spec: &TraceSpec,
+    spec_path: &Path,
+    read_mesh: super::ReadMesh,
+) -> Result<MeshSource> {
     let mut notes = Vec::new();
     let (mesh, chart_uv, named) = match spec.surface {
         SurfaceName::Minimal => {
@@ -75,7 +79,7 @@ pub fn prepare(spec: &TraceSpec, spec_path: &Path) -> Result<MeshSource> {
                     format!("no such file {}", file.display()),
                 ));
             }
-            (crate::formats::read::mesh::read_mesh(&file)?, None, file)
+            (read_mesh(&file)?, None, file)
         }
     };
     let topo = crate::design::mesh::topology::Topology::build(&mesh, &named)?;

@@ -79,11 +79,16 @@ pub struct Prepared {
     pub warnings: Vec<String>,
 }
 
+/// How the design stage reads the mesh file a `surface: mesh` spec names
+/// (the pipeline passes `formats::read::mesh::read_mesh`: stages read no
+/// files themselves).
+pub type ReadMesh<'a> = &'a dyn Fn(&Path) -> Result<crate::geom::mesh::TriMesh>;
+
 /// The surface of a validated spec: analytic, or a mesh read or form-found
 /// (see [`mesh_source`]).
-pub fn prepare_surface(spec: &TraceSpec, path: &Path) -> Result<Prepared> {
+pub fn prepare_surface(spec: &TraceSpec, path: &Path, read_mesh: ReadMesh) -> Result<Prepared> {
     if spec.surface.is_mesh() {
-        let m = mesh_source::prepare(spec, path)?;
+        let m = mesh_source::prepare(spec, path, read_mesh)?;
         return Ok(Prepared {
             surface: place(spec, m.surface, 1.0),
             seed_uv: m.seed_uv,
@@ -354,8 +359,12 @@ pub struct DesignReport {
 /// [`Network::new`](crate::network::Network::new). Fails with a one-line
 /// [`Error::Input`] naming the spec and the field (or [`Error::Network`] when
 /// the result would not read back).
-pub fn design(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
-    let (raw, mut report) = trace_network(spec, path)?;
+pub fn design(
+    spec: &TraceSpec,
+    path: &Path,
+    read_mesh: ReadMesh,
+) -> Result<(RawNetwork, DesignReport)> {
+    let (raw, mut report) = trace_network(spec, path, read_mesh)?;
     let min_len = (spec.spacing_mm * 0.05).max(1.0);
     for (count, family) in [(report.a_curves, "A"), (report.b_curves, "B")] {
         if count == 0 {
@@ -453,14 +462,18 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
 }
 
 /// Trace the network a spec describes (unchecked).
-fn trace_network(spec: &TraceSpec, path: &Path) -> Result<(RawNetwork, DesignReport)> {
+fn trace_network(
+    spec: &TraceSpec,
+    path: &Path,
+    read_mesh: ReadMesh,
+) -> Result<(RawNetwork, DesignReport)> {
     let clip_spec = validate(spec, path)?;
     let Prepared {
         surface,
         seed_uv: seed,
         notes,
         warnings,
-    } = prepare_surface(spec, path)?;
+    } = prepare_surface(spec, path, read_mesh)?;
     let clip = Clip::from_spec(clip_spec.as_ref());
     let opts = TraceOptions {
         tolerance_mm: spec.sampling.tolerance_mm,

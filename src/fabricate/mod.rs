@@ -57,32 +57,20 @@ pub struct KitSummary {
     pub hardware: Vec<hardware::Hardware>,
 }
 
-/// Make every part of the network's A/B strips for `profile`, slots swept
-/// over the profile's blanket rotation tolerance.
-pub fn fabricate(net: &Network, an: &Analysis, profile: &Profile) -> Result<Kit> {
-    fabricate_with_rotations(net, an, profile, None)
-}
-
-/// [`fabricate`], with each A×B node's slots swept over the rotation from
-/// the flat state to the erected one (degrees A → B by node id, from
-/// [`crate::flat`]) where given; a rotation past the profile's tolerance is
-/// an error naming the node.
-pub fn fabricate_with_rotations(
-    net: &Network,
-    an: &Analysis,
-    profile: &Profile,
-    rotations: Option<&std::collections::HashMap<usize, f64>>,
-) -> Result<Kit> {
-    fabricate_with_lines(net, an, profile, rotations, NetworkLines::default())
-}
-
-/// [`fabricate_with_rotations`] on lamella lines already integrated for
-/// this profile ([`crate::check::check_with_lines`]): each strip's blocks,
-/// cuts and holes are carried onto them with one short integral each, and
-/// its lines are dropped once its parts are made. A strip whose lines are
-/// missing (or another profile's) integrates its own; the parts are the
-/// same either way.
-pub fn fabricate_with_lines(
+/// Make every part of the network's A/B strips for `profile`.
+///
+/// Slots are swept over the profile's blanket rotation tolerance, or, where
+/// `rotations` are given, over each A×B node's rotation from the flat state
+/// to the erected one (degrees A → B by node id, from [`crate::flat`]); a
+/// rotation past the profile's tolerance is an error naming the node.
+///
+/// `lines` are the lamella lines the check integrated for this profile
+/// ([`crate::check::check`] keeping its lines): each strip's blocks, cuts
+/// and holes are carried onto them with one short integral each, and its
+/// lines are dropped once its parts are made. A strip whose lines are
+/// missing (or another profile's; pass `NetworkLines::default()` for none)
+/// integrates its own; the parts are the same either way.
+pub fn fabricate(
     net: &Network,
     an: &Analysis,
     profile: &Profile,

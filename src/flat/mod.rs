@@ -224,7 +224,7 @@ pub struct FlatState {
 
 impl FlatState {
     /// Each node's rotation from flat to erected, degrees, by node id (what
-    /// [`crate::fabricate::fabricate_with_rotations`] sizes slots from).
+    /// [`crate::fabricate::fabricate`] sizes slots from).
     pub fn rotations(&self) -> HashMap<usize, f64> {
         self.nodes
             .iter()

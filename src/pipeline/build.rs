@@ -8,36 +8,29 @@
 //! Everything is computed before anything is written; an overstressed
 //! strip stops the build before the first file (unless allowed).
 
+use super::{refuse_inputs, Inputs, Session};
 use crate::check::CheckReport;
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
 use crate::formats::out::staging::Staging;
-use crate::formats::read::{self, ReadOptions};
 use crate::formats::write::drawing::Drawer;
-use crate::formats::write::{dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file};
-use crate::plan;
-use crate::plan::model::Model;
-use crate::plan::takeoff;
-use crate::profile::Profile;
-use crate::{analyze, AnalysisOptions};
+use crate::formats::write::{
+    assembly, dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file,
+};
+use crate::plan::{self, takeoff::Takeoff};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
-/// What `build` is asked to do beyond reading.
+/// What `build` is asked to do beyond reading (the session's [`Inputs`]).
 #[derive(Debug, Clone, Default)]
 pub struct BuildOptions {
-    /// Units, tolerance and precision of the network file.
-    pub read: ReadOptions,
     /// Offset outer contours out and inner contours in by half the kerf.
     pub kerf_compensation: bool,
     /// Write the files even when a strip is overstressed.
     pub allow_overstress: bool,
-    /// Size each slot from its node's rotation between the flat state and
-    /// the erected one ([`crate::flat`]) instead of the blanket tolerance.
-    pub slots_from_flat: bool,
     /// Paper of the assembly sheets.
-    pub paper: crate::formats::write::assembly::Paper,
+    pub paper: assembly::Paper,
 }
 
 /// The time one stage of a build took.
@@ -81,7 +74,7 @@ pub struct BuildReport {
     /// Per kind: distinct parts and pieces.
     pub kinds: Vec<(PartKind, usize, u64)>,
     /// The takeoff (totals, stock, hardware), also written.
-    pub takeoff: takeoff::Takeoff,
+    pub takeoff: Takeoff,
     /// Sheets used and the lower bound.
     pub sheets_used: usize,
     /// The nest's lower bound on sheets.
@@ -123,53 +116,47 @@ pub const FIXED_FILES: [&str; 4] = ["plan.json", "takeoff.csv", "takeoff.json", 
 /// written and `report.files` is empty. `progress` shows the stage and the
 /// sheets written (pass `ProgressBar::hidden()` for none).
 pub fn build(
-    network: &Path,
-    profile_path: &Path,
+    inputs: Inputs,
     out: &Path,
     opts: &BuildOptions,
     progress: &ProgressBar,
 ) -> Result<BuildReport> {
     for name in FIXED_FILES {
-        let target = out.join(name);
-        for (what, input) in [("network", network), ("profile", profile_path)] {
-            if target.exists() && read::same_file(&target, input) {
-                return Err(Error::output(
-                    &target,
-                    format!(
-                        "is the {what} ({}): refusing to overwrite an input; choose another output",
-                        input.display()
-                    ),
-                ));
-            }
-        }
+        refuse_inputs(&out.join(name), &inputs.files())?;
     }
     let mut clock = Clock::start();
     progress.set_message("reading");
-    let profile = Profile::load(profile_path)?;
-    let net = read::read_network(network, opts.read)?;
+    let mut session = Session::open(inputs)?;
     clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");
-    let an = analyze(&net, AnalysisOptions::for_network(&net))?;
+    session.analysis()?;
     progress.set_message("checking");
-    // The lamella lines the check integrates serve fabrication too.
-    let (report, lines) = crate::check::check_with_lines(&an, &profile);
-    let mut warnings: Vec<String> = an.warnings().iter().map(|w| w.to_string()).collect();
-    let governing = governing(&report);
+    // The lamella lines the check integrates serve the parts too.
+    let report = session.check(true)?;
+    let governing = governing(report);
     let overstressed = report.overstressed();
-    let strips = an.lamella_strips().count();
+    let mut warnings = session.warnings();
+    let (strips, nodes) = match session.analysed() {
+        Some(an) => (an.lamella_strips().count(), an.topology.nodes.len()),
+        None => (0, 0),
+    };
     clock.lap("analyse");
-    let edges = net.curves.len() - strips;
+    let edges = session.network().curves.len() - strips;
+    let (network_name, profile_name) = (
+        session.network().name.clone(),
+        session.profile()?.name.clone(),
+    );
     if overstressed > 0 && !opts.allow_overstress {
         return Ok(BuildReport {
-            network: net.name.clone(),
-            profile: profile.name.clone(),
+            network: network_name.clone(),
+            profile: profile_name.clone(),
             strips,
             edges,
-            nodes: an.topology.nodes.len(),
+            nodes,
             kinds: Vec::new(),
-            takeoff: takeoff::Takeoff {
-                project: net.name.clone(),
-                profile: profile.name.clone(),
+            takeoff: Takeoff {
+                project: network_name,
+                profile: profile_name,
                 ..Default::default()
             },
             sheets_used: 0,
@@ -188,46 +175,36 @@ pub fn build(
     let staging = Staging::begin(out, &FIXED_FILES)?;
     // The plan's strips and nodes first, so the analysis can go once the
     // parts are made (a big network's analysis and kit need not both stay).
-    let model = Model::checked(&net, &an, profile.clone(), report, None);
-    let mut the_plan = plan::build(&net, &an, &model);
-    drop(model);
+    let mut the_plan = session.plan(false)?;
     progress.set_message("making parts");
-    let flat = if opts.slots_from_flat {
+    if session.inputs().slots_from_flat {
         progress.set_message("solving the flat state");
-        let pr = crate::flat::problem(&an, &profile)?;
-        Some(crate::flat::solve(&pr))
-    } else {
-        None
-    };
-    let rotations = flat.as_ref().map(|f| f.rotations());
-    if let Some(f) = &flat {
-        plan::add_flat(&mut the_plan, f);
+        let (problem, state) = session.flat()?;
+        plan::add_flat(&mut the_plan, problem, state);
     }
-    let kit =
-        crate::fabricate::fabricate_with_lines(&net, &an, &profile, rotations.as_ref(), lines)?;
-    let nodes = an.topology.nodes.len();
-    drop(an);
+    session.kit()?;
+    session.release_analysis();
     clock.lap("parts");
-    warnings.extend(kit.warnings.iter().cloned());
+    if let Some(kit) = session.made() {
+        warnings.extend(kit.warnings.iter().cloned());
+    }
     progress.set_message("nesting");
     // The nest is mostly one thread: the plan's parts are converted and
     // the assembly sheets' strip sheets (which need no nest) drawn beside it.
-    let frame = crate::formats::write::assembly::Frame::of(opts.paper);
-    let (nest, (plan_parts, strip_pages)) = rayon::join(
-        || crate::nest::nest(&kit, &profile),
-        || {
-            let parts = plan::plan_parts(&kit);
-            let pages =
-                crate::formats::write::assembly::strips::pages_of(&the_plan, &parts, &frame);
-            (parts, pages)
-        },
-    );
-    let nest = nest?;
+    let frame = assembly::Frame::of(opts.paper);
+    let (plan_parts, strip_pages) = session.nest_with(|kit| {
+        let parts = plan::plan_parts(kit);
+        let pages = assembly::strips::pages_of(&the_plan, &parts, &frame);
+        (parts, pages)
+    })?;
     clock.lap("nest");
-    let takeoff = takeoff::takeoff(&net.name, &kit, &nest, &profile);
-    plan::add_nest(&mut the_plan, &kit, &nest);
+    let (Some(kit), Some(nest)) = (session.made(), session.nested()) else {
+        return Err(Error::output(out, "internal: the kit was not nested"));
+    };
+    plan::add_takeoff(&mut the_plan, kit, nest, session.profile()?);
+    plan::add_nest(&mut the_plan, kit, nest);
     let kinds = kit.summary.kinds.clone();
-    plan::set_parts(&mut the_plan, plan_parts, &kit);
+    plan::set_parts(&mut the_plan, plan_parts, kit);
     let plan_target = out.join("plan.json");
     if let Some(field) = plan_json::first_non_finite(&mut the_plan) {
         return Err(Error::output(
@@ -240,37 +217,29 @@ pub fn build(
         nest.summary.lower_bound_sheets,
         nest.summary.utilization,
     );
-    drop(nest);
-    drop(kit);
+    let kerf = opts
+        .kerf_compensation
+        .then_some(session.profile()?.cutting.kerf_mm);
+    // The network's points live on as the overview's curves.
+    plan::add_curves(&mut the_plan, session.into_network().curves);
     clock.lap("plan");
     progress.set_message("writing plan, takeoff, sheets and assembly sheets");
-    let csv = takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
+    let takeoff = the_plan.takeoff.clone().unwrap_or_default();
+    let csv =
+        takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
-    let kerf = opts.kerf_compensation.then_some(profile.cutting.kerf_mm);
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
     let sheet_count = drawer.len();
     progress.set_length(sheet_count as u64);
     progress.set_position(0);
-    // The network's points live on as the overview's curves.
-    let network_name = net.name.clone();
-    let curves: Vec<crate::formats::write::assembly::CurvePoints> = net
-        .curves
-        .into_iter()
-        .map(|c| crate::formats::write::assembly::CurvePoints {
-            id: c.id,
-            points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
-        })
-        .collect();
     fn timed<T>(f: impl FnOnce() -> Result<T>) -> (Result<T>, f64) {
         let t = std::time::Instant::now();
         let r = f();
         (r, t.elapsed().as_secs_f64())
     }
-    let assembly_input = crate::formats::write::assembly::AssemblyInput {
+    let assembly_input = assembly::AssemblyInput {
         plan: &the_plan,
-        takeoff: &takeoff,
-        curves: &curves,
         paper: opts.paper,
         plan_path: &plan_target,
     };
@@ -304,7 +273,7 @@ pub fn build(
                                 // Each worker's text buffers serve sheet after sheet.
                                 .map_init(
                                     || (Vec::new(), Vec::new()),
-                                    |(dxf, svg), i| -> Result<crate::formats::write::assembly::SealedPage> {
+                                    |(dxf, svg), i| -> Result<assembly::SealedPage> {
                                         let sheet = drawer.sheet(i)?;
                                         let stem = sheet.file_stem();
                                         dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
@@ -317,7 +286,7 @@ pub fn build(
                                         let title = format!(
                                             "{} — {}: sheet {} of {} ({}), {} × {} mm",
                                             network_name,
-                                            profile.name,
+                                            profile_name,
                                             sheet.number,
                                             sheet_count,
                                             sheet.id,
@@ -327,13 +296,13 @@ pub fn build(
                                         svg_out::write_svg(&sheet, &title, svg);
                                         staging.write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
-                                            Some(d) => crate::formats::write::assembly::nested::page(
+                                            Some(d) => assembly::nested::page(
                                                 &d.sheet_cuts(i)?,
                                                 &sheets_meta[i],
                                                 sheet_count,
                                                 &frame,
                                             ),
-                                            None => crate::formats::write::assembly::nested::page(
+                                            None => assembly::nested::page(
                                                 &sheet,
                                                 &sheets_meta[i],
                                                 sheet_count,
@@ -347,7 +316,7 @@ pub fn build(
                                 .collect::<Result<Vec<_>>>()
                         })
                     },
-                    || timed(|| crate::formats::write::assembly::sections_with(&assembly_input, Some(strip_pages))),
+                    || timed(|| assembly::sections_with(&assembly_input, Some(strip_pages))),
                 )
             },
         )
@@ -358,8 +327,7 @@ pub fn build(
     let (sections, sections_s) = (sections.0?, sections.1);
     let mut assembly_pages = 0;
     staging.write_with("assembly.pdf", |w| {
-        assembly_pages =
-            crate::formats::write::assembly::assemble_into(&assembly_input, sections, nested, w)?;
+        assembly_pages = assembly::assemble_into(&assembly_input, sections, nested, w)?;
         Ok(())
     })?;
     let pdf_s = sections_s + t.elapsed().as_secs_f64();
@@ -369,7 +337,6 @@ pub fn build(
     // The sections apart from the sheets as nested, then the document.
     clock.part("write: assembly.pdf", pdf_s);
     drop(drawer);
-    drop(curves);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
@@ -380,7 +347,7 @@ pub fn build(
     clock.lap("commit");
     Ok(BuildReport {
         network: network_name,
-        profile: profile.name.clone(),
+        profile: profile_name,
         strips,
         edges,
         nodes,

@@ -1,3 +1,355 @@
-//! The pipeline: every stage from the input files to the kit.
+//! The pipeline: the one place the stages are put together.
+//!
+//! A [`Session`] reads its inputs once (the profile, then the network) and
+//! runs each stage once, on demand, in the order the stages need one
+//! another: analysis → check → (flat state) → parts → nest. Every command
+//! asks the session for the stage it stops at, makes its plan from what
+//! has run ([`Session::plan`]) and writes its files ([`commands`]); `lamella
+//! build` is the session run to the end ([`build`]).
+//!
+//! Errors have one kind per failure: a bad input file is
+//! [`Error::Input`], a network that cannot be analysed
+//! [`Error::Network`], a part the profile cannot make
+//! [`Error::Fabrication`], and an output that cannot be written as asked
+//! (an input in its place, a number that is not finite, a foreign file)
+//! [`Error::Output`].
 
 pub mod build;
+pub mod commands;
+
+use crate::analysis::lines::NetworkLines;
+use crate::analysis::{analyze, Analysis, AnalysisOptions};
+use crate::check::{CheckReport, Suggestion};
+use crate::error::{Error, Result};
+use crate::fabricate::Kit;
+use crate::flat::{FlatProblem, FlatState};
+use crate::formats::read::{self, ReadOptions};
+use crate::nest::Nest;
+use crate::network::Network;
+use crate::plan::model::{Checked, Model};
+use crate::plan::Plan;
+use crate::profile::Profile;
+use std::path::{Path, PathBuf};
+
+/// What a session reads.
+#[derive(Debug, Clone, Default)]
+pub struct Inputs {
+    /// The network file (`.yaml`, `.yml`, `.json`, `.obj`, `.dxf`).
+    pub network: PathBuf,
+    /// The material profile, for every stage after the analysis.
+    pub profile: Option<PathBuf>,
+    /// Units, tolerance and precision of the network file.
+    pub read: ReadOptions,
+    /// Size each slot from its node's rotation between the flat state and
+    /// the erected one instead of the profile's blanket tolerance.
+    pub slots_from_flat: bool,
+}
+
+impl Inputs {
+    /// The input files, named as an error names them (`network`, `profile`).
+    pub fn files(&self) -> Vec<(&'static str, &Path)> {
+        let mut v = vec![("network", self.network.as_path())];
+        if let Some(p) = &self.profile {
+            v.push(("profile", p.as_path()));
+        }
+        v
+    }
+}
+
+/// One run of the pipeline: the inputs read once and every stage's output,
+/// each computed the first time it is asked for.
+#[derive(Debug)]
+pub struct Session {
+    inputs: Inputs,
+    profile: Option<Profile>,
+    network: Network,
+    analysis: Option<Analysis>,
+    check: Option<CheckReport>,
+    lines: Option<NetworkLines>,
+    suggestion: Option<Suggestion>,
+    flat: Option<(FlatProblem, FlatState)>,
+    kit: Option<Kit>,
+    nest: Option<Nest>,
+}
+
+/// A stage a session has not run and cannot run on its own (a program
+/// error, not a user's).
+fn not_run(inputs: &Inputs, what: &str) -> Error {
+    Error::output(
+        &inputs.network,
+        format!("internal: {what} was not computed"),
+    )
+}
+
+impl Session {
+    /// Read the profile (when given), then the network.
+    pub fn open(inputs: Inputs) -> Result<Session> {
+        let profile = match &inputs.profile {
+            Some(p) => Some(Profile::load(p)?),
+            None => None,
+        };
+        let network = read::read_network(&inputs.network, inputs.read)?;
+        Ok(Session {
+            inputs,
+            profile,
+            network,
+            analysis: None,
+            check: None,
+            lines: None,
+            suggestion: None,
+            flat: None,
+            kit: None,
+            nest: None,
+        })
+    }
+
+    /// What the session read.
+    pub fn inputs(&self) -> &Inputs {
+        &self.inputs
+    }
+
+    /// The network, validated, in mm.
+    pub fn network(&self) -> &Network {
+        &self.network
+    }
+
+    /// The profile; an error when the session was opened without one.
+    pub fn profile(&self) -> Result<&Profile> {
+        self.profile
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the profile"))
+    }
+
+    /// Nodes, frames, curvatures and node-to-node lengths of every strip.
+    pub fn analysis(&mut self) -> Result<&Analysis> {
+        if self.analysis.is_none() {
+            let opts = AnalysisOptions::for_network(&self.network);
+            self.analysis = Some(analyze(&self.network, opts)?);
+        }
+        self.analysis
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the analysis"))
+    }
+
+    /// The analysis, once it has run.
+    pub fn analysed(&self) -> Option<&Analysis> {
+        self.analysis.as_ref()
+    }
+
+    /// The elastic check of every A and B strip against the profile. The
+    /// lamella lines it integrates are kept for the parts when
+    /// `for_parts` (they are dropped as each strip's parts are made).
+    pub fn check(&mut self, for_parts: bool) -> Result<&CheckReport> {
+        if self.check.is_none() {
+            self.analysis()?;
+            let (Some(an), Some(profile)) = (&self.analysis, &self.profile) else {
+                return Err(not_run(&self.inputs, "the profile"));
+            };
+            let (report, lines) = crate::check::check(an, profile, for_parts);
+            self.check = Some(report);
+            self.lines = for_parts.then_some(lines);
+        }
+        self.check
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the check"))
+    }
+
+    /// The check, once it has run.
+    pub fn checked(&self) -> Option<&CheckReport> {
+        self.check.as_ref()
+    }
+
+    /// The largest lamella section at which every strip passes
+    /// (`check --suggest`).
+    pub fn suggestion(&mut self) -> Result<&Suggestion> {
+        if self.suggestion.is_none() {
+            self.analysis()?;
+            let (Some(an), Some(profile)) = (&self.analysis, &self.profile) else {
+                return Err(not_run(&self.inputs, "the profile"));
+            };
+            self.suggestion = Some(crate::check::suggest(an, profile));
+        }
+        self.suggestion
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the suggestion"))
+    }
+
+    /// The suggestion, once it has run.
+    pub fn suggested(&self) -> Option<&Suggestion> {
+        self.suggestion.as_ref()
+    }
+
+    /// The flat assembly state: the problem (A×B nodes, strips, stiffness)
+    /// and its solution. An error for a two-level profile (no flat state).
+    pub fn flat(&mut self) -> Result<(&FlatProblem, &FlatState)> {
+        if self.flat.is_none() {
+            self.analysis()?;
+            let (Some(an), Some(profile)) = (&self.analysis, &self.profile) else {
+                return Err(not_run(&self.inputs, "the profile"));
+            };
+            let problem = crate::flat::problem(an, profile)?;
+            let state = crate::flat::solve(&problem);
+            self.flat = Some((problem, state));
+        }
+        self.flat
+            .as_ref()
+            .map(|(p, s)| (p, s))
+            .ok_or_else(|| not_run(&self.inputs, "the flat state"))
+    }
+
+    /// The flat state, once solved.
+    pub fn flat_state(&self) -> Option<(&FlatProblem, &FlatState)> {
+        self.flat.as_ref().map(|(p, s)| (p, s))
+    }
+
+    /// Every part to cut: after the flat state when slots are sized from
+    /// it, then the check (whose lamella lines the parts are carried onto).
+    pub fn kit(&mut self) -> Result<&Kit> {
+        if self.kit.is_none() {
+            let rotations = if self.inputs.slots_from_flat {
+                Some(self.flat()?.1.rotations())
+            } else {
+                None
+            };
+            if self.check.is_none() {
+                self.check(true)?;
+            }
+            let lines = self.lines.take().unwrap_or_default();
+            let (Some(an), Some(profile)) = (&self.analysis, &self.profile) else {
+                return Err(not_run(&self.inputs, "the profile"));
+            };
+            self.kit = Some(crate::fabricate::fabricate(
+                &self.network,
+                an,
+                profile,
+                rotations.as_ref(),
+                lines,
+            )?);
+        }
+        self.kit
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the parts"))
+    }
+
+    /// The parts, once they are made.
+    pub fn made(&self) -> Option<&Kit> {
+        self.kit.as_ref()
+    }
+
+    /// The parts nested onto the profile's stock, with `beside` run on the
+    /// kit at the same time (the nest is mostly one thread); returns what
+    /// `beside` returned.
+    pub fn nest_with<R: Send>(&mut self, beside: impl FnOnce(&Kit) -> R + Send) -> Result<R> {
+        self.kit()?;
+        let (Some(kit), Some(profile)) = (&self.kit, &self.profile) else {
+            return Err(not_run(&self.inputs, "the parts"));
+        };
+        let (nest, r) = rayon::join(|| crate::nest::nest(kit, profile), || beside(kit));
+        self.nest = Some(nest?);
+        Ok(r)
+    }
+
+    /// The nest onto the profile's stock.
+    pub fn nest(&mut self) -> Result<&Nest> {
+        if self.nest.is_none() {
+            self.nest_with(|_| ())?;
+        }
+        self.nest
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the nest"))
+    }
+
+    /// The nest, once it has run.
+    pub fn nested(&self) -> Option<&Nest> {
+        self.nest.as_ref()
+    }
+
+    /// Let the analysis go, and what only the parts needed of it (the
+    /// check's report, its lamella lines, the flat state): a big network's
+    /// analysis and kit need not both stay. The stages that need it must
+    /// have run (the plan of the analysis is made before).
+    pub fn release_analysis(&mut self) {
+        self.analysis = None;
+        self.check = None;
+        self.lines = None;
+        self.suggestion = None;
+        self.flat = None;
+    }
+
+    /// The network, the session done with.
+    pub fn into_network(self) -> Network {
+        self.network
+    }
+
+    /// The plan of what has run: strips and nodes always; the profile and
+    /// the check once checked (with the suggestion when made); the flat
+    /// state when `with_flat` and it has been solved; the parts, their
+    /// nest and the takeoff when made.
+    pub fn plan(&mut self, with_flat: bool) -> Result<Plan> {
+        let mut plan = self.plan_of_analysis()?;
+        if with_flat {
+            if let Some((p, s)) = &self.flat {
+                crate::plan::add_flat(&mut plan, p, s);
+            }
+        }
+        if let Some(kit) = &self.kit {
+            crate::plan::add_parts(&mut plan, kit);
+            if let (Some(nest), Some(profile)) = (&self.nest, &self.profile) {
+                crate::plan::add_nest(&mut plan, kit, nest);
+                crate::plan::add_takeoff(&mut plan, kit, nest, profile);
+            }
+        }
+        Ok(plan)
+    }
+
+    /// The plan's strips, nodes and check (the analysis must have run).
+    fn plan_of_analysis(&mut self) -> Result<Plan> {
+        self.analysis()?;
+        let Some(an) = &self.analysis else {
+            return Err(not_run(&self.inputs, "the analysis"));
+        };
+        let checked = match (&self.profile, &self.check) {
+            (Some(profile), Some(report)) => Some(Checked {
+                profile,
+                report,
+                suggestion: self.suggestion.as_ref(),
+            }),
+            _ => None,
+        };
+        let model = Model::new(&self.network, an, checked);
+        Ok(crate::plan::build(&self.network, an, &model))
+    }
+
+    /// The warnings of the analysis and of the parts, one line each.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w: Vec<String> = self
+            .analysis
+            .iter()
+            .flat_map(|a| a.warnings().iter().map(|w| w.to_string()))
+            .collect();
+        if let Some(kit) = &self.kit {
+            w.extend(kit.warnings.iter().cloned());
+        }
+        w
+    }
+}
+
+/// Refuse to write `out` when it is one of the `inputs` (the same file by
+/// canonical path, or by device and inode: symlinks and hard links too).
+pub fn refuse_inputs(out: &Path, inputs: &[(&str, &Path)]) -> Result<()> {
+    if !out.exists() {
+        return Ok(());
+    }
+    for (what, input) in inputs {
+        if read::same_file(out, input) {
+            return Err(Error::output(
+                out,
+                format!(
+                    "is the {what} ({}): refusing to overwrite an input; choose another output",
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

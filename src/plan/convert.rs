@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use std::path::Path;
 
 /// Add the flat state to a plan.
-pub fn add_flat(plan: &mut Plan, st: &crate::flat::FlatState) {
+pub fn add_flat(plan: &mut Plan, pr: &crate::flat::FlatProblem, st: &crate::flat::FlatState) {
     plan.flat = Some(PlanFlat {
         converged: st.converged,
         iterations: st.iterations,
@@ -50,6 +50,27 @@ pub fn add_flat(plan: &mut Plan, st: &crate::flat::FlatState) {
                 utilization: round(s.utilization, UTIL),
             })
             .collect(),
+        drawing: FlatDrawing {
+            strips: pr
+                .strips
+                .iter()
+                .map(|s| FlatDrawingStrip {
+                    id: s.id.clone(),
+                    family_a: s.family == crate::network::Family::A,
+                    nodes: s.nodes.clone(),
+                    lengths_mm: s.lengths_mm.clone(),
+                })
+                .collect(),
+            nodes: st
+                .nodes
+                .iter()
+                .map(|n| FlatDrawingNode {
+                    node: n.node,
+                    position_mm: n.position_mm,
+                    rotation_deg: n.rotation_deg,
+                })
+                .collect(),
+        },
     });
 }
 
@@ -169,6 +190,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
             angle_deg: round(n.angle_deg, DEG),
             oriented_angle_deg: round(n.oriented_angle_deg, DEG),
             gap_mm: round(n.gap_mm, MM),
+            joint: String::new(),
         })
         .collect();
     let sm = &model.summary;
@@ -194,8 +216,8 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         .collect();
     let (profile, check) = match &model.check {
         Some(c) => (
-            Some(plan_profile(&c.profile)),
-            Some(plan_check(&c.report, c.suggestion.as_ref())),
+            Some(plan_profile(c.profile)),
+            Some(plan_check(c.report, c.suggestion)),
         ),
         None => (None, None),
     };
@@ -221,6 +243,8 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         sheets: None,
         nesting: None,
         flat: None,
+        curves: Vec::new(),
+        takeoff: None,
     }
 }
 
@@ -343,6 +367,79 @@ pub fn plan_parts(kit: &crate::fabricate::Kit) -> Vec<PlanPart> {
 pub fn set_parts(plan: &mut Plan, parts: Vec<PlanPart>, kit: &crate::fabricate::Kit) {
     plan.parts = Some(parts);
     add_kit_summary(plan, kit);
+    add_joints(plan);
+}
+
+/// Name each node's joint ([`PlanNode::joint`]) from the profile's joint
+/// system and the parts made: the star washer's class of the node's
+/// (rounded) angle where the kit has washers, a stud where it has studs.
+fn add_joints(plan: &mut Plan) {
+    use crate::fabricate::washer::{angle_class_deg, washer_id};
+    let system = plan
+        .profile
+        .as_ref()
+        .map(|p| p.joint_system.as_str())
+        .unwrap_or("");
+    let has = |kind: &str| {
+        plan.parts
+            .as_ref()
+            .is_some_and(|p| p.iter().any(|q| q.kind == kind))
+    };
+    let (washers, studs) = (has("washer"), has("stud"));
+    let family: std::collections::HashMap<&str, &str> = plan
+        .strips
+        .iter()
+        .map(|s| (s.id.as_str(), s.family.as_str()))
+        .collect();
+    let joints: Vec<String> = plan
+        .nodes
+        .iter()
+        .map(|n| {
+            let grid =
+                family.get(n.a.as_str()) == Some(&"A") && family.get(n.b.as_str()) == Some(&"B");
+            if !grid {
+                "edge".to_string()
+            } else if washers {
+                washer_id(angle_class_deg(n.angle_deg))
+            } else if studs {
+                "ST".to_string()
+            } else if system == "interlocking" {
+                "slots".to_string()
+            } else {
+                "bolt".to_string()
+            }
+        })
+        .collect();
+    for (n, j) in plan.nodes.iter_mut().zip(joints) {
+        n.joint = j;
+    }
+}
+
+/// Add the network's curves (their points, world frame) for the drawings
+/// of the whole grid.
+pub fn add_curves(plan: &mut Plan, curves: Vec<crate::network::Curve>) {
+    plan.curves = curves
+        .into_iter()
+        .map(|c| PlanCurve {
+            id: c.id,
+            points_mm: c.points_world_mm.iter().map(|p| [p.x, p.y, p.z]).collect(),
+        })
+        .collect();
+}
+
+/// Add the material takeoff of the kit as nested.
+pub fn add_takeoff(
+    plan: &mut Plan,
+    kit: &crate::fabricate::Kit,
+    nest: &crate::nest::Nest,
+    profile: &Profile,
+) {
+    plan.takeoff = Some(super::takeoff::takeoff(
+        &plan.network.name,
+        kit,
+        nest,
+        profile,
+    ));
 }
 
 /// One part as plan.json writes it (rounded); its round holes only as

@@ -5,13 +5,16 @@
 //! bytes in every file drawn from it.
 
 use serde::{Deserialize, Serialize};
+use takeoff::Takeoff;
 
 mod convert;
 pub mod model;
 pub mod sparrow;
 pub mod takeoff;
 
-pub use convert::{add_flat, add_nest, add_parts, build, plan_parts, round, set_parts};
+pub use convert::{
+    add_curves, add_flat, add_nest, add_parts, add_takeoff, build, plan_parts, round, set_parts,
+};
 
 /// The schema name written into every plan; later stages add fields, never rename.
 pub const SCHEMA: &str = "lamella-plan/3";
@@ -63,6 +66,24 @@ pub struct Plan {
     /// The flat assembly state (added by `flat`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flat: Option<PlanFlat>,
+    /// The network's curves as read, for drawings of the whole grid (the
+    /// assembly sheets' overview). Not in plan.json, which holds the
+    /// strips' figures, not their points.
+    #[serde(skip)]
+    pub curves: Vec<PlanCurve>,
+    /// The material takeoff (added with the nest). Not in plan.json: it
+    /// is written beside it as takeoff.csv and takeoff.json.
+    #[serde(skip)]
+    pub takeoff: Option<Takeoff>,
+}
+
+/// A curve's points in the world frame, mm (the network's, as read).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanCurve {
+    /// The curve's id (a strip id of the plan).
+    pub id: String,
+    /// Its points, world frame, mm.
+    pub points_mm: Vec<[f64; 3]>,
 }
 
 /// The flat state of an interlocking grid (`lamella flat`).
@@ -88,6 +109,44 @@ pub struct PlanFlat {
     pub nodes: Vec<PlanFlatNode>,
     /// Per A/B strip.
     pub strips: Vec<PlanFlatStrip>,
+    /// The flat state's own numbers for drawing it (`flat.svg`), not
+    /// rounded; not in plan.json.
+    #[serde(skip)]
+    pub drawing: FlatDrawing,
+}
+
+/// The flat state as drawn: its strips through their nodes and each
+/// node's floor position and rotation, unrounded.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FlatDrawing {
+    /// Per A/B strip of the flat problem.
+    pub strips: Vec<FlatDrawingStrip>,
+    /// Per A×B node of the flat problem (indexed by the strips' `nodes`).
+    pub nodes: Vec<FlatDrawingNode>,
+}
+
+/// A strip of the flat state as drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatDrawingStrip {
+    /// Strip id.
+    pub id: String,
+    /// Family A (else B).
+    pub family_a: bool,
+    /// Its nodes in order, indices into [`FlatDrawing::nodes`].
+    pub nodes: Vec<usize>,
+    /// Its node-to-node lengths, mm.
+    pub lengths_mm: Vec<f64>,
+}
+
+/// A node of the flat state as drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatDrawingNode {
+    /// Node id (plan.json's).
+    pub node: usize,
+    /// Floor position, [x, y] mm.
+    pub position_mm: [f64; 2],
+    /// Erected − flat, degrees.
+    pub rotation_deg: f64,
 }
 
 /// A node of the flat state.
@@ -621,6 +680,12 @@ pub struct PlanNode {
     pub oriented_angle_deg: f64,
     /// Distance between the two curves at the node, mm (at most the tolerance).
     pub gap_mm: f64,
+    /// What joins the two curves, as the node schedule names it: the
+    /// star washer's part id (`W90`), `ST` (a stud), `slots`, `bolt`, or
+    /// `edge` for a node on an edge strip; empty before the parts are
+    /// made. Not in plan.json.
+    #[serde(skip)]
+    pub joint: String,
 }
 
 /// The name of the orientation mark in plan.json.

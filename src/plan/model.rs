@@ -75,14 +75,14 @@ pub struct StripModel {
 }
 
 /// The profile a network was checked against, and the results.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Checked {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Checked<'a> {
     /// The profile checked against (validated).
-    pub profile: Profile,
+    pub profile: &'a Profile,
     /// Per strip and per lamella: stresses, utilisation, governing station.
-    pub report: CheckReport,
+    pub report: &'a CheckReport,
     /// What to change in the section so every strip passes, when asked for (`check --suggest`).
-    pub suggestion: Option<Suggestion>,
+    pub suggestion: Option<&'a Suggestion>,
 }
 
 /// The finished model of a network.
@@ -94,67 +94,54 @@ pub struct Checked {
 /// strip's nodes in the strip's order at ascending stations on its own line,
 /// the last at most its length.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Model {
+pub struct Model<'a> {
     /// Counts, lengths and extreme values over the whole network.
     pub summary: Summary,
     /// One per strip, index-aligned with `Analysis::strips` (and the network's curves).
     pub strips: Vec<StripModel>,
     /// Added by `check`.
-    pub check: Option<Checked>,
+    pub check: Option<Checked<'a>>,
 }
 
-impl Model {
-    /// Without a profile: one lamella per A/B strip, on the centre line.
-    pub fn new(net: &Network, an: &Analysis) -> Model {
-        let lines: Vec<Vec<LamellaLine>> = an
-            .strips
-            .par_iter()
-            .map(|s| {
-                if s.family == Family::Edge {
-                    Vec::new()
-                } else {
-                    vec![LamellaLine::new(
-                        s,
-                        &an.curves[s.curve],
-                        LamellaOffset::CENTRE,
-                    )]
+impl<'a> Model<'a> {
+    /// The model of an analysed network: without a check, one lamella per
+    /// A/B strip on the centre line; after the check, the profile's
+    /// lamellas (taken from the report, which computed their lines), the
+    /// profile and the results.
+    pub fn new(net: &Network, an: &Analysis, check: Option<Checked<'a>>) -> Model<'a> {
+        let lines: Vec<Vec<LamellaLine>> = match &check {
+            None => an
+                .strips
+                .par_iter()
+                .map(|s| {
+                    if s.family == Family::Edge {
+                        Vec::new()
+                    } else {
+                        vec![LamellaLine::new(
+                            s,
+                            &an.curves[s.curve],
+                            LamellaOffset::CENTRE,
+                        )]
+                    }
+                })
+                .collect::<Vec<_>>(),
+            Some(c) => {
+                let mut lines: Vec<Vec<LamellaLine>> = vec![Vec::new(); an.strips.len()];
+                for sc in &c.report.strips {
+                    lines[sc.strip] = sc.lamellas.iter().map(|l| l.line.clone()).collect();
                 }
-            })
-            .collect::<Vec<_>>();
-        Model::build(net, an, lines, None)
-    }
-
-    /// After the check: the profile's lamellas (taken from the report, which
-    /// computed their lines), the profile and the results.
-    pub fn checked(
-        net: &Network,
-        an: &Analysis,
-        profile: Profile,
-        report: CheckReport,
-        suggestion: Option<Suggestion>,
-    ) -> Model {
-        let mut lines: Vec<Vec<LamellaLine>> = vec![Vec::new(); an.strips.len()];
-        for sc in &report.strips {
-            lines[sc.strip] = sc.lamellas.iter().map(|l| l.line.clone()).collect();
-        }
-        Model::build(
-            net,
-            an,
-            lines,
-            Some(Checked {
-                profile,
-                report,
-                suggestion,
-            }),
-        )
+                lines
+            }
+        };
+        Model::build(net, an, lines, check)
     }
 
     fn build(
         net: &Network,
         an: &Analysis,
         lines: Vec<Vec<LamellaLine>>,
-        check: Option<Checked>,
-    ) -> Model {
+        check: Option<Checked<'a>>,
+    ) -> Model<'a> {
         let strips = an
             .strips
             .iter()

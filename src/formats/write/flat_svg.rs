@@ -4,22 +4,22 @@
 //! rotation it turns through on erection (degrees, counter-clockwise
 //! positive, A → B). Deterministic: fixed decimals.
 
-use crate::flat::{FlatProblem, FlatState};
+use crate::plan::FlatDrawing;
 use std::fmt::Write;
 
 /// Margin round the grid, mm.
 const MARGIN_MM: f64 = 200.0;
 
 /// The SVG text of a flat state; `title` names the project.
-pub fn to_svg(pr: &FlatProblem, st: &FlatState, title: &str) -> String {
+pub fn to_svg(flat: &FlatDrawing, title: &str) -> String {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for n in &st.nodes {
+    for n in &flat.nodes {
         for k in 0..2 {
             lo[k] = lo[k].min(n.position_mm[k]);
             hi[k] = hi[k].max(n.position_mm[k]);
         }
     }
-    if st.nodes.is_empty() {
+    if flat.nodes.is_empty() {
         lo = [0.0; 2];
         hi = [0.0; 2];
     }
@@ -31,12 +31,13 @@ pub fn to_svg(pr: &FlatProblem, st: &FlatState, title: &str) -> String {
     // Sheet coordinates: x from the left margin, y down from the top.
     let at = |p: [f64; 2]| (p[0] - x0, h - (p[1] - y0));
     let text_mm = (0.06
-        * (pr
+        * (flat
             .strips
             .iter()
             .flat_map(|s| s.lengths_mm.iter())
             .sum::<f64>()
-            / pr.strips
+            / flat
+                .strips
                 .iter()
                 .map(|s| s.lengths_mm.len())
                 .sum::<usize>()
@@ -54,17 +55,14 @@ pub fn to_svg(pr: &FlatProblem, st: &FlatState, title: &str) -> String {
         r##"<g id="STRIPS" fill="none" stroke-width="{:.2}" stroke-linecap="round" stroke-linejoin="round">"##,
         0.15 * text_mm
     );
-    for strip in &pr.strips {
+    for strip in &flat.strips {
         if strip.nodes.len() < 2 {
             continue;
         }
-        let colour = match strip.family {
-            crate::network::Family::A => "#c00000",
-            _ => "#0040c0",
-        };
+        let colour = if strip.family_a { "#c00000" } else { "#0040c0" };
         let _ = write!(s, r#"<polyline stroke="{colour}" points=""#);
         for (k, &i) in strip.nodes.iter().enumerate() {
-            let (x, y) = at(st.nodes[i].position_mm);
+            let (x, y) = at(flat.nodes[i].position_mm);
             let _ = write!(s, "{}{x:.2},{y:.2}", if k > 0 { " " } else { "" });
         }
         let _ = writeln!(s, r#""/>"#);
@@ -75,14 +73,14 @@ pub fn to_svg(pr: &FlatProblem, st: &FlatState, title: &str) -> String {
         r##"<g id="STRIP-LABELS" font-family="sans-serif" font-size="{:.1}" text-anchor="middle">"##,
         1.4 * text_mm
     );
-    for strip in &pr.strips {
+    for strip in &flat.strips {
         if strip.nodes.len() < 2 {
             continue;
         }
         let n = strip.nodes.len();
         for (end, next) in [(0, 1), (n - 1, n - 2)] {
-            let p = st.nodes[strip.nodes[end]].position_mm;
-            let q = st.nodes[strip.nodes[next]].position_mm;
+            let p = flat.nodes[strip.nodes[end]].position_mm;
+            let q = flat.nodes[strip.nodes[next]].position_mm;
             let d = [p[0] - q[0], p[1] - q[1]];
             let len = d[0].hypot(d[1]).max(1e-9);
             // Beyond the end node, along the strip.
@@ -105,7 +103,7 @@ pub fn to_svg(pr: &FlatProblem, st: &FlatState, title: &str) -> String {
         r##"<g id="NODES" font-family="sans-serif" font-size="{:.1}" fill="#000000">"##,
         text_mm
     );
-    for n in &st.nodes {
+    for n in &flat.nodes {
         let (x, y) = at(n.position_mm);
         let _ = writeln!(
             s,

@@ -6,5 +6,6 @@ pub mod dxf;
 pub mod finite;
 pub mod flat_svg;
 pub mod plan_json;
+pub mod sparrow;
 pub mod svg;
 pub mod takeoff;

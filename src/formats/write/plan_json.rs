@@ -354,8 +354,7 @@ pub fn first_non_finite(plan: &mut Plan) -> Option<String> {
     rest.or_else(|| {
         plan.parts.as_deref().and_then(|parts| {
             parts.par_iter().enumerate().find_map_first(|(i, p)| {
-                super::finite::first_non_finite(p)
-                    .map(|f| format!("parts[{i}].{f}"))
+                super::finite::first_non_finite(p).map(|f| format!("parts[{i}].{f}"))
             })
         })
     })

@@ -32,7 +32,6 @@ pub mod strips;
 pub mod tables;
 
 use crate::error::{Error, Result};
-use crate::plan::takeoff::Takeoff;
 use crate::plan::Plan;
 use canvas::{Align, Canvas, BLACK, GREY};
 use rayon::prelude::*;
@@ -75,24 +74,11 @@ impl Paper {
     }
 }
 
-/// A curve's points in the world frame, mm (the network's, as read).
-#[derive(Debug, Clone, PartialEq)]
-pub struct CurvePoints {
-    /// The curve's id (a strip id of the plan).
-    pub id: String,
-    /// Its points, world frame, mm.
-    pub points_mm: Vec<[f64; 3]>,
-}
-
 /// What the assembly sheets are drawn from.
 #[derive(Debug, Clone, Copy)]
 pub struct AssemblyInput<'a> {
     /// The plan with its parts and sheets (`lamella build`'s plan.json).
     pub plan: &'a Plan,
-    /// The takeoff written beside it.
-    pub takeoff: &'a Takeoff,
-    /// Every curve's points, for the overview.
-    pub curves: &'a [CurvePoints],
     /// Paper size.
     pub paper: Paper,
     /// Names the plan in errors.
@@ -286,6 +272,12 @@ pub fn sections_with(
             "the plan has no parts or no sheets: the assembly sheets need a built kit",
         ));
     };
+    let Some(takeoff) = &plan.takeoff else {
+        return Err(Error::output(
+            input.plan_path,
+            "the plan has no takeoff: the assembly sheets need a nested kit",
+        ));
+    };
     let seal =
         |pages: Vec<Page>| -> Vec<SealedPage> { pages.into_par_iter().map(Page::seal).collect() };
     // The heavy sections in parallel; each is deterministic on its own.
@@ -302,7 +294,7 @@ pub fn sections_with(
                     (
                         seal(tables::node_pages(plan, &frame)),
                         seal(tables::block_pages(plan, &frame)),
-                        tables::takeoff_page(input.takeoff, &frame).seal(),
+                        tables::takeoff_page(takeoff, &frame).seal(),
                         seal(tables::check_pages(plan, &frame)),
                     )
                 },

@@ -20,7 +20,7 @@ const LABEL_PT: f64 = 6.0;
 
 /// The overview page (none when there are no curves).
 pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
-    let curves = input.curves;
+    let curves = &input.plan.curves;
     if curves.is_empty() {
         return Vec::new();
     }

@@ -124,43 +124,10 @@ pub const NODE_COLUMNS: [Column; 7] = [
 
 /// The node schedule: every node of the plan, in id order.
 pub fn node_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
-    let system = plan
-        .profile
-        .as_ref()
-        .map(|p| p.joint_system.as_str())
-        .unwrap_or("");
-    let washers = plan
-        .parts
-        .as_ref()
-        .is_some_and(|p| p.iter().any(|q| q.kind == "washer"));
-    let studs = plan
-        .parts
-        .as_ref()
-        .is_some_and(|p| p.iter().any(|q| q.kind == "stud"));
-    // Families by strip id, looked up once.
-    let fam: std::collections::HashMap<&str, &str> = plan
-        .strips
-        .iter()
-        .map(|s| (s.id.as_str(), s.family.as_str()))
-        .collect();
     let rows: Vec<Row> = plan
         .nodes
         .iter()
         .map(|n| {
-            let grid = fam.get(n.a.as_str()) == Some(&"A") && fam.get(n.b.as_str()) == Some(&"B");
-            let joint = if !grid {
-                "edge".to_string()
-            } else if washers {
-                crate::fabricate::washer::washer_id(crate::fabricate::washer::angle_class_deg(
-                    n.angle_deg,
-                ))
-            } else if studs {
-                "ST".to_string()
-            } else if system == "interlocking" {
-                "slots".to_string()
-            } else {
-                "bolt".to_string()
-            };
             (
                 vec![
                     n.id.to_string(),
@@ -169,7 +136,7 @@ pub fn node_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
                     n.b.clone(),
                     mm0(n.station_b_mm),
                     format!("{}°", fixed(n.angle_deg, 1)),
-                    joint,
+                    n.joint.clone(),
                 ],
                 None,
             )
@@ -562,7 +529,9 @@ fn small_table(
 /// engraved marks and the contents (`first`: section, first page, pages).
 pub fn cover_page(input: &AssemblyInput, frame: &Frame, first: &[(&str, usize, usize)]) -> Page {
     let plan = input.plan;
-    let t = input.takeoff;
+    // A plan with sheets has its takeoff ([`super::sections`] refuses one without).
+    let none = Takeoff::default();
+    let t = input.plan.takeoff.as_ref().unwrap_or(&none);
     let mut page = Page::new("Cover", "Assembly sheets", None);
     let c = &mut page.canvas;
     let x0 = frame.x0_mm;

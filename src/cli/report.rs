@@ -1,0 +1,468 @@
+//! What each command prints, and its exit status: 0 when done and
+//! passing, 3 when the check or the flat state fails (warnings and errors
+//! go to stderr, one line each).
+
+use lamella::pipeline::build::BuildReport;
+use lamella::pipeline::commands::{Done, Traced};
+use lamella::profile::Profile;
+use std::process::ExitCode;
+
+/// Exit status of a failed verdict (overstressed, or a flat state that does
+/// not erect).
+const FAIL: u8 = 3;
+
+fn warn(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
+/// The build's progress bar (hidden when `quiet`, or when stderr is not a
+/// terminal: indicatif's default target).
+pub fn progress(quiet: bool) -> indicatif::ProgressBar {
+    let pb = if quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new_spinner()
+    };
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} {bar:30} {pos}/{len} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    pb.enable_steady_tick(std::time::Duration::from_millis(120));
+    pb
+}
+
+/// `lamella build`: the summary, or why nothing was written.
+pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
+    warn(&r.warnings);
+    if r.files.is_empty() {
+        if let Some(g) = &r.governing {
+            eprintln!(
+                "error: {} of {} strips overstressed (worst {} lamella {} at {:.2} × the design strength, {} governs): nothing written; see `lamella check`, or pass --allow-overstress",
+                r.overstressed, r.strips, g.strip, g.lamella, g.utilization, g.governs
+            );
+        }
+        return ExitCode::from(FAIL);
+    }
+    if quiet {
+        return ExitCode::SUCCESS;
+    }
+    let t = &r.takeoff;
+    println!(
+        "{} with {}: {} strips, {} edge strips, {} nodes",
+        r.network, r.profile, r.strips, r.edges, r.nodes
+    );
+    for (kind, distinct, count) in &r.kinds {
+        println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
+    }
+    println!(
+        "sheets: {} (lower bound {}), utilisation {:.1} %",
+        r.sheets_used,
+        r.lower_bound_sheets,
+        100.0 * r.utilization
+    );
+    println!(
+        "lamellas: {:.1} m of strip; mass {:.1} kg",
+        t.totals.lamella_length_m, t.totals.mass_kg
+    );
+    if let (Some(cost), Some(cur)) = (t.totals.stock_cost, &t.currency) {
+        println!("stock cost: {cost:.2} {cur}");
+    }
+    for h in t.hardware.iter().filter(|h| !h.made) {
+        println!("  {:<17} {:>8}  {}", h.item, h.count, h.designation);
+    }
+    match &r.governing {
+        Some(g) if r.passes() => println!(
+            "elastic check: PASS, highest utilisation {:.2} ({} lamella {}, {} governs)",
+            g.utilization, g.strip, g.lamella, g.governs
+        ),
+        Some(g) => println!(
+            "elastic check: FAIL (--allow-overstress): {} strips overstressed, worst {} lamella {} at {:.2}",
+            r.overstressed, g.strip, g.lamella, g.utilization
+        ),
+        None => println!("elastic check: no strips"),
+    }
+    println!(
+        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, assembly.pdf, sheets/)",
+        r.files.len(),
+        r.out.display()
+    );
+    ExitCode::SUCCESS
+}
+
+/// `lamella nodes`.
+pub fn nodes(done: &Done) -> ExitCode {
+    let s = &done.session;
+    warn(&s.warnings());
+    let net = s.network();
+    if let Some(plan) = &done.plan {
+        let sm = &plan.summary;
+        println!(
+            "{}: {} curves ({} points), {} nodes, {:.1} m of strip",
+            net.name,
+            sm.curves,
+            net.point_count(),
+            sm.nodes,
+            sm.total_length_mm / 1000.0
+        );
+        if let (Some(lo), Some(hi)) = (sm.shortest_node_to_node_mm, sm.longest_node_to_node_mm) {
+            println!("node-to-node length: shortest {lo:.2} mm, longest {hi:.2} mm");
+        }
+        if let (Some(lo), Some(hi)) = (sm.min_angle_deg, sm.max_angle_deg) {
+            println!("crossing angle: {lo:.3}° to {hi:.3}°");
+        }
+        println!(
+            "largest normal-curvature residual kn: {:.6} 1/m",
+            sm.max_normal_curvature_per_m
+        );
+    }
+    wrote(done);
+    ExitCode::SUCCESS
+}
+
+fn wrote(done: &Done) {
+    for f in &done.written {
+        println!("wrote {}", f.display());
+    }
+}
+
+/// `lamella check`: the table of strips by utilisation, the verdict, the
+/// suggestion.
+pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
+    let s = &done.session;
+    warn(&s.warnings());
+    let (Some(report), Ok(profile)) = (s.checked(), s.profile()) else {
+        return ExitCode::from(1);
+    };
+    println!(
+        "{} on {}: {} × {} mm, {} per strip; f_d = {:.1} MPa; limits: R ≥ {:.0} mm in pure bending, twist ≤ {:.1} °/m in pure twist",
+        profile.name,
+        s.network().name,
+        profile.section.thickness_mm,
+        profile.section.height_mm,
+        profile.section.per_strip,
+        report.design_strength_mpa,
+        report.limit_bending_radius_mm,
+        report.limit_twist_deg_per_m
+    );
+    println!(
+        "{:<12} {:>7} {:>11} {:>11} {:>13} {:>10}  governs",
+        "strip", "lamella", "utilisation", "station mm", "min radius mm", "twist °/m"
+    );
+    let ranking = report.ranking();
+    for &i in ranking.iter().take(top.unwrap_or(usize::MAX)) {
+        let s = &report.strips[i];
+        let l = s.worst();
+        println!(
+            "{:<12} {:>7} {:>11.3} {:>11.1} {:>13} {:>10.2}  {}{}",
+            s.id,
+            l.line.offset.number,
+            l.utilization,
+            l.governing_station_mm,
+            l.min_bending_radius_mm
+                .map_or("straight".to_string(), |r| format!("{r:.0}")),
+            l.max_twist_deg_per_m,
+            l.governs.as_str(),
+            if l.utilization > 1.0 {
+                "  OVERSTRESSED"
+            } else {
+                ""
+            }
+        );
+    }
+    if let Some(n) = top.filter(|n| *n < ranking.len()) {
+        println!("… {} more strips", ranking.len() - n);
+    }
+    let worst = ranking.first().map(|&i| &report.strips[i]);
+    let passes = report.passes();
+    match worst {
+        Some(w) if passes => println!(
+            "PASS: all {} strips bend and twist into place elastically; highest utilisation {:.2} ({} lamella {}, {} governs)",
+            report.strips.len(),
+            w.worst().utilization,
+            w.id,
+            w.worst().line.offset.number,
+            w.worst().governs.as_str()
+        ),
+        Some(w) => println!(
+            "FAIL: {} of {} strips overstressed; worst {} lamella {} at {:.2} × the design strength ({} governs)",
+            report.overstressed(),
+            report.strips.len(),
+            w.id,
+            w.worst().line.offset.number,
+            w.worst().utilization,
+            w.worst().governs.as_str()
+        ),
+        None => println!("no strips"),
+    }
+    if let Some(suggestion) = s.suggested() {
+        print_suggestion(suggestion, profile, passes);
+    }
+    wrote(done);
+    if passes {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(FAIL)
+    }
+}
+
+/// The `--suggest` lines: what to change when failing, the headroom when passing.
+fn print_suggestion(s: &lamella::check::Suggestion, profile: &Profile, passes: bool) {
+    let (t0, h0) = (profile.thickness_mm(), profile.height_mm());
+    // The searches stop at 4 × the profile's value.
+    let bound = |x: f64, cap: f64| {
+        if x >= cap - 1e-9 {
+            format!("{x:.4} mm or more")
+        } else {
+            format!("{x:.4} mm")
+        }
+    };
+    if passes {
+        if let Some(t) = s.max_thickness_mm {
+            println!(
+                "headroom: every strip still passes with lamellas {} thick (now {t0} mm)",
+                bound(t, 4.0 * t0)
+            );
+        }
+        if let Some(h) = s.max_height_mm {
+            println!(
+                "headroom: or {} high at {t0} mm thick (now {h0} mm)",
+                bound(h, 4.0 * h0)
+            );
+        }
+        return;
+    }
+    match s.max_thickness_mm {
+        Some(t) => println!("suggest: every strip passes with lamellas at most {t:.4} mm thick (now {t0} mm)"),
+        None => println!(
+            "suggest: no thickness passes at {h0} mm height: the trapeze stress of the twist alone exceeds f_d"
+        ),
+    }
+    if let Some(h) = s.max_height_mm {
+        println!(
+            "suggest: or keep {t0} mm and make the lamellas at most {h:.4} mm high (now {h0} mm)"
+        );
+    }
+    if let Some((h, t)) = s.height_and_thickness_mm {
+        println!(
+            "suggest: or lower the lamellas to {h:.4} mm and make them at most {t:.4} mm thick"
+        );
+    }
+}
+
+/// `lamella parts` and `lamella nest`: the parts by kind, the nest's line.
+pub fn parts(done: &Done) -> ExitCode {
+    let s = &done.session;
+    // The sparrow instance is written after plan.json.
+    for f in done.written.iter().skip(1) {
+        println!("wrote {}", f.display());
+    }
+    warn(&s.warnings());
+    let (Some(kit), Ok(profile)) = (s.made(), s.profile()) else {
+        return ExitCode::from(1);
+    };
+    let k = &kit.summary;
+    println!(
+        "{} on {}: {} parts to make",
+        profile.name,
+        s.network().name,
+        k.kinds.iter().map(|k| k.2).sum::<u64>()
+    );
+    for (kind, distinct, count) in &k.kinds {
+        println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
+    }
+    println!(
+        "lamellas: {:.1} m of strip; mass {:.1} kg",
+        k.lamella_length_mm / 1000.0,
+        k.mass_kg
+    );
+    if k.stud_bars > 0 {
+        println!("studs: {} bars of stud stock", k.stud_bars);
+    }
+    if let Some(n) = s.nested() {
+        println!("nest: {}", nest_line(profile, n));
+    }
+    if let Some(f) = done.written.first() {
+        println!("wrote {}", f.display());
+    }
+    ExitCode::SUCCESS
+}
+
+/// The nest's line: sheets (or coil length) per stock size, the bounds,
+/// utilisation, cost where priced, time.
+fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
+    let ns = &n.summary;
+    let stock = &profile.stock;
+    let size = |u: &lamella::nest::StockUse| {
+        if stock.sizes[u.size].name.is_some() {
+            u.stock.clone()
+        } else {
+            format!("{} mm", u.stock)
+        }
+    };
+    let mut line = if let (true, Some(used), Some(bound)) =
+        (stock.is_coil(), ns.length_used_mm, ns.length_bound_mm)
+    {
+        format!(
+            "{:.3} m of {} mm coil in {} piece(s) (lower bound {:.3} m)",
+            used / 1000.0,
+            stock.sizes[0].width_mm,
+            ns.sheets_used,
+            bound / 1000.0
+        )
+    } else {
+        let sizes: Vec<String> = n
+            .stock_used
+            .iter()
+            .map(|u| format!("{} of {}", u.sheets, size(u)))
+            .collect();
+        let what = if n.stock_used.len() == 1 {
+            format!("{} sheets of {}", ns.sheets_used, size(&n.stock_used[0]))
+        } else {
+            format!("{} sheets ({})", ns.sheets_used, sizes.join(" + "))
+        };
+        format!(
+            "{what} (lower bound {}: area {}, lanes {})",
+            ns.lower_bound_sheets, ns.area_bound_sheets, ns.lane_bound_sheets
+        )
+    };
+    line += &format!("; utilisation {:.1} %", 100.0 * ns.utilization);
+    if let Some(cost) = ns.cost {
+        let currency = n.currency.as_deref().unwrap_or("");
+        line += &format!(
+            "; cost {cost:.2} {currency} (lower bound {:.2})",
+            ns.cost_bound.unwrap_or(0.0)
+        );
+    }
+    line + &format!("; {:.3} s", ns.seconds)
+}
+
+/// `lamella flat`: the flat state's figures and its verdict.
+pub fn flat(done: &Done) -> ExitCode {
+    let s = &done.session;
+    warn(&s.warnings());
+    let (Some((_, st)), Ok(profile)) = (s.flat_state(), s.profile()) else {
+        return ExitCode::from(1);
+    };
+    let converged = if st.converged {
+        "converged"
+    } else {
+        "NOT converged"
+    };
+    println!(
+        "{} flat ({}): {} nodes, {} strips; footprint {:.0} × {:.0} mm; energy {:.1} N·mm (start {:.1}); {} iterations, {converged} (projected gradient {:.1e}, lengths to {:.1e})",
+        s.network().name,
+        profile.name,
+        st.nodes.len(),
+        st.strips.len(),
+        st.footprint_mm[0],
+        st.footprint_mm[1],
+        st.energy_nmm,
+        st.start_energy_nmm,
+        st.iterations,
+        st.gradient_norm,
+        st.max_length_error
+    );
+    let tolerance = profile.joint.rotation_tolerance_deg;
+    let mut fails = Vec::new();
+    if let Some(i) = st.max_rotation() {
+        let n = &st.nodes[i];
+        println!(
+            "largest rotation: {:+.2}° at node {} (flat {:.2}°, erected {:.2}°); the slots allow ±{tolerance}°",
+            n.rotation_deg, n.node, n.angle_deg, n.erected_angle_deg
+        );
+        if n.rotation_deg.abs() > tolerance {
+            fails.push(format!(
+                "node {} turns {:.2}° on erection, past the rotation tolerance {tolerance}°",
+                n.node,
+                n.rotation_deg.abs()
+            ));
+        }
+    }
+    if let Some(strip) = st
+        .strips
+        .iter()
+        .max_by(|a, b| a.utilization.total_cmp(&b.utilization))
+    {
+        println!(
+            "largest stress while flat: {:.1} MPa in {} (utilisation {:.2})",
+            strip.max_bending_stress_mpa, strip.strip, strip.utilization
+        );
+        if strip.utilization > 1.0 {
+            fails.push(format!(
+                "strip {} is overstressed while flat ({:.2} × the design strength)",
+                strip.strip, strip.utilization
+            ));
+        }
+    }
+    if !st.converged {
+        fails.push("the flat state did not converge".into());
+    }
+    let names: Vec<String> = done
+        .written
+        .iter()
+        .map(|f| f.display().to_string())
+        .collect();
+    println!("wrote {}", names.join(" and "));
+    if fails.is_empty() {
+        println!("PASS: the grid assembles flat and erects within the slots and the strength");
+        ExitCode::SUCCESS
+    } else {
+        println!("FAIL: {}", fails.join("; "));
+        ExitCode::from(FAIL)
+    }
+}
+
+/// `lamella trace`: counts, notes, curves that end elsewhere than the clip.
+pub fn trace(t: &Traced) -> ExitCode {
+    warn(&t.report.warnings);
+    let net = &t.network;
+    let report = &t.report;
+    let length_m: f64 = net
+        .curves
+        .iter()
+        .map(|c| {
+            c.points
+                .windows(2)
+                .map(|w| w[1].distance(w[0]))
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / 1000.0;
+    println!(
+        "{}: {} A, {} B and {} edge curves, {} points, {:.1} m of curve",
+        net.name,
+        report.a_curves,
+        report.b_curves,
+        report.edges,
+        net.curves.iter().map(|c| c.points.len()).sum::<usize>(),
+        length_m
+    );
+    for note in &report.notes {
+        println!("{note}");
+    }
+    let unusual: Vec<String> = report
+        .stops
+        .iter()
+        .filter(|(_, a, b)| {
+            *a != lamella::design::trace::Stop::Clip || *b != lamella::design::trace::Stop::Clip
+        })
+        .map(|(id, a, b)| format!("{id} ({}, {})", a.as_str(), b.as_str()))
+        .collect();
+    if !unusual.is_empty() {
+        const SHOWN: usize = 8;
+        let more = unusual.len().saturating_sub(SHOWN);
+        println!(
+            "curves ending elsewhere than the clip: {}{}",
+            unusual[..unusual.len().min(SHOWN)].join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        );
+    }
+    println!("wrote {}", t.written.display());
+    ExitCode::SUCCESS
+}

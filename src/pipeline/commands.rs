@@ -1,0 +1,222 @@
+//! The commands short of `build`: each asks a [`Session`] for the stage it
+//! stops at, makes its plan and writes its files. Every output path is
+//! checked against the inputs before anything is read; everything is
+//! computed before anything is written.
+
+use super::{refuse_inputs, Inputs, Session};
+use crate::design::DesignReport;
+use crate::error::{Error, Result};
+use crate::formats::out::write_atomic;
+use crate::formats::read;
+use crate::formats::write::{flat_svg, plan_json};
+use crate::network::RawNetwork;
+use crate::plan::Plan;
+use std::path::{Path, PathBuf};
+
+/// What a command made: the session with every stage it ran, the plan (when
+/// one was made) and the files written, in the order written.
+#[derive(Debug)]
+pub struct Done {
+    /// The stages' outputs.
+    pub session: Session,
+    /// The plan written to plan.json, if any.
+    pub plan: Option<Plan>,
+    /// The files written.
+    pub written: Vec<PathBuf>,
+}
+
+/// `DIR/plan.json`.
+fn plan_path(dir: &Path) -> PathBuf {
+    dir.join("plan.json")
+}
+
+/// Write a plan's JSON atomically, refusing one with a NaN or infinite
+/// number (JSON would write it as null).
+pub fn write_plan(target: &Path, plan: &mut Plan) -> Result<()> {
+    if let Some(field) = plan_json::first_non_finite(plan) {
+        return Err(Error::output(
+            target,
+            format!("not written: {field} is not a finite number"),
+        ));
+    }
+    write_atomic(target, plan_json::to_json(plan).as_bytes())
+}
+
+/// `lamella nodes`: nodes, frames and curvatures; `DIR/plan.json`.
+pub fn nodes(inputs: Inputs, out: &Path) -> Result<Done> {
+    let target = plan_path(out);
+    refuse_inputs(&target, &inputs.files())?;
+    let mut session = Session::open(inputs)?;
+    let mut plan = session.plan(false)?;
+    write_plan(&target, &mut plan)?;
+    Ok(Done {
+        session,
+        plan: Some(plan),
+        written: vec![target],
+    })
+}
+
+/// `lamella check`: the elastic check (and, when `suggest`, the largest
+/// section that passes); `DIR/plan.json` when `out` is given.
+pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> {
+    let target = out.map(plan_path);
+    if let Some(t) = &target {
+        refuse_inputs(t, &inputs.files())?;
+    }
+    let mut session = Session::open(inputs)?;
+    session.check(false)?;
+    if suggest {
+        session.suggestion()?;
+    }
+    let mut done = Done {
+        session,
+        plan: None,
+        written: Vec::new(),
+    };
+    if let Some(t) = target {
+        let mut plan = done.session.plan(false)?;
+        write_plan(&t, &mut plan)?;
+        done.plan = Some(plan);
+        done.written.push(t);
+    }
+    Ok(done)
+}
+
+/// How far `lamella parts` goes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum PartsGoal {
+    /// The parts only (`lamella parts`).
+    Parts,
+    /// The parts nested onto stock (`lamella nest`), and the part set as a
+    /// sparrow strip-packing instance into `instance` when given.
+    Nest {
+        /// Where to write the instance.
+        instance: Option<PathBuf>,
+    },
+}
+
+/// `lamella parts` and `lamella nest`: every part (and its nest);
+/// `DIR/plan.json`, and the sparrow instance when asked for.
+pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
+    let target = plan_path(out);
+    refuse_inputs(&target, &inputs.files())?;
+    let instance = match goal {
+        PartsGoal::Nest {
+            instance: Some(file),
+        } => {
+            refuse_inputs(file, &inputs.files())?;
+            Some(file.clone())
+        }
+        _ => None,
+    };
+    let mut session = Session::open(inputs)?;
+    session.kit()?;
+    if let PartsGoal::Nest { .. } = goal {
+        session.nest()?;
+    }
+    let instance_text = match &instance {
+        Some(file) => {
+            let (Some(kit), Ok(profile)) = (session.made(), session.profile()) else {
+                return Err(Error::output(file, "internal: no parts to export"));
+            };
+            let inst = crate::plan::sparrow::instance(&session.network().name, kit, profile);
+            Some(
+                crate::formats::write::sparrow::to_json(&inst)
+                    .map_err(|e| Error::output(file, e))?,
+            )
+        }
+        None => None,
+    };
+    let mut plan = session.plan(false)?;
+    write_plan(&target, &mut plan)?;
+    let mut written = vec![target];
+    if let (Some(file), Some(text)) = (instance, instance_text) {
+        write_atomic(&file, text.as_bytes())?;
+        written.push(file);
+    }
+    Ok(Done {
+        session,
+        plan: Some(plan),
+        written,
+    })
+}
+
+/// `lamella flat`: the flat assembly state; `DIR/plan.json` (with `flat`)
+/// and `DIR/flat.svg`.
+pub fn flat(inputs: Inputs, out: &Path) -> Result<Done> {
+    let target = plan_path(out);
+    let svg_target = out.join("flat.svg");
+    for t in [&target, &svg_target] {
+        refuse_inputs(t, &inputs.files())?;
+    }
+    let mut session = Session::open(inputs)?;
+    session.flat()?;
+    session.check(false)?;
+    let mut plan = session.plan(true)?;
+    let title = format!(
+        "{} — flat assembly layout ({}), mm",
+        session.network().name,
+        session.profile()?.name
+    );
+    let drawing = plan
+        .flat
+        .as_ref()
+        .map(|f| &f.drawing)
+        .cloned()
+        .unwrap_or_default();
+    let svg = flat_svg::to_svg(&drawing, &title);
+    write_plan(&target, &mut plan)?;
+    write_atomic(&svg_target, svg.as_bytes())?;
+    Ok(Done {
+        session,
+        plan: Some(plan),
+        written: vec![target, svg_target],
+    })
+}
+
+/// Decimals of a traced network's coordinates (mm): 1e-6 mm, so rounding
+/// (±5e-7 mm) stays far below what curvature between samples 25 mm apart
+/// can resolve (4·5e-7 / 25² ≈ 3e-9 1/mm).
+pub const COORDINATE_DECIMALS: usize = 6;
+
+/// What `lamella trace` made.
+#[derive(Debug)]
+pub struct Traced {
+    /// The network written.
+    pub network: RawNetwork,
+    /// Counts, notes, warnings and how each curve ended.
+    pub report: DesignReport,
+    /// The file written.
+    pub written: PathBuf,
+}
+
+/// `lamella trace`: the network a trace spec describes, written as a
+/// network file (`.json`, else YAML with normals).
+pub fn trace(spec_path: &Path, out: &Path) -> Result<Traced> {
+    refuse_inputs(out, &[("trace spec", spec_path)])?;
+    let spec = read::trace_spec::load(spec_path)?;
+    if let Some(mesh) = crate::design::mesh_source::mesh_path(&spec, spec_path) {
+        refuse_inputs(out, &[("mesh", &mesh)])?;
+    }
+    let (network, report) = crate::design::design(&spec, spec_path, &read::mesh::read_mesh)?;
+    let comment = format!(
+        "Traced by lamella {} from {}.\nRegenerate: lamella trace {} --out {}",
+        env!("CARGO_PKG_VERSION"),
+        spec_path
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        spec_path.display(),
+        out.display()
+    );
+    let text = match out.extension().and_then(|e| e.to_str()) {
+        Some("json") => read::network_file::to_json(&network, COORDINATE_DECIMALS),
+        _ => read::network_file::to_yaml(&network, COORDINATE_DECIMALS, &comment),
+    };
+    write_atomic(out, text.as_bytes())?;
+    Ok(Traced {
+        network,
+        report,
+        written: out.to_path_buf(),
+    })
+}
