@@ -1,6 +1,6 @@
 //! Benchmark of the flat state on generated Enneper networks of n × n
-//! curves with the prototype's cells (n = 50, 100, 200; n = 100 is the
-//! issue's 10,000-node grid) and the steel profile: the solve alone (the
+//! curves with the prototype's cells (n = 50, 100, 200; n = 100 is a
+//! 10,000-node grid) and the steel profile: the solve alone (the
 //! analysis before it is timed apart), each size in a fresh child process.
 //!
 //!     cargo bench --bench flat            # 50, 100, 200

@@ -1,4 +1,4 @@
-//! Benchmark of form finding (issue 13): soap films of about 20,000
+//! Benchmark of form finding: soap films of about 20,000
 //! triangles spanning the catenoid's two rings (R = 1 m, 0.8 m apart) and a
 //! six-point spatial boundary (three high, three low points on a 3 m
 //! circle), each in a fresh child process (its own peak memory).

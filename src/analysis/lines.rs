@@ -4,7 +4,7 @@
 //! ([`NetworkLines`]).
 //!
 //! Lamella lines exist for A and B strips only: edge strips lie tangential
-//! to the surface and are cut as curved bands (fabrication.md).
+//! to the surface and are cut as curved bands (docs/fabrication.md).
 
 use crate::analysis::strip::{OffsetArcTable, StripGeometry};
 use crate::geom::curve::SmoothCurve;

@@ -4,7 +4,7 @@
 //! A curve's tangent x is known to first order from its samples; the surface
 //! normal z ⟂ x is then one angle θ(s) about x. Measured in a
 //! rotation-minimising frame (u₁, u₂ = x × u₁, x), whose u's do not turn
-//! about x, the geodesic torsion is exactly θ′(s) (geometry.md: with
+//! about x, the geodesic torsion is exactly θ′(s) (docs/geometry.md: with
 //! y = z × x, z′·y = −θ′), and kn, kg follow from the curvature vector. So
 //! the twist needs θ to first order only, and θ is observed:
 //!

@@ -3,7 +3,7 @@
 //! tg and the normal-curvature residual kn; node-to-node lengths; stations on
 //! lamella lines offset from the curve.
 //!
-//! Where the surface normal comes from (geometry.md):
+//! Where the surface normal comes from (docs/geometry.md):
 //! * the file's normals, interpolated like the points; kn and tg from their
 //!   rotation (z' = −kn·x − tg·y);
 //! * otherwise a [`NormalField`]: the normal's angle about the tangent in a

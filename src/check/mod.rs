@@ -2,7 +2,7 @@
 //!
 //! Input: the [`Analysis`] (kg, kn, tg at every sample of every strip) and a
 //! [`Profile`]. Output: a [`CheckReport`]: per lamella of every strip, the
-//! residual stresses of bending the flat strip into place (geometry.md,
+//! residual stresses of bending the flat strip into place (docs/geometry.md,
 //! "Elastic check"), computed from geodesic curvature and torsion alone:
 //!
 //! ```text
@@ -187,7 +187,7 @@ impl CheckReport {
     }
 }
 
-/// Stretch ds'/ds of an offset line (geometry.md).
+/// Stretch ds'/ds of an offset line (docs/geometry.md).
 fn stretch(dy: f64, dz: f64, kg: f64, kn: f64, tg: f64) -> f64 {
     let a = 1.0 - dy * kg - dz * kn;
     (a * a + (dz * tg).powi(2) + (dy * tg).powi(2)).sqrt()

@@ -1,5 +1,5 @@
 //! Shear blocks between the two lamellas of a doubled strip
-//! (fabrication.md): evenly spaced in each interval between supports (nodes,
+//! (docs/fabrication.md): evenly spaced in each interval between supports (nodes,
 //! or the lamella's ends), no farther apart than the profile allows, clear
 //! of what sits at the nodes.
 

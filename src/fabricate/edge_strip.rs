@@ -1,4 +1,4 @@
-//! Edge strips (family `edge`, fabrication.md "Strips"): bands tangential
+//! Edge strips (family `edge`, docs/fabrication.md "Strips"): bands tangential
 //! to the surface, cut flat as planar curved bands and bent into place about
 //! their width.
 //!

@@ -1,6 +1,6 @@
 //! What the workshop buys rather than cuts, and the cut parts it fits to:
 //! node bolts and nuts, star washers, shear-block bolts, splice bolts,
-//! studs and their fasteners, counted from the kit (fabrication.md,
+//! studs and their fasteners, counted from the kit (docs/fabrication.md,
 //! "Joints"). Grip lengths follow the joint stacks:
 //!
 //! * node bolt (along the surface normal, through the gap square between

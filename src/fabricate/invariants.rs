@@ -1,5 +1,5 @@
 //! Named invariant checks on parts, for tests and `debug_assert!`s
-//! (engineering.md, habit 8), and the plane-geometry predicates they stand
+//! and the plane-geometry predicates they stand
 //! on.
 //!
 //! Each check returns `Ok(())` or an `Err` whose message names the part, the

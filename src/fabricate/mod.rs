@@ -1,5 +1,5 @@
 //! Fabrication: every strip turned into the flat parts a laser or waterjet
-//! cuts, for a material profile (fabrication.md): lamellas with swept slots
+//! cuts, for a material profile (docs/fabrication.md): lamellas with swept slots
 //! or node holes, shear blocks, splice plates (and, as the stage grows,
 //! washers, studs, edge strips and labels).
 //!

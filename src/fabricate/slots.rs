@@ -1,4 +1,4 @@
-//! Interlocking slots swept over the erection (geometry.md, "Slots").
+//! Interlocking slots swept over the erection (docs/geometry.md, "Slots").
 //!
 //! A lamella of thickness tₐ (this one) is crossed by a lamella of
 //! thickness t_b at the angle φ between their directions, measured in the

@@ -1,4 +1,4 @@
-//! Studs of a two-level grid (fabrication.md, "Joints"): at every A×B node a
+//! Studs of a two-level grid (docs/fabrication.md, "Joints"): at every A×B node a
 //! square stud stands along the surface normal through the gaps of the
 //! upper (family A) and the lower (family B) doubled strip; one fastener
 //! through each level's two lamellas and the stud holds it. Studs are sawn

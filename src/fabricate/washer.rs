@@ -1,4 +1,4 @@
-//! Star washers (fabrication.md, "Joints"): at every A×B node of an
+//! Star washers (docs/fabrication.md, "Joints"): at every A×B node of an
 //! interlocking grid whose profile has a `washer`, a star of four arms that
 //! lie along the two strips, each arm in the gap between the two lamellas of
 //! its strip; tightened by the node bolt, it fixes the crossing angle.

@@ -1,4 +1,4 @@
-//! The flat state of an interlocking grid (issue 12): the planar layout the
+//! The flat state of an interlocking grid: the planar layout the
 //! grid is assembled in before it is eased into its spatial shape.
 //!
 //! Model: every A/B strip an inextensible elastic strip standing upright on

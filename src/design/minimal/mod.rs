@@ -1,4 +1,4 @@
-//! Form finding (issue 13): the soap film spanned by closed boundary
+//! Form finding: the soap film spanned by closed boundary
 //! polylines, as a triangle mesh with a planar chart.
 //!
 //! Method:

@@ -1,4 +1,5 @@
-//! The network file of pipeline.md, as YAML or JSON (the same fields).
+//! The network file (README, "Input: the network"), as YAML or JSON (the same
+//! fields).
 
 use crate::error::{Error, Location, Result};
 use crate::network::{Family, Network, RawCurve, RawNetwork, Unit};

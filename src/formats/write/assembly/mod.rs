@@ -1,5 +1,5 @@
 //! `DIR/assembly.pdf`: the assembly sheets a workshop builds the grid from
-//! (issue 11, fabrication.md "Assembly sheets"). Plain data in (the plan
+//! (docs/fabrication.md "Assembly sheets"). Plain data in (the plan
 //! with its parts and sheets, the takeoff, the curves' points), PDF bytes
 //! out; vector drawings on landscape A3 or A4, every page titled with the
 //! project, its section, its scale and "page i of N".
