@@ -591,56 +591,22 @@ fn trace_network(
 
     // Fill: where the curves through the seed's two curves leave a family
     // out (around a film's flat point, beyond a ring's band), seed more
-    // curves along the other family wherever no curve of this family
-    // passes within `FILL_GAP` spacings, for a few rounds.
+    // curves along the other family.
     if spec.fill {
-        let mut next_k = max_k as i64 + 1;
-        for _round in 0..FILL_ROUNDS {
-            let mut added = false;
-            for family_is_a in [true, false] {
-                let (parents, children, field) = if family_is_a {
-                    (&b_curves, &mut a_curves, fa)
-                } else {
-                    (&a_curves, &mut b_curves, fb)
-                };
-                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_world_mm));
-                let mut born = Vec::new();
-                for (_, parent) in parents.iter() {
-                    let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
-                    for i in 1..steps {
-                        let at = parent.uv_at(0.5 * d * i as f64);
-                        if index.nearest_distance(surface.point(at)) < FILL_GAP * d {
-                            continue;
-                        }
-                        let Ok(child) = trace(field, at) else {
-                            continue;
-                        };
-                        budget.check()?;
-                        if child.length_mm() >= min_len && child.uv.len() >= 2 {
-                            index.add(&child.points_world_mm);
-                            born.push((next_k, child));
-                            next_k += 1;
-                            if children.len() + born.len() > 2 * max_k + 1 {
-                                return Err(Error::input(
-                                    path,
-                                    Location::Field("fill".into()),
-                                    format!(
-                                        "filling needs more than {} curves of family {} (2 × max_curves_per_side + 1): raise spacing_mm or max_curves_per_side",
-                                        2 * max_k + 1,
-                                        if family_is_a { "A" } else { "B" }
-                                    ),
-                                ));
-                            }
-                        }
-                    }
-                }
-                added |= !born.is_empty();
-                children.extend(born);
-            }
-            if !added {
-                break;
-            }
-        }
+        fill_gaps(
+            (&mut a_curves, &mut b_curves),
+            Fill {
+                spacing_mm: d,
+                max_k,
+                path,
+                budget: &budget,
+                hint: "raise spacing_mm or max_curves_per_side",
+            },
+            |parent: &Traced, s| parent.uv_at(s),
+            |&at| surface.point(at),
+            |family_is_a, _, at| trace(if family_is_a { fa } else { fb }, at).ok(),
+            |child: &Traced| child.length_mm() >= min_len && child.uv.len() >= 2,
+        )?;
     }
 
     // Edges: trace the cut boundary along each face from the curve ends on it.
@@ -732,6 +698,95 @@ fn assemble(
 /// a quarter of that on Schwarz D, whose points cost a numerical integral
 /// each (either takes a few seconds).
 pub const MAX_DESIGN_POINTS: usize = 500_000;
+
+/// Curves with their seeding numbers (0 through the seed, ±k beside it).
+type Numbered<C> = Vec<(i64, C)>;
+
+/// What filling the gaps of a design needs besides its curves.
+struct Fill<'a> {
+    /// The spacing of the curves, mm.
+    spacing_mm: f64,
+    /// The seeding's `max_curves_per_side`: a family holds at most
+    /// 2·max_k + 1 curves.
+    max_k: usize,
+    /// The spec, named in errors.
+    path: &'a Path,
+    budget: &'a Budget<'a>,
+    /// What to change when there are too many curves.
+    hint: &'a str,
+}
+
+/// Fill the gaps a design's curves leave: along every curve of one family,
+/// every half spacing, seed a curve of the other family wherever none of
+/// that family passes within [`FILL_GAP`] spacings, for up to
+/// [`FILL_ROUNDS`] rounds (A first in each). `seed_at(parent, s)` is where
+/// a child would start at station `s` of `parent`, `point_of` that seed's
+/// world point, `child_of(family_is_a, parent, seed)` the curve traced from
+/// it (none where no curve starts), `keep` whether a child is long enough
+/// to keep; children are numbered on from `max_k + 1`.
+#[allow(clippy::too_many_arguments)]
+fn fill_gaps<C, S>(
+    (a_curves, b_curves): (&mut Numbered<C>, &mut Numbered<C>),
+    fill: Fill,
+    seed_at: impl Fn(&C, f64) -> S,
+    point_of: impl Fn(&S) -> DVec3,
+    child_of: impl Fn(bool, &C, S) -> Option<C>,
+    keep: impl Fn(&C) -> bool,
+) -> Result<()>
+where
+    C: seed::FillCurve,
+{
+    let d = fill.spacing_mm;
+    let limit = 2 * fill.max_k + 1;
+    let mut next_k = fill.max_k as i64 + 1;
+    for _round in 0..FILL_ROUNDS {
+        let mut added = false;
+        for family_is_a in [true, false] {
+            let (parents, children) = if family_is_a {
+                (&*b_curves, &mut *a_curves)
+            } else {
+                (&*a_curves, &mut *b_curves)
+            };
+            let mut index = PointIndex::new(children.iter().map(|c| c.1.points_world_mm()));
+            let mut born = Vec::new();
+            for (_, parent) in parents.iter() {
+                let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
+                for i in 1..steps {
+                    let seed = seed_at(parent, 0.5 * d * i as f64);
+                    if index.nearest_distance(point_of(&seed)) < FILL_GAP * d {
+                        continue;
+                    }
+                    let Some(child) = child_of(family_is_a, parent, seed) else {
+                        continue;
+                    };
+                    fill.budget.check()?;
+                    if keep(&child) {
+                        index.add(child.points_world_mm());
+                        born.push((next_k, child));
+                        next_k += 1;
+                        if children.len() + born.len() > limit {
+                            return Err(Error::input(
+                                fill.path,
+                                Location::Field("fill".into()),
+                                format!(
+                                    "filling needs more than {limit} curves of family {} (2 × max_curves_per_side + 1): {}",
+                                    if family_is_a { "A" } else { "B" },
+                                    fill.hint
+                                ),
+                            ));
+                        }
+                    }
+                }
+            }
+            added |= !born.is_empty();
+            children.extend(born);
+        }
+        if !added {
+            break;
+        }
+    }
+    Ok(())
+}
 
 /// Counts what a design traces and stops it, with an error naming the
 /// spec, when it grows beyond [`MAX_DESIGN_POINTS`].
@@ -875,59 +930,24 @@ fn design_periodic(
     b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
 
     // Fill: where the central curves left gaps (beyond flat vertices, in the
-    // clip's far corners), seed more curves along the other family wherever
-    // no curve of this family passes within `FILL_GAP` spacings.
+    // clip's far corners), seed more curves along the other family.
     if spec.fill {
-        let mut next_k = max_k as i64 + 1;
-        for _round in 0..FILL_ROUNDS {
-            let mut added = false;
-            for family_is_a in [true, false] {
-                let (parents, children) = if family_is_a {
-                    (&b_curves, &mut a_curves)
-                } else {
-                    (&a_curves, &mut b_curves)
-                };
-                let mut index = PointIndex::new(children.iter().map(|c| &c.1.points_world_mm));
-                let mut born = Vec::new();
-                for (_, parent) in parents.iter() {
-                    let steps = (parent.length_mm() / (0.5 * d)).floor() as usize;
-                    for i in 1..steps {
-                        let s = 0.5 * d * i as f64;
-                        let site = parent.site_at(s);
-                        let p = site.placement.point(surface.point(site.uv));
-                        if index.nearest_distance(p) < FILL_GAP * d {
-                            continue;
-                        }
-                        let Some(dir) = transverse(&site, tangent(parent, s)) else {
-                            continue;
-                        };
-                        let child = trace(site, dir);
-                        budget.check()?;
-                        if child.length_mm() >= min_len && child.points_world_mm.len() >= 2 {
-                            index.add(&child.points_world_mm);
-                            born.push((next_k, child));
-                            next_k += 1;
-                            if children.len() + born.len() > 2 * max_k + 1 {
-                                return Err(Error::input(
-                                    path,
-                                    Location::Field("fill".into()),
-                                    format!(
-                                        "filling needs more than {} curves of family {} (2 × max_curves_per_side + 1): shrink the clip, raise spacing_mm or max_curves_per_side",
-                                        2 * max_k + 1,
-                                        if family_is_a { "A" } else { "B" }
-                                    ),
-                                ));
-                            }
-                        }
-                    }
-                }
-                added |= !born.is_empty();
-                children.extend(born);
-            }
-            if !added {
-                break;
-            }
-        }
+        fill_gaps(
+            (&mut a_curves, &mut b_curves),
+            Fill {
+                spacing_mm: d,
+                max_k,
+                path,
+                budget: &budget,
+                hint: "shrink the clip, raise spacing_mm or max_curves_per_side",
+            },
+            |parent: &Unfolded, s| (parent.site_at(s), s),
+            |(site, _)| site.placement.point(surface.point(site.uv)),
+            |_, parent, (site, s)| {
+                transverse(&site, tangent(parent, s)).map(|dir| trace(site, dir))
+            },
+            |child: &Unfolded| child.length_mm() >= min_len && child.points_world_mm.len() >= 2,
+        )?;
     }
 
     // Edges: the clip's faces on the unfolded surface, from the curve ends on them.

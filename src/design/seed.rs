@@ -1,7 +1,7 @@
 //! Seeding helpers: stations at the spacing along a curve ([`marks`]), where a
 //! parameter point falls on a traced curve ([`station_of`]), the crossing of
 //! two traced curves ([`crossing_uv`]) for the alternating design, and the
-//! point index and limits of the periodic fill. The seeding loops themselves
+//! point index and limits of the fill. The seeding loops themselves
 //! (central, alternating, fill) stay in the driver, `design/mod.rs`.
 
 use super::trace::Traced;
@@ -11,6 +11,32 @@ use glam::{DVec2, DVec3};
 pub(crate) const FILL_ROUNDS: usize = 6;
 /// A gap to fill: no curve of the family within this many spacings.
 pub(crate) const FILL_GAP: f64 = 0.75;
+
+/// A traced curve as the fill sees it (`design::fill_gaps`).
+pub(crate) trait FillCurve {
+    /// Its length, mm.
+    fn length_mm(&self) -> f64;
+    /// Its samples, world frame, mm.
+    fn points_world_mm(&self) -> &Vec<DVec3>;
+}
+
+impl FillCurve for Traced {
+    fn length_mm(&self) -> f64 {
+        Traced::length_mm(self)
+    }
+    fn points_world_mm(&self) -> &Vec<DVec3> {
+        &self.points_world_mm
+    }
+}
+
+impl FillCurve for super::periodic::Unfolded {
+    fn length_mm(&self) -> f64 {
+        super::periodic::Unfolded::length_mm(self)
+    }
+    fn points_world_mm(&self) -> &Vec<DVec3> {
+        &self.points_world_mm
+    }
+}
 
 /// Nearest-sample distance queries over curves' points (an R-tree).
 pub(crate) struct PointIndex {
