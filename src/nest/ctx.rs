@@ -1,0 +1,194 @@
+//! What one nest needs to know, built once from the kit and the profile:
+//! the stock sizes, the lamella copies for the lanes, the other parts in
+//! their order, the washers' lattice blocks; and the refusals of a kit the
+//! stock cannot hold.
+
+use super::lattice::{self, lattice_blocks};
+use super::model::bbox;
+use super::stock::{fits, Size};
+use crate::error::{Error, Result};
+use crate::fabricate::part::PartKind;
+use crate::fabricate::{net_area_mm2, Kit};
+use crate::profile::Profile;
+
+/// What one nest needs to know, built once.
+pub(super) struct Ctx<'a> {
+    pub(super) kit: &'a Kit,
+    pub(super) profile: &'a Profile,
+    pub(super) margin: f64,
+    pub(super) gap: f64,
+    pub(super) height: f64,
+    pub(super) rotations: Vec<u32>,
+    pub(super) lamella_rot: u32,
+    pub(super) sizes: Vec<Size>,
+    /// Sizes by cost per usable area, ties by index.
+    pub(super) by_value: Vec<usize>,
+    /// (part, copy) of every lamella copy.
+    pub(super) items: Vec<(usize, u32)>,
+    /// Item sizes for the lanes: length + gap.
+    pub(super) item_len: Vec<f64>,
+    /// Other parts, largest bounding box first.
+    pub(super) others: Vec<usize>,
+    /// Per part: the lattice blocks its copies may go in, for star
+    /// washers that pack denser with their arms interleaved
+    /// ([`lattice`]); empty for every other part.
+    pub(super) blocks: Vec<Vec<lattice::Block>>,
+    /// Per part: its net area, mm² (`net_area_mm2`, taken once).
+    pub(super) areas: Vec<f64>,
+}
+
+impl<'a> Ctx<'a> {
+    pub(super) fn new(kit: &'a Kit, profile: &'a Profile) -> Result<Ctx<'a>> {
+        let c = &profile.cutting;
+        let m = c.edge_margin_mm;
+        let g = c.kerf_mm + c.part_spacing_mm;
+        let h = profile.section.height_mm;
+        let st = &profile.stock;
+        let sizes: Vec<Size> = st
+            .sizes
+            .iter()
+            .map(|z| {
+                let (lu, wu) = (z.usable_length_mm(m), z.usable_width_mm(m));
+                let length = z.length_mm.unwrap_or(f64::INFINITY);
+                Size {
+                    length,
+                    width: z.width_mm,
+                    lu,
+                    wu,
+                    lanes: ((wu + g) / (h + g)).floor().max(0.0) as usize,
+                    cap: lu + g,
+                    cost: z.price_per_unit.unwrap_or(length * z.width_mm),
+                    price: z.price_per_unit,
+                    limit: z.max_count.map_or(usize::MAX, |n| n as usize),
+                    label: z.label(),
+                }
+            })
+            .collect();
+        let mut by_value: Vec<usize> = (0..sizes.len()).collect();
+        by_value.sort_by(|&a, &b| {
+            let v = |s: &Size| s.cost / (s.lu * s.wu);
+            v(&sizes[a]).total_cmp(&v(&sizes[b])).then(a.cmp(&b))
+        });
+        let rotations = c.allowed_rotations_deg.clone();
+        let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
+        // Every part must fit some size in an allowed rotation.
+        for p in &kit.parts {
+            let (x0, y0, x1, y1) = bbox(p);
+            let (w, ht) = (x1 - x0, y1 - y0);
+            if !st.holds(w, ht, m, &rotations) {
+                let usable = if sizes.len() == 1 {
+                    format!(
+                        "the {:.0} × {:.0} mm usable sheet",
+                        sizes[0].lu, sizes[0].wu
+                    )
+                } else {
+                    let list: Vec<String> = sizes
+                        .iter()
+                        .map(|s| format!("{}: {:.0} × {:.0} mm", s.label, s.lu, s.wu))
+                        .collect();
+                    format!("the usable area of any stock size ({})", list.join(", "))
+                };
+                return Err(fail(
+                    &p.id,
+                    format!(
+                        "{w:.0} × {ht:.0} mm does not fit {usable} in any allowed rotation \
+                         ({rotations:?}°)"
+                    ),
+                ));
+            }
+        }
+        let mut items: Vec<(usize, u32)> = Vec::new();
+        for (i, p) in kit.parts.iter().enumerate() {
+            if p.kind == PartKind::Lamella {
+                for copy in 0..p.count {
+                    items.push((i, copy));
+                }
+            }
+        }
+        let item_len: Vec<f64> = items
+            .iter()
+            .map(|&(i, _)| kit.parts[i].length_mm + g)
+            .collect();
+        if let Some(&(first, _)) = items.first() {
+            let id = &kit.parts[first].id;
+            if !rotations.iter().any(|r| r % 180 == 0) {
+                return Err(fail(
+                    id,
+                    "lamellas lie along the sheet, but the profile allows neither 0° nor 180°"
+                        .into(),
+                ));
+            }
+            if sizes.iter().all(|s| s.lanes == 0) {
+                let wu = sizes.iter().map(|s| s.wu).fold(0.0, f64::max);
+                return Err(fail(
+                    id,
+                    format!("a {h} mm lamella does not fit across the {wu:.0} mm usable sheet"),
+                ));
+            }
+            // Each lamella into the lanes of some size.
+            for (k, &(i, _)) in items.iter().enumerate() {
+                if !sizes
+                    .iter()
+                    .any(|s| s.lanes > 0 && fits(item_len[k], s.cap))
+                {
+                    return Err(fail(
+                        &kit.parts[i].id,
+                        format!(
+                            "a {:.0} mm lamella fits the lanes of no stock size",
+                            kit.parts[i].length_mm
+                        ),
+                    ));
+                }
+            }
+        }
+        let mut others: Vec<usize> = (0..kit.parts.len())
+            .filter(|&i| kit.parts[i].kind != PartKind::Lamella)
+            .collect();
+        let area = |i: usize| {
+            let (x0, y0, x1, y1) = bbox(&kit.parts[i]);
+            (x1 - x0) * (y1 - y0)
+        };
+        others.sort_by(|&a, &b| area(b).total_cmp(&area(a)).then(a.cmp(&b)));
+        let blocks = kit
+            .parts
+            .iter()
+            .map(|p| lattice_blocks(p, g, &rotations, &sizes))
+            .collect();
+        Ok(Ctx {
+            kit,
+            profile,
+            margin: m,
+            gap: g,
+            height: h,
+            lamella_rot: if rotations.contains(&0) { 0 } else { 180 },
+            rotations,
+            sizes,
+            by_value,
+            items,
+            item_len,
+            others,
+            blocks,
+            areas: kit.parts.iter().map(net_area_mm2).collect(),
+        })
+    }
+
+    pub(super) fn fail_stock(&self, what: String) -> Error {
+        Error::Fabrication {
+            profile: self.profile.source.clone(),
+            at: "stock".into(),
+            node: None,
+            what: crate::error::one_line(&what),
+        }
+    }
+
+    /// `max_count 3 of 3000 × 1500, …` for the sizes with a limit.
+    pub(super) fn limits(&self) -> String {
+        let list: Vec<String> = self
+            .sizes
+            .iter()
+            .filter(|z| z.limit < usize::MAX)
+            .map(|z| format!("{} of {}", z.limit, z.label))
+            .collect();
+        format!("max_count {}", list.join(", "))
+    }
+}
