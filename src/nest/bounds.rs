@@ -1,9 +1,10 @@
 //! The nest's figures and its lower bounds: on the sheets (by area and by
-//! lanes), on the cost, and for a coil on the length.
+//! lanes), on the cost, and for a coil on the length; the stock used per
+//! size.
 
 use super::binpack;
 use super::ctx::Ctx;
-use super::model::{NestSummary, SheetNest};
+use super::model::{NestSummary, SheetNest, StockUse};
 use super::stock::Size;
 
 /// The nest's figures and bounds.
@@ -108,4 +109,28 @@ pub(super) fn summarize(
         cost_bound,
         seconds: t0.elapsed().as_secs_f64(),
     }
+}
+
+/// The sheets per stock size, of `sheets` in size order.
+pub(super) fn stock_used(sheets: &[SheetNest]) -> Vec<StockUse> {
+    let mut stock_used: Vec<StockUse> = Vec::new();
+    for s in sheets {
+        match stock_used.last_mut() {
+            Some(u) if u.size == s.size => {
+                u.sheets += 1;
+                u.length_mm += s.length_mm;
+                u.cost = u.cost.zip(s.price_per_unit).map(|(a, b)| a + b);
+            }
+            _ => stock_used.push(StockUse {
+                size: s.size,
+                stock: s.stock.clone(),
+                sheets: 1,
+                length_mm: s.length_mm,
+                width_mm: s.width_mm,
+                price_per_unit: s.price_per_unit,
+                cost: s.price_per_unit,
+            }),
+        }
+    }
+    stock_used
 }

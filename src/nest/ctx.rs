@@ -5,7 +5,7 @@
 
 use super::lattice::{self, lattice_blocks};
 use super::model::bbox;
-use super::stock::{fits, Size};
+use super::stock::{by_value, fits, Size};
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
 use crate::fabricate::{net_area_mm2, Kit};
@@ -13,13 +13,21 @@ use crate::profile::Profile;
 
 /// What one nest needs to know, built once.
 pub(super) struct Ctx<'a> {
+    /// The parts to nest.
     pub(super) kit: &'a Kit,
+    /// The stock, the cutting parameters and the lamella section.
     pub(super) profile: &'a Profile,
+    /// Edge margin all round a sheet, mm.
     pub(super) margin: f64,
+    /// Kerf + part spacing between parts, mm.
     pub(super) gap: f64,
+    /// The lamellas' height (the section's), the width of a lane, mm.
     pub(super) height: f64,
+    /// The allowed rotations, degrees.
     pub(super) rotations: Vec<u32>,
+    /// The rotation the lamellas lie in along the sheet: 0°, else 180°.
     pub(super) lamella_rot: u32,
+    /// The profile's stock sizes, in its order.
     pub(super) sizes: Vec<Size>,
     /// Sizes by cost per usable area, ties by index.
     pub(super) by_value: Vec<usize>,
@@ -38,37 +46,17 @@ pub(super) struct Ctx<'a> {
 }
 
 impl<'a> Ctx<'a> {
+    /// The context of `kit` on `profile`'s stock; the refusal of a part
+    /// that fits no stock size in an allowed rotation, and of lamellas no
+    /// size has lanes for.
     pub(super) fn new(kit: &'a Kit, profile: &'a Profile) -> Result<Ctx<'a>> {
         let c = &profile.cutting;
         let m = c.edge_margin_mm;
         let g = c.kerf_mm + c.part_spacing_mm;
         let h = profile.section.height_mm;
         let st = &profile.stock;
-        let sizes: Vec<Size> = st
-            .sizes
-            .iter()
-            .map(|z| {
-                let (lu, wu) = (z.usable_length_mm(m), z.usable_width_mm(m));
-                let length = z.length_mm.unwrap_or(f64::INFINITY);
-                Size {
-                    length,
-                    width: z.width_mm,
-                    lu,
-                    wu,
-                    lanes: ((wu + g) / (h + g)).floor().max(0.0) as usize,
-                    cap: lu + g,
-                    cost: z.price_per_unit.unwrap_or(length * z.width_mm),
-                    price: z.price_per_unit,
-                    limit: z.max_count.map_or(usize::MAX, |n| n as usize),
-                    label: z.label(),
-                }
-            })
-            .collect();
-        let mut by_value: Vec<usize> = (0..sizes.len()).collect();
-        by_value.sort_by(|&a, &b| {
-            let v = |s: &Size| s.cost / (s.lu * s.wu);
-            v(&sizes[a]).total_cmp(&v(&sizes[b])).then(a.cmp(&b))
-        });
+        let sizes: Vec<Size> = st.sizes.iter().map(|z| Size::new(z, m, g, h)).collect();
+        let by_value = by_value(&sizes);
         let rotations = c.allowed_rotations_deg.clone();
         let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
         // Every part must fit some size in an allowed rotation.
@@ -172,6 +160,7 @@ impl<'a> Ctx<'a> {
         })
     }
 
+    /// The one-line error of a kit the stock cannot hold.
     pub(super) fn fail_stock(&self, what: String) -> Error {
         Error::Fabrication {
             profile: self.profile.source.clone(),

@@ -18,7 +18,7 @@ pub(super) struct SheetPlan {
 /// The tail improvement replaces at most this many sheets of one size.
 const TAIL_SHEETS: usize = 2;
 
-impl<'a> Ctx<'a> {
+impl Ctx<'_> {
     /// Lamella `items` into lanes and sheets: the first size of `order`
     /// with sheets left takes the items that fit its lanes (packed by
     /// [`binpack::pack`]); items too long for it go first to the longer

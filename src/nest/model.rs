@@ -111,10 +111,15 @@ pub struct StockUse {
     pub cost: Option<f64>,
 }
 
-/// The nest of a kit.
+/// The nest of a kit. What [`nest`](super::nest) returns holds the
+/// invariant [`check_nest`](super::check_nest) checks: every copy of every
+/// part placed exactly once, in an allowed rotation, inside its sheet's
+/// margins, and no two parts' true outlines closer than kerf + part
+/// spacing; every sheet holds at least one part; the same kit and profile
+/// give the same nest, placement for placement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nest {
-    /// Sheets in order (by stock size, then as filled).
+    /// Sheets in order (by stock size, then as filled), `S01`, `S02`, ….
     pub sheets: Vec<SheetNest>,
     /// Counts, bounds, utilisation, cost.
     pub summary: NestSummary,

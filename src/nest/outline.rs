@@ -1,6 +1,8 @@
-//! Parts by their true outlines (issue 9): the edge-band pass
+//! Parts by their true outlines: the edge-band pass
 //! ([`place_bands`]) and the sheet-elimination pass ([`eliminate`]) after
-//! the lane and skyline nest, and the true-shape distance `check_nest` uses.
+//! the lane and skyline nest, the true-shape distance `check_nest` uses,
+//! and [`grown_outline`] (a part's outline grown by half the gap, which the
+//! sparrow instance exports too).
 //!
 //! Edge bands are taken off the sheets and placed again, longest first, on
 //! the first sheet where the search (rows first: the lowest y, then the
@@ -21,7 +23,7 @@
 //! lower-left by halving steps. Deterministic (no threads, fixed orders) and
 //! bounded ([`MAX_ATTEMPTS`] sheets tried, [`MAX_TARGETS`] target sheets).
 
-use super::{placed_bbox, rotate, Placement, SheetNest};
+use super::model::{placed_bbox, rotate, Placement, SheetNest};
 use crate::fabricate::part::{FeatureKind, SlotEdge};
 use crate::fabricate::part::{Part, PartKind};
 use crate::fabricate::Kit;

@@ -13,7 +13,7 @@ use crate::error::{Error, Result};
 /// Rounds of tail improvement at most.
 const TAIL_ROUNDS: usize = 8;
 
-impl<'a> Ctx<'a> {
+impl Ctx<'_> {
     fn cost(&self, sheets: &[SheetPlan]) -> f64 {
         sheets.iter().map(|s| self.sizes[s.size].cost).sum()
     }

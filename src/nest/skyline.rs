@@ -130,7 +130,7 @@ impl Skyline {
 /// Sheets and the number of lamella lanes on them.
 pub(super) type Placed = (Vec<SheetNest>, usize);
 
-impl<'a> Ctx<'a> {
+impl Ctx<'_> {
     /// A part's bounding box size turned by `rot`.
     fn dims(&self, i: usize, rot: u32) -> (f64, f64) {
         let (x0, y0, x1, y1) = bbox(&self.kit.parts[i]);
