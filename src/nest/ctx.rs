@@ -58,33 +58,7 @@ impl<'a> Ctx<'a> {
         let sizes: Vec<Size> = st.sizes.iter().map(|z| Size::new(z, m, g, h)).collect();
         let by_value = by_value(&sizes);
         let rotations = c.allowed_rotations_deg.clone();
-        let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
-        // Every part must fit some size in an allowed rotation.
-        for p in &kit.parts {
-            let (x0, y0, x1, y1) = bbox(p);
-            let (w, ht) = (x1 - x0, y1 - y0);
-            if !st.holds(w, ht, m, &rotations) {
-                let usable = if sizes.len() == 1 {
-                    format!(
-                        "the {:.0} × {:.0} mm usable sheet",
-                        sizes[0].lu, sizes[0].wu
-                    )
-                } else {
-                    let list: Vec<String> = sizes
-                        .iter()
-                        .map(|s| format!("{}: {:.0} × {:.0} mm", s.label, s.lu, s.wu))
-                        .collect();
-                    format!("the usable area of any stock size ({})", list.join(", "))
-                };
-                return Err(fail(
-                    &p.id,
-                    format!(
-                        "{w:.0} × {ht:.0} mm does not fit {usable} in any allowed rotation \
-                         ({rotations:?}°)"
-                    ),
-                ));
-            }
-        }
+        refuse_unfit_parts(kit, profile, &sizes)?;
         let mut items: Vec<(usize, u32)> = Vec::new();
         for (i, p) in kit.parts.iter().enumerate() {
             if p.kind == PartKind::Lamella {
@@ -97,38 +71,7 @@ impl<'a> Ctx<'a> {
             .iter()
             .map(|&(i, _)| kit.parts[i].length_mm + g)
             .collect();
-        if let Some(&(first, _)) = items.first() {
-            let id = &kit.parts[first].id;
-            if !rotations.iter().any(|r| r % 180 == 0) {
-                return Err(fail(
-                    id,
-                    "lamellas lie along the sheet, but the profile allows neither 0° nor 180°"
-                        .into(),
-                ));
-            }
-            if sizes.iter().all(|s| s.lanes == 0) {
-                let wu = sizes.iter().map(|s| s.wu).fold(0.0, f64::max);
-                return Err(fail(
-                    id,
-                    format!("a {h} mm lamella does not fit across the {wu:.0} mm usable sheet"),
-                ));
-            }
-            // Each lamella into the lanes of some size.
-            for (k, &(i, _)) in items.iter().enumerate() {
-                if !sizes
-                    .iter()
-                    .any(|s| s.lanes > 0 && fits(item_len[k], s.cap))
-                {
-                    return Err(fail(
-                        &kit.parts[i].id,
-                        format!(
-                            "a {:.0} mm lamella fits the lanes of no stock size",
-                            kit.parts[i].length_mm
-                        ),
-                    ));
-                }
-            }
-        }
+        refuse_unfit_lamellas(kit, profile, &sizes, &items, &item_len)?;
         let mut others: Vec<usize> = (0..kit.parts.len())
             .filter(|&i| kit.parts[i].kind != PartKind::Lamella)
             .collect();
@@ -180,4 +123,88 @@ impl<'a> Ctx<'a> {
             .collect();
         format!("max_count {}", list.join(", "))
     }
+}
+
+/// The refusal of the first part that fits no stock size in an allowed
+/// rotation.
+fn refuse_unfit_parts(kit: &Kit, profile: &Profile, sizes: &[Size]) -> Result<()> {
+    let m = profile.cutting.edge_margin_mm;
+    let st = &profile.stock;
+    let rotations = &profile.cutting.allowed_rotations_deg;
+    let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
+    // Every part must fit some size in an allowed rotation.
+    for p in &kit.parts {
+        let (x0, y0, x1, y1) = bbox(p);
+        let (w, ht) = (x1 - x0, y1 - y0);
+        if !st.holds(w, ht, m, rotations) {
+            let usable = if sizes.len() == 1 {
+                format!(
+                    "the {:.0} × {:.0} mm usable sheet",
+                    sizes[0].lu, sizes[0].wu
+                )
+            } else {
+                let list: Vec<String> = sizes
+                    .iter()
+                    .map(|s| format!("{}: {:.0} × {:.0} mm", s.label, s.lu, s.wu))
+                    .collect();
+                format!("the usable area of any stock size ({})", list.join(", "))
+            };
+            return Err(fail(
+                &p.id,
+                format!(
+                    "{w:.0} × {ht:.0} mm does not fit {usable} in any allowed rotation \
+                     ({rotations:?}°)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The refusal of lamellas the stock has no lanes for: where no allowed
+/// rotation lays them along the sheet, no size has a lane across it, or
+/// one is longer than every size's lanes (`items`, `item_len`: the
+/// lamella copies and their lengths + gap).
+fn refuse_unfit_lamellas(
+    kit: &Kit,
+    profile: &Profile,
+    sizes: &[Size],
+    items: &[(usize, u32)],
+    item_len: &[f64],
+) -> Result<()> {
+    let h = profile.section.height_mm;
+    let rotations = &profile.cutting.allowed_rotations_deg;
+    let fail = |part: &str, what: String| Error::fabrication_part(&profile.source, part, what);
+    if let Some(&(first, _)) = items.first() {
+        let id = &kit.parts[first].id;
+        if !rotations.iter().any(|r| r % 180 == 0) {
+            return Err(fail(
+                id,
+                "lamellas lie along the sheet, but the profile allows neither 0° nor 180°".into(),
+            ));
+        }
+        if sizes.iter().all(|s| s.lanes == 0) {
+            let wu = sizes.iter().map(|s| s.wu).fold(0.0, f64::max);
+            return Err(fail(
+                id,
+                format!("a {h} mm lamella does not fit across the {wu:.0} mm usable sheet"),
+            ));
+        }
+        // Each lamella into the lanes of some size.
+        for (k, &(i, _)) in items.iter().enumerate() {
+            if !sizes
+                .iter()
+                .any(|s| s.lanes > 0 && fits(item_len[k], s.cap))
+            {
+                return Err(fail(
+                    &kit.parts[i].id,
+                    format!(
+                        "a {:.0} mm lamella fits the lanes of no stock size",
+                        kit.parts[i].length_mm
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }

@@ -14,40 +14,6 @@ use crate::error::{Error, Result};
 const TAIL_ROUNDS: usize = 8;
 
 impl Ctx<'_> {
-    fn cost(&self, sheets: &[SheetPlan]) -> f64 {
-        sheets.iter().map(|s| self.sizes[s.size].cost).sum()
-    }
-
-    /// The count limits' one-line error for lamellas left without a sheet.
-    fn shortfall_lamellas(&self, unplaced: &[usize]) -> Error {
-        let length: f64 = unplaced
-            .iter()
-            .map(|&i| self.kit.parts[self.items[i].0].length_mm)
-            .sum();
-        // How many more sheets of the best-value size that holds them.
-        let more = self
-            .by_value
-            .iter()
-            .map(|&s| &self.sizes[s])
-            .find(|z| z.lanes > 0 && unplaced.iter().all(|&i| fits(self.item_len[i], z.cap)))
-            .map(|z| {
-                let sizes: Vec<f64> = unplaced.iter().map(|&i| self.item_len[i]).collect();
-                let lanes = binpack::pack(&sizes, z.cap).map_or(sizes.len(), |p| p.bins.len());
-                format!(
-                    "; about {} more sheet(s) of {}",
-                    lanes.div_ceil(z.lanes),
-                    z.label
-                )
-            })
-            .unwrap_or_default();
-        self.fail_stock(format!(
-            "the count limits ({}) do not hold the kit: {} lamella(s), {:.1} m, have no sheet left{more}",
-            self.limits(),
-            unplaced.len(),
-            length / 1000.0
-        ))
-    }
-
     /// The cheapest full nest over the sheet sizes: for each size as the
     /// first choice (best value first), the lane plan of [`Ctx::assign`],
     /// improved by [`Ctx::tail_variants`] while the whole nest gets
@@ -116,5 +82,40 @@ impl Ctx<'_> {
             (None, Some(e)) => Err(e),
             (None, None) => Ok((Vec::new(), 0)),
         }
+    }
+
+    /// What the sheets of a lane plan cost (as [`super::stock::Size::cost`]).
+    fn cost(&self, sheets: &[SheetPlan]) -> f64 {
+        sheets.iter().map(|s| self.sizes[s.size].cost).sum()
+    }
+
+    /// The count limits' one-line error for lamellas left without a sheet.
+    fn shortfall_lamellas(&self, unplaced: &[usize]) -> Error {
+        let length: f64 = unplaced
+            .iter()
+            .map(|&i| self.kit.parts[self.items[i].0].length_mm)
+            .sum();
+        // How many more sheets of the best-value size that holds them.
+        let more = self
+            .by_value
+            .iter()
+            .map(|&s| &self.sizes[s])
+            .find(|z| z.lanes > 0 && unplaced.iter().all(|&i| fits(self.item_len[i], z.cap)))
+            .map(|z| {
+                let sizes: Vec<f64> = unplaced.iter().map(|&i| self.item_len[i]).collect();
+                let lanes = binpack::pack(&sizes, z.cap).map_or(sizes.len(), |p| p.bins.len());
+                format!(
+                    "; about {} more sheet(s) of {}",
+                    lanes.div_ceil(z.lanes),
+                    z.label
+                )
+            })
+            .unwrap_or_default();
+        self.fail_stock(format!(
+            "the count limits ({}) do not hold the kit: {} lamella(s), {:.1} m, have no sheet left{more}",
+            self.limits(),
+            unplaced.len(),
+            length / 1000.0
+        ))
     }
 }
