@@ -23,7 +23,10 @@
 //! Deterministic: no search over floating-point ties, copies in (y, x)
 //! order.
 
+use super::model::bbox;
 use super::outline::{self, bounds};
+use super::stock::Size;
+use crate::fabricate::part::{Part, PartKind};
 use kurbo::{Point, Vec2};
 
 /// Extra clearance beyond the gap, mm: plan.json rounds placements to
@@ -277,6 +280,56 @@ pub fn block(lat: &Lattice, part_w_mm: f64, part_h_mm: f64, w_mm: f64, h_mm: f64
         part_w_mm,
         part_h_mm,
     }
+}
+
+/// Lattice blocks tried, width (along the sheet) × height, mm: squares big enough to pack densely on bare stock, and long low
+/// blocks for the lamella sheets' lane tails (a strip of height H holds
+/// about (H − 90)/2973 washers per mm by the lattice against 1/93.2 by
+/// boxes, so from about 125 mm up the lattice wins there too).
+const BLOCKS_MM: [(f64, f64); 8] = [
+    (400.0, 400.0),
+    (800.0, 200.0),
+    (800.0, 150.0),
+    (300.0, 300.0),
+    (400.0, 200.0),
+    (400.0, 150.0),
+    (200.0, 200.0),
+    (150.0, 150.0),
+];
+
+/// Fewest copies of a star washer worth packing in lattice blocks.
+const MIN_BLOCK_COPIES: u32 = 4;
+
+/// Lattice blocks of part `p`'s copies: only for star
+/// washers with enough copies, where the profile allows them unturned
+/// and the lattice beats boxes ([`star_lattice`]).
+pub(super) fn lattice_blocks(p: &Part, gap: f64, rotations: &[u32], sizes: &[Size]) -> Vec<Block> {
+    if p.kind != PartKind::Washer || p.count < MIN_BLOCK_COPIES || !rotations.contains(&0) {
+        return Vec::new();
+    }
+    let Some(lat) = star_lattice(&p.outline_part_mm, gap) else {
+        return Vec::new();
+    };
+    let (x0, y0, x1, y1) = bbox(p);
+    let (w, h) = (x1 - x0, y1 - y0);
+    // Every block fits every size's usable sheet.
+    let (room_x, room_y) = sizes
+        .iter()
+        .fold((f64::INFINITY, f64::INFINITY), |(x, y), z| {
+            (x.min(z.lu), y.min(z.wu))
+        });
+    BLOCKS_MM
+        .iter()
+        .filter(|&&(bw, bh)| bw <= room_x && bh <= room_y)
+        .map(|&(bw, bh)| block(&lat, w, h, bw, bh))
+        // A block must hold more than boxes would in its square.
+        .filter(|b| {
+            let (bw, bh) = b.extent_mm(b.len());
+            let by_boxes =
+                (((bw + gap) / (w + gap)).floor() * ((bh + gap) / (h + gap)).floor()) as usize;
+            b.len() > by_boxes
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -1,6 +1,8 @@
-//! Parts by their true outlines (issue 9): the edge-band pass
+//! Parts by their true outlines: the edge-band pass
 //! ([`place_bands`]) and the sheet-elimination pass ([`eliminate`]) after
-//! the lane and skyline nest, and the true-shape distance `check_nest` uses.
+//! the lane and skyline nest, the true-shape distance `check_nest` uses,
+//! and [`grown_outline`] (a part's outline grown by half the gap, which the
+//! sparrow instance exports too).
 //!
 //! Edge bands are taken off the sheets and placed again, longest first, on
 //! the first sheet where the search (rows first: the lowest y, then the
@@ -21,7 +23,7 @@
 //! lower-left by halving steps. Deterministic (no threads, fixed orders) and
 //! bounded ([`MAX_ATTEMPTS`] sheets tried, [`MAX_TARGETS`] target sheets).
 
-use super::{placed_bbox, rotate, Placement, SheetNest};
+use super::model::{placed_bbox, rotate, Placement, SheetNest};
 use crate::fabricate::part::{FeatureKind, SlotEdge};
 use crate::fabricate::part::{Part, PartKind};
 use crate::fabricate::Kit;
@@ -1032,6 +1034,8 @@ pub fn grown_outline(p: &Part, d: f64) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fabricate::part::signed_area_mm2;
+    use crate::fabricate::part::Feature;
 
     fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
         box_poly((x, y, x + s, y + s))
@@ -1069,5 +1073,68 @@ mod tests {
                 .fold(f64::INFINITY, f64::min);
             assert!(d <= 0.25 + 1e-9, "{d}");
         }
+    }
+
+    fn part(kind: PartKind, outline: Vec<Point>, features: Vec<Feature>) -> Part {
+        Part {
+            id: "P".into(),
+            kind,
+            strip: None,
+            lamella: None,
+            count: 1,
+            length_mm: 100.0,
+            height_mm: 50.0,
+            station_start_mm: None,
+            outline_part_mm: outline,
+            holes_part_mm: Vec::new(),
+            engraving: Vec::new(),
+            features,
+        }
+    }
+
+    fn rect() -> Vec<Point> {
+        vec![
+            Point::new(0.0, 0.0),
+            Point::new(100.0, 0.0),
+            Point::new(100.0, 50.0),
+            Point::new(0.0, 50.0),
+        ]
+    }
+
+    #[test]
+    fn a_rectangle_grows_by_d_all_round() {
+        let g = grown_outline(&part(PartKind::ShearBlock, rect(), Vec::new()), 2.0);
+        assert!((signed_area_mm2(&g) - 104.0 * 54.0).abs() < 1e-9);
+        assert!(g.contains(&Point::new(-2.0, -2.0)) && g.contains(&Point::new(102.0, 52.0)));
+    }
+
+    #[test]
+    fn lamella_notches_narrow_and_close() {
+        let slot = |x: f64, w: f64| Feature {
+            kind: FeatureKind::Slot,
+            hole_use: None,
+            node: None,
+            crossing: None,
+            center_part_mm: Point::new(x, 37.5),
+            width_mm: w,
+            depth_mm: 25.0,
+            edge: Some(SlotEdge::Top),
+            angle_range_deg: None,
+            station_mm: None,
+        };
+        let p = part(
+            PartKind::Lamella,
+            rect(),
+            vec![slot(30.0, 10.0), slot(70.0, 3.0)],
+        );
+        let g = grown_outline(&p, 2.0);
+        // The 10 mm slot stays, 6 mm wide, its root 2 mm higher (25 mm below
+        // the grown edge); the 3 mm one closes.
+        let area = 104.0 * 54.0 - 6.0 * 25.0;
+        assert!(
+            (signed_area_mm2(&g) - area).abs() < 1e-9,
+            "{}",
+            signed_area_mm2(&g)
+        );
     }
 }
