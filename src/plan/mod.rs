@@ -905,7 +905,7 @@ pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
 
 /// The font entry of every character and mark the parts engrave.
 fn engraving_font(parts: &[PlanPart]) -> PlanFont {
-    use crate::fabricate::{font, label};
+    use crate::fabricate::font;
     let glyph = |width: f64, strokes: Vec<Vec<kurbo::Point>>| PlanGlyph {
         width,
         strokes: strokes
@@ -921,8 +921,8 @@ fn engraving_font(parts: &[PlanPart]) -> PlanFont {
             marks.insert(
                 ORIENTATION_MARK.to_string(),
                 glyph(
-                    label::ORIENTATION_MARK_LENGTH,
-                    label::orientation_mark_strokes(1.0),
+                    font::ORIENTATION_MARK_LENGTH,
+                    font::orientation_mark_strokes(1.0),
                 ),
             );
         }
