@@ -344,7 +344,7 @@ fn flat(
     for t in [&target, &svg_target] {
         refuse_overwriting_input(t, &[("network", path), ("profile", profile_path)])?;
     }
-    let profile = Profile::load(profile_path)?;
+    let profile = io::profile_file::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     let problem = lamella::flat::problem(&an, &profile)?;
@@ -520,7 +520,7 @@ fn parts(
     if let Some(Some(instance)) = &nest {
         refuse_overwriting_input(instance, &[("network", path), ("profile", profile_path)])?;
     }
-    let profile = Profile::load(profile_path)?;
+    let profile = io::profile_file::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     let rotations = if slots_from_flat {
@@ -650,7 +650,7 @@ fn check(
         let target = dir.join("plan.json");
         refuse_overwriting_input(&target, &[("network", path), ("profile", profile_path)])?;
     }
-    let profile = Profile::load(profile_path)?;
+    let profile = io::profile_file::load(profile_path)?;
     let net = io::read_network(path, read.options())?;
     let an = analyze(&net, AnalysisOptions::for_network(&net))?;
     let report = lamella::check::check(&an, &profile);

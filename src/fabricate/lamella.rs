@@ -15,9 +15,8 @@ use super::slots::{node_slots_in, range_between_rad, sweep_range_rad, SlotSpan, 
 use crate::analysis::lines::StripLines;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
-use crate::formats::read::profile_file::JointSystem;
 use crate::network::{Family, Network};
-use crate::profile::Profile;
+use crate::profile::{JointSystem, Profile};
 use kurbo::Point;
 
 /// Clearance added to a bolt's diameter for its hole, mm (EN 1090-2:2018

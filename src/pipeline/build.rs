@@ -18,7 +18,6 @@ use crate::formats::write::{dxf as dxf_out, svg as svg_out};
 use crate::plan;
 use crate::plan::model::Model;
 use crate::plan::takeoff;
-use crate::profile::Profile;
 use crate::{analyze, AnalysisOptions};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
@@ -145,7 +144,7 @@ pub fn build(
     }
     let mut clock = Clock::start();
     progress.set_message("reading");
-    let profile = Profile::load(profile_path)?;
+    let profile = read::profile_file::load(profile_path)?;
     let net = read::read_network(network, opts.read)?;
     clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");

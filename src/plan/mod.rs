@@ -5,15 +5,15 @@
 use crate::analysis::Analysis;
 use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
 use crate::error::{Error, Result};
-use crate::formats::read::profile_file::JointSystem;
 use crate::network::Network;
 use crate::plan::model::Model;
-use crate::profile::Profile;
+use crate::profile::{JointSystem, Profile};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 pub mod model;
+pub mod resolved;
 pub mod sparrow;
 pub mod takeoff;
 
@@ -1090,7 +1090,7 @@ fn plan_profile(p: &Profile) -> PlanProfile {
             JointSystem::TwoLevel => "two_level".into(),
         },
         level_offset_mm: p.joint.level_offset_mm,
-        resolved: serde_json::to_value(p.resolved()).unwrap_or(serde_json::Value::Null),
+        resolved: resolved::resolved(p),
     }
 }
 
