@@ -16,8 +16,8 @@ mod support;
 mod synth;
 
 use lamella::fabricate::fabricate;
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{self as io, ReadOptions};
-use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::Path;
 use std::time::Instant;
@@ -54,7 +54,7 @@ fn main() {
 
 fn measure(path: &Path) {
     let profile =
-        Profile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"))
+        profile_file::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"))
             .expect("profile");
     let t0 = Instant::now();
     let net = io::read_network(path, ReadOptions::default()).expect("read");

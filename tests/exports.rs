@@ -13,6 +13,7 @@ use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, Point};
 use glam::{DVec2, DVec3};
 use lamella::check::check;
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork};
 use lamella::profile::Profile;
@@ -164,7 +165,7 @@ fn raw(case: &Case, step_mm: f64, normals: bool) -> RawNetwork {
 /// Max twist and utilisation of every A/B strip from OBJ and DXF exports at
 /// each sampling against the file-normals result.
 fn check_exports(case: Case, profile_path: &str) {
-    let profile = Profile::load(Path::new(profile_path)).expect("profile");
+    let profile = profile_file::load(Path::new(profile_path)).expect("profile");
     let dir = scratch(case.name);
     let exact = Network::new(raw(&case, 10.0, true), Path::new("exact.yaml")).unwrap();
     let want = evaluate(&exact, &profile);
@@ -241,7 +242,7 @@ fn helicoid_exports() {
 /// coordinates (`--precision 0`) gives a twist many times too large.
 #[test]
 fn precision_option_switches_the_smoothing() {
-    let profile = Profile::load(Path::new("profiles/steel-1.5.yaml")).expect("profile");
+    let profile = profile_file::load(Path::new("profiles/steel-1.5.yaml")).expect("profile");
     let case = enneper(4400.0);
     let dir = scratch("precision");
     let path = dir.join("enneper-5.obj");

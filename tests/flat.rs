@@ -6,13 +6,14 @@ mod common;
 
 use glam::DVec3;
 use lamella::flat::{problem, solve};
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{self as io, ReadOptions};
 use lamella::network::{Family, RawCurve, RawNetwork, Unit};
 use lamella::profile::Profile;
 use std::path::Path;
 
 fn profile(name: &str) -> Profile {
-    Profile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("profiles/{name}.yaml")))
+    profile_file::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("profiles/{name}.yaml")))
         .expect("profile")
 }
 

@@ -6,9 +6,9 @@ mod common;
 use common::synth::{self, Enneper, Sampling};
 use common::*;
 use glam::DVec2;
+use lamella::formats::read::profile_file;
 use lamella::network::{RawNetwork, Unit};
 use lamella::plan::model::Model;
-use lamella::profile::Profile;
 
 fn base(normals: bool) -> RawNetwork {
     let lines = synth::diagonal_lines(0.5, 9, DVec2::new(0.05, -0.03));
@@ -35,7 +35,7 @@ type Summary = (Vec<StripSummary>, Vec<f64>);
 /// Per strip: (length, sorted node stations, max |kg|, max |tg|), per node: angle.
 fn summary(raw: RawNetwork) -> Summary {
     let (net, an) = run(raw);
-    let steel = Profile::load(
+    let steel = profile_file::load(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"),
     )
     .unwrap();

@@ -9,9 +9,9 @@
 mod common;
 
 use lamella::fabricate::fabricate;
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, placed_bbox};
-use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::path::PathBuf;
 
@@ -25,7 +25,7 @@ fn every_buildable_kit_nests_within_the_rules() {
     for sample in common::BUILDABLE_SAMPLES {
         let (net, an) = common::analysed_sample(sample);
         for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
-            let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+            let p = profile_file::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
             let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
             let n = nest(&kit, &p).unwrap();
             assert_eq!(check_nest(&kit, &n, &p), Ok(()), "{sample} {profile}");
@@ -101,7 +101,7 @@ fn every_shipped_sample_keeps_the_readme_table() {
             if sample == "schwarz-d-pavilion-1to5" && *profile == "beech-veneer" {
                 continue;
             }
-            let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+            let p = profile_file::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
             let what = format!("{sample} {profile}");
             match (fabricate(&net, &an, &p, None, Default::default()), promise) {
                 (Err(e), Promise::PartsRefuse(msg)) => {
@@ -240,7 +240,7 @@ fn the_small_pavilion_nests_within_the_rules_by_outline() {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let p = Profile::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
+    let p = profile_file::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
     let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let n = nest(&kit, &p).unwrap();
     assert_eq!(check_nest(&kit, &n, &p), Ok(()));
@@ -306,7 +306,7 @@ fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part:
 fn two_bowed_bands_share_one_sheet_by_outline() {
     use lamella::fabricate::part::signed_area_mm2;
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];
@@ -361,7 +361,7 @@ fn two_bowed_bands_share_one_sheet_by_outline() {
 #[test]
 fn bowed_bands_stack_by_outline_onto_few_sheets() {
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];
@@ -406,7 +406,7 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let mut p = Profile::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
+    let mut p = profile_file::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
     // Stock narrower than a lamella is high, grain forbids turning it.
     p.stock.sizes[0].width_mm = 20.0;
     // Edge bands are split to fit the stock when the parts are made; when
@@ -438,7 +438,7 @@ fn rotations_that_fit_nothing_are_an_error_not_a_hang() {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let mut p = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let mut p = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
     let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     p.cutting.allowed_rotations_deg = vec![90];
     let e = nest(&kit, &p).unwrap_err().to_string();
@@ -466,7 +466,7 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
         state ^= state >> 27;
         (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
     };
-    let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
     let usable = steel.stock.sizes[0].usable_length_mm(steel.cutting.edge_margin_mm);
     let h = steel.section.height_mm;
     let mut over = 0;
@@ -587,7 +587,7 @@ fn star_washers_interleave_onto_half_the_sheets_of_their_boxes() {
     use lamella::fabricate::part::{Part, PartKind};
     use lamella::fabricate::washer::star_outline;
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];

@@ -10,6 +10,7 @@ mod common;
 use kurbo::Point;
 use lamella::fabricate::part::{Part, PartKind};
 use lamella::fabricate::{fabricate, Kit, KitSummary};
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, Nest};
 use lamella::profile::Profile;
@@ -29,7 +30,7 @@ fn steel_with(stock: &str) -> String {
 }
 
 fn parse(text: &str) -> lamella::Result<Profile> {
-    Profile::parse(text, Path::new("test.yaml"))
+    profile_file::parse(text, Path::new("test.yaml"))
 }
 
 /// Large 3000 × 1500 (27 lanes of 2983.2 mm for 50 mm lamellas 3.2 mm
@@ -92,9 +93,9 @@ fn every_stock_form_reads_and_writes_back() {
         "stock:\n  kind: coil\n  width_mm: 130\n  length_mm: 6000\n  price_per_unit: 40\n",
     ] {
         let text = steel_with(stock);
-        let file: lamella::formats::read::profile_file::ProfileFile = serde_yaml::from_str(&text).unwrap();
+        let file: profile_file::ProfileFile = serde_yaml::from_str(&text).unwrap();
         let p = parse(&text).unwrap_or_else(|e| panic!("{stock}: {e}"));
-        assert_eq!(p.resolved(), file, "{stock}");
+        assert_eq!(profile_file::ProfileFile::from(&p), file, "{stock}");
     }
     let p = two_sizes(95.0, 45.0, (None, Some(3)));
     assert_eq!(p.stock.sizes.len(), 2);
@@ -102,7 +103,7 @@ fn every_stock_form_reads_and_writes_back() {
     assert_eq!(p.stock.sizes[1].max_count, Some(3));
     // The longest usable length is what a lamella may be.
     assert_eq!(p.stock.longest_usable_mm(10.0, 50.0), 2980.0);
-    let mixed = Profile::load(&root().join("profiles/steel-1.5-mixed.yaml")).unwrap();
+    let mixed = profile_file::load(&root().join("profiles/steel-1.5-mixed.yaml")).unwrap();
     assert_eq!(mixed.stock.sizes.len(), 2);
     assert!(mixed.stock.priced());
 }
@@ -360,8 +361,8 @@ fn coil_is_cut_to_the_hand_computed_lane_length() {
 /// size, deterministic.
 #[test]
 fn shipped_samples_nest_on_two_sizes_within_the_rules() {
-    let mixed = Profile::load(&root().join("profiles/steel-1.5-mixed.yaml")).unwrap();
-    let single = Profile::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let mixed = profile_file::load(&root().join("profiles/steel-1.5-mixed.yaml")).unwrap();
+    let single = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
     let small = parse(&steel_with(
         "stock:\n  kind: sheet\n  length_mm: 2000\n  width_mm: 1000\n  price_per_unit: 45\n",
     ))

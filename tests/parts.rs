@@ -10,6 +10,7 @@
 use lamella::analysis::lines::LamellaLine;
 use lamella::fabricate::part::{FeatureKind, HoleUse, Part, PartKind};
 use lamella::fabricate::{fabricate, Kit};
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, Analysis, AnalysisOptions, Family, Network};
@@ -28,7 +29,7 @@ fn load(sample: &str, profile: &str) -> (Network, Analysis, Profile) {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let p = Profile::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+    let p = profile_file::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
     (net, an, p)
 }
 

@@ -537,7 +537,7 @@ fn a_byte_order_mark_is_accepted_by_every_reader() {
     let profile = dir.join("p.yaml");
     let text = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).unwrap();
     std::fs::write(&profile, format!("\u{feff}{text}")).unwrap();
-    assert!(lamella::profile::Profile::load(&profile).is_ok());
+    assert!(lamella::formats::read::profile_file::load(&profile).is_ok());
     let spec = dir.join("s.trace.yaml");
     let text = std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml")).unwrap();
     std::fs::write(&spec, format!("\u{feff}{text}")).unwrap();
@@ -582,7 +582,9 @@ fn deep_profiles_and_specs_are_refused() {
     );
     let p = dir.join("deep.yaml");
     std::fs::write(&p, deep).unwrap();
-    let e = lamella::profile::Profile::load(&p).unwrap_err().to_string();
+    let e = lamella::formats::read::profile_file::load(&p)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("line 2") && e.contains("deeper than 64"), "{e}");
     let s = dir.join("deep.trace.yaml");
     std::fs::write(&s, "name: x\nalias: *x\n").unwrap();

@@ -5,8 +5,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may panic on broken invariants
 
+use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
-use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions, Family, Network};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -55,7 +55,7 @@ fn traced_helices_bend_and_twist_as_the_closed_form() {
          sampling: {step_mm: 25}\n",
     );
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let steel = Profile::load(Path::new("profiles/steel-1.5.yaml")).unwrap();
+    let steel = profile_file::load(Path::new("profiles/steel-1.5.yaml")).unwrap();
     let report = lamella::check::check(&an, &steel, false).0;
     let mut helices = 0;
     let mut worst_kg = (0.0f64, String::new());

@@ -621,9 +621,10 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
 mod tests {
     use super::*;
     use crate::fabricate::part::signed_area_mm2;
+    use crate::formats::read::profile_file;
 
     fn steel() -> Profile {
-        let mut p = Profile::load(Path::new(concat!(
+        let mut p = profile_file::load(Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/steel-1.5.yaml"
         )))
@@ -843,7 +844,7 @@ mod tests {
         assert_eq!(edge_hole_diameter_mm(&p), 9.0);
         p.node_bolt = None;
         assert_eq!(edge_hole_diameter_mm(&p), DEFAULT_EDGE_HOLE_MM);
-        let poplar = Profile::load(Path::new(concat!(
+        let poplar = profile_file::load(Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/poplar-ply-4.yaml"
         )))

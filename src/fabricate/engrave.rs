@@ -8,10 +8,10 @@
 //! the band the slots leave whole (y from the clearance to the slots' roots
 //! less the clearance) and are placed along x as intervals: linear in the
 //! number of features however long the lamella. Other parts use the general
-//! [`label::Placer`].
+//! [`label::Placer`](super::label::Placer).
 
 use super::font;
-use super::label::{self, LabelSize, Placer};
+use super::label::{LabelSize, Placer};
 use super::part::{Engraved, Engraving, FeatureKind, Part, PartKind, SlotEdge};
 use kurbo::Point;
 use rayon::prelude::*;
@@ -224,7 +224,7 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
                 &mut engraving,
             );
             widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
-            let mark_w = |mh: f64| label::ORIENTATION_MARK_LENGTH * mh;
+            let mark_w = |mh: f64| font::ORIENTATION_MARK_LENGTH * mh;
             let at = cx + 0.5 * w + c + mark_w(th);
             match place(&mark_w, at, &far, th, &taken, widest) {
                 Some((mx, mh, my)) => {

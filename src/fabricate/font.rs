@@ -15,6 +15,10 @@
 //! character is drawn as a small open box ([`FALLBACK_WIDTH`] wide), so a
 //! missing glyph shows on the part instead of silently vanishing.
 //!
+//! Beside the glyphs, the orientation mark ([`orientation_mark_strokes`]):
+//! an arrow with a tick, on the same grid, that shows which way a part is
+//! mounted.
+//!
 //! Text is set with a fixed gap of [`LETTER_SPACING`] between glyph boxes:
 //! each glyph advances by its width plus the gap, and a string's width is
 //! the sum of its glyphs' widths plus one gap between each two (no gap after
@@ -525,6 +529,38 @@ pub fn text_strokes(text: &str, height_mm: f64) -> Vec<Vec<Point>> {
     out
 }
 
+/// Length of the orientation mark, in multiples of its height.
+pub const ORIENTATION_MARK_LENGTH: f64 = 2.0;
+
+/// The orientation mark at height `height_mm`, one stroke, origin at its
+/// box's lower left, box [0, [`ORIENTATION_MARK_LENGTH`] × h] × [0, h]: an
+/// arrow along +x (a lamella's start → end) with a closed triangular head,
+/// and at its tail a tick up to the top of the box (toward the part's top
+/// edge, +y). Turned over or end for end, the tick points down or the arrow
+/// backwards, so a part cannot be mounted flipped unnoticed.
+pub fn orientation_mark_strokes(height_mm: f64) -> Vec<Vec<Point>> {
+    ORIENTATION_MARK
+        .iter()
+        .map(|s| {
+            s.iter()
+                .map(|&(x, y)| Point::new(x * height_mm, y * height_mm))
+                .collect()
+        })
+        .collect()
+}
+
+/// The orientation mark at height 1 ([`orientation_mark_strokes`]),
+/// [`ORIENTATION_MARK_LENGTH`] long: the shaft at 0.3, the head 0.6 tall
+/// and 0.45 long.
+pub const ORIENTATION_MARK: [&[(f64, f64)]; 1] = [&[
+    (0.0, 1.0),
+    (0.0, 0.3),
+    (2.0, 0.3),
+    (1.55, 0.6),
+    (1.55, 0.0),
+    (2.0, 0.3),
+]];
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -675,5 +711,28 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("lamella-font-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");
         std::fs::write(dir.join("font.svg"), svg).expect("write svg");
+    }
+
+    #[test]
+    fn orientation_mark_points_to_the_end_and_up() {
+        let s = orientation_mark_strokes(10.0);
+        assert_eq!(s.len(), 1);
+        let m = &s[0];
+        // The tick: from the top of the box down to the shaft at the tail.
+        assert_eq!(m[0], Point::new(0.0, 10.0));
+        assert_eq!(m[1].x, 0.0);
+        assert!(m[1].y < m[0].y);
+        // The tip is the rightmost point, on the shaft; the head closes on it.
+        let tip = m[2];
+        assert_eq!(tip.x, ORIENTATION_MARK_LENGTH * 10.0);
+        assert_eq!(tip.y, m[1].y);
+        assert_eq!(*m.last().expect("points"), tip);
+        assert!(m
+            .iter()
+            .all(|q| q.x <= tip.x && q.x >= 0.0 && q.y >= 0.0 && q.y <= 10.0));
+        // The tick rises above the head: the mark is not symmetric about its
+        // shaft, so a flipped part shows it pointing down.
+        let head_top = m[3..].iter().map(|q| q.y).fold(f64::NEG_INFINITY, f64::max);
+        assert!(m[0].y > head_top);
     }
 }

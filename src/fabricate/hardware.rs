@@ -145,13 +145,14 @@ fn fmt_mm(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::formats::read::profile_file;
 
     /// The steel prototype: M8 node bolts through 50 mm lamellas and two
     /// 3 mm star washers (grip 56 mm), M5 shear-block bolts through
     /// 1.5 + 10 + 1.5 mm, M6 splice bolts 2 per side through 1.5 + 1.5 mm.
     #[test]
     fn steel_profile_hardware_by_hand() {
-        let p = Profile::load(std::path::Path::new(concat!(
+        let p = profile_file::load(std::path::Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/steel-1.5.yaml"
         )))

@@ -1,130 +1,18 @@
 //! Named invariant checks on parts, for tests and `debug_assert!`s
-//! and the plane-geometry predicates they stand
-//! on.
+//! standing on the plane predicates of
+//! [`crate::geom::plane`].
 //!
 //! Each check returns `Ok(())` or an `Err` whose message names the part, the
 //! rule broken and where (edge indices and coordinates, mm), so a builder
 //! can say `debug_assert_eq!(check_part(&part, clearance_mm), Ok(()))` and a
-//! failure reads as the reason. The predicates
-//! are evaluated in plain `f64` with exact zero tests (no tolerance): two
-//! segments that touch at a point or overlap along a line intersect; a
-//! polygon is a closed ring of points, the last joined to the first.
+//! failure reads as the reason.
 
-use kurbo::{Point, Rect};
+use kurbo::Point;
 
 use super::part::{signed_area_mm2, FeatureKind, Part, ROUND_HOLE_MM};
-
-// ---------------------------------------------------------------------------
-// Predicates
-
-/// Twice the signed area of the triangle a, b, c: positive when c lies to
-/// the left of a→b (counter-clockwise), 0 when collinear, mm².
-pub fn orient(a: Point, b: Point, c: Point) -> f64 {
-    (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
-}
-
-/// Whether `p`, known to be collinear with a–b, lies on the closed segment.
-fn within_box(a: Point, b: Point, p: Point) -> bool {
-    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
-}
-
-/// Whether the closed segments a–b and c–d share at least one point:
-/// proper crossings, an endpoint touching the other segment, and collinear
-/// overlaps (also of a single point) all count. A degenerate segment (a = b)
-/// is the point a.
-pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let d1 = orient(c, d, a);
-    let d2 = orient(c, d, b);
-    let d3 = orient(a, b, c);
-    let d4 = orient(a, b, d);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return true;
-    }
-    (d1 == 0.0 && within_box(c, d, a))
-        || (d2 == 0.0 && within_box(c, d, b))
-        || (d3 == 0.0 && within_box(a, b, c))
-        || (d4 == 0.0 && within_box(a, b, d))
-}
-
-/// Distance from `p` to the closed segment a–b, mm (to a when a = b).
-pub fn point_segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let len2 = ab.hypot2();
-    if len2 == 0.0 {
-        return p.distance(a);
-    }
-    let t = ((p - a).dot(ab) / len2).clamp(0.0, 1.0);
-    p.distance(a + ab * t)
-}
-
-/// Distance between the closed segments a–b and c–d, mm: 0 when they
-/// intersect, else the smallest of the four endpoint-to-segment distances.
-pub fn segment_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
-    if segments_intersect(a, b, c, d) {
-        return 0.0;
-    }
-    point_segment_distance(a, c, d)
-        .min(point_segment_distance(b, c, d))
-        .min(point_segment_distance(c, a, b))
-        .min(point_segment_distance(d, a, b))
-}
-
-/// Whether `p` lies inside the closed polygon `poly` (either orientation),
-/// by the crossing rule. Points on the boundary may go either way: callers
-/// that care test the boundary apart ([`on_boundary`]).
-pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
-    let n = poly.len();
-    let mut inside = false;
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) {
-            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-            if p.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// Whether `p` lies on an edge of the closed polygon `poly`.
-pub fn on_boundary(p: Point, poly: &[Point]) -> bool {
-    let n = poly.len();
-    (0..n).any(|i| segments_intersect(p, p, poly[i], poly[(i + 1) % n]))
-}
-
-/// Whether the closed segment a–b meets the closed rectangle `r` (an
-/// endpoint inside, or a crossing of its boundary), by Liang–Barsky
-/// clipping.
-pub fn segment_meets_rect(a: Point, b: Point, r: Rect) -> bool {
-    let (dx, dy) = (b.x - a.x, b.y - a.y);
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-dx, a.x - r.x0),
-        (dx, r.x1 - a.x),
-        (-dy, a.y - r.y0),
-        (dy, r.y1 - a.y),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-            if t0 > t1 {
-                return false;
-            }
-        }
-    }
-    true
-}
+use crate::geom::plane::{
+    on_boundary, orient, point_in_polygon, segment_distance, segments_intersect, within_box,
+};
 
 // ---------------------------------------------------------------------------
 // Edge sets
@@ -540,90 +428,6 @@ mod tests {
             p(98.5, 50.0),
             p(0.0, 50.0),
         ]
-    }
-
-    #[test]
-    fn intersections_proper_touching_collinear() {
-        let (a, b) = (p(0.0, 0.0), p(2.0, 2.0));
-        // Proper crossing.
-        assert!(segments_intersect(a, b, p(0.0, 2.0), p(2.0, 0.0)));
-        // Disjoint, parallel.
-        assert!(!segments_intersect(a, b, p(1.0, 0.0), p(3.0, 2.0)));
-        // An endpoint touching the other's interior (T).
-        assert!(segments_intersect(a, b, p(1.0, 1.0), p(2.0, 0.0)));
-        assert!(segments_intersect(p(1.0, 1.0), p(2.0, 0.0), a, b));
-        // Sharing an endpoint.
-        assert!(segments_intersect(a, b, b, p(3.0, 0.0)));
-        // Collinear overlapping, collinear touching at one point, collinear
-        // apart.
-        assert!(segments_intersect(a, b, p(1.0, 1.0), p(3.0, 3.0)));
-        assert!(segments_intersect(a, b, p(2.0, 2.0), p(3.0, 3.0)));
-        assert!(!segments_intersect(a, b, p(2.5, 2.5), p(3.0, 3.0)));
-        // Collinear, one containing the other.
-        assert!(segments_intersect(a, b, p(0.5, 0.5), p(1.0, 1.0)));
-        // On the line but beyond the end (the orientation is 0, the box
-        // test must reject it).
-        assert!(!segments_intersect(a, b, p(3.0, 3.0), p(4.0, 0.0)));
-        // Near miss.
-        assert!(!segments_intersect(a, b, p(1.0, 1.0 + 1e-9), p(0.0, 5.0)));
-        // Degenerate: a point on, and off, a segment.
-        assert!(segments_intersect(p(1.0, 1.0), p(1.0, 1.0), a, b));
-        assert!(!segments_intersect(p(1.0, 1.5), p(1.0, 1.5), a, b));
-        // Axis-parallel, the way outlines are.
-        assert!(segments_intersect(
-            p(0.0, 0.0),
-            p(10.0, 0.0),
-            p(5.0, 0.0),
-            p(5.0, 5.0)
-        ));
-        assert!(!segments_intersect(
-            p(0.0, 0.0),
-            p(10.0, 0.0),
-            p(5.0, 1e-12),
-            p(5.0, 5.0)
-        ));
-    }
-
-    #[test]
-    fn distances() {
-        let (a, b) = (p(0.0, 0.0), p(10.0, 0.0));
-        assert_eq!(point_segment_distance(p(5.0, 3.0), a, b), 3.0);
-        assert_eq!(point_segment_distance(p(-3.0, 4.0), a, b), 5.0);
-        assert_eq!(point_segment_distance(p(13.0, -4.0), a, b), 5.0);
-        assert_eq!(point_segment_distance(p(1.0, 1.0), a, a), 2f64.sqrt());
-        // Parallel, overlapping in x.
-        assert_eq!(segment_distance(a, b, p(2.0, 2.0), p(20.0, 2.0)), 2.0);
-        // Collinear, apart.
-        assert_eq!(segment_distance(a, b, p(12.0, 0.0), p(20.0, 0.0)), 2.0);
-        // Crossing, touching.
-        assert_eq!(segment_distance(a, b, p(5.0, -1.0), p(5.0, 1.0)), 0.0);
-        assert_eq!(segment_distance(a, b, p(10.0, 0.0), p(10.0, 1.0)), 0.0);
-        // Skew: the closest points are an endpoint and an interior point.
-        let d = segment_distance(a, b, p(3.0, 1.0), p(6.0, 4.0));
-        assert!((d - 1.0).abs() < 1e-15);
-        // Symmetric.
-        let (c, e) = (p(-1.0, 3.0), p(4.0, 7.0));
-        assert_eq!(segment_distance(a, b, c, e), segment_distance(c, e, b, a));
-    }
-
-    #[test]
-    fn polygon_and_rect_predicates() {
-        let outline = notched();
-        assert!(point_in_polygon(p(50.0, 25.0), &outline));
-        assert!(!point_in_polygon(p(100.0, 40.0), &outline)); // in a notch
-        assert!(point_in_polygon(p(100.0, 10.0), &outline)); // under it
-        assert!(!point_in_polygon(p(-1.0, 10.0), &outline));
-        assert!(on_boundary(p(100.0, 24.0), &outline));
-        assert!(!on_boundary(p(100.0, 23.0), &outline));
-
-        let r = Rect::new(0.0, 0.0, 10.0, 5.0);
-        assert!(segment_meets_rect(p(2.0, 2.0), p(3.0, 3.0), r)); // inside
-        assert!(segment_meets_rect(p(-5.0, 2.0), p(15.0, 2.0), r)); // through
-        assert!(segment_meets_rect(p(-5.0, 5.0), p(0.0, 5.0), r)); // touches a corner
-        assert!(segment_meets_rect(p(10.0, -1.0), p(10.0, 9.0), r)); // along a side
-        assert!(!segment_meets_rect(p(-5.0, 6.0), p(15.0, 6.0), r)); // above
-        assert!(!segment_meets_rect(p(-2.0, 4.0), p(4.0, 10.0), r)); // skims the corner
-        assert!(!segment_meets_rect(p(11.0, 1.0), p(11.0, 1.0), r)); // a point outside
     }
 
     #[test]

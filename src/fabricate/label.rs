@@ -18,8 +18,8 @@
 use kurbo::{Point, Rect, Vec2};
 
 use super::font;
-use super::invariants::{point_in_polygon, segment_meets_rect};
 use super::part::{Engraved, Engraving};
+use crate::geom::plane::{point_in_polygon, segment_meets_rect};
 
 /// How large an engraving may be and how far it may move to fit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -215,13 +215,13 @@ impl<'a> Placer<'a> {
         )
     }
 
-    /// Places the orientation mark ([`orientation_mark_strokes`]; height
+    /// Places the orientation mark ([`font::orientation_mark_strokes`]; height
     /// from `size`) like [`Placer::text`].
     pub fn orientation_mark(&mut self, anchor: Point, size: &LabelSize) -> Option<PlacedLabel> {
         self.place(
             anchor,
             size,
-            |h| ORIENTATION_MARK_LENGTH * h,
+            |h| font::ORIENTATION_MARK_LENGTH * h,
             Engraved::OrientationMark,
         )
     }
@@ -243,38 +243,6 @@ fn heights(max: f64, min: f64) -> Vec<f64> {
     out
 }
 
-/// Length of the orientation mark, in multiples of its height.
-pub const ORIENTATION_MARK_LENGTH: f64 = 2.0;
-
-/// The orientation mark at height `height_mm`, one stroke, origin at its
-/// box's lower left, box [0, [`ORIENTATION_MARK_LENGTH`] × h] × [0, h]: an
-/// arrow along +x (a lamella's start → end) with a closed triangular head,
-/// and at its tail a tick up to the top of the box (toward the part's top
-/// edge, +y). Turned over or end for end, the tick points down or the arrow
-/// backwards, so a part cannot be mounted flipped unnoticed.
-pub fn orientation_mark_strokes(height_mm: f64) -> Vec<Vec<Point>> {
-    ORIENTATION_MARK
-        .iter()
-        .map(|s| {
-            s.iter()
-                .map(|&(x, y)| Point::new(x * height_mm, y * height_mm))
-                .collect()
-        })
-        .collect()
-}
-
-/// The orientation mark at height 1 ([`orientation_mark_strokes`]),
-/// [`ORIENTATION_MARK_LENGTH`] long: the shaft at 0.3, the head 0.6 tall
-/// and 0.45 long.
-pub const ORIENTATION_MARK: [&[(f64, f64)]; 1] = [&[
-    (0.0, 1.0),
-    (0.0, 0.3),
-    (2.0, 0.3),
-    (1.55, 0.6),
-    (1.55, 0.0),
-    (2.0, 0.3),
-]];
-
 /// Places `text` on the part with this outline and these holes (part frame,
 /// mm): centred on `anchor` or shifted along x up to
 /// [`DEFAULT_SEARCH_HEIGHTS`] × `max_height_mm` either way, at the largest
@@ -295,7 +263,7 @@ pub fn place_label(
         .map(|l| l.strokes_part_mm)
 }
 
-/// Places the orientation mark ([`orientation_mark_strokes`]) by the rules
+/// Places the orientation mark ([`font::orientation_mark_strokes`]) by the rules
 /// of [`place_label`], its whole height from `max_height_mm` down to
 /// `min_height_mm`. The stroke, or `None` when nothing fits.
 pub fn orientation_mark(
@@ -313,9 +281,10 @@ pub fn orientation_mark(
 
 #[cfg(test)]
 mod tests {
-    use super::super::invariants::{check_part, segments_intersect, strokes_inside_and_clear};
+    use super::super::invariants::{check_part, strokes_inside_and_clear};
     use super::super::part::{circle_cw, Part, PartKind, ARC_TOLERANCE_MM};
     use super::*;
+    use crate::geom::plane::segments_intersect;
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
@@ -564,27 +533,7 @@ mod tests {
     }
 
     #[test]
-    fn orientation_mark_points_to_the_end_and_up() {
-        let s = orientation_mark_strokes(10.0);
-        assert_eq!(s.len(), 1);
-        let m = &s[0];
-        // The tick: from the top of the box down to the shaft at the tail.
-        assert_eq!(m[0], p(0.0, 10.0));
-        assert_eq!(m[1].x, 0.0);
-        assert!(m[1].y < m[0].y);
-        // The tip is the rightmost point, on the shaft; the head closes on it.
-        let tip = m[2];
-        assert_eq!(tip.x, ORIENTATION_MARK_LENGTH * 10.0);
-        assert_eq!(tip.y, m[1].y);
-        assert_eq!(*m.last().expect("points"), tip);
-        assert!(m
-            .iter()
-            .all(|q| q.x <= tip.x && q.x >= 0.0 && q.y >= 0.0 && q.y <= 10.0));
-        // The tick rises above the head: the mark is not symmetric about its
-        // shaft, so a flipped part shows it pointing down.
-        let head_top = m[3..].iter().map(|q| q.y).fold(f64::NEG_INFINITY, f64::max);
-        assert!(m[0].y > head_top);
-
+    fn orientation_mark_is_placed_clear() {
         let (outline, holes) = lamella();
         let placed = orientation_mark(&outline, &holes, p(100.0, 12.0), 12.0, 4.0, CLEARANCE)
             .expect("fits under the notch or beside it");

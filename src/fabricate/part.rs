@@ -213,7 +213,7 @@ impl Part {
 pub enum Engraved {
     /// A text in the single-stroke font ([`super::font`]).
     Text(String),
-    /// The orientation mark ([`super::label::orientation_mark_strokes`]).
+    /// The orientation mark ([`super::font::orientation_mark_strokes`]).
     OrientationMark,
 }
 
@@ -236,7 +236,7 @@ impl Engraving {
     pub fn strokes_at_origin(&self) -> Vec<Vec<Point>> {
         match &self.what {
             Engraved::Text(t) => super::font::text_strokes(t, self.height_mm),
-            Engraved::OrientationMark => super::label::orientation_mark_strokes(self.height_mm),
+            Engraved::OrientationMark => super::font::orientation_mark_strokes(self.height_mm),
         }
     }
 

@@ -28,8 +28,7 @@
 
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
-use crate::formats::read::profile_file::JointSystem;
-use crate::profile::Profile;
+use crate::profile::{JointSystem, Profile};
 use kurbo::Point;
 
 /// Part id of the stud.
@@ -150,10 +149,11 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
 mod tests {
     use super::*;
     use crate::fabricate::part::signed_area_mm2;
+    use crate::formats::read::profile_file;
     use std::path::Path;
 
     fn poplar() -> Profile {
-        let mut p = Profile::load(Path::new(concat!(
+        let mut p = profile_file::load(Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/poplar-ply-4.yaml"
         )))
@@ -200,7 +200,7 @@ mod tests {
 
     #[test]
     fn no_studs_without_a_two_level_joint() {
-        let steel = Profile::load(Path::new(concat!(
+        let steel = profile_file::load(Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/steel-1.5.yaml"
         )))

@@ -27,9 +27,8 @@
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
-use crate::formats::read::profile_file::JointSystem;
 use crate::network::Family;
-use crate::profile::Profile;
+use crate::profile::{JointSystem, Profile};
 use kurbo::{Point, Vec2};
 use std::collections::BTreeMap;
 
@@ -261,10 +260,11 @@ pub fn washers(profile: &Profile, nodes: &[GridNode]) -> Result<Vec<Part>> {
 mod tests {
     use super::*;
     use crate::fabricate::part::signed_area_mm2;
+    use crate::formats::read::profile_file;
     use std::path::Path;
 
     fn steel() -> Profile {
-        Profile::load(Path::new(concat!(
+        profile_file::load(Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/steel-1.5.yaml"
         )))

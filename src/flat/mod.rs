@@ -34,9 +34,8 @@
 
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
-use crate::formats::read::profile_file::JointSystem;
 use crate::network::Family;
-use crate::profile::Profile;
+use crate::profile::{JointSystem, Profile};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};

@@ -1,10 +1,12 @@
 //! Geometry every stage shares, knowing no stage and no file format:
 //! smooth curves through samples ([`curve`]), NURBS evaluation ([`nurbs`]),
-//! closest points of segments ([`closest`]), the surface interface
-//! ([`surface`]) and triangle meshes ([`mesh`]).
+//! closest points of segments ([`closest`]), plane predicates on points,
+//! segments and polygons ([`plane`]), the surface interface ([`surface`])
+//! and triangle meshes ([`mesh`]).
 
 pub mod closest;
 pub mod curve;
 pub mod mesh;
 pub mod nurbs;
+pub mod plane;
 pub mod surface;

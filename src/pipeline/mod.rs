@@ -85,7 +85,7 @@ impl Session {
     /// Read the profile (when given), then the network.
     pub fn open(inputs: Inputs) -> Result<Session> {
         let profile = match &inputs.profile {
-            Some(p) => Some(Profile::load(p)?),
+            Some(p) => Some(read::profile_file::load(p)?),
             None => None,
         };
         let network = read::read_network(&inputs.network, inputs.read)?;

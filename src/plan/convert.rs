@@ -5,10 +5,9 @@
 use super::*;
 use crate::analysis::Analysis;
 use crate::check::{CheckReport, LamellaCheck, StripCheck, Suggestion};
-use crate::formats::read::profile_file::JointSystem;
 use crate::network::Network;
 use crate::plan::model::Model;
-use crate::profile::Profile;
+use crate::profile::{JointSystem, Profile};
 use rayon::prelude::*;
 use std::path::Path;
 
@@ -316,7 +315,7 @@ pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
 
 /// The font entry of every character and mark the parts engrave.
 fn engraving_font(parts: &[PlanPart]) -> PlanFont {
-    use crate::fabricate::{font, label};
+    use crate::fabricate::font;
     let glyph = |width: f64, strokes: Vec<Vec<kurbo::Point>>| PlanGlyph {
         width,
         strokes: strokes
@@ -332,8 +331,8 @@ fn engraving_font(parts: &[PlanPart]) -> PlanFont {
             marks.insert(
                 ORIENTATION_MARK.to_string(),
                 glyph(
-                    label::ORIENTATION_MARK_LENGTH,
-                    label::orientation_mark_strokes(1.0),
+                    font::ORIENTATION_MARK_LENGTH,
+                    font::orientation_mark_strokes(1.0),
                 ),
             );
         }
@@ -572,7 +571,7 @@ fn plan_profile(p: &Profile) -> PlanProfile {
             JointSystem::TwoLevel => "two_level".into(),
         },
         level_offset_mm: p.joint.level_offset_mm,
-        resolved: serde_json::to_value(p.resolved()).unwrap_or(serde_json::Value::Null),
+        resolved: super::resolved::resolved(p),
     }
 }
 

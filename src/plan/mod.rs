@@ -9,6 +9,7 @@ use takeoff::Takeoff;
 
 mod convert;
 pub mod model;
+pub mod resolved;
 pub mod sparrow;
 pub mod takeoff;
 

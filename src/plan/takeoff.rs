@@ -8,7 +8,7 @@ use crate::fabricate::part::PartKind;
 use crate::fabricate::{net_area_mm2, part_mass_kg, Kit};
 use crate::nest::Nest;
 use crate::plan::round;
-use crate::profile::Profile;
+use crate::profile::{Profile, StockKind};
 use serde::Serialize;
 
 /// The whole takeoff.
@@ -132,8 +132,8 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
     // priced by the length cut, so their unit price is given only when
     // every piece costs the same.
     let form = match profile.stock.kind {
-        crate::formats::read::profile_file::StockKind::Sheet => "sheet",
-        crate::formats::read::profile_file::StockKind::Coil => "coil",
+        StockKind::Sheet => "sheet",
+        StockKind::Coil => "coil",
     };
     let mut stock: Vec<StockLine> = Vec::new();
     struct Size<'a> {

@@ -1,15 +1,22 @@
 //! The material profile file (YAML, `version: 1`). Every length names its
 //! unit (`_mm`), every stress `_mpa`, every angle `_deg`. Unknown fields are
 //! errors, so a typo or a unit-less name (`thickness:`) never passes silently.
+//!
+//! [`load`] reads a file into the working [`Profile`]: the YAML guard, the
+//! version (older versions upgraded), the file types here, then
+//! [`RawProfile`] and [`Profile::new`]'s checks. `From<&Profile>` turns a
+//! profile back into the file form.
 
+use crate::error::{one_line, Error, Location, Result};
+use crate::profile::{self, Profile, RawProfile, RawStock};
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 
 /// The newest profile version this build reads.
 pub const CURRENT_VERSION: u32 = 1;
 
 /// A material profile file as written: material, lamella section, joint,
-/// hardware, stock and cutting. Validated by conversion to
-/// [`Profile`](crate::profile::Profile).
+/// hardware, stock and cutting. Validated by conversion to [`Profile`].
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ProfileFile {
@@ -194,8 +201,8 @@ pub struct Splice {
 ///   multiples of it), and a price: `price_per_m` (per metre cut) or
 ///   `price_per_unit` (per piece, with `length_mm`).
 ///
-/// [`Profile`](crate::profile::Profile)'s validation says which field of
-/// which form is missing or misplaced.
+/// [`Profile`]'s validation ([`crate::profile::validate`]) says which field
+/// of which form is missing or misplaced.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Stock {
@@ -271,4 +278,474 @@ pub struct Cutting {
     pub edge_margin_mm: f64,
     /// Rotations allowed on the stock, degrees, each one of 0, 90, 180, 270.
     pub allowed_rotations_deg: Vec<u32>,
+}
+
+/// Read and validate a profile file.
+pub fn load(path: &Path) -> Result<Profile> {
+    if !path.exists() {
+        return Err(Error::input(path, Location::File, "no such file"));
+    }
+    let text = crate::formats::read::read_text(path)?;
+    parse(&text, path)
+}
+
+/// Parse and validate profile text (`path` names it in messages and
+/// becomes the profile's `source`).
+pub fn parse(text: &str, path: &Path) -> Result<Profile> {
+    if text.trim().is_empty() {
+        return Err(Error::input(path, Location::File, "the file is empty"));
+    }
+    crate::formats::read::yaml_guard::check(text, path)?;
+    let value: serde_yaml::Value = serde_yaml::from_str(text).map_err(|e| yaml_error(path, &e))?;
+    let version = match value.get("version") {
+        None => {
+            return Err(Error::input(
+                path,
+                Location::Field("version".into()),
+                format!("missing; this lamella reads profile version {CURRENT_VERSION}"),
+            ))
+        }
+        Some(v) => v.as_u64().ok_or_else(|| {
+            Error::input(
+                path,
+                Location::Field("version".into()),
+                "must be a whole number",
+            )
+        })?,
+    };
+    let value = upgrade(value, version, path)?;
+    let file: ProfileFile = serde_yaml::from_value(value).map_err(|e| {
+        // from_value has no location: re-parse the text for it.
+        match serde_yaml::from_str::<ProfileFile>(text) {
+            Err(located) => yaml_error(path, &located),
+            Ok(_) => Error::input(path, Location::File, one_line(&e.to_string())),
+        }
+    })?;
+    let mut profile = Profile::try_from(file)
+        .map_err(|e| Error::input(path, Location::Field(e.field), e.message))?;
+    profile.source = path.to_path_buf();
+    Ok(profile)
+}
+
+/// Bring an older profile to the current version. Version 1 is the first;
+/// a later version adds its step here, and a test per version keeps it.
+fn upgrade(value: serde_yaml::Value, version: u64, path: &Path) -> Result<serde_yaml::Value> {
+    match version {
+        1 => Ok(value),
+        v if v > u64::from(CURRENT_VERSION) => Err(Error::input(
+            path,
+            Location::Field("version".into()),
+            format!("profile version {v} is newer than this lamella reads ({CURRENT_VERSION}): update lamella"),
+        )),
+        v => Err(Error::input(
+            path,
+            Location::Field("version".into()),
+            format!("unknown profile version {v} (this lamella reads {CURRENT_VERSION})"),
+        )),
+    }
+}
+
+/// A YAML error as one line with its location, and a hint when a field was
+/// written without its unit (`thickness:` for `thickness_mm:`).
+fn yaml_error(path: &Path, e: &serde_yaml::Error) -> Error {
+    let (at, msg) = crate::error::yaml_error_parts(e);
+    // serde_yaml writes "section: unknown field `x`, expected one of ...".
+    if let Some(i) = msg.find("unknown field `") {
+        let prefix = msg[..i].trim_end_matches([' ', ':']);
+        let name = msg[i + "unknown field `".len()..]
+            .split('`')
+            .next()
+            .unwrap_or("");
+        for unit in ["_mm", "_mpa", "_deg", "_kg_per_m3"] {
+            let with_unit = format!("`{name}{unit}`");
+            if msg.contains(&with_unit) {
+                let dotted = if prefix.is_empty() {
+                    name.to_string()
+                } else {
+                    format!("{prefix}.{name}")
+                };
+                return Error::input(
+                    path,
+                    at,
+                    format!("field `{dotted}` has no unit in its name: write {with_unit}"),
+                );
+            }
+        }
+    }
+    Error::input(path, at, msg)
+}
+
+// ---------------------------------------------------------------------------
+// File form → model
+
+impl TryFrom<ProfileFile> for Profile {
+    type Error = profile::FieldError;
+
+    /// Validate a profile file and build the working profile (`source` empty).
+    fn try_from(f: ProfileFile) -> std::result::Result<Profile, profile::FieldError> {
+        Profile::new(RawProfile::from(f))
+    }
+}
+
+impl From<ProfileFile> for RawProfile {
+    /// The file's sections as the model's, unchecked (the version is the
+    /// reader's business).
+    fn from(f: ProfileFile) -> RawProfile {
+        RawProfile {
+            name: f.name,
+            description: f.description,
+            material: f.material.into(),
+            section: f.lamella.into(),
+            joint: f.joint.into(),
+            node_bolt: f.node_bolt.map(Into::into),
+            washer: f.washer.map(Into::into),
+            shear_block: f.shear_block.map(Into::into),
+            stud: f.stud.map(Into::into),
+            splice: f.splice.map(Into::into),
+            stock: f.stock.into(),
+            cutting: f.cutting.into(),
+        }
+    }
+}
+
+impl From<Material> for profile::Material {
+    fn from(m: Material) -> profile::Material {
+        profile::Material {
+            name: m.name,
+            youngs_modulus_mpa: m.youngs_modulus_mpa,
+            shear_modulus_mpa: m.shear_modulus_mpa,
+            characteristic_strength_mpa: m.characteristic_strength_mpa,
+            partial_factor: m.partial_factor,
+            modification_factor: m.modification_factor,
+            density_kg_per_m3: m.density_kg_per_m3,
+            grain: m.grain.into(),
+        }
+    }
+}
+
+impl From<Grain> for profile::Grain {
+    fn from(g: Grain) -> profile::Grain {
+        match g {
+            Grain::None => profile::Grain::None,
+            Grain::AlongStrip => profile::Grain::AlongStrip,
+        }
+    }
+}
+
+impl From<Lamella> for profile::Section {
+    fn from(l: Lamella) -> profile::Section {
+        profile::Section {
+            thickness_mm: l.thickness_mm,
+            height_mm: l.height_mm,
+            per_strip: l.per_strip,
+            gap_mm: l.gap_mm,
+            end_allowance_mm: l.end_allowance_mm,
+        }
+    }
+}
+
+impl From<Joint> for profile::Joint {
+    fn from(j: Joint) -> profile::Joint {
+        profile::Joint {
+            system: j.system.into(),
+            slot_clearance_mm: j.slot_clearance_mm,
+            rotation_tolerance_deg: j.rotation_tolerance_deg,
+            level_offset_mm: j.level_offset_mm,
+        }
+    }
+}
+
+impl From<JointSystem> for profile::JointSystem {
+    fn from(s: JointSystem) -> profile::JointSystem {
+        match s {
+            JointSystem::Interlocking => profile::JointSystem::Interlocking,
+            JointSystem::TwoLevel => profile::JointSystem::TwoLevel,
+        }
+    }
+}
+
+impl From<Bolt> for profile::Bolt {
+    fn from(b: Bolt) -> profile::Bolt {
+        profile::Bolt {
+            diameter_mm: b.diameter_mm,
+            hole_clearance_mm: b.hole_clearance_mm,
+            designation: b.designation,
+        }
+    }
+}
+
+impl From<Washer> for profile::Washer {
+    fn from(w: Washer) -> profile::Washer {
+        profile::Washer {
+            thickness_mm: w.thickness_mm,
+            arm_length_mm: w.arm_length_mm,
+            arm_width_mm: w.arm_width_mm,
+            per_node: w.per_node,
+        }
+    }
+}
+
+impl From<ShearBlock> for profile::ShearBlock {
+    fn from(s: ShearBlock) -> profile::ShearBlock {
+        profile::ShearBlock {
+            length_mm: s.length_mm,
+            max_spacing_mm: s.max_spacing_mm,
+            slenderness_limit: s.slenderness_limit,
+            clearance_mm: s.clearance_mm,
+            bolt_diameter_mm: s.bolt_diameter_mm,
+        }
+    }
+}
+
+impl From<Stud> for profile::Stud {
+    fn from(s: Stud) -> profile::Stud {
+        profile::Stud {
+            length_mm: s.length_mm,
+            fastener_diameter_mm: s.fastener_diameter_mm,
+            bar_length_mm: s.bar_length_mm,
+        }
+    }
+}
+
+impl From<Splice> for profile::Splice {
+    fn from(s: Splice) -> profile::Splice {
+        profile::Splice {
+            plate_length_mm: s.plate_length_mm,
+            bolts_per_side: s.bolts_per_side,
+            bolt_diameter_mm: s.bolt_diameter_mm,
+        }
+    }
+}
+
+impl From<Stock> for RawStock {
+    fn from(s: Stock) -> RawStock {
+        RawStock {
+            kind: s.kind.into(),
+            length_mm: s.length_mm,
+            width_mm: s.width_mm,
+            price_per_unit: s.price_per_unit,
+            currency: s.currency,
+            max_count: s.max_count,
+            sizes: s
+                .sizes
+                .map(|list| list.into_iter().map(Into::into).collect()),
+            price_per_m: s.price_per_m,
+            length_step_mm: s.length_step_mm,
+        }
+    }
+}
+
+impl From<StockSize> for profile::StockSize {
+    fn from(z: StockSize) -> profile::StockSize {
+        profile::StockSize {
+            name: z.name,
+            length_mm: Some(z.length_mm),
+            width_mm: z.width_mm,
+            price_per_unit: z.price_per_unit,
+            max_count: z.max_count,
+        }
+    }
+}
+
+impl From<StockKind> for profile::StockKind {
+    fn from(k: StockKind) -> profile::StockKind {
+        match k {
+            StockKind::Sheet => profile::StockKind::Sheet,
+            StockKind::Coil => profile::StockKind::Coil,
+        }
+    }
+}
+
+impl From<Cutting> for profile::Cutting {
+    fn from(c: Cutting) -> profile::Cutting {
+        profile::Cutting {
+            kerf_mm: c.kerf_mm,
+            part_spacing_mm: c.part_spacing_mm,
+            edge_margin_mm: c.edge_margin_mm,
+            allowed_rotations_deg: c.allowed_rotations_deg,
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Model → file form
+
+impl From<&Profile> for ProfileFile {
+    /// The profile as a file (current version): what plan.json keeps as
+    /// `resolved`.
+    fn from(p: &Profile) -> ProfileFile {
+        ProfileFile {
+            version: CURRENT_VERSION,
+            name: p.name.clone(),
+            description: p.description.clone(),
+            material: (&p.material).into(),
+            lamella: (&p.section).into(),
+            joint: (&p.joint).into(),
+            node_bolt: p.node_bolt.as_ref().map(Into::into),
+            washer: p.washer.as_ref().map(Into::into),
+            shear_block: p.shear_block.as_ref().map(Into::into),
+            stud: p.stud.as_ref().map(Into::into),
+            splice: p.splice.as_ref().map(Into::into),
+            stock: (&p.stock).into(),
+            cutting: (&p.cutting).into(),
+        }
+    }
+}
+
+impl From<&profile::Material> for Material {
+    fn from(m: &profile::Material) -> Material {
+        Material {
+            name: m.name.clone(),
+            youngs_modulus_mpa: m.youngs_modulus_mpa,
+            shear_modulus_mpa: m.shear_modulus_mpa,
+            characteristic_strength_mpa: m.characteristic_strength_mpa,
+            partial_factor: m.partial_factor,
+            modification_factor: m.modification_factor,
+            density_kg_per_m3: m.density_kg_per_m3,
+            grain: m.grain.into(),
+        }
+    }
+}
+
+impl From<profile::Grain> for Grain {
+    fn from(g: profile::Grain) -> Grain {
+        match g {
+            profile::Grain::None => Grain::None,
+            profile::Grain::AlongStrip => Grain::AlongStrip,
+        }
+    }
+}
+
+impl From<&profile::Section> for Lamella {
+    fn from(l: &profile::Section) -> Lamella {
+        Lamella {
+            thickness_mm: l.thickness_mm,
+            height_mm: l.height_mm,
+            per_strip: l.per_strip,
+            gap_mm: l.gap_mm,
+            end_allowance_mm: l.end_allowance_mm,
+        }
+    }
+}
+
+impl From<&profile::Joint> for Joint {
+    fn from(j: &profile::Joint) -> Joint {
+        Joint {
+            system: j.system.into(),
+            slot_clearance_mm: j.slot_clearance_mm,
+            rotation_tolerance_deg: j.rotation_tolerance_deg,
+            level_offset_mm: j.level_offset_mm,
+        }
+    }
+}
+
+impl From<profile::JointSystem> for JointSystem {
+    fn from(s: profile::JointSystem) -> JointSystem {
+        match s {
+            profile::JointSystem::Interlocking => JointSystem::Interlocking,
+            profile::JointSystem::TwoLevel => JointSystem::TwoLevel,
+        }
+    }
+}
+
+impl From<&profile::Bolt> for Bolt {
+    fn from(b: &profile::Bolt) -> Bolt {
+        Bolt {
+            diameter_mm: b.diameter_mm,
+            hole_clearance_mm: b.hole_clearance_mm,
+            designation: b.designation.clone(),
+        }
+    }
+}
+
+impl From<&profile::Washer> for Washer {
+    fn from(w: &profile::Washer) -> Washer {
+        Washer {
+            thickness_mm: w.thickness_mm,
+            arm_length_mm: w.arm_length_mm,
+            arm_width_mm: w.arm_width_mm,
+            per_node: w.per_node,
+        }
+    }
+}
+
+impl From<&profile::ShearBlock> for ShearBlock {
+    fn from(s: &profile::ShearBlock) -> ShearBlock {
+        ShearBlock {
+            length_mm: s.length_mm,
+            max_spacing_mm: s.max_spacing_mm,
+            slenderness_limit: s.slenderness_limit,
+            clearance_mm: s.clearance_mm,
+            bolt_diameter_mm: s.bolt_diameter_mm,
+        }
+    }
+}
+
+impl From<&profile::Stud> for Stud {
+    fn from(s: &profile::Stud) -> Stud {
+        Stud {
+            length_mm: s.length_mm,
+            fastener_diameter_mm: s.fastener_diameter_mm,
+            bar_length_mm: s.bar_length_mm,
+        }
+    }
+}
+
+impl From<&profile::Splice> for Splice {
+    fn from(s: &profile::Splice) -> Splice {
+        Splice {
+            plate_length_mm: s.plate_length_mm,
+            bolts_per_side: s.bolts_per_side,
+            bolt_diameter_mm: s.bolt_diameter_mm,
+        }
+    }
+}
+
+impl From<&profile::Stock> for Stock {
+    /// The stock as the file wrote it: one size inline, or the list.
+    fn from(s: &profile::Stock) -> Stock {
+        let one = s.sizes.first().filter(|_| !s.listed);
+        Stock {
+            kind: s.kind.into(),
+            length_mm: one.and_then(|z| z.length_mm),
+            width_mm: one.map(|z| z.width_mm),
+            price_per_unit: one.and_then(|z| z.price_per_unit),
+            currency: s.currency.clone(),
+            max_count: one.and_then(|z| z.max_count),
+            sizes: s.listed.then(|| {
+                s.sizes
+                    .iter()
+                    .map(|z| StockSize {
+                        name: z.name.clone(),
+                        length_mm: z.length_mm.unwrap_or(0.0),
+                        width_mm: z.width_mm,
+                        price_per_unit: z.price_per_unit,
+                        max_count: z.max_count,
+                    })
+                    .collect()
+            }),
+            price_per_m: s.price_per_m,
+            length_step_mm: s.length_step_mm,
+        }
+    }
+}
+
+impl From<profile::StockKind> for StockKind {
+    fn from(k: profile::StockKind) -> StockKind {
+        match k {
+            profile::StockKind::Sheet => StockKind::Sheet,
+            profile::StockKind::Coil => StockKind::Coil,
+        }
+    }
+}
+
+impl From<&profile::Cutting> for Cutting {
+    fn from(c: &profile::Cutting) -> Cutting {
+        Cutting {
+            kerf_mm: c.kerf_mm,
+            part_spacing_mm: c.part_spacing_mm,
+            edge_margin_mm: c.edge_margin_mm,
+            allowed_rotations_deg: c.allowed_rotations_deg.clone(),
+        }
+    }
 }

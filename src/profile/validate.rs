@@ -1,0 +1,464 @@
+//! The checks a raw profile passes before it becomes a [`Profile`](super::Profile)
+//! (the guarantees in [`super`]'s documentation): one function per section,
+//! in the order a profile file lists them, each a list of named checks.
+//! The first failure is the answer, under the field's dotted path as the
+//! file writes it (`lamella.thickness_mm`, `stock.sizes[1].width_mm`).
+
+use super::{
+    Bolt, Cutting, FieldError, Grain, Joint, JointSystem, Material, RawProfile, RawStock, Section,
+    ShearBlock, Splice, StockKind, StockSize, Stud, Washer,
+};
+
+/// What a check gives: nothing, or the field that fails and why.
+type Check = Result<(), FieldError>;
+
+/// Check every section of `raw`, in file order.
+pub fn profile(raw: &RawProfile) -> Check {
+    name(&raw.name)?;
+    material(&raw.material)?;
+    section(&raw.section)?;
+    joint(&raw.joint, &raw.section, raw.stud.is_some())?;
+    if let Some(b) = &raw.node_bolt {
+        node_bolt(b, &raw.section)?;
+    }
+    if let Some(w) = &raw.washer {
+        washer(w, raw.node_bolt.is_some())?;
+    }
+    if let Some(s) = &raw.shear_block {
+        shear_block(s, &raw.section)?;
+    }
+    if let Some(s) = &raw.stud {
+        stud(s)?;
+    }
+    if let Some(s) = &raw.splice {
+        splice(s)?;
+    }
+    stock(&raw.stock, raw.section.height_mm)?;
+    cutting(&raw.cutting, raw.material.grain)
+}
+
+// ---------------------------------------------------------------------------
+// Number checks
+
+/// The failure of `field`, for `why`.
+fn fail(field: &str, why: impl Into<String>) -> Check {
+    Err(FieldError {
+        field: field.into(),
+        message: why.into(),
+    })
+}
+
+/// Every number has a sane upper bound, checked under its own name (a
+/// length beyond 10 km is a typo, not a part): 1e7 for `_mm`, else 1e12.
+fn at_most(field: &str, x: f64) -> Check {
+    let (max, unit) = if field.ends_with("_mm") {
+        (1e7, " mm")
+    } else {
+        (1e12, "")
+    };
+    if x <= max {
+        Ok(())
+    } else {
+        fail(field, format!("must be at most {max:e}{unit}, got {x:e}"))
+    }
+}
+
+/// Finite, above 0 and at most the bound.
+fn positive(field: &str, x: f64) -> Check {
+    if x.is_finite() && x > 0.0 {
+        at_most(field, x)
+    } else {
+        fail(field, format!("must be positive, got {x}"))
+    }
+}
+
+/// Finite, 0 or more and at most the bound.
+fn non_negative(field: &str, x: f64) -> Check {
+    if x.is_finite() && x >= 0.0 {
+        at_most(field, x)
+    } else {
+        fail(field, format!("must be zero or more, got {x}"))
+    }
+}
+
+/// A count, when given, is at least 1.
+fn count(field: &str, n: Option<u32>) -> Check {
+    if n == Some(0) {
+        fail(field, "must be at least 1")
+    } else {
+        Ok(())
+    }
+}
+
+/// Text, when given, is not blank.
+fn not_blank(field: &str, text: Option<&str>) -> Check {
+    if text.is_some_and(|t| t.trim().is_empty()) {
+        fail(field, "must not be empty")
+    } else {
+        Ok(())
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Sections
+
+/// `name:` not blank.
+fn name(name: &str) -> Check {
+    not_blank("name", Some(name))
+}
+
+/// `material:` positive values, γ_M ≥ 1, k_mod ≤ 1.1, G below E.
+fn material(m: &Material) -> Check {
+    positive("material.youngs_modulus_mpa", m.youngs_modulus_mpa)?;
+    positive("material.shear_modulus_mpa", m.shear_modulus_mpa)?;
+    positive(
+        "material.characteristic_strength_mpa",
+        m.characteristic_strength_mpa,
+    )?;
+    positive("material.partial_factor", m.partial_factor)?;
+    positive("material.modification_factor", m.modification_factor)?;
+    positive("material.density_kg_per_m3", m.density_kg_per_m3)?;
+    if m.partial_factor < 1.0 {
+        return fail(
+            "material.partial_factor",
+            format!("must be at least 1, got {}", m.partial_factor),
+        );
+    }
+    if m.modification_factor > 1.1 {
+        return fail(
+            "material.modification_factor",
+            format!("must be at most 1.1, got {}", m.modification_factor),
+        );
+    }
+    if m.shear_modulus_mpa >= m.youngs_modulus_mpa {
+        return fail(
+            "material.shear_modulus_mpa",
+            format!(
+                "{} is not below Young's modulus {}",
+                m.shear_modulus_mpa, m.youngs_modulus_mpa
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// `lamella:` positive section, thinner than high, one or two per strip
+/// (two with a gap).
+fn section(l: &Section) -> Check {
+    positive("lamella.thickness_mm", l.thickness_mm)?;
+    positive("lamella.height_mm", l.height_mm)?;
+    non_negative("lamella.gap_mm", l.gap_mm)?;
+    non_negative("lamella.end_allowance_mm", l.end_allowance_mm)?;
+    if l.thickness_mm >= l.height_mm {
+        return fail(
+            "lamella.thickness_mm",
+            format!("{} is not below the height {}", l.thickness_mm, l.height_mm),
+        );
+    }
+    match l.per_strip {
+        1 => Ok(()),
+        2 => positive("lamella.gap_mm", l.gap_mm).map_err(|_| FieldError {
+            field: "lamella.gap_mm".into(),
+            message: "a doubled strip (per_strip: 2) needs a gap above 0".into(),
+        }),
+        n => fail("lamella.per_strip", format!("must be 1 or 2, got {n}")),
+    }
+}
+
+/// `joint:` clearances, a tolerance below 90°, and what the system needs:
+/// two levels have studs, a doubled strip and a level offset; one level
+/// has no offset.
+fn joint(j: &Joint, l: &Section, has_studs: bool) -> Check {
+    non_negative("joint.slot_clearance_mm", j.slot_clearance_mm)?;
+    non_negative("joint.level_offset_mm", j.level_offset_mm)?;
+    if !(0.0..90.0).contains(&j.rotation_tolerance_deg) {
+        return fail(
+            "joint.rotation_tolerance_deg",
+            format!("must be in [0, 90), got {}", j.rotation_tolerance_deg),
+        );
+    }
+    match j.system {
+        JointSystem::TwoLevel => {
+            if !has_studs {
+                return fail("stud", "a two-level joint needs studs");
+            }
+            if l.per_strip != 2 {
+                return fail(
+                    "lamella.per_strip",
+                    "a two-level joint puts its stud in the gap of a doubled strip: use 2",
+                );
+            }
+            positive("joint.level_offset_mm", j.level_offset_mm)
+        }
+        JointSystem::Interlocking => {
+            if j.level_offset_mm != 0.0 {
+                return fail(
+                    "joint.level_offset_mm",
+                    "an interlocking joint has one level: use 0",
+                );
+            }
+            Ok(())
+        }
+    }
+}
+
+/// `node_bolt:` a positive diameter that passes through a doubled strip's gap.
+fn node_bolt(b: &Bolt, l: &Section) -> Check {
+    positive("node_bolt.diameter_mm", b.diameter_mm)?;
+    non_negative("node_bolt.hole_clearance_mm", b.hole_clearance_mm)?;
+    if l.per_strip == 2 && b.diameter_mm > l.gap_mm {
+        return fail(
+            "node_bolt.diameter_mm",
+            format!(
+                "{} does not pass through the {} mm gap between the lamellas",
+                b.diameter_mm, l.gap_mm
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// `washer:` positive sizes, at least one per node, and a node bolt to
+/// tighten them.
+fn washer(w: &Washer, has_node_bolt: bool) -> Check {
+    positive("washer.thickness_mm", w.thickness_mm)?;
+    positive("washer.arm_length_mm", w.arm_length_mm)?;
+    positive("washer.arm_width_mm", w.arm_width_mm)?;
+    count("washer.per_node", Some(w.per_node))?;
+    if !has_node_bolt {
+        return fail(
+            "washer",
+            "washers are tightened by a node bolt: add node_bolt",
+        );
+    }
+    Ok(())
+}
+
+/// `shear_block:` positive sizes, and two lamellas to couple.
+fn shear_block(s: &ShearBlock, l: &Section) -> Check {
+    positive("shear_block.length_mm", s.length_mm)?;
+    positive("shear_block.max_spacing_mm", s.max_spacing_mm)?;
+    positive("shear_block.slenderness_limit", s.slenderness_limit)?;
+    non_negative("shear_block.clearance_mm", s.clearance_mm)?;
+    positive("shear_block.bolt_diameter_mm", s.bolt_diameter_mm)?;
+    if l.per_strip != 2 {
+        return fail(
+            "shear_block",
+            "shear blocks couple two lamellas: needs lamella.per_strip 2",
+        );
+    }
+    Ok(())
+}
+
+/// `stud:` positive sizes.
+fn stud(s: &Stud) -> Check {
+    positive("stud.length_mm", s.length_mm)?;
+    positive("stud.fastener_diameter_mm", s.fastener_diameter_mm)?;
+    positive("stud.bar_length_mm", s.bar_length_mm)
+}
+
+/// `splice:` positive sizes, at least one bolt a side.
+fn splice(s: &Splice) -> Check {
+    positive("splice.plate_length_mm", s.plate_length_mm)?;
+    positive("splice.bolt_diameter_mm", s.bolt_diameter_mm)?;
+    count("splice.bolts_per_side", Some(s.bolts_per_side))
+}
+
+/// `stock:` the values every form may give, then the fields its form
+/// needs and allows ([`sheet`] or [`coil`]).
+fn stock(st: &RawStock, height_mm: f64) -> Check {
+    if let Some(p) = st.price_per_unit {
+        non_negative("stock.price_per_unit", p)?;
+    }
+    if let Some(p) = st.price_per_m {
+        non_negative("stock.price_per_m", p)?;
+    }
+    if let Some(x) = st.length_step_mm {
+        positive("stock.length_step_mm", x)?;
+    }
+    count("stock.max_count", st.max_count)?;
+    not_blank("stock.currency", st.currency.as_deref())?;
+    match st.kind {
+        StockKind::Sheet => sheet(st, height_mm),
+        StockKind::Coil => coil(st, height_mm),
+    }
+}
+
+/// A stock width holds a lamella's height.
+fn wide_enough(field: &str, width_mm: f64, height_mm: f64) -> Check {
+    if width_mm < height_mm {
+        fail(
+            field,
+            format!("{width_mm} is narrower than a lamella ({height_mm} mm)"),
+        )
+    } else {
+        Ok(())
+    }
+}
+
+/// Sheets: no coil fields, then one size inline ([`one_sheet_size`]) or a
+/// list ([`sheet_sizes`]).
+fn sheet(st: &RawStock, height_mm: f64) -> Check {
+    if st.price_per_m.is_some() {
+        return fail(
+            "stock.price_per_m",
+            "is for a coil (kind: coil); a sheet has price_per_unit",
+        );
+    }
+    if st.length_step_mm.is_some() {
+        return fail(
+            "stock.length_step_mm",
+            "is for a coil (kind: coil); a sheet is not cut to length",
+        );
+    }
+    match &st.sizes {
+        None => one_sheet_size(st, height_mm),
+        Some(list) => sheet_sizes(st, list, height_mm),
+    }
+}
+
+/// One sheet size inline: its length and width, positive, wide enough.
+fn one_sheet_size(st: &RawStock, height_mm: f64) -> Check {
+    let missing = "missing: a sheet needs length_mm and width_mm, or a list of sizes";
+    let Some(l) = st.length_mm else {
+        return fail("stock.length_mm", missing);
+    };
+    let Some(w) = st.width_mm else {
+        return fail("stock.width_mm", missing);
+    };
+    positive("stock.length_mm", l)?;
+    positive("stock.width_mm", w)?;
+    wide_enough("stock.width_mm", w, height_mm)
+}
+
+/// Several sheet sizes: nothing of one size beside the list; at least one
+/// size; each named (if at all) by a non-blank name, positive, wide
+/// enough, priced like the first, and given once.
+fn sheet_sizes(st: &RawStock, list: &[StockSize], height_mm: f64) -> Check {
+    for (field, present) in [
+        ("stock.length_mm", st.length_mm.is_some()),
+        ("stock.width_mm", st.width_mm.is_some()),
+        ("stock.price_per_unit", st.price_per_unit.is_some()),
+        ("stock.max_count", st.max_count.is_some()),
+    ] {
+        if present {
+            return fail(field, "give it per size in stock.sizes, not beside them");
+        }
+    }
+    if list.is_empty() {
+        return fail("stock.sizes", "must list at least one size");
+    }
+    let mut labels: Vec<String> = Vec::with_capacity(list.len());
+    for (i, z) in list.iter().enumerate() {
+        let f = |name: &str| format!("stock.sizes[{i}].{name}");
+        not_blank(&f("name"), z.name.as_deref())?;
+        let Some(length_mm) = z.length_mm else {
+            return fail(&f("length_mm"), "missing");
+        };
+        positive(&f("length_mm"), length_mm)?;
+        positive(&f("width_mm"), z.width_mm)?;
+        wide_enough(&f("width_mm"), z.width_mm, height_mm)?;
+        if let Some(p) = z.price_per_unit {
+            non_negative(&f("price_per_unit"), p)?;
+        }
+        count(&f("max_count"), z.max_count)?;
+        if z.price_per_unit.is_some() != list[0].price_per_unit.is_some() {
+            return fail(
+                &f("price_per_unit"),
+                "give a price for every size or for none (costs compare only between priced sizes)",
+            );
+        }
+        let label = z.label();
+        if let Some(j) = labels.iter().position(|x| *x == label) {
+            return fail(
+                &f(if z.name.is_some() {
+                    "name"
+                } else {
+                    "length_mm"
+                }),
+                format!("`{label}` is stock.sizes[{j}] again: give each size once"),
+            );
+        }
+        labels.push(label);
+    }
+    Ok(())
+}
+
+/// A coil: one width (no list), positive and wide enough; a piece length,
+/// if given, positive and at least the length step; without one, no price
+/// or count per piece; one price, per metre or per piece.
+fn coil(st: &RawStock, height_mm: f64) -> Check {
+    if st.sizes.is_some() {
+        return fail(
+            "stock.sizes",
+            "a coil has one width: give width_mm (and length_mm for the longest piece)",
+        );
+    }
+    let Some(w) = st.width_mm else {
+        return fail("stock.width_mm", "missing: a coil needs its width");
+    };
+    positive("stock.width_mm", w)?;
+    wide_enough("stock.width_mm", w, height_mm)?;
+    match st.length_mm {
+        Some(l) => {
+            positive("stock.length_mm", l)?;
+            if st.length_step_mm.is_some_and(|x| x > l) {
+                return fail(
+                    "stock.length_step_mm",
+                    "is longer than a piece (stock.length_mm)",
+                );
+            }
+        }
+        None => {
+            if st.price_per_unit.is_some() {
+                return fail(
+                    "stock.price_per_unit",
+                    "is per piece: give the piece length (length_mm), or price_per_m",
+                );
+            }
+            if st.max_count.is_some() {
+                return fail(
+                    "stock.max_count",
+                    "counts pieces: give the piece length (length_mm)",
+                );
+            }
+        }
+    }
+    if st.price_per_unit.is_some() && st.price_per_m.is_some() {
+        return fail(
+            "stock.price_per_m",
+            "give price_per_m or price_per_unit, not both",
+        );
+    }
+    Ok(())
+}
+
+/// `cutting:` allowances ≥ 0; at least one rotation, each a quarter turn;
+/// along the grain, no quarter turn across it.
+fn cutting(c: &Cutting, grain: Grain) -> Check {
+    non_negative("cutting.kerf_mm", c.kerf_mm)?;
+    non_negative("cutting.part_spacing_mm", c.part_spacing_mm)?;
+    non_negative("cutting.edge_margin_mm", c.edge_margin_mm)?;
+    let rotations = &c.allowed_rotations_deg;
+    if rotations.is_empty() {
+        return fail(
+            "cutting.allowed_rotations_deg",
+            "must allow at least one rotation",
+        );
+    }
+    if let Some(r) = rotations.iter().find(|r| ![0, 90, 180, 270].contains(*r)) {
+        return fail(
+            "cutting.allowed_rotations_deg",
+            format!("{r} is not one of 0, 90, 180, 270"),
+        );
+    }
+    if grain == Grain::AlongStrip {
+        if let Some(r) = rotations.iter().find(|r| **r == 90 || **r == 270) {
+            return fail(
+                "cutting.allowed_rotations_deg",
+                format!("{r}° turns a strip across the grain (material.grain: along_strip allows 0 and 180)"),
+            );
+        }
+    }
+    Ok(())
+}
