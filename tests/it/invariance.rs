@@ -1,14 +1,10 @@
 //! Rigid motion, curve reversal and unit change leave the results unchanged.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Enneper, Sampling};
-use common::*;
+use crate::support::synth::{self, Enneper, Sampling};
+use crate::support::*;
 use glam::DVec2;
 use lamella::network::{RawNetwork, Unit};
 use lamella::plan::model::Model;
-use lamella::profile::Profile;
 
 fn base(normals: bool) -> RawNetwork {
     let lines = synth::diagonal_lines(0.5, 9, DVec2::new(0.05, -0.03));
@@ -35,10 +31,7 @@ type Summary = (Vec<StripSummary>, Vec<f64>);
 /// Per strip: (length, sorted node stations, max |kg|, max |tg|), per node: angle.
 fn summary(raw: RawNetwork) -> Summary {
     let (net, an) = run(raw);
-    let steel = Profile::load(
-        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"),
-    )
-    .unwrap();
+    let steel = profile("steel-1.5");
     let report = lamella::check::check(&an, &steel);
     let model = Model::checked(&net, &an, steel, report, None);
     let strips = an

@@ -222,9 +222,9 @@ fn paths_in(line: &str, here: &[String]) -> Vec<Vec<String>> {
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect();
             if name.is_empty() {
-                if rest.starts_with('{') {
+                if let Some(group) = rest.strip_prefix('{') {
                     // Branches of a group: each one its own path.
-                    let inner: String = rest[1..].chars().take_while(|c| *c != '}').collect();
+                    let inner: String = group.chars().take_while(|c| *c != '}').collect();
                     for b in inner.split(',') {
                         let b = b.trim();
                         let b: Vec<String> = b
@@ -262,7 +262,7 @@ struct Import {
 }
 
 fn imports() -> (PathBuf, Vec<Import>) {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = crate::support::root().join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     let test_only = test_only_files(&src, &files);
@@ -379,18 +379,17 @@ fn no_files_import_each_other_in_a_circle() {
     let n = nodes.len();
     let (mut index, mut low, mut on) = (vec![usize::MAX; n], vec![0; n], vec![false; n]);
     let (mut stack, mut counter, mut circles) = (Vec::new(), 0, Vec::new());
-    fn strong(
-        v: usize,
-        adj: &[Vec<usize>],
-        st: &mut (
-            &mut Vec<usize>,
-            &mut Vec<usize>,
-            &mut Vec<bool>,
-            &mut Vec<usize>,
-            &mut usize,
-            &mut Vec<Vec<usize>>,
-        ),
-    ) {
+    /// Tarjan's state: index, low link, on stack, the stack, the counter,
+    /// the components found.
+    type State<'a> = (
+        &'a mut Vec<usize>,
+        &'a mut Vec<usize>,
+        &'a mut Vec<bool>,
+        &'a mut Vec<usize>,
+        &'a mut usize,
+        &'a mut Vec<Vec<usize>>,
+    );
+    fn strong(v: usize, adj: &[Vec<usize>], st: &mut State) {
         st.0[v] = *st.4;
         st.1[v] = *st.4;
         *st.4 += 1;
