@@ -12,9 +12,7 @@
 //!     cargo bench --bench build -- 400     # one size
 
 mod support;
-#[path = "../tests/common/synth.rs"]
-#[allow(dead_code)]
-mod synth;
+use lamella_synth as synth;
 
 use lamella::formats::read as io;
 use lamella::pipeline::build::{build, BuildOptions};

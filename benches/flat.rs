@@ -7,9 +7,7 @@
 //!     cargo bench --bench flat -- 100     # one size
 
 mod support;
-#[path = "../tests/common/synth.rs"]
-#[allow(dead_code)]
-mod synth;
+use lamella_synth as synth;
 
 use lamella::formats::read::profile_file;
 use lamella::formats::read::{self as io, ReadOptions};

@@ -11,9 +11,7 @@
 //!     cargo bench --bench parts -- 400     # one size
 
 mod support;
-#[path = "../tests/common/synth.rs"]
-#[allow(dead_code)]
-mod synth;
+use lamella_synth as synth;
 
 use lamella::fabricate::fabricate;
 use lamella::formats::read::profile_file;

@@ -7,9 +7,7 @@
 //!     cargo bench --bench pipeline -- 400     # one size
 
 mod support;
-#[path = "../tests/common/synth.rs"]
-#[allow(dead_code)]
-mod synth;
+use lamella_synth as synth;
 
 use lamella::formats::read::{self as io, ReadOptions};
 use lamella::plan;

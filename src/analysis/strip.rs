@@ -583,3 +583,153 @@ fn curvature_of(j: &crate::geom::curve::Jet) -> DVec3 {
     let x = j.d1 / v2.sqrt();
     (j.d2 - x * j.d2.dot(x)) / v2
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The helix θ ↦ (r cos θ, r sin θ, p θ), θ ∈ [0, 2π], sampled every
+    /// 3°; with the cylinder's outward normals (cos θ, sin θ, 0) when
+    /// `normals`.
+    fn helix(r: f64, p: f64, normals: bool) -> (Curve, SmoothCurve) {
+        let th: Vec<f64> = (0..=120).map(|k| f64::from(k * 3).to_radians()).collect();
+        let points: Vec<DVec3> = th
+            .iter()
+            .map(|&t| DVec3::new(r * t.cos(), r * t.sin(), p * t))
+            .collect();
+        let curve = Curve {
+            id: "A0".into(),
+            family: Family::A,
+            normals_world: normals.then(|| {
+                th.iter()
+                    .map(|&t| DVec3::new(t.cos(), t.sin(), 0.0))
+                    .collect()
+            }),
+            points_world_mm: points,
+        };
+        let smooth = SmoothCurve::new(&curve.points_world_mm);
+        (curve, smooth)
+    }
+
+    fn strip(curve: &Curve, smooth: &SmoothCurve) -> StripGeometry {
+        StripGeometry::new(0, curve, smooth, &[], &[], FrameOptions::default())
+    }
+
+    fn close(got: f64, want: f64, tol: f64, what: &str) {
+        assert!((got - want).abs() <= tol, "{what}: {got} against {want}");
+    }
+
+    fn close_vec(got: DVec3, want: DVec3, tol: f64, what: &str) {
+        assert!(got.distance(want) <= tol, "{what}: {got} against {want}");
+    }
+
+    // Helix r = 1000 mm, p = 500 mm per radian: speed a = √(r² + p²) =
+    // √1 250 000 = 1118.034 mm per radian, arc length s = a θ; tangent
+    // x = (−r sin θ, r cos θ, p)/a, curvature vector −(r/a²)(cos θ, sin θ, 0),
+    // |κ| = r/a² = 1/1250 mm, Frenet torsion τ = p/a² = 1/2500 mm.
+    const R: f64 = 1000.0;
+    const P: f64 = 500.0;
+    const A2: f64 = R * R + P * P;
+
+    #[test]
+    fn helix_on_its_cylinder_is_a_geodesic_that_twists() {
+        // Normal z = (cos θ, sin θ, 0) outward; y = z × x = (p sin θ,
+        // −p cos θ, r)/a. kg = κ·y = 0 (a helix is a geodesic of the
+        // cylinder); z' = (−sin θ, cos θ, 0)/a, so kn = −z'·x = −r/a² =
+        // −0.0008 and tg = −z'·y = p/a² = 0.0004 per mm (the cylinder's
+        // k1 = 1/r at cos φ = r/a to its circles: kn = k1 cos² φ, |tg| =
+        // k1 sin φ cos φ).
+        // Sampled every 3° (58.5 mm): curvatures to 1e-6 relative.
+        let (curve, smooth) = helix(R, P, true);
+        let s = strip(&curve, &smooth);
+        assert_eq!(s.normal_source, NormalSource::File);
+        let a = A2.sqrt();
+        close(s.length_mm, a * std::f64::consts::TAU, 1e-5, "length");
+        for c in &s.samples {
+            close(c.kg_per_mm, 0.0, 5e-7, "kg");
+            close(c.kn_per_mm, -R / A2, 1e-8, "kn");
+            close(c.tg_per_mm, P / A2, 1e-8, "tg");
+        }
+        close(s.max_abs_tg_per_mm, 4e-4, 1e-8, "max |tg|");
+        // |kg| stays below the straightness threshold (1e-5 per mm).
+        assert_eq!(s.min_bending_radius_mm(), None, "a geodesic is not bent");
+        // The frame a quarter turn in: θ = π/2, s = a π/2.
+        let f = s.frame_at(&smooth, a * std::f64::consts::FRAC_PI_2);
+        let at = DVec3::new(0.0, R, P * std::f64::consts::FRAC_PI_2);
+        close_vec(f.point_world_mm, at, 1e-6, "point");
+        close_vec(f.x, DVec3::new(-R, 0.0, P) / a, 2e-6, "x");
+        close_vec(f.z, DVec3::Y, 1e-9, "z");
+        close_vec(f.y, DVec3::new(P, 0.0, R) / a, 2e-6, "y");
+    }
+
+    #[test]
+    fn without_normals_a_helix_takes_its_binormal() {
+        // No file normals and no nodes: z is the binormal, so the Darboux
+        // frame is Frenet's: kg = |κ| = r/a² = 0.0008, kn = 0, tg = τ = p/a²
+        // = 0.0004 per mm; the smallest bending radius is a²/r = 1250 mm.
+        // The normal's angle is fitted along the curve: near the ends (the
+        // fit one-sided there) tg is good to 1 %, more than 1000 mm inside
+        // to 5e-9 per mm (1e-5 relative).
+        let (curve, smooth) = helix(R, P, false);
+        let s = strip(&curve, &smooth);
+        assert_eq!(s.normal_source, NormalSource::Binormal);
+        for c in &s.samples {
+            close(c.kg_per_mm.abs(), R / A2, 2e-7, "kg");
+            close(c.kn_per_mm, 0.0, 5e-8, "kn");
+            close(c.tg_per_mm, P / A2, 0.01 * P / A2, "tg");
+            if c.station_mm > 1000.0 && c.station_mm < s.length_mm - 1000.0 {
+                close(c.tg_per_mm, P / A2, 5e-9, "tg inside");
+            }
+        }
+        close(
+            s.min_bending_radius_mm().expect("bent"),
+            1250.0,
+            0.5,
+            "radius",
+        );
+    }
+
+    #[test]
+    fn a_circle_in_its_plane_bends_without_twist() {
+        // Radius 800 mm in z = 0, counter-clockwise, normals +z: y = z × x
+        // points to the centre, kg = 1/800 = 0.00125, kn = tg = 0; length
+        // 2π × 800. Sampled every 5° (69.7 mm): kg to 1e-3 relative.
+        let points: Vec<DVec3> = (0..=72)
+            .map(|k| {
+                let t = f64::from(k * 5).to_radians();
+                DVec3::new(800.0 * t.cos(), 800.0 * t.sin(), 0.0)
+            })
+            .collect();
+        let curve = Curve {
+            id: "B0".into(),
+            family: Family::B,
+            normals_world: Some(vec![DVec3::Z; points.len()]),
+            points_world_mm: points,
+        };
+        let smooth = SmoothCurve::new(&curve.points_world_mm);
+        let s = strip(&curve, &smooth);
+        close(s.length_mm, 1600.0 * std::f64::consts::PI, 1e-4, "length");
+        for c in &s.samples {
+            close(c.kg_per_mm, 1.0 / 800.0, 1.25e-6, "kg");
+            close(c.kn_per_mm, 0.0, 1e-12, "kn");
+            close(c.tg_per_mm, 0.0, 1e-12, "tg");
+        }
+        // At 90°: the point (0, 800, 0), x = (−1, 0, 0), y = (0, −1, 0).
+        let f = s.frame_at(&smooth, 400.0 * std::f64::consts::PI);
+        close_vec(f.point_world_mm, DVec3::new(0.0, 800.0, 0.0), 1e-6, "point");
+        close_vec(f.x, DVec3::NEG_X, 1e-8, "x");
+        close_vec(f.y, DVec3::NEG_Y, 1e-8, "y");
+        close_vec(f.z, DVec3::Z, 1e-12, "z");
+        // Stations on the line 10 mm outside (dy = −10, radius 810 mm) at a
+        // quarter and at the whole turn: 810 × π/2 and 810 × 2π.
+        let on = s.offset_stations(
+            &smooth,
+            -10.0,
+            0.0,
+            &[400.0 * std::f64::consts::PI, s.length_mm],
+            5.0,
+        );
+        close(on[0], 405.0 * std::f64::consts::PI, 1e-3, "quarter");
+        close(on[1], 1620.0 * std::f64::consts::PI, 1e-3, "whole");
+    }
+}

@@ -693,3 +693,204 @@ fn orient_normals(net: &Network, nodes: &mut [Node], per_curve: &[Vec<CurveNode>
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::network::{RawCurve, RawNetwork, Unit};
+    use std::path::Path;
+
+    /// A straight curve from `p0` to `p1` in `n` equal steps.
+    fn line(id: &str, family: Family, p0: DVec3, p1: DVec3, n: usize) -> RawCurve {
+        RawCurve {
+            id: id.into(),
+            family,
+            points: (0..=n).map(|k| p0.lerp(p1, k as f64 / n as f64)).collect(),
+            normals: None,
+        }
+    }
+
+    /// The network of `curves` (tolerance 0.5 mm), its smooth curves and
+    /// its topology.
+    fn topology(curves: Vec<RawCurve>) -> (Network, Topology) {
+        let raw = RawNetwork {
+            name: "t".into(),
+            unit: Unit::Mm,
+            tolerance: Some(0.5),
+            curves,
+        };
+        let net = Network::new(raw, Path::new("t.yaml")).expect("valid network");
+        let smooth: Vec<SmoothCurve> = net
+            .curves
+            .iter()
+            .map(|c| SmoothCurve::new(&c.points_world_mm))
+            .collect();
+        let t = find_nodes(&net, &smooth, NodeOptions::new(net.tolerance_mm));
+        (net, t)
+    }
+
+    #[test]
+    fn two_straight_lines_cross_once_at_the_known_station_and_angle() {
+        // A0 along +x from the origin; B0 at 60° to it through (300, 0, 0),
+        // starting 400 mm before the crossing, 0.2 mm above A0.
+        let d = DVec3::new(0.5, 0.75f64.sqrt(), 0.0);
+        let lift = DVec3::new(0.0, 0.0, 0.2);
+        let b0 = DVec3::new(300.0, 0.0, 0.0) - 400.0 * d + lift;
+        let (_, t) = topology(vec![
+            line(
+                "A0",
+                Family::A,
+                DVec3::ZERO,
+                DVec3::new(1000.0, 0.0, 0.0),
+                20,
+            ),
+            line("B0", Family::B, b0, b0 + 700.0 * d, 14),
+        ]);
+        assert_eq!(t.nodes.len(), 1);
+        let n = &t.nodes[0];
+        assert_eq!((n.id, n.a, n.b), (0, 0, 1));
+        assert!((n.station_a_mm - 300.0).abs() < 1e-9, "{}", n.station_a_mm);
+        assert!((n.station_b_mm - 400.0).abs() < 1e-9, "{}", n.station_b_mm);
+        assert!((n.gap_mm - 0.2).abs() < 1e-9, "{}", n.gap_mm);
+        // The midpoint of the closest approach: (300, 0, 0.1).
+        assert!(n.position_world_mm.distance(DVec3::new(300.0, 0.0, 0.1)) < 1e-9);
+        assert!((n.angle_deg - 60.0).abs() < 1e-9, "{}", n.angle_deg);
+        // x × d = +z: the normal, seeded upwards; B turns 60° counter-
+        // clockwise from A about it.
+        assert!(n.normal_world.distance(DVec3::Z) < 1e-12);
+        assert!((n.oriented_angle_deg - 60.0).abs() < 1e-9);
+        assert!(n.tangent_a_world.distance(DVec3::X) < 1e-12);
+        assert!(n.tangent_b_world.distance(d) < 1e-12);
+        // Each curve lists the node at its own station.
+        assert_eq!(t.per_curve[0].len(), 1);
+        assert_eq!(t.per_curve[1][0].crossing, 0);
+        assert!((t.per_curve[1][0].station_mm - 400.0).abs() < 1e-9);
+        assert!(t.warnings.is_empty(), "{:?}", t.warnings);
+    }
+
+    #[test]
+    fn a_line_crossing_from_the_right_turns_past_a_right_angle() {
+        // B0 at 120° to A0 (from the right, seen from above): the acute
+        // angle is 60°, the oriented angle about +z 120°.
+        let d = DVec3::new(-0.5, 0.75f64.sqrt(), 0.0);
+        let b0 = DVec3::new(500.0, 0.0, 0.0) - 300.0 * d;
+        let (_, t) = topology(vec![
+            line(
+                "A0",
+                Family::A,
+                DVec3::ZERO,
+                DVec3::new(1000.0, 0.0, 0.0),
+                20,
+            ),
+            line("B0", Family::B, b0, b0 + 600.0 * d, 12),
+        ]);
+        let n = &t.nodes[0];
+        assert!((n.angle_deg - 60.0).abs() < 1e-9, "{}", n.angle_deg);
+        assert!((n.oriented_angle_deg - 120.0).abs() < 1e-9);
+        assert!((n.station_a_mm - 500.0).abs() < 1e-9);
+        assert!((n.station_b_mm - 300.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_pair_running_together_is_an_overlap_not_nodes() {
+        // B0 weaves along A0 from x = 200 to 520 mm, 0.2 mm to either side
+        // every 40 mm: it crosses A0 at x ≈ 220, 260, …, 500 mm at about
+        // atan(0.4 / 40) = 0.57°, eight near-tangent contacts 40 mm apart
+        // (within the 100 mm of one overlap). B1 crosses A0 at x = 800 mm
+        // at right angles.
+        let weave = RawCurve {
+            id: "B0".into(),
+            family: Family::B,
+            points: (0..=8)
+                .map(|k| {
+                    DVec3::new(
+                        200.0 + 40.0 * k as f64,
+                        if k % 2 == 0 { 0.2 } else { -0.2 },
+                        0.0,
+                    )
+                })
+                .collect(),
+            normals: None,
+        };
+        let (_, t) = topology(vec![
+            line(
+                "A0",
+                Family::A,
+                DVec3::ZERO,
+                DVec3::new(1000.0, 0.0, 0.0),
+                50,
+            ),
+            weave,
+            line(
+                "B1",
+                Family::B,
+                DVec3::new(800.0, -200.0, 0.0),
+                DVec3::new(800.0, 200.0, 0.0),
+                8,
+            ),
+        ]);
+        // Only the right-angle node.
+        assert_eq!(t.nodes.len(), 1, "{:?}", t.nodes);
+        assert_eq!(t.nodes[0].b, 2);
+        assert!((t.nodes[0].station_a_mm - 800.0).abs() < 1e-9);
+        let overlaps: Vec<&Warning> = t
+            .warnings
+            .iter()
+            .filter(|w| w.kind == WarningKind::Overlap)
+            .collect();
+        assert_eq!(overlaps.len(), 1, "{:?}", t.warnings);
+        let w = overlaps[0];
+        assert_eq!(w.curves, vec![0, 1]);
+        // From the first contact (x ≈ 220 mm; the smooth curve's end
+        // derivatives move the outer two crossings a little) to the last
+        // (x ≈ 500 mm), on A0.
+        let from = w.station_mm.expect("a station");
+        assert!((200.0..230.0).contains(&from), "{from}");
+        let to: f64 = w
+            .message
+            .split(" to ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|v| v.parse().ok())
+            .expect("the last station");
+        assert!((490.0..520.0).contains(&to), "{}", w.message);
+        assert!(
+            w.message
+                .starts_with("curves A0 and B0 overlap from station ")
+                && w.message.ends_with(" mm of A0: no nodes taken there"),
+            "{}",
+            w.message
+        );
+        // B0 has no node left: it is named as crossing nothing.
+        assert!(t
+            .warnings
+            .iter()
+            .any(|w| w.kind == WarningKind::IsolatedCurve && w.curves == vec![1]));
+        assert_eq!(t.warnings.len(), 2, "{:?}", t.warnings);
+    }
+
+    #[test]
+    fn a_single_near_tangent_crossing_is_a_node_with_a_warning() {
+        // B0 crosses A0 at 5° at x = 500 mm: one contact, so a node (at
+        // stations 500 and 300 mm) and a near-tangent warning, no overlap.
+        let d = DVec3::new(5f64.to_radians().cos(), 5f64.to_radians().sin(), 0.0);
+        let b0 = DVec3::new(500.0, 0.0, 0.0) - 300.0 * d;
+        let (_, t) = topology(vec![
+            line(
+                "A0",
+                Family::A,
+                DVec3::ZERO,
+                DVec3::new(1000.0, 0.0, 0.0),
+                20,
+            ),
+            line("B0", Family::B, b0, b0 + 600.0 * d, 30),
+        ]);
+        assert_eq!(t.nodes.len(), 1);
+        let n = &t.nodes[0];
+        assert!((n.angle_deg - 5.0).abs() < 1e-9, "{}", n.angle_deg);
+        assert!((n.station_a_mm - 500.0).abs() < 1e-6);
+        assert!((n.station_b_mm - 300.0).abs() < 1e-6);
+        let kinds: Vec<WarningKind> = t.warnings.iter().map(|w| w.kind).collect();
+        assert_eq!(kinds, vec![WarningKind::NearTangent]);
+    }
+}

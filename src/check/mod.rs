@@ -402,3 +402,163 @@ pub fn suggest(an: &Analysis, profile: &Profile) -> Suggestion {
         height_and_thickness_mm,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{analyze, AnalysisOptions};
+    use crate::network::{Family, Network, RawCurve, RawNetwork, Unit};
+    use glam::DVec3;
+    use std::path::Path;
+
+    /// The shipped steel profile as one lamella per strip: E = 210 000 MPa,
+    /// G = 81 000 MPa, t = 1.5 mm, h = 50 mm, f_d = 1.0 × 355 / 1.0 = 355 MPa.
+    fn steel_single() -> Profile {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
+        let mut p = crate::formats::read::profile_file::load(&path).expect("steel profile");
+        p.section.per_strip = 1;
+        p.section.gap_mm = 0.0;
+        p.shear_block = None;
+        p
+    }
+
+    fn close(got: f64, want: f64, rel: f64, what: &str) {
+        assert!(
+            (got - want).abs() <= rel * want.abs(),
+            "{what}: {got} against {want}"
+        );
+    }
+
+    #[test]
+    fn stresses_of_the_steel_section_by_hand() {
+        let p = steel_single();
+        assert_eq!(p.design_strength_mpa(), 355.0);
+        // kg = 1/1000 mm (a 1 m radius), tg = 0.001 rad/mm (57.3°/m):
+        // σb = E·kg·t/2    = 210 000 × 0.001 × 1.5 / 2  = 157.5 MPa
+        // τ  = G·tg·t      = 81 000 × 0.001 × 1.5       = 121.5 MPa
+        // σw = E·tg²·h²/12 = 210 000 × 1e-6 × 2500 / 12 = 43.75 MPa
+        // σv = √((157.5 + 43.75)² + 3 × 121.5²) = √(40 501.5625 + 44 286.75)
+        //    = √84 788.3125 = 291.18433 MPa
+        let s = Stresses::of(&p, 1e-3, -1e-3);
+        close(s.bending_stress_mpa, 157.5, 1e-12, "σb");
+        close(s.torsion_shear_mpa, 121.5, 1e-12, "τ");
+        close(s.trapeze_stress_mpa, 43.75, 1e-12, "σw");
+        close(s.combined_stress_mpa, 291.18433, 1e-6, "σv");
+        // √3 τ = 210.44 beats σb = 157.5 and σw = 43.75.
+        assert_eq!(s.governs(), Governs::Torsion);
+        // Bending alone: σv = σb; twist alone at 1e-4 rad/mm: τ = 12.15 MPa,
+        // σw = 0.4375 MPa, √3 τ = 21.04 governs.
+        assert_eq!(Stresses::of(&p, 1e-3, 0.0).governs(), Governs::Bending);
+        assert_eq!(Stresses::of(&p, 0.0, 1e-4).governs(), Governs::Torsion);
+        // A tall section twisted hard: h = 400 mm, tg = 0.01 rad/mm gives
+        // σw = 210 000 × 1e-4 × 160 000 / 12 = 280 000 MPa against
+        // √3 τ = √3 × 81 000 × 0.01 × 1.5 = 2104.4 MPa.
+        let tall = p.with_section(1.5, 400.0);
+        let s = Stresses::of(&tall, 0.0, 1e-2);
+        close(s.trapeze_stress_mpa, 280_000.0, 1e-12, "σw");
+        assert_eq!(s.governs(), Governs::Trapeze);
+        assert_eq!(Stresses::of(&p, 0.0, 0.0).governs(), Governs::Nothing);
+    }
+
+    #[test]
+    fn the_stretch_of_an_offset_line_by_hand() {
+        // On an arc of radius 1000 mm (kg = 0.001) the line 5.75 mm towards
+        // the centre (dy = +5.75 along y, which points to the centre) has
+        // radius 994.25 mm: ds'/ds = 994.25 / 1000.
+        close(stretch(5.75, 0.0, 1e-3, 0.0, 0.0), 0.99425, 1e-12, "inner");
+        close(stretch(-5.75, 0.0, 1e-3, 0.0, 0.0), 1.00575, 1e-12, "outer");
+        // On a straight twisted strip (tg = 0.001) a line 3 mm off the
+        // centre is a helix of radius 3 mm and pitch 1/tg: ds'/ds =
+        // √(1 + (3 × 0.001)²) = √1.000009.
+        close(
+            stretch(3.0, 0.0, 0.0, 0.0, 1e-3),
+            1.000009f64.sqrt(),
+            1e-12,
+            "helix",
+        );
+    }
+
+    fn raw(id: &str, family: Family, points: Vec<DVec3>, normals: Vec<DVec3>) -> RawCurve {
+        RawCurve {
+            id: id.into(),
+            family,
+            points,
+            normals: Some(normals),
+        }
+    }
+
+    /// A0: an arc of radius 1000 mm in z = 0 over 60°, normals +z (kg =
+    /// 1/1000, kn = tg = 0). B0: a straight radial line at 30° from radius
+    /// 900 to 1100 mm (crossing A0 at right angles), its normal turning
+    /// about it at `twist` rad/mm (kg = kn = 0, |tg| = twist).
+    fn arc_and_twisted_line(twist: f64) -> Network {
+        let arc: Vec<DVec3> = (0..=60)
+            .map(|k| {
+                let a = f64::from(k).to_radians();
+                DVec3::new(1000.0 * a.cos(), 1000.0 * a.sin(), 0.0)
+            })
+            .collect();
+        let t = DVec3::new(30f64.to_radians().cos(), 30f64.to_radians().sin(), 0.0);
+        let w = DVec3::Z.cross(t);
+        let s: Vec<f64> = (0..=20).map(|k| 10.0 * f64::from(k)).collect();
+        let line = s.iter().map(|&s| t * (900.0 + s)).collect();
+        let turning = s
+            .iter()
+            .map(|&s| DVec3::Z * (twist * s).cos() + w * (twist * s).sin())
+            .collect();
+        let raw = RawNetwork {
+            name: "arc-and-line".into(),
+            unit: Unit::Mm,
+            tolerance: None,
+            curves: vec![
+                raw("A0", Family::A, arc, vec![DVec3::Z; 61]),
+                raw("B0", Family::B, line, turning),
+            ],
+        };
+        Network::new(raw, Path::new("test.yaml")).expect("valid network")
+    }
+
+    #[test]
+    fn a_bent_strip_and_a_twisted_strip_by_hand() {
+        let net = arc_and_twisted_line(1e-3);
+        let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
+        let report = check(&an, &steel_single(), false).0;
+        assert_eq!(report.strips.len(), 2);
+        // A0: σb = 210 000 × 1.5 / (2 × 1000) = 157.5 MPa, nothing else;
+        // utilisation 157.5 / 355 = 0.443662.
+        let a = report.strips[0].worst();
+        close(a.stresses.bending_stress_mpa, 157.5, 1e-5, "A0 σb");
+        assert!(a.stresses.torsion_shear_mpa < 1e-6, "A0 τ");
+        close(a.utilization, 0.443662, 1e-5, "A0 utilisation");
+        assert_eq!(a.governs, Governs::Bending);
+        close(a.min_bending_radius_mm.expect("bent"), 1000.0, 1e-5, "A0 R");
+        // B0: τ = 121.5 MPa, σw = 43.75 MPa (above), σv = √(43.75² +
+        // 3 × 121.5²) = √46 200.8125 = 214.94374 MPa; utilisation 0.605475;
+        // twist 0.001 rad/mm = 57.29578°/m.
+        let b = report.strips[1].worst();
+        assert!(b.stresses.bending_stress_mpa < 1e-6, "B0 σb");
+        close(b.stresses.torsion_shear_mpa, 121.5, 1e-4, "B0 τ");
+        close(b.stresses.trapeze_stress_mpa, 43.75, 2e-4, "B0 σw");
+        close(b.stresses.combined_stress_mpa, 214.94374, 1e-4, "B0 σv");
+        close(b.utilization, 0.605475, 1e-4, "B0 utilisation");
+        close(b.max_twist_deg_per_m, 57.29578, 1e-4, "B0 twist");
+        assert_eq!(b.governs, Governs::Torsion);
+        assert_eq!(b.min_bending_radius_mm, None);
+        assert!(report.passes());
+        close(max_utilization(&an, &steel_single()), 0.605475, 1e-4, "max");
+    }
+
+    #[test]
+    fn the_thickest_lamella_that_bends_round_a_metre() {
+        // Bending alone (the line untwisted): σb = E·t/(2R) ≤ f_d up to
+        // t = 2 × 355 × 1000 / 210 000 = 3.380952 mm; the height does not
+        // matter without twist.
+        let net = arc_and_twisted_line(0.0);
+        let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
+        let s = suggest(&an, &steel_single());
+        let t = s.max_thickness_mm.expect("a thickness passes");
+        assert!((t - 3.380952).abs() < 2.0 * SUGGEST_RESOLUTION_MM, "{t}");
+        assert_eq!(s.max_height_mm, None);
+        assert_eq!(s.height_and_thickness_mm, None);
+    }
+}

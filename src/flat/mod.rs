@@ -751,3 +751,99 @@ fn finish(
         },
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A plane grid of straight strips, built by hand: 3 A strips of 4 nodes
+    /// 300 mm apart along `u`, 4 B strips of 3 nodes 250 mm apart along
+    /// `w`, at 70° to `u` counter-clockwise about the plane's normal `n`
+    /// (tilted: (1, 2, 3)/√14). The node normals are `n`, or −n when
+    /// `flipped` (then B turns 180° − 70° = 110° from A about them).
+    fn tilted_grid(flipped: bool) -> FlatProblem {
+        let n = DVec3::new(1.0, 2.0, 3.0).normalize();
+        let u = n.any_orthonormal_vector();
+        let w = 70f64.to_radians().cos() * u + 70f64.to_radians().sin() * n.cross(u);
+        let origin = DVec3::new(1000.0, -2000.0, 500.0);
+        let (normal, angle) = if flipped { (-n, 110.0) } else { (n, 70.0) };
+        let mut nodes = Vec::new();
+        for j in 0..3 {
+            for i in 0..4 {
+                nodes.push(FlatNodeIn {
+                    id: 100 + nodes.len(),
+                    position_world_mm: origin + 300.0 * i as f64 * u + 250.0 * j as f64 * w,
+                    normal_world: normal,
+                    erected_angle_deg: angle,
+                    strip_a: j,
+                    strip_b: 3 + i,
+                });
+            }
+        }
+        let mut strips: Vec<FlatStripIn> = (0..3)
+            .map(|j| FlatStripIn {
+                id: format!("A{j}"),
+                family: Family::A,
+                nodes: (0..4).map(|i| 4 * j + i).collect(),
+                lengths_mm: vec![300.0; 3],
+            })
+            .collect();
+        strips.extend((0..4).map(|i| FlatStripIn {
+            id: format!("B{i}"),
+            family: Family::B,
+            nodes: (0..3).map(|j| 4 * j + i).collect(),
+            lengths_mm: vec![250.0; 2],
+        }));
+        FlatProblem {
+            nodes,
+            strips,
+            // Two steel lamellas 1.5 × 50 mm: 2 × 210 000 × 50 × 1.5³ / 12.
+            ei_nmm2: 5_906_250.0,
+            youngs_modulus_mpa: 210_000.0,
+            thickness_mm: 1.5,
+            design_strength_mpa: 355.0,
+        }
+    }
+
+    /// The flat state of a plane grid is the grid itself: the same node
+    /// distances (a rigid motion of it), the same angles, no joint turns,
+    /// no strip bends.
+    fn is_the_grid_itself(pr: &FlatProblem, angle_deg: f64) {
+        let st = solve(pr);
+        assert!(st.converged, "{st:?}");
+        assert!(st.energy_nmm < 1e-9, "{}", st.energy_nmm);
+        assert!(st.max_length_error < 1e-9, "{}", st.max_length_error);
+        for (k, n) in st.nodes.iter().enumerate() {
+            assert_eq!(n.node, 100 + k);
+            assert!((n.angle_deg - angle_deg).abs() < 1e-6, "{n:?}");
+            assert_eq!(n.erected_angle_deg, angle_deg);
+            assert!(n.rotation_deg.abs() < 1e-6, "{n:?}");
+        }
+        for s in &st.strips {
+            assert!(s.max_curvature_per_mm < 1e-9, "{s:?}");
+            assert!(s.utilization < 1e-6, "{s:?}");
+        }
+        for (i, a) in pr.nodes.iter().enumerate() {
+            for (j, b) in pr.nodes.iter().enumerate().skip(i + 1) {
+                let (p, q) = (st.nodes[i].position_mm, st.nodes[j].position_mm);
+                let flat = (p[0] - q[0]).hypot(p[1] - q[1]);
+                let erected = a.position_world_mm.distance(b.position_world_mm);
+                assert!(
+                    (flat - erected).abs() < 1e-6,
+                    "{i}-{j}: {flat} against {erected}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_plane_grid_is_its_own_flat_state() {
+        is_the_grid_itself(&tilted_grid(false), 70.0);
+    }
+
+    #[test]
+    fn seen_from_the_normals_side_the_angles_keep_their_sense() {
+        // Normals −n: from their side B turns 110° from A, flat as erected.
+        is_the_grid_itself(&tilted_grid(true), 110.0);
+    }
+}

@@ -1,26 +1,39 @@
-//! Networks made from closed forms, for tests and benchmarks
-//! (included by benches/pipeline.rs): analytic surfaces and families of parameter lines on them that
-//! are known to be asymptotic (Enneper and catenoid: u ± v = const; helicoid
-//! and hyperbolic paraboloid: the coordinate lines).
+//! Networks made from closed forms, for lamella's integration tests and
+//! benchmarks: analytic surfaces and families of parameter lines on them
+//! that are known to be asymptotic (Enneper and catenoid: u ± v = const;
+//! helicoid and hyperbolic paraboloid: the coordinate lines).
+//!
+//! A dev-dependency of lamella, built against the same lamella library as
+//! the binary, so neither `cargo test` nor `cargo bench` builds lamella
+//! with other features.
+
+#![warn(missing_docs)]
 
 use glam::DVec2;
 use lamella::network::{Family, RawCurve, RawNetwork, Unit};
 
-#[allow(unused_imports)]
+/// The analytic surfaces, from the library.
 pub use lamella::design::surface::{Catenoid, Enneper, Helicoid, Hypar, Surface as ParamSurface};
 
 /// A straight line in the parameter plane: uv(t) = start + dir·t, t ∈ [t0, t1].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParamLine {
+    /// Curve id in the network.
     pub id: String,
+    /// Curve family.
     pub family: Family,
+    /// uv at t = 0.
     pub start: DVec2,
+    /// uv per unit of t.
     pub dir: DVec2,
+    /// First t.
     pub t0: f64,
+    /// Last t.
     pub t1: f64,
 }
 
 impl ParamLine {
+    /// The parameter point at t.
     pub fn uv(&self, t: f64) -> DVec2 {
         self.start + self.dir * t
     }

@@ -1,12 +1,8 @@
 //! Rigid motion, curve reversal and unit change leave the results unchanged.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Enneper, Sampling};
-use common::*;
+use crate::support::synth::{self, Enneper, Sampling};
+use crate::support::*;
 use glam::DVec2;
-use lamella::formats::read::profile_file;
 use lamella::network::{RawNetwork, Unit};
 use lamella::plan::model::Model;
 
@@ -35,10 +31,7 @@ type Summary = (Vec<StripSummary>, Vec<f64>);
 /// Per strip: (length, sorted node stations, max |kg|, max |tg|), per node: angle.
 fn summary(raw: RawNetwork) -> Summary {
     let (net, an) = run(raw);
-    let steel = profile_file::load(
-        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml"),
-    )
-    .unwrap();
+    let steel = profile("steel-1.5");
     let report = lamella::check::check(&an, &steel, false).0;
     let model = Model::new(
         &net,

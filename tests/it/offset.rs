@@ -2,11 +2,8 @@
 //! lamella really is") against a numerical integration of the exact offset
 //! line c(s) + dy·y(s) + dz·z(s) built from the closed-form surface.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
-use common::*;
+use crate::support::synth::{self, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
+use crate::support::*;
 use glam::{DVec2, DVec3};
 use lamella::analysis::lines::LamellaLine;
 use lamella::profile::LamellaOffset;

@@ -6,49 +6,11 @@
 //! stop; safe output (foreign files kept, a killed build leaves DIR as it
 //! was).
 
+use crate::support::{build, lamella_command, ok, root, scratch};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("build-{name}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("scratch");
-    d
-}
-
-fn lamella(args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_lamella"));
-    c.args(args).current_dir(root());
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("run lamella")
-}
-
-fn build(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
-    let network = format!("samples/{sample}.yaml");
-    let profile = format!("profiles/{profile}.yaml");
-    let out_s = out.to_string_lossy().into_owned();
-    let mut args = vec!["build", &network, "--profile", &profile, "--out", &out_s];
-    args.extend_from_slice(extra);
-    lamella(&args, &[])
-}
-
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "exit {:?}\nstdout: {}\nstderr: {}",
-        o.status.code(),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
+use std::process::Command;
 
 fn json(path: &Path) -> Value {
     serde_json::from_slice(&std::fs::read(path).expect("read json")).expect("json")
@@ -544,17 +506,13 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
     // Byte-identical when built again, also under another time zone.
     let again = scratch("steel-again").join("kit");
     let network = "samples/enneper-4m.yaml";
-    ok(&lamella(
-        &[
-            "build",
-            network,
-            "--profile",
-            "profiles/steel-1.5.yaml",
-            "--out",
-            &again.to_string_lossy(),
-        ],
-        &[("TZ", "Pacific/Auckland")],
-    ));
+    ok(&lamella_command()
+        .args(["build", network, "--profile", "profiles/steel-1.5.yaml"])
+        .arg("--out")
+        .arg(&again)
+        .env("TZ", "Pacific/Auckland")
+        .output()
+        .expect("run lamella"));
     assert!(snapshot(&out) == snapshot(&again), "rebuild differs");
 }
 
@@ -833,7 +791,7 @@ fn killing_the_build_midway_leaves_the_output_as_it_was() {
     let out = dir.join("kit");
     ok(&build("hypar-small", "steel-1.5", &out, &[]));
     let before = snapshot(&out);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lamella"))
+    let mut child = lamella_command()
         .args([
             "build",
             "samples/enneper-4m.yaml",
@@ -842,7 +800,6 @@ fn killing_the_build_midway_leaves_the_output_as_it_was() {
             "--out",
             &out.to_string_lossy(),
         ])
-        .current_dir(root())
         .env("LAMELLA_PAUSE_BEFORE_COMMIT_MS", "60000")
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
@@ -890,18 +847,13 @@ fn takeoff_prices_each_sheet_size() {
     assert!(text.contains("max_count: 19"));
     let profile = dir.join("mixed-limited.yaml");
     std::fs::write(&profile, text).expect("write profile");
-    let out_s = out.to_string_lossy().into_owned();
-    ok(&lamella(
-        &[
-            "build",
-            "samples/schwarz-d-pavilion.yaml",
-            "--profile",
-            &profile.to_string_lossy(),
-            "--out",
-            &out_s,
-        ],
-        &[],
-    ));
+    ok(&lamella_command()
+        .args(["build", "samples/schwarz-d-pavilion.yaml", "--profile"])
+        .arg(&profile)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("run lamella"));
     let plan = json(&out.join("plan.json"));
     let t = json(&out.join("takeoff.json"));
     let mut by_size: BTreeMap<String, (u64, f64)> = BTreeMap::new();

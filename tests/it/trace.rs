@@ -3,10 +3,7 @@
 //! regenerate their samples and run through `nodes` without a warning, and
 //! bad specs get one-line errors.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::*;
+use crate::support::*;
 use glam::DVec2;
 use lamella::design::surface::Surface;
 use lamella::design::{design, placed_surface};
@@ -16,11 +13,6 @@ use lamella::spec::TraceSpec;
 #[allow(unused_imports)]
 use serde_yaml as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 fn spec(name: &str) -> (TraceSpec, PathBuf) {
     let p = root().join("samples").join(format!("{name}.trace.yaml"));
@@ -116,14 +108,12 @@ fn minimal_surface_nets_cross_at_90_degrees_and_satisfy_beltrami_enneper() {
 
 #[test]
 fn shipped_specs_regenerate_their_samples_and_run_clean() {
-    let dir = std::env::temp_dir().join(format!("lamella-trace-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("shipped");
     for name in SPECS {
         let out = dir.join(format!("{name}.yaml"));
         let spec = format!("samples/{name}.trace.yaml");
-        let status = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        let status = lamella_command()
             .args(["trace", &spec, "--out", out.to_str().unwrap()])
-            .current_dir(root())
             .output()
             .unwrap();
         assert!(
@@ -148,7 +138,7 @@ fn shipped_specs_regenerate_their_samples_and_run_clean() {
             made == shipped,
             "{name}: samples/{name}.yaml is not what its spec traces"
         );
-        let nodes = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        let nodes = lamella_command()
             .args([
                 "nodes",
                 out.to_str().unwrap(),
@@ -165,12 +155,11 @@ fn shipped_specs_regenerate_their_samples_and_run_clean() {
 }
 
 fn bad(name: &str, text: &str, fragments: &[&str]) {
-    let dir = std::env::temp_dir().join(format!("lamella-badspec-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch(&format!("bad-{name}"));
     let p = dir.join(format!("{name}.trace.yaml"));
     std::fs::write(&p, text).unwrap();
     let out = dir.join("net.yaml");
-    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+    let o = lamella_command()
         .args(["trace", p.to_str().unwrap(), "--out", out.to_str().unwrap()])
         .output()
         .unwrap();
@@ -828,12 +817,11 @@ fn enneper_without_a_clip_warns_about_its_self_intersections() {
     let good = std::fs::read_to_string(root().join("samples/enneper-4m.trace.yaml")).unwrap();
     let i = good.find("clip:").unwrap();
     let j = good.find("sampling:").unwrap();
-    let dir = std::env::temp_dir().join(format!("lamella-noclip-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("noclip");
     let p = dir.join("noclip.trace.yaml");
     std::fs::write(&p, format!("{}{}", &good[..i], &good[j..])).unwrap();
     let out = dir.join("noclip.yaml");
-    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+    let o = lamella_command()
         .args(["trace", p.to_str().unwrap(), "--out", out.to_str().unwrap()])
         .output()
         .unwrap();

@@ -2,25 +2,11 @@
 //! twist; helicoid helices: kg and tg in closed form; Enneper: tg = 2/λ²),
 //! `--suggest`, and the profiles.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Enneper, Helicoid, Sampling};
-use common::*;
+use crate::support::synth::{self, Enneper, Helicoid, Sampling};
+use crate::support::*;
 use glam::DVec2;
 use lamella::check::{check, max_utilization, suggest, Governs};
-use lamella::formats::read::profile_file;
 use lamella::profile::Profile;
-use std::path::Path;
-
-fn profile(name: &str) -> Profile {
-    profile_file::load(
-        &Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("profiles")
-            .join(name),
-    )
-    .unwrap()
-}
 
 /// Hand formulas of geometry.md for a lamella with curvature kg and twist tg.
 fn hand(p: &Profile, kg: f64, tg: f64) -> (f64, f64, f64, f64) {
@@ -66,7 +52,7 @@ fn helicoid() -> (lamella::Network, lamella::Analysis, Vec<f64>) {
 #[test]
 fn helicoid_rulings_are_pure_twist() {
     let (net, an, vs) = helicoid();
-    for p in [profile("steel-1.5.yaml"), profile("beech-veneer.yaml")] {
+    for p in [profile("steel-1.5"), profile("beech-veneer")] {
         let report = check(&an, &p, false).0;
         for sc in report
             .strips
@@ -106,7 +92,7 @@ fn helicoid_rulings_are_pure_twist() {
 #[test]
 fn helicoid_helices_bend_and_twist_in_closed_form() {
     let (net, an, _vs) = helicoid();
-    let p = profile("steel-1.5.yaml");
+    let p = profile("steel-1.5");
     let report = check(&an, &p, false).0;
     for sc in report
         .strips
@@ -169,7 +155,7 @@ fn enneper_twist_is_two_over_lambda_squared() {
         },
     );
     let (net, an) = run(raw);
-    let p = profile("steel-1.5.yaml");
+    let p = profile("steel-1.5");
     let report = check(&an, &p, false).0;
     // A03 and B03 are the straight lines through the centre (u = ±v), where
     // λ = 1: tg = 2/scale, kg = 0; that is the worst point of the network.
@@ -231,7 +217,7 @@ fn suggested_thickness_passes_and_five_percent_more_fails() {
     });
     let (_net, an) = run(raw);
     // Too thick a steel: overstressed.
-    let thick = profile("steel-1.5.yaml").with_section(9.0, 50.0);
+    let thick = profile("steel-1.5").with_section(9.0, 50.0);
     assert!(!check(&an, &thick, false).0.passes());
     let s = suggest(&an, &thick);
     let t = s.max_thickness_mm.unwrap();
@@ -246,7 +232,7 @@ fn suggested_thickness_passes_and_five_percent_more_fails() {
     );
     // Too tall a lamella: the trapeze term alone fails at 400 mm, so no
     // thickness works; a height is suggested instead.
-    let tall = profile("steel-1.5.yaml").with_section(1.5, 400.0);
+    let tall = profile("steel-1.5").with_section(1.5, 400.0);
     let s = suggest(&an, &tall);
     assert_eq!(s.max_thickness_mm, None);
     let h = s.max_height_mm.unwrap();
@@ -258,7 +244,7 @@ fn suggested_thickness_passes_and_five_percent_more_fails() {
 
 #[test]
 fn shipped_profiles_load_and_derive_limits() {
-    let steel = profile("steel-1.5.yaml");
+    let steel = profile("steel-1.5");
     close(steel.design_strength_mpa(), 355.0, 1e-12, "f_d steel");
     close(
         steel.min_bending_radius_mm(),
@@ -269,7 +255,7 @@ fn shipped_profiles_load_and_derive_limits() {
     let offs = steel.lamella_offsets(lamella::Family::A);
     assert_eq!(offs.len(), 2);
     close(offs[1].dy_mm, (10.0 + 1.5) / 2.0, 1e-12, "dy");
-    let ply = profile("poplar-ply-4.yaml");
+    let ply = profile("poplar-ply-4");
     close(
         ply.design_strength_mpa(),
         0.6 * 20.0 / 1.2,
@@ -278,7 +264,7 @@ fn shipped_profiles_load_and_derive_limits() {
     );
     assert_eq!(ply.lamella_offsets(lamella::Family::A)[0].dz_mm, 30.0);
     assert_eq!(ply.lamella_offsets(lamella::Family::B)[0].dz_mm, -30.0);
-    let beech = profile("beech-veneer.yaml");
+    let beech = profile("beech-veneer");
     assert_eq!(beech.lamella_offsets(lamella::Family::B).len(), 1);
     assert_eq!(beech.lamella_offsets(lamella::Family::B)[0].dy_mm, 0.0);
 }
@@ -286,7 +272,7 @@ fn shipped_profiles_load_and_derive_limits() {
 /// The steel profile as a single lamella (E = 210 GPa, G = 81 GPa,
 /// t = 1.5 mm, h = 50 mm, f_d = 355 MPa), built in memory.
 fn single_steel() -> Profile {
-    let mut p = profile("steel-1.5.yaml");
+    let mut p = profile("steel-1.5");
     p.section.per_strip = 1;
     p.section.gap_mm = 0.0;
     p.shear_block = None;
@@ -356,7 +342,7 @@ fn bending_stress_by_hand_on_a_one_metre_arc() {
     // Doubled (dy = ±(10 + 1.5)/2 = ±5.75 mm): the lamellas are arcs of radius
     // 1000 ∓ 5.75 mm, so σb = 315 000 / (2 × 994.25) = 158.4109 MPa on the
     // inner one and 315 000 / (2 × 1005.75) = 156.5996 MPa on the outer one.
-    let report = check(&an, &profile("steel-1.5.yaml"), false).0;
+    let report = check(&an, &profile("steel-1.5"), false).0;
     let sc = report.strips.iter().find(|s| s.strip == a0).unwrap();
     let mut sb: Vec<f64> = sc
         .lamellas
@@ -479,9 +465,9 @@ fn suggest_ignores_edge_strips_as_check_does() {
     assert_eq!(edged.lamella_strips().count(), plain.strips.len());
     assert_eq!(edged.edge_strips().count(), 1);
     for p in [
-        profile("steel-1.5.yaml"),
-        profile("steel-1.5.yaml").with_section(6.0, 50.0),
-        profile("beech-veneer.yaml"),
+        profile("steel-1.5"),
+        profile("steel-1.5").with_section(6.0, 50.0),
+        profile("beech-veneer"),
     ] {
         // The same verdict, the same worst lamella, the same suggestion.
         let (a, b) = (check(&plain, &p, false).0, check(&edged, &p, false).0);
@@ -492,7 +478,7 @@ fn suggest_ignores_edge_strips_as_check_does() {
         assert_eq!(suggest(&plain, &p), suggest(&edged, &p));
     }
     // A passing grid keeps its headroom: edges do not make it thinner.
-    let steel = profile("steel-1.5.yaml");
+    let steel = profile("steel-1.5");
     assert!(check(&edged, &steel, false).0.passes());
     let t = suggest(&edged, &steel).max_thickness_mm.unwrap();
     assert!(t > 1.5, "suggested {t} mm for a passing 1.5 mm grid");
@@ -501,13 +487,8 @@ fn suggest_ignores_edge_strips_as_check_does() {
 #[test]
 fn profile_is_built_from_the_file_type_and_back() {
     use lamella::formats::read::profile_file::ProfileFile;
-    for name in ["steel-1.5.yaml", "poplar-ply-4.yaml", "beech-veneer.yaml"] {
-        let text = std::fs::read_to_string(
-            Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("profiles")
-                .join(name),
-        )
-        .unwrap();
+    for name in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
+        let text = std::fs::read_to_string(root().join(format!("profiles/{name}.yaml"))).unwrap();
         let file: ProfileFile = serde_yaml::from_str(&text).unwrap();
         let p = Profile::try_from(file.clone()).unwrap();
         assert_eq!(p.thickness_mm(), file.lamella.thickness_mm);

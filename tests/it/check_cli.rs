@@ -2,34 +2,8 @@
 //! profile and the check, and every bad profile gets a one-line error naming
 //! the profile file and the field, with exit status 1.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lamella-check-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn lamella(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::support::{lamella, root, scratch};
+use std::path::Path;
 
 fn steel() -> String {
     std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap()
@@ -37,7 +11,7 @@ fn steel() -> String {
 
 #[test]
 fn passing_network_exits_0_and_writes_the_check_into_plan_json() {
-    let dir = tmp("pass");
+    let dir = scratch("pass");
     let out = dir.to_str().unwrap();
     let (code, stdout, _) = lamella(&[
         "check",
@@ -47,7 +21,7 @@ fn passing_network_exits_0_and_writes_the_check_into_plan_json() {
         "--out",
         out,
     ]);
-    assert_eq!(code, 0, "{stdout}");
+    assert_eq!(code, Some(0), "{stdout}");
     assert!(
         stdout.lines().any(|l| l.starts_with("PASS: all 22 strips")),
         "{stdout}"
@@ -106,7 +80,7 @@ fn passing_network_exits_0_and_writes_the_check_into_plan_json() {
 
 #[test]
 fn overstressed_network_exits_3_and_suggests() {
-    let dir = tmp("fail");
+    let dir = scratch("fail");
     let p = dir.join("steel-9.yaml");
     std::fs::write(
         &p,
@@ -120,7 +94,7 @@ fn overstressed_network_exits_3_and_suggests() {
         p.to_str().unwrap(),
         "--suggest",
     ]);
-    assert_eq!(code, 3, "{stdout}{stderr}");
+    assert_eq!(code, Some(3), "{stdout}{stderr}");
     assert!(
         stdout
             .lines()
@@ -139,7 +113,7 @@ fn overstressed_network_exits_3_and_suggests() {
 
 /// A bad profile: exit 1, one line naming the profile file and `fragments`.
 fn bad(name: &str, text: &str, fragments: &[&str]) {
-    let dir = tmp(name);
+    let dir = scratch(name);
     let p = dir.join(format!("{name}.yaml"));
     std::fs::write(&p, text).unwrap();
     let out = dir.join("out");
@@ -151,7 +125,7 @@ fn bad(name: &str, text: &str, fragments: &[&str]) {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(code, 1, "{name}: {stdout}{stderr}");
+    assert_eq!(code, Some(1), "{name}: {stdout}{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{name}: one line: {stderr}");
     assert!(
         stderr.starts_with("error: ") && stderr.contains(&format!("{name}.yaml")),
@@ -271,7 +245,7 @@ fn missing_profile_file() {
         "--profile",
         "profiles/nope.yaml",
     ]);
-    assert_eq!(code, 1);
+    assert_eq!(code, Some(1));
     assert!(
         stderr.contains("nope.yaml") && stderr.contains("no such file"),
         "{stderr}"
@@ -280,7 +254,7 @@ fn missing_profile_file() {
 
 #[test]
 fn nodes_writes_centre_line_lamellas_oriented_angles_and_typed_warnings() {
-    let dir = tmp("nodes-model");
+    let dir = scratch("nodes-model");
     // The hypar sample plus a B line far away (crosses nothing).
     let mut text = std::fs::read_to_string(root().join("samples/hypar-small.yaml")).unwrap();
     text.push_str(
@@ -295,7 +269,7 @@ fn nodes_writes_centre_line_lamellas_oriented_angles_and_typed_warnings() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(code, Some(0), "{stderr}");
     assert!(
         stderr.contains("warning: curve B-lost: crosses no other curve"),
         "{stderr}"

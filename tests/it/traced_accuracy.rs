@@ -3,27 +3,17 @@
 //! the seed, no rounding that shows in kg or tg, at coarse and at very dense
 //! sampling (issue 7).
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-use lamella::formats::read::profile_file;
+use crate::support::{lamella_command, profile, scratch};
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::{analyze, AnalysisOptions, Family, Network};
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lamella-traced-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use std::path::Path;
 
 /// Run `lamella trace` on a spec text; read the network it wrote.
 fn trace(dir: &Path, name: &str, spec: &str) -> Network {
     let spec_path = dir.join(format!("{name}.trace.yaml"));
     std::fs::write(&spec_path, spec).unwrap();
     let out = dir.join(format!("{name}.yaml"));
-    let run = Command::new(env!("CARGO_BIN_EXE_lamella"))
+    let run = lamella_command()
         .arg("trace")
         .arg(&spec_path)
         .arg("--out")
@@ -55,7 +45,7 @@ fn traced_helices_bend_and_twist_as_the_closed_form() {
          sampling: {step_mm: 25}\n",
     );
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let steel = profile_file::load(Path::new("profiles/steel-1.5.yaml")).unwrap();
+    let steel = profile("steel-1.5");
     let report = lamella::check::check(&an, &steel, false).0;
     let mut helices = 0;
     let mut worst_kg = (0.0f64, String::new());

@@ -1,15 +1,119 @@
-//! Shared helpers of the integration tests: closed-form networks analysed
-//! through the library, and numerical oracles on the analytic curves.
-#![allow(dead_code)]
+//! What the test modules share: the repository root, scratch directories,
+//! the CLI binary, shipped profiles and samples, closed-form networks
+//! analysed through the library, and numerical oracles on the analytic
+//! curves.
 
 use glam::{DVec2, DVec3};
 use lamella::analysis::{analyze, Analysis, AnalysisOptions};
 use lamella::network::{Network, RawNetwork};
+use lamella::profile::Profile;
 pub mod meshes;
-pub mod synth;
+/// Networks made from closed forms (shared with the benchmarks).
+pub use lamella_synth as synth;
 
-use std::path::Path;
+use std::collections::BTreeSet;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::Mutex;
 use synth::{ParamLine, ParamSurface};
+
+/// The repository root: samples/, profiles/ and tests/tools/ are read from
+/// here, and the CLI runs here.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Scratch directories handed out in this run.
+static SCRATCH: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
+
+/// A fresh, empty scratch directory `target/tmp/it/<module>-<name>`, the
+/// module being the test file that asks (through any helper in it).
+///
+/// The tests run as threads of one process, so a directory must belong to
+/// one test: asking twice for the same one in a run panics.
+#[track_caller]
+pub fn scratch(name: &str) -> PathBuf {
+    let file = std::panic::Location::caller().file();
+    let module = Path::new(file)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .expect("caller file");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("it")
+        .join(format!("{module}-{name}"));
+    let fresh = SCRATCH
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert(dir.clone());
+    assert!(
+        fresh,
+        "scratch directory {} asked for twice (from {file})",
+        dir.display()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create scratch dir");
+    dir
+}
+
+/// The CLI binary, to run in the repository root.
+pub fn lamella_command() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_lamella"));
+    c.current_dir(root());
+    c
+}
+
+/// Run the CLI with `args` in the repository root: (exit code, `None` when
+/// killed by a signal; stdout; stderr).
+pub fn lamella<S: AsRef<OsStr>>(args: &[S]) -> (Option<i32>, String, String) {
+    lamella_in(&root(), args)
+}
+
+/// Run the CLI with `args` in `dir`: (exit code; stdout; stderr).
+pub fn lamella_in<S: AsRef<OsStr>>(dir: &Path, args: &[S]) -> (Option<i32>, String, String) {
+    let o = lamella_command()
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("run lamella");
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// `lamella build samples/SAMPLE.yaml --profile profiles/PROFILE.yaml --out
+/// OUT EXTRA…` in the repository root.
+pub fn build(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
+    lamella_command()
+        .args(["build", &format!("samples/{sample}.yaml")])
+        .args(["--profile", &format!("profiles/{profile}.yaml")])
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("run lamella")
+}
+
+/// Assert that a run of the CLI succeeded, showing its output if not.
+#[track_caller]
+pub fn ok(o: &Output) {
+    assert!(
+        o.status.success(),
+        "exit {:?}\nstdout: {}\nstderr: {}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// A shipped profile, `profiles/NAME.yaml`.
+#[track_caller]
+pub fn profile(name: &str) -> Profile {
+    lamella::formats::read::profile_file::load(&root().join(format!("profiles/{name}.yaml")))
+        .expect("shipped profile")
+}
 
 pub fn validate(raw: RawNetwork) -> Network {
     Network::new(raw, Path::new("test.yaml")).expect("valid network")
@@ -88,10 +192,6 @@ pub fn rigid(p: DVec3) -> DVec3 {
     q * p + DVec3::new(12_345.6, -7_890.1, 4_321.0)
 }
 
-pub fn uv(x: f64, y: f64) -> DVec2 {
-    DVec2::new(x, y)
-}
-
 /// The point of the closed-form asymptotic line u ± v = const (Enneper,
 /// catenoid) through `start` that shares the other diagonal coordinate with
 /// `q`: along p = u + v when `along_p`, else along q = u − v.
@@ -138,7 +238,7 @@ pub const BUILDABLE_SAMPLES: [&str; 6] = [
 
 /// A shipped sample, read and analysed.
 pub fn analysed_sample(name: &str) -> (Network, Analysis) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("samples/{name}.yaml"));
+    let path = root().join(format!("samples/{name}.yaml"));
     let net =
         lamella::formats::read::read_network(&path, lamella::formats::read::ReadOptions::default())
             .expect("read sample");

@@ -2,6 +2,7 @@
 //! coordinates to 0.001 mm, no normals, quads and triangles mixed, 1-based
 //! indices; the same surface as binary STL.
 
+use crate::support::scratch;
 use lamella::design::mesh::curvature::SIGNIFICANT;
 use lamella::design::mesh::{
     anticlastic_report, require_anticlastic, vertex_curvatures, vertex_jets, SingularKind, Topology,
@@ -45,10 +46,10 @@ fn obj(z: impl Fn(f64, f64) -> f64) -> String {
     s
 }
 
+/// `text` written to `name` in a scratch directory of its own.
+#[track_caller]
 fn file(name: &str, text: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("mesh-tests");
-    std::fs::create_dir_all(&dir).expect("dir");
-    let p = dir.join(name);
+    let p = scratch(name).join(name);
     std::fs::write(&p, text).expect("write");
     p
 }
@@ -122,7 +123,7 @@ fn obj_and_stl_give_the_same_curvature() {
         }
         stl.extend([0u8; 2]);
     }
-    let stl_path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("mesh-tests/saddle.stl");
+    let stl_path = path.with_extension("stl");
     std::fs::write(&stl_path, &stl).expect("write");
     let from_stl = read_mesh(&stl_path).expect("read stl");
     let (ta, tb) = (

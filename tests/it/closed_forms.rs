@@ -1,11 +1,8 @@
 //! Stations, lengths, angles, geodesic curvature and torsion held to the
 //! closed forms of geometry.md on Enneper, catenoid, helicoid and hypar.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Catenoid, Enneper, Helicoid, Hypar, ParamSurface, Sampling};
-use common::*;
+use crate::support::synth::{self, Catenoid, Enneper, Helicoid, Hypar, ParamSurface, Sampling};
+use crate::support::*;
 use glam::DVec2;
 use lamella::analysis::strip::NormalSource;
 

@@ -2,20 +2,12 @@
 //! Enneper sample every length holds, the result is stationary, its energy
 //! is below the start's, and it is deterministic; two-level grids have none.
 
-mod common;
-
+use crate::support::{lamella_command, profile, root, scratch};
 use glam::DVec3;
 use lamella::flat::{problem, solve};
-use lamella::formats::read::profile_file;
 use lamella::formats::read::{self as io, ReadOptions};
 use lamella::network::{Family, RawCurve, RawNetwork, Unit};
-use lamella::profile::Profile;
 use std::path::Path;
-
-fn profile(name: &str) -> Profile {
-    profile_file::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("profiles/{name}.yaml")))
-        .expect("profile")
-}
 
 /// Straight strips in the plane z = 0: family A along x every 300 mm,
 /// family B at 70° to it, sampled every 10 mm, with file normals +z.
@@ -57,7 +49,7 @@ fn planar_70() -> RawNetwork {
 
 #[test]
 fn a_planar_grid_comes_back_unchanged_with_zero_rotations() {
-    let (_, an) = common::run(planar_70());
+    let (_, an) = crate::support::run(planar_70());
     let pr = problem(&an, &profile("steel-1.5")).expect("problem");
     assert_eq!(pr.nodes.len(), 30);
     let st = solve(&pr);
@@ -93,7 +85,7 @@ fn a_planar_grid_comes_back_unchanged_with_zero_rotations() {
 
 #[test]
 fn enneper_flat_state_keeps_lengths_is_stationary_and_lowers_the_energy() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/enneper-4m.yaml");
+    let path = root().join("samples/enneper-4m.yaml");
     let net = io::read_network(&path, ReadOptions::default()).expect("read");
     let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyze");
     let pr = problem(&an, &profile("steel-1.5")).expect("problem");
@@ -146,7 +138,7 @@ fn enneper_flat_state_keeps_lengths_is_stationary_and_lowers_the_energy() {
 
 #[test]
 fn two_level_grids_have_no_flat_state() {
-    let (_, an) = common::run(planar_70());
+    let (_, an) = crate::support::run(planar_70());
     let e = problem(&an, &profile("poplar-ply-4"))
         .expect_err("two-level")
         .to_string();
@@ -157,11 +149,9 @@ fn two_level_grids_have_no_flat_state() {
 /// twice; a two-level profile exits 1 with one line.
 #[test]
 fn flat_command_writes_the_same_bytes_twice() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let tmp = scratch("command");
     let run = |profile: &str, out: &Path| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_lamella"))
-            .current_dir(root)
+        lamella_command()
             .args(["flat", "samples/enneper-4m.yaml", "--profile"])
             .arg(format!("profiles/{profile}.yaml"))
             .arg("--out")
@@ -206,7 +196,7 @@ fn flat_command_writes_the_same_bytes_twice() {
 /// swept range is exactly the rotation.
 #[test]
 fn slots_from_the_flat_state_are_narrower_where_joints_turn_less() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/enneper-4m.yaml");
+    let path = root().join("samples/enneper-4m.yaml");
     let net = io::read_network(&path, ReadOptions::default()).expect("read");
     let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyze");
     let steel = profile("steel-1.5");
@@ -266,10 +256,8 @@ fn slots_from_the_flat_state_are_narrower_where_joints_turn_less() {
 /// `parts --slots-from-flat` stops naming the node (exit 1, one line).
 #[test]
 fn joints_past_the_tolerance_and_strips_that_break_flat_are_named() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("flat-limits");
-    std::fs::create_dir_all(&tmp).expect("tmp");
-    let steel = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).expect("steel");
+    let tmp = scratch("limits");
+    let steel = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).expect("steel");
     let tight = tmp.join("steel-tight.yaml");
     std::fs::write(
         &tight,
@@ -285,13 +273,7 @@ fn joints_past_the_tolerance_and_strips_that_break_flat_are_named() {
         steel.replace("thickness_mm: 1.5\n", "thickness_mm: 40.0\n"),
     )
     .expect("write");
-    let run = |args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_lamella"))
-            .current_dir(root)
-            .args(args)
-            .output()
-            .expect("run")
-    };
+    let run = |args: &[&str]| lamella_command().args(args).output().expect("run");
     let out = tmp.join("o").to_string_lossy().into_owned();
     let o = run(&[
         "flat",

@@ -4,29 +4,14 @@
 //! their samples and run through `nodes` and `check`; bad meshes get
 //! one-line errors.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::meshes::{obj_text, param_mesh};
-use common::*;
+use crate::support::meshes::{obj_text, param_mesh};
+use crate::support::*;
 use glam::{DMat3, DVec2, DVec3};
 use lamella::design::design;
 use lamella::design::surface::{Enneper, Placed, Surface};
 use lamella::formats::read::mesh::read_mesh;
 use lamella::formats::read::trace_spec;
-use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::Arc;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn temp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lamella-mesh-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// The Enneper surface of the 4 m sample: scale 4400 mm, turned 45° about z.
 fn enneper_4m() -> Placed {
@@ -44,7 +29,7 @@ fn enneper_4m() -> Placed {
 /// closed-form asymptotic line u ± v = const through its curve's start, and
 /// the number of traced points.
 fn enneper_mesh_error(n: usize) -> (f64, usize) {
-    let dir = temp(&format!("enneper{n}"));
+    let dir = scratch(&format!("enneper{n}"));
     let (v, t) = param_mesh(&Enneper, 4400.0, 45.0, 0.45, n, 0.25);
     std::fs::write(dir.join("enneper.obj"), obj_text(&v, &t)).unwrap();
     let spec_path = dir.join("enneper.trace.yaml");
@@ -110,26 +95,6 @@ fn traced_enneper_mesh_converges_to_the_closed_form() {
     assert!(order > 0.8, "order {order:.2}");
 }
 
-/// Run a lamella subcommand; (success, stdout, stderr).
-fn lamella(args: &[&str], dir: &Path) -> (bool, String, String) {
-    let (code, out, err) = lamella_code(args, dir);
-    (code == 0, out, err)
-}
-
-/// Run a lamella subcommand; (exit code, stdout, stderr).
-fn lamella_code(args: &[&str], dir: &Path) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
-}
-
 const FILMS: [&str; 5] = [
     "film-saddle",
     "film-three-peaks",
@@ -140,13 +105,12 @@ const FILMS: [&str; 5] = [
 
 #[test]
 fn shipped_film_and_mesh_specs_regenerate_their_samples_and_run_through_nodes_and_check() {
-    let dir = temp("films");
+    let dir = scratch("films");
     for name in FILMS {
         let out = dir.join(format!("{name}.yaml"));
         let spec = format!("samples/{name}.trace.yaml");
-        let (ok, stdout, stderr) =
-            lamella(&["trace", &spec, "--out", out.to_str().unwrap()], &root());
-        assert!(ok, "{name}: {stderr}");
+        let (code, stdout, stderr) = lamella(&["trace", &spec, "--out", out.to_str().unwrap()]);
+        assert_eq!(code, Some(0), "{name}: {stderr}");
         assert!(stdout.contains("mesh:"), "{name}: {stdout}");
         let strip = |t: String| {
             t.lines()
@@ -161,28 +125,22 @@ fn shipped_film_and_mesh_specs_regenerate_their_samples_and_run_through_nodes_an
             made == shipped,
             "{name}: samples/{name}.yaml is not what its spec traces"
         );
-        let (ok, _, stderr) = lamella(
-            &[
-                "nodes",
-                out.to_str().unwrap(),
-                "--out",
-                dir.join(name).to_str().unwrap(),
-            ],
-            &root(),
-        );
-        assert!(ok, "{name}: nodes: {stderr}");
+        let (code, _, stderr) = lamella(&[
+            "nodes",
+            out.to_str().unwrap(),
+            "--out",
+            dir.join(name).to_str().unwrap(),
+        ]);
+        assert_eq!(code, Some(0), "{name}: nodes: {stderr}");
         // The elastic check runs to a verdict: 0 (all strips bend
         // elastically) or 3 (some overstressed), never an input error.
-        let (code, _, stderr) = lamella_code(
-            &[
-                "check",
-                out.to_str().unwrap(),
-                "--profile",
-                "profiles/steel-1.5.yaml",
-            ],
-            &root(),
-        );
-        assert!(code == 0 || code == 3, "{name}: check: {stderr}");
+        let (code, _, stderr) = lamella(&[
+            "check",
+            out.to_str().unwrap(),
+            "--profile",
+            "profiles/steel-1.5.yaml",
+        ]);
+        assert!(matches!(code, Some(0 | 3)), "{name}: check: {stderr}");
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
@@ -191,18 +149,15 @@ fn shipped_film_and_mesh_specs_regenerate_their_samples_and_run_through_nodes_an
 /// point, a monkey saddle at its centre (index −1/2), and `trace` reports it.
 #[test]
 fn the_three_peak_film_reports_its_monkey_saddle() {
-    let dir = temp("peaks");
+    let dir = scratch("peaks");
     let out = dir.join("net.yaml");
-    let (ok, stdout, stderr) = lamella(
-        &[
-            "trace",
-            "samples/film-three-peaks.trace.yaml",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        &root(),
-    );
-    assert!(ok, "{stderr}");
+    let (code, stdout, stderr) = lamella(&[
+        "trace",
+        "samples/film-three-peaks.trace.yaml",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{stderr}");
     let lines: Vec<&str> = stdout
         .lines()
         .filter(|l| l.contains("singular point"))
@@ -226,15 +181,15 @@ fn the_three_peak_film_reports_its_monkey_saddle() {
 }
 
 fn bad_mesh(name: &str, obj: &str, fragments: &[&str]) {
-    let dir = temp(name);
+    let dir = scratch(name);
     std::fs::write(dir.join("m.obj"), obj).unwrap();
     std::fs::write(
         dir.join("m.trace.yaml"),
         "surface: mesh\nmesh: m.obj\nspacing_mm: 300\n",
     )
     .unwrap();
-    let (ok, _, stderr) = lamella(&["trace", "m.trace.yaml", "--out", "net.yaml"], &dir);
-    assert!(!ok, "{name}: accepted");
+    let (code, _, stderr) = lamella_in(&dir, &["trace", "m.trace.yaml", "--out", "net.yaml"]);
+    assert_ne!(code, Some(0), "{name}: accepted");
     assert_eq!(stderr.trim().lines().count(), 1, "{name}: {stderr}");
     for f in fragments {
         assert!(stderr.contains(f), "{name}: {stderr} lacks {f}");
@@ -294,15 +249,15 @@ fn bad_meshes_get_one_line_errors() {
 
 /// A spec in a folder with the Enneper sample mesh; the one-line error.
 fn bad_spec(name: &str, spec: &str, fragments: &[&str]) {
-    let dir = temp(name);
+    let dir = scratch(name);
     std::fs::copy(
         root().join("samples/meshes/enneper-4m.obj"),
         dir.join("m.obj"),
     )
     .unwrap();
     std::fs::write(dir.join("s.trace.yaml"), spec).unwrap();
-    let (ok, _, stderr) = lamella(&["trace", "s.trace.yaml", "--out", "net.yaml"], &dir);
-    assert!(!ok, "{name}: accepted");
+    let (code, _, stderr) = lamella_in(&dir, &["trace", "s.trace.yaml", "--out", "net.yaml"]);
+    assert_ne!(code, Some(0), "{name}: accepted");
     assert_eq!(stderr.trim().lines().count(), 1, "{name}: {stderr}");
     for f in fragments {
         assert!(stderr.contains(f), "{name}: {stderr} lacks {f}");

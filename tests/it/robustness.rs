@@ -1,22 +1,12 @@
 //! Inputs that once broke lamella (from review): they now get a one-line
 //! error with exit 1, or are read correctly.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
+use crate::support::{lamella, root, scratch};
 use dxf::entities::{Entity, EntityType, Line, LwPolyline};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, LwPolylineVertex, Point};
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::{analyze, AnalysisOptions};
-use std::path::PathBuf;
-use std::process::Command;
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lamella-robust-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Run `lamella nodes` on a file with `contents`; expect exit 1 and one line
 /// containing every fragment.
@@ -24,17 +14,13 @@ fn rejects(name: &str, file: &str, contents: &str, fragments: &[&str]) {
     let dir = scratch(name);
     let p = dir.join(file);
     std::fs::write(&p, contents).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args([
-            "nodes",
-            p.to_str().unwrap(),
-            "--out",
-            dir.join("out").to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{name}: {stderr}");
+    let (code, _, stderr) = lamella(&[
+        "nodes",
+        p.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1), "{name}: {stderr}");
     assert_eq!(stderr.lines().count(), 1, "{name}: {stderr}");
     for f in fragments {
         assert!(stderr.contains(f), "{name}: `{f}` not in {stderr}");
@@ -100,18 +86,13 @@ fn out_dir_that_is_a_file() {
     let dir = scratch("outfile");
     let file = dir.join("taken");
     std::fs::write(&file, "keep me").unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args([
-            "nodes",
-            "samples/hypar-small.yaml",
-            "--out",
-            file.to_str().unwrap(),
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1));
+    let (code, _, stderr) = lamella(&[
+        "nodes",
+        "samples/hypar-small.yaml",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1));
     assert!(
         stderr.contains("not a directory") && stderr.lines().count() == 1,
         "{stderr}"
@@ -236,23 +217,13 @@ fn edge_strips_are_not_checked_as_bent_lamellas() {
     }
     let p = dir.join("ring.yaml");
     std::fs::write(&p, text).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args([
-            "check",
-            p.to_str().unwrap(),
-            "--profile",
-            "profiles/steel-1.5.yaml",
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{stdout}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (code, stdout, stderr) = lamella(&[
+        "check",
+        p.to_str().unwrap(),
+        "--profile",
+        "profiles/steel-1.5.yaml",
+    ]);
+    assert_eq!(code, Some(0), "{stdout}{stderr}");
     assert!(!stdout.contains("edge00"), "{stdout}");
     assert!(stdout.contains("PASS: all 2 strips"), "{stdout}");
     std::fs::remove_dir_all(dir).unwrap();
@@ -317,20 +288,6 @@ fn sparse_curves_get_curvature_between_their_samples() {
 /// Two straight crossing curves in mm, and `extra` curves.
 fn cross(extra: &str) -> String {
     format!("units: mm\ncurves:\n  - id: A00\n    family: A\n    points: [[0, -100, 0], [0, 100, 0]]\n{B_LINE}{extra}")
-}
-
-/// Run lamella with `args` in the crate root; (status, stdout, stderr).
-fn lamella(args: &[&str]) -> (Option<i32>, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 #[test]
@@ -533,7 +490,7 @@ fn a_byte_order_mark_is_accepted_by_every_reader() {
         assert!(net.is_ok(), "{name}: {:?}", net.err());
     }
     // A profile and a trace spec with a BOM read too.
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     let profile = dir.join("p.yaml");
     let text = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).unwrap();
     std::fs::write(&profile, format!("\u{feff}{text}")).unwrap();
@@ -549,7 +506,7 @@ fn a_byte_order_mark_is_accepted_by_every_reader() {
 fn profile_fields_are_bounded_under_their_own_names() {
     // height 1e300 used to be blamed on stock.width_mm.
     let dir = scratch("profile-huge");
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     let text = std::fs::read_to_string(root.join("profiles/steel-1.5.yaml")).unwrap();
     assert!(text.contains("height_mm: 50.0"));
     let p = dir.join("huge.yaml");

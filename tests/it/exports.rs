@@ -4,35 +4,25 @@
 //! same network gives with exact surface normals in the file, within 3 %,
 //! ends included, and the verdict must be the same (issue 7).
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Catenoid, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
+use crate::support::synth::{self, Catenoid, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
+use crate::support::{profile, scratch};
 use dxf::entities::{Entity, EntityType, Polyline, Vertex};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, Point};
 use glam::{DVec2, DVec3};
 use lamella::check::check;
-use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Export rounding, mm (Rhino's default display precision of 3 decimals).
 const ROUND_MM: f64 = 0.001;
 /// Allowed relative difference of max twist and utilisation to the result
 /// with exact file normals.
 const REL_TOL: f64 = 0.03;
-
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lamella-exports-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create scratch dir");
-    dir
-}
 
 fn round(p: DVec3) -> DVec3 {
     (p / ROUND_MM).round() * ROUND_MM
@@ -164,8 +154,8 @@ fn raw(case: &Case, step_mm: f64, normals: bool) -> RawNetwork {
 
 /// Max twist and utilisation of every A/B strip from OBJ and DXF exports at
 /// each sampling against the file-normals result.
-fn check_exports(case: Case, profile_path: &str) {
-    let profile = profile_file::load(Path::new(profile_path)).expect("profile");
+fn check_exports(case: Case, profile_name: &str) {
+    let profile = profile(profile_name);
     let dir = scratch(case.name);
     let exact = Network::new(raw(&case, 10.0, true), Path::new("exact.yaml")).unwrap();
     let want = evaluate(&exact, &profile);
@@ -220,29 +210,29 @@ fn check_exports(case: Case, profile_path: &str) {
 
 #[test]
 fn enneper_4m_exports() {
-    check_exports(enneper(4400.0), "profiles/steel-1.5.yaml");
+    check_exports(enneper(4400.0), "steel-1.5");
 }
 
 #[test]
 fn enneper_1_8m_exports() {
-    check_exports(enneper(1800.0), "profiles/steel-1.5.yaml");
+    check_exports(enneper(1800.0), "steel-1.5");
 }
 
 #[test]
 fn catenoid_exports() {
-    check_exports(catenoid(), "profiles/steel-1.5.yaml");
+    check_exports(catenoid(), "steel-1.5");
 }
 
 #[test]
 fn helicoid_exports() {
-    check_exports(helicoid(), "profiles/steel-1.5.yaml");
+    check_exports(helicoid(), "steel-1.5");
 }
 
 /// The smoothing is what makes this work: the same 5 mm export read as exact
 /// coordinates (`--precision 0`) gives a twist many times too large.
 #[test]
 fn precision_option_switches_the_smoothing() {
-    let profile = profile_file::load(Path::new("profiles/steel-1.5.yaml")).expect("profile");
+    let profile = profile("steel-1.5");
     let case = enneper(4400.0);
     let dir = scratch("precision");
     let path = dir.join("enneper-5.obj");

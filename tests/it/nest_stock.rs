@@ -3,10 +3,7 @@
 //! computed by hand or by brute force over sheet mixes, not read back from
 //! the nest.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-
+use crate::support::{self, root};
 use kurbo::Point;
 use lamella::fabricate::part::{Part, PartKind};
 use lamella::fabricate::{fabricate, Kit, KitSummary};
@@ -15,11 +12,7 @@ use lamella::formats::read::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, Nest};
 use lamella::profile::Profile;
 use lamella::{analyze, AnalysisOptions};
-use std::path::{Path, PathBuf};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use std::path::Path;
 
 /// The steel profile's text with its `stock:` section replaced.
 fn steel_with(stock: &str) -> String {
@@ -103,7 +96,7 @@ fn every_stock_form_reads_and_writes_back() {
     assert_eq!(p.stock.sizes[1].max_count, Some(3));
     // The longest usable length is what a lamella may be.
     assert_eq!(p.stock.longest_usable_mm(10.0, 50.0), 2980.0);
-    let mixed = profile_file::load(&root().join("profiles/steel-1.5-mixed.yaml")).unwrap();
+    let mixed = support::profile("steel-1.5-mixed");
     assert_eq!(mixed.stock.sizes.len(), 2);
     assert!(mixed.stock.priced());
 }
@@ -361,14 +354,14 @@ fn coil_is_cut_to_the_hand_computed_lane_length() {
 /// size, deterministic.
 #[test]
 fn shipped_samples_nest_on_two_sizes_within_the_rules() {
-    let mixed = profile_file::load(&root().join("profiles/steel-1.5-mixed.yaml")).unwrap();
-    let single = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let mixed = support::profile("steel-1.5-mixed");
+    let single = support::profile("steel-1.5");
     let small = parse(&steel_with(
         "stock:\n  kind: sheet\n  length_mm: 2000\n  width_mm: 1000\n  price_per_unit: 45\n",
     ))
     .unwrap();
-    for sample in common::BUILDABLE_SAMPLES {
-        let (net, an) = common::analysed_sample(sample);
+    for sample in support::BUILDABLE_SAMPLES {
+        let (net, an) = support::analysed_sample(sample);
         let kit = fabricate(&net, &an, &mixed, None, Default::default()).unwrap();
         // The same parts as with the large size alone (splices at 2980 mm).
         let kit_single = fabricate(&net, &an, &single, None, Default::default()).unwrap();

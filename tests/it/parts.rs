@@ -5,22 +5,16 @@
 //! on every shipped sample, and one-line errors for combinations a profile
 //! cannot build.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
+use crate::support::{self, lamella_command, root, scratch};
 use lamella::analysis::lines::LamellaLine;
 use lamella::fabricate::part::{FeatureKind, HoleUse, Part, PartKind};
 use lamella::fabricate::{fabricate, Kit};
-use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::profile::Profile;
 use lamella::{analyze, Analysis, AnalysisOptions, Family, Network};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use std::path::Path;
+use std::process::Output;
 
 fn load(sample: &str, profile: &str) -> (Network, Analysis, Profile) {
     let net = read_network(
@@ -29,13 +23,13 @@ fn load(sample: &str, profile: &str) -> (Network, Analysis, Profile) {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let p = profile_file::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+    let p = support::profile(profile);
     (net, an, p)
 }
 
 /// The node stations of every lamella line, by (strip id, lamella number):
 /// node id → station on the line (held to exact offset lines in
-/// tests/offset.rs).
+/// tests/it/offset.rs).
 fn line_stations(an: &Analysis, p: &Profile) -> HashMap<(String, u32), HashMap<usize, f64>> {
     let mut out = HashMap::new();
     for s in an.lamella_strips() {
@@ -434,8 +428,8 @@ fn every_profile_builds_every_sample_or_says_why() {
         .all(|f| f.contains("pavilion-1to5") && f.contains("splice")));
 }
 
-fn run_parts(network: &Path, profile: &Path, out: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_lamella"))
+fn run_parts(network: &Path, profile: &Path, out: &Path) -> Output {
+    lamella_command()
         .arg("parts")
         .arg(network)
         .arg("--profile")
@@ -444,13 +438,6 @@ fn run_parts(network: &Path, profile: &Path, out: &Path) -> std::process::Output
         .arg(out)
         .output()
         .unwrap()
-}
-
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lamella-parts-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// A profile cannot build the network: one line naming the profile, strip

@@ -1,10 +1,7 @@
 //! Node finding on the awkward cases: a pair crossing twice, a crossing at a
 //! curve's end, curves that pass near but do not meet, near-tangent crossings.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::*;
+use crate::support::*;
 use glam::DVec3;
 use lamella::network::{Family, RawCurve, RawNetwork, Unit};
 
@@ -166,14 +163,14 @@ fn a_near_tangent_crossing_warns() {
 #[test]
 fn dense_grid_finds_every_node_once() {
     // A 40 × 40 hypar: 1600 nodes, none twice.
-    let xs = common::synth::spread(2000.0, 40);
-    let lines = common::synth::coordinate_lines(&xs, &xs);
-    let raw = common::synth::network(
+    let xs = crate::support::synth::spread(2000.0, 40);
+    let lines = crate::support::synth::coordinate_lines(&xs, &xs);
+    let raw = crate::support::synth::network(
         "g",
-        &common::synth::Hypar { c: 3000.0 },
+        &crate::support::synth::Hypar { c: 3000.0 },
         &lines,
         1.0,
-        common::synth::Sampling {
+        crate::support::synth::Sampling {
             step_mm: 30.0,
             normals: false,
         },

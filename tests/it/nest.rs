@@ -4,28 +4,19 @@
 //! independent pairwise check here); never fewer sheets than the lower
 //! bound; deterministic; a part too large for the stock is a one-line error.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-
+use crate::support::{self, lamella_command, root, scratch};
 use lamella::fabricate::fabricate;
-use lamella::formats::read::profile_file;
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::nest::{check_nest, nest, placed_bbox};
 use lamella::{analyze, AnalysisOptions};
-use std::path::PathBuf;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 #[test]
 fn every_buildable_kit_nests_within_the_rules() {
     let mut nested = 0;
-    for sample in common::BUILDABLE_SAMPLES {
-        let (net, an) = common::analysed_sample(sample);
+    for sample in support::BUILDABLE_SAMPLES {
+        let (net, an) = support::analysed_sample(sample);
         for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
-            let p = profile_file::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+            let p = support::profile(profile);
             let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
             let n = nest(&kit, &p).unwrap();
             assert_eq!(check_nest(&kit, &n, &p), Ok(()), "{sample} {profile}");
@@ -93,15 +84,15 @@ const TABLE: [(&str, [Promise; 3]); 12] = {
 fn every_shipped_sample_keeps_the_readme_table() {
     let mut checked = 0;
     for (sample, promises) in TABLE {
-        if common::BUILDABLE_SAMPLES.contains(&sample) {
+        if support::BUILDABLE_SAMPLES.contains(&sample) {
             continue;
         }
-        let (net, an) = common::analysed_sample(sample);
+        let (net, an) = support::analysed_sample(sample);
         for (profile, promise) in PROFILES.iter().zip(promises) {
             if sample == "schwarz-d-pavilion-1to5" && *profile == "beech-veneer" {
                 continue;
             }
-            let p = profile_file::load(&root().join(format!("profiles/{profile}.yaml"))).unwrap();
+            let p = support::profile(profile);
             let what = format!("{sample} {profile}");
             match (fabricate(&net, &an, &p, None, Default::default()), promise) {
                 (Err(e), Promise::PartsRefuse(msg)) => {
@@ -240,7 +231,7 @@ fn the_small_pavilion_nests_within_the_rules_by_outline() {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let p = profile_file::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
+    let p = support::profile("beech-veneer");
     let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     let n = nest(&kit, &p).unwrap();
     assert_eq!(check_nest(&kit, &n, &p), Ok(()));
@@ -306,7 +297,7 @@ fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part:
 fn two_bowed_bands_share_one_sheet_by_outline() {
     use lamella::fabricate::part::signed_area_mm2;
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = support::profile("steel-1.5");
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];
@@ -361,7 +352,7 @@ fn two_bowed_bands_share_one_sheet_by_outline() {
 #[test]
 fn bowed_bands_stack_by_outline_onto_few_sheets() {
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = support::profile("steel-1.5");
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];
@@ -406,7 +397,7 @@ fn a_part_larger_than_the_stock_is_a_one_line_error() {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let mut p = profile_file::load(&root().join("profiles/beech-veneer.yaml")).unwrap();
+    let mut p = support::profile("beech-veneer");
     // Stock narrower than a lamella is high, grain forbids turning it.
     p.stock.sizes[0].width_mm = 20.0;
     // Edge bands are split to fit the stock when the parts are made; when
@@ -438,7 +429,7 @@ fn rotations_that_fit_nothing_are_an_error_not_a_hang() {
     )
     .unwrap();
     let an = analyze(&net, AnalysisOptions::for_network(&net)).unwrap();
-    let mut p = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let mut p = support::profile("steel-1.5");
     let kit = fabricate(&net, &an, &p, None, Default::default()).unwrap();
     p.cutting.allowed_rotations_deg = vec![90];
     let e = nest(&kit, &p).unwrap_err().to_string();
@@ -466,7 +457,7 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
         state ^= state >> 27;
         (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
     };
-    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = support::profile("steel-1.5");
     let usable = steel.stock.sizes[0].usable_length_mm(steel.cutting.edge_margin_mm);
     let h = steel.section.height_mm;
     let mut over = 0;
@@ -522,10 +513,9 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
 /// grown by half the kerf plus spacing (so larger than the part's).
 #[test]
 fn the_sparrow_instance_holds_every_part_grown() {
-    let dir = std::env::temp_dir().join(format!("lamella-nest-instance-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = scratch("instance");
     let inst = dir.join("instance.json");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lamella"))
+    let out = lamella_command()
         .args([
             "nest",
             "samples/catenoid.yaml",
@@ -536,7 +526,6 @@ fn the_sparrow_instance_holds_every_part_grown() {
         .arg(&dir)
         .arg("--export-instance")
         .arg(&inst)
-        .current_dir(root())
         .output()
         .unwrap();
     assert!(
@@ -587,7 +576,7 @@ fn star_washers_interleave_onto_half_the_sheets_of_their_boxes() {
     use lamella::fabricate::part::{Part, PartKind};
     use lamella::fabricate::washer::star_outline;
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = profile_file::load(&root().join("profiles/steel-1.5.yaml")).unwrap();
+    let steel = support::profile("steel-1.5");
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];

@@ -3,10 +3,8 @@
 //! give the same nodes at the same stations. Also: DXF SPLINEs are evaluated
 //! as NURBS, and units (OBJ override, DXF `$INSUNITS`) scale to mm.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-mod common;
-use common::synth::{self, Hypar, Sampling};
+use crate::support::scratch;
+use crate::support::synth::{self, Hypar, Sampling};
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Spline, Vertex};
 use dxf::enums::{AcadVersion, Units};
 use dxf::{Drawing, LwPolylineVertex, Point, Vector};
@@ -15,18 +13,10 @@ use lamella::formats::read::{network_file, read_network, read_raw, ReadOptions};
 use lamella::network::{Family, Network, RawNetwork, Unit};
 use lamella::{analyze, AnalysisOptions};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Node stations must agree this closely between the polyline formats (mm).
 const STATION_TOL_MM: f64 = 1e-6;
-
-/// A fresh, empty scratch directory for one test.
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lamella-readers-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create scratch dir");
-    dir
-}
 
 /// The hyperbolic paraboloid z = xy/1500 over ±600 mm, its rulings as the
 /// A (x = const) and B (y = const) curves: 5 × 5 curves, 25 nodes.

@@ -3,21 +3,12 @@
 //! the file and what is wrong (and the curve or line where it applies), and
 //! write nothing into DIR.
 
-#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
-
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-/// A fresh, empty scratch directory for one test.
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lamella-cli-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create scratch dir");
-    dir
-}
+use crate::support::{lamella, lamella_command, root, scratch};
+use std::path::Path;
+use std::process::Output;
 
 fn run_nodes(network: &Path, out: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lamella"))
+    lamella_command()
         .arg("nodes")
         .arg(network)
         .arg("--out")
@@ -377,7 +368,7 @@ fn failed_run_leaves_out_dir_untouched() {
 #[test]
 fn sample_network_succeeds() {
     let dir = scratch("sample_network_succeeds");
-    let network = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/hypar-small.yaml");
+    let network = root().join("samples/hypar-small.yaml");
     let out = dir.join("out");
     std::fs::create_dir_all(&out).expect("out dir");
     std::fs::write(out.join("keep.txt"), "x").expect("write keep.txt");
@@ -411,7 +402,7 @@ fn bad_tolerance_is_a_usage_error_about_the_option() {
     let network = dir.join("cross.yaml");
     std::fs::write(&network, yaml_with("")).expect("write input");
     for t in ["NaN", "inf", "0", "-1", "1e9", "wide"] {
-        let output = Command::new(env!("CARGO_BIN_EXE_lamella"))
+        let output = lamella_command()
             .arg("nodes")
             .arg(&network)
             .arg(format!("--tolerance={t}"))
@@ -431,29 +422,16 @@ fn bad_tolerance_is_a_usage_error_about_the_option() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Run lamella with `args`; (status, stderr).
-fn lamella(args: &[&std::ffi::OsStr]) -> (Option<i32>, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run lamella");
-    (
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
-
 #[test]
 fn an_output_that_is_an_input_is_refused() {
     let dir = scratch("output_is_input");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     // trace SPEC --out SPEC used to overwrite the spec.
     let spec = dir.join("s.trace.yaml");
     let spec_text =
         std::fs::read_to_string(root.join("samples/hypar-small.trace.yaml")).expect("sample spec");
     std::fs::write(&spec, &spec_text).expect("write spec");
-    let (code, stderr) = lamella(&[
+    let (code, _, stderr) = lamella(&[
         "trace".as_ref(),
         spec.as_os_str(),
         "--out".as_ref(),
@@ -472,7 +450,7 @@ fn an_output_that_is_an_input_is_refused() {
         let hard = dir.join("hard.yaml");
         std::fs::hard_link(&spec, &hard).expect("hard link");
         for out in [&link, &hard] {
-            let (code, stderr) = lamella(&[
+            let (code, _, stderr) = lamella(&[
                 "trace".as_ref(),
                 spec.as_os_str(),
                 "--out".as_ref(),
@@ -489,7 +467,7 @@ fn an_output_that_is_an_input_is_refused() {
     let network = net_dir.join("plan.json");
     let json = "{\"units\": \"mm\", \"curves\": [{\"id\": \"A\", \"family\": \"A\", \"points\": [[0, -1, 0], [0, 1, 0]]}, {\"id\": \"B\", \"family\": \"B\", \"points\": [[-1, 0, 0], [1, 0, 0]]}]}\n";
     std::fs::write(&network, json).expect("write network");
-    let (code, stderr) = lamella(&[
+    let (code, _, stderr) = lamella(&[
         "nodes".as_ref(),
         network.as_os_str(),
         "--out".as_ref(),
@@ -501,7 +479,7 @@ fn an_output_that_is_an_input_is_refused() {
     std::fs::create_dir_all(&profile_dir).expect("dir");
     let profile = profile_dir.join("plan.json");
     std::fs::copy(root.join("profiles/steel-1.5.yaml"), &profile).expect("copy profile");
-    let (code, stderr) = lamella(&[
+    let (code, _, stderr) = lamella(&[
         "check".as_ref(),
         network.as_os_str(),
         "--profile".as_ref(),

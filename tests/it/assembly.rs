@@ -6,50 +6,15 @@
 //! byte-identical rebuilds. Without pypdf the reading is skipped (CI
 //! installs it and sets LAMELLA_REQUIRE_PYPDF).
 
+use crate::support::{build, lamella_command, ok, root, scratch};
 use serde_json::Value;
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("assembly-{name}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("scratch");
-    d
-}
-
-fn build(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
-    let network = format!("samples/{sample}.yaml");
-    let profile = format!("profiles/{profile}.yaml");
-    let out_s = out.to_string_lossy().into_owned();
-    let mut args = vec![
-        "build",
-        &network,
-        "--profile",
-        &profile,
-        "--out",
-        &out_s,
-        "--quiet",
-    ];
-    args.extend_from_slice(extra);
-    Command::new(env!("CARGO_BIN_EXE_lamella"))
-        .args(&args)
-        .current_dir(root())
-        .output()
-        .expect("run lamella")
-}
-
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "exit {:?}\nstderr: {}",
-        o.status.code(),
-        String::from_utf8_lossy(&o.stderr)
-    );
+/// `lamella build … --quiet`: the tests read the files, not the progress.
+fn build_quiet(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
+    build(sample, profile, out, &[&["--quiet"], extra].concat())
 }
 
 /// pypdf's reading of a PDF, or `None` when pypdf is not installed.
@@ -200,7 +165,7 @@ fn expected_pages(plan: &Value, paper: &str) -> usize {
 
 fn check_kit(sample: &str, profile: &str, paper: &str) {
     let out = scratch(&format!("{sample}-{paper}"));
-    ok(&build(sample, profile, &out, &["--paper", paper]));
+    ok(&build_quiet(sample, profile, &out, &["--paper", paper]));
     let pdf = out.join("assembly.pdf");
     let bytes = std::fs::read(&pdf).expect("assembly.pdf written");
     assert!(bytes.starts_with(b"%PDF-"), "a PDF");
@@ -297,11 +262,11 @@ fn two_level_kit_on_a4() {
 #[test]
 fn same_input_same_bytes() {
     let (a, b) = (scratch("same-a"), scratch("same-b"));
-    ok(&build("hypar-small", "steel-1.5", &a, &[]));
+    ok(&build_quiet("hypar-small", "steel-1.5", &a, &[]));
     // Another time zone and another process: nothing may leak in.
     let network = "samples/hypar-small.yaml";
     let out_s = b.to_string_lossy().into_owned();
-    let o = Command::new(env!("CARGO_BIN_EXE_lamella"))
+    let o = lamella_command()
         .args([
             "build",
             network,
@@ -312,7 +277,6 @@ fn same_input_same_bytes() {
             "--quiet",
         ])
         .env("TZ", "Asia/Kathmandu")
-        .current_dir(root())
         .output()
         .expect("run");
     ok(&o);
@@ -324,7 +288,7 @@ fn same_input_same_bytes() {
 #[test]
 fn unknown_paper_is_a_usage_error() {
     let out = scratch("paper");
-    let o = build("hypar-small", "steel-1.5", &out, &["--paper", "letter"]);
+    let o = build_quiet("hypar-small", "steel-1.5", &out, &["--paper", "letter"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("letter"), "{err}");
@@ -335,7 +299,7 @@ fn unknown_paper_is_a_usage_error() {
 #[test]
 fn a_plan_without_parts_is_an_error() {
     let out = scratch("noparts");
-    ok(&build("hypar-small", "steel-1.5", &out, &[]));
+    ok(&build_quiet("hypar-small", "steel-1.5", &out, &[]));
     let mut plan: lamella::plan::Plan =
         serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("plan");
     plan.parts = None;
@@ -372,7 +336,7 @@ fn a_plan_without_parts_is_an_error() {
 #[test]
 fn flat_layout_page_when_the_flat_state_is_computed() {
     let out = scratch("flat-layout");
-    ok(&build(
+    ok(&build_quiet(
         "enneper-4m",
         "steel-1.5",
         &out,

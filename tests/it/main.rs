@@ -1,0 +1,29 @@
+//! The integration tests, one crate (one link of lamella): a module per
+//! area, the shared helpers in `support`.
+
+#![allow(clippy::unwrap_used)] // tests may panic on broken invariants
+
+mod support;
+
+mod assembly;
+mod build;
+mod check;
+mod check_cli;
+mod cli_errors;
+mod closed_forms;
+mod exports;
+mod flat;
+mod invariance;
+mod layers;
+mod mesh;
+mod mesh_trace;
+mod minimal;
+mod nest;
+mod nest_stock;
+mod nodes;
+mod offset;
+mod parts;
+mod readers;
+mod robustness;
+mod trace;
+mod traced_accuracy;
