@@ -82,9 +82,14 @@ pub fn fabricate(
         .map(|s| (s.curve, lines.take(s.curve)))
         .collect();
     drop(lines);
+    // Every strip's result, then the first error in strip order: a
+    // parallel collect into `Result` would report whichever strip failed
+    // first in time, so the refusal would vary from run to run.
     let per_strip: Vec<lamella::StripParts> = jobs
         .into_par_iter()
         .map(|(i, l)| lamella::strip_parts(net, an, profile, i, rotations, l))
+        .collect::<Vec<Result<_>>>()
+        .into_iter()
         .collect::<Result<Vec<_>>>()?;
     let mut parts: Vec<Part> = Vec::new();
     let (mut blocks, mut plates) = (0usize, 0usize);

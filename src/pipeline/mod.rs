@@ -62,6 +62,8 @@ impl Inputs {
 pub struct Session {
     inputs: Inputs,
     profile: Option<Profile>,
+    /// The profile in its file's form, for plan.json's `resolved`.
+    resolved: serde_json::Value,
     network: Network,
     analysis: Option<Analysis>,
     check: Option<CheckReport>,
@@ -89,9 +91,14 @@ impl Session {
             None => None,
         };
         let network = read::read_network(&inputs.network, inputs.read)?;
+        let resolved = profile
+            .as_ref()
+            .and_then(|p| serde_json::to_value(read::profile_file::ProfileFile::from(p)).ok())
+            .unwrap_or(serde_json::Value::Null);
         Ok(Session {
             inputs,
             profile,
+            resolved,
             network,
             analysis: None,
             check: None,
@@ -313,6 +320,7 @@ impl Session {
                 profile,
                 report,
                 suggestion: self.suggestion.as_ref(),
+                resolved: &self.resolved,
             }),
             _ => None,
         };

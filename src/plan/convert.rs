@@ -215,7 +215,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         .collect();
     let (profile, check) = match &model.check {
         Some(c) => (
-            Some(plan_profile(c.profile)),
+            Some(plan_profile(c.profile, c.resolved)),
             Some(plan_check(c.report, c.suggestion)),
         ),
         None => (None, None),
@@ -551,7 +551,7 @@ fn plan_stress(l: &LamellaCheck) -> PlanStress {
     }
 }
 
-fn plan_profile(p: &Profile) -> PlanProfile {
+fn plan_profile(p: &Profile, resolved: &serde_json::Value) -> PlanProfile {
     PlanProfile {
         name: p.name.clone(),
         source: file_name(&p.source),
@@ -571,7 +571,7 @@ fn plan_profile(p: &Profile) -> PlanProfile {
             JointSystem::TwoLevel => "two_level".into(),
         },
         level_offset_mm: p.joint.level_offset_mm,
-        resolved: super::resolved::resolved(p),
+        resolved: resolved.clone(),
     }
 }
 

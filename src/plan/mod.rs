@@ -9,7 +9,6 @@ use takeoff::Takeoff;
 
 mod convert;
 pub mod model;
-pub mod resolved;
 pub mod sparrow;
 pub mod takeoff;
 

@@ -83,6 +83,9 @@ pub struct Checked<'a> {
     pub report: &'a CheckReport,
     /// What to change in the section so every strip passes, when asked for (`check --suggest`).
     pub suggestion: Option<&'a Suggestion>,
+    /// The profile in the form of its file (current version), as plan.json
+    /// writes it under `resolved`: the pipeline, which reads files, makes it.
+    pub resolved: &'a serde_json::Value,
 }
 
 /// The finished model of a network.

@@ -40,6 +40,7 @@ fn summary(raw: RawNetwork) -> Summary {
             profile: &steel,
             report: &report,
             suggestion: None,
+            resolved: &serde_json::Value::Null,
         }),
     );
     let strips = an

@@ -5,7 +5,7 @@
 //! on every shipped sample, and one-line errors for combinations a profile
 //! cannot build.
 
-use crate::support::{self, lamella_command, root, scratch};
+use crate::support::{self, analysed_sample, lamella_command, root, scratch};
 use lamella::analysis::lines::LamellaLine;
 use lamella::fabricate::part::{FeatureKind, HoleUse, Part, PartKind};
 use lamella::fabricate::{fabricate, Kit};
@@ -578,4 +578,20 @@ fn parts_writes_the_plan_and_a_summary() {
         std::fs::read(dir.join("plan.json")).unwrap(),
         std::fs::read(again.join("plan.json")).unwrap()
     );
+}
+
+/// When several strips cannot be made, the refusal names the first in
+/// strip order, every run: on the 1:5 pavilion with steel both A14 and
+/// B14 leave no room for a splice plate (the strips are made in parallel;
+/// the error must not be whichever finished first).
+#[test]
+fn the_first_strip_that_fails_is_the_one_named() {
+    let (net, an) = analysed_sample("schwarz-d-pavilion-1to5");
+    let p = support::profile("steel-1.5");
+    for _ in 0..4 {
+        let e = fabricate(&net, &an, &p, None, Default::default())
+            .expect_err("A14 and B14 have no room for a splice plate")
+            .to_string();
+        assert!(e.contains("strip A14:"), "{e}");
+    }
 }
