@@ -1,5 +1,8 @@
-//! Writing files: staged into a folder beside the output and moved into
-//! place once complete, big files past the page cache.
+//! The one way lamella writes files: a kit's folder is staged beside the
+//! output and moved into place once complete ([`staging`]); a single file
+//! (a command's plan.json, flat.svg, a traced network) is written beside
+//! its target and renamed over it ([`write_atomic`]); either way the bytes
+//! go through [`direct::write_file`] (big files past the page cache).
 
 pub mod direct;
 pub mod staging;
@@ -26,7 +29,7 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.lamella-tmp"));
-    std::fs::write(&tmp, contents).map_err(|e| Error::io(&tmp, e))?;
+    direct::write_file(&tmp, contents).map_err(|e| Error::io(&tmp, e))?;
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         Error::io(path, e)
