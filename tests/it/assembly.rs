@@ -1,4 +1,4 @@
-//! The assembly sheets, `DIR/assembly.pdf` (issue 11), read back by an
+//! The assembly sheets, `DIR/assembly.pdf`, read back by an
 //! independent reader (pypdf, `tests/tools/pdf_text.py`): every strip id
 //! and every node of the schedule on its pages, the page count the kit
 //! implies — recomputed here from plan.json and the layout rules the

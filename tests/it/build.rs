@@ -1,4 +1,4 @@
-//! `lamella build` end to end (issue 10): every DXF read back and held to
+//! `lamella build` end to end: every DXF read back and held to
 //! plan.json's parts moved by their placements (an independent reading of
 //! plan.json as plain JSON); every DXF audited by ezdxf; every SVG rendered
 //! by resvg with ink on the parts and nowhere else; byte-identical

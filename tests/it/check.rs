@@ -8,7 +8,7 @@ use glam::DVec2;
 use lamella::check::{check, max_utilization, suggest, Governs};
 use lamella::profile::Profile;
 
-/// Hand formulas of geometry.md for a lamella with curvature kg and twist tg.
+/// Hand formulas of docs/geometry.md for a lamella with curvature kg and twist tg.
 fn hand(p: &Profile, kg: f64, tg: f64) -> (f64, f64, f64, f64) {
     let (e, g, t, h) = (
         p.youngs_modulus_mpa(),

@@ -1,5 +1,5 @@
 //! Stations, lengths, angles, geodesic curvature and torsion held to the
-//! closed forms of geometry.md on Enneper, catenoid, helicoid and hypar.
+//! closed forms of docs/geometry.md on Enneper, catenoid, helicoid and hypar.
 
 use crate::support::synth::{self, Catenoid, Enneper, Helicoid, Hypar, ParamSurface, Sampling};
 use crate::support::*;

@@ -2,7 +2,7 @@
 //! coordinates rounded to 0.001 mm, sampled every 5, 10, 25 and 50 mm. The
 //! largest twist and the utilisation of every A/B strip must match what the
 //! same network gives with exact surface normals in the file, within 3 %,
-//! ends included, and the verdict must be the same (issue 7).
+//! ends included, and the verdict must be the same.
 
 use crate::support::synth::{self, Catenoid, Enneper, Helicoid, ParamLine, ParamSurface, Sampling};
 use crate::support::{profile, scratch};

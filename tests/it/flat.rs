@@ -1,4 +1,4 @@
-//! The flat state (issue 12): a planar grid comes back unchanged; on the
+//! The flat state: a planar grid comes back unchanged; on the
 //! Enneper sample every length holds, the result is stationary, its energy
 //! is below the start's, and it is deterministic; two-level grids have none.
 

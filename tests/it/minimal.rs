@@ -1,4 +1,4 @@
-//! Form finding of soap films (issue 13) against answers known
+//! Form finding of soap films against answers known
 //! independently: the catenoid in closed form, symmetry and the sign of
 //! Gaussian curvature of a saddle, a boundary with a hole.
 

@@ -1,4 +1,4 @@
-//! Nesting (issue 9, first version): every part of every buildable sample ×
+//! Nesting: every part of every buildable sample ×
 //! profile placed exactly its count of times, inside the margins, in allowed
 //! rotations, kerf + spacing apart (the named invariant `check_nest`, and an
 //! independent pairwise check here); never fewer sheets than the lower

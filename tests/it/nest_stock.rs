@@ -1,4 +1,4 @@
-//! Stock from the profile (issue 9): several sheet sizes with prices and
+//! Stock from the profile: several sheet sizes with prices and
 //! count limits, and coil cut to length. Figures are held to values
 //! computed by hand or by brute force over sheet mixes, not read back from
 //! the nest.

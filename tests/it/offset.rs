@@ -1,4 +1,4 @@
-//! Stations on lamella lines offset from the curve (geometry.md "Where each
+//! Stations on lamella lines offset from the curve (docs/geometry.md "Where each
 //! lamella really is") against a numerical integration of the exact offset
 //! line c(s) + dy·y(s) + dz·z(s) built from the closed-form surface.
 
@@ -202,7 +202,7 @@ fn helicoid_lamella_lines_match_exact_offsets() {
 #[test]
 fn offset_changes_length_to_first_order_in_kg() {
     // A 5 mm tangential offset on a helix of the helicoid: the length changes by
-    // about −dy·∫kg ds (geometry.md: first order in kg).
+    // about −dy·∫kg ds (docs/geometry.md: first order in kg).
     let c = 1000.0;
     let lines = synth::coordinate_lines(&[0.0, 1.5], &[800.0, 1200.0]);
     let raw = synth::network(

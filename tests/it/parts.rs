@@ -1,6 +1,6 @@
-//! Fabricated parts (issue 8): every slot and hole at its node's station on
+//! Fabricated parts: every slot and hole at its node's station on
 //! its own lamella line, swept slot widths and centres against the closed
-//! forms of geometry.md (single and doubled, 90° and off 90°), shear blocks
+//! forms of docs/geometry.md (single and doubled, 90° and off 90°), shear blocks
 //! within both spacing limits and clear of the nodes, every shipped profile
 //! on every shipped sample, and one-line errors for combinations a profile
 //! cannot build.

@@ -283,7 +283,7 @@ fn sparse_curves_get_curvature_between_their_samples() {
     );
 }
 
-// ---- issue 7, bad input ----
+// ---- bad input ----
 
 /// Two straight crossing curves in mm, and `extra` curves.
 fn cross(extra: &str) -> String {

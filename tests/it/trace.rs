@@ -610,7 +610,7 @@ fn angle_to_nearest(t: glam::DVec3, ds: &[glam::DVec3]) -> f64 {
 /// First order in the direction (tg² = −K is flat at the asymptotic
 /// direction and cannot see a small error): on Scherk's surface
 /// z = ln cos y − ln cos x, II = sec²x dx² − sec²y dy², so the asymptotic
-/// directions are (dx, dy) ∝ (cos x, ±cos y) (geometry.md), mapped to space
+/// directions are (dx, dy) ∝ (cos x, ±cos y) (docs/geometry.md), mapped to space
 /// by the partials. The traced tangent must lie on one of them.
 #[test]
 fn traced_scherk_tangents_follow_the_closed_form_directions() {

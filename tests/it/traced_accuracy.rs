@@ -1,7 +1,7 @@
 //! Traced networks, as `lamella trace` writes them, carry curvature and twist
 //! as accurately as the surface they come from: no clusters of samples at
 //! the seed, no rounding that shows in kg or tg, at coarse and at very dense
-//! sampling (issue 7).
+//! sampling.
 
 use crate::support::{lamella_command, profile, scratch};
 use lamella::formats::read::{read_network, ReadOptions};
