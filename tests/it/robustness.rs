@@ -557,3 +557,69 @@ fn deep_profiles_and_specs_are_refused() {
     assert!(e.contains("more than the 1 MiB"), "{e}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A device behind a file name (`/dev/zero` reports size 0 and never ends)
+/// is read only up to the size limit of its kind of file, then refused in
+/// one line: as a network, a profile, a trace spec and a spec's mesh.
+#[cfg(unix)]
+#[test]
+fn endless_files_are_refused_at_their_size_limit() {
+    let dir = scratch("endless");
+    let link = |name: &str| {
+        let p = dir.join(name);
+        std::os::unix::fs::symlink("/dev/zero", &p).expect("symlink");
+        p
+    };
+    let (network, profile, spec) = (link("net.yaml"), link("p.yaml"), link("s.trace.yaml"));
+    let mesh = link("m.obj");
+    let mesh_spec = dir.join("mesh.trace.yaml");
+    let text = std::fs::read_to_string(root().join("samples/mesh-enneper.trace.yaml"))
+        .expect("sample spec")
+        .replace(
+            "mesh: meshes/enneper-4m.obj",
+            &format!("mesh: {}", mesh.display()),
+        );
+    std::fs::write(&mesh_spec, text).expect("write spec");
+    let hypar = root().join("samples/hypar-small.yaml");
+    let (out, traced) = (dir.join("out"), dir.join("t.yaml"));
+    let args = |a: &[&std::path::Path]| -> Vec<std::ffi::OsString> {
+        a.iter().map(|p| p.as_os_str().to_owned()).collect()
+    };
+    let p = |s: &'static str| std::path::Path::new(s);
+    let cases = [
+        (
+            args(&[p("nodes"), &network, p("--out"), &out]),
+            &network,
+            "256 MiB",
+        ),
+        (
+            args(&[p("check"), &hypar, p("--profile"), &profile]),
+            &profile,
+            "1 MiB",
+        ),
+        (
+            args(&[p("trace"), &spec, p("--out"), &traced]),
+            &spec,
+            "1 MiB",
+        ),
+        (
+            args(&[p("trace"), &mesh_spec, p("--out"), &traced]),
+            &mesh,
+            "MiB lamella reads in a mesh file",
+        ),
+    ];
+    for (args, named, limit) in cases {
+        let t = std::time::Instant::now();
+        let (code, _, stderr) = lamella(&args);
+        assert_eq!(code, Some(1), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&named.display().to_string()) && stderr.contains(limit),
+            "{stderr}"
+        );
+        assert!(stderr.contains("a stream of over"), "{stderr}");
+        // Reading 256 MiB of zeros takes a fraction of a second; reading
+        // until memory runs out took several seconds and gigabytes.
+        assert!(t.elapsed().as_secs() < 20, "{:?}", t.elapsed());
+    }
+}

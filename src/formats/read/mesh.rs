@@ -43,20 +43,7 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
             format!("unknown mesh format '.{ext}' (use .obj, .ply or .stl)"),
         ));
     }
-    let len = std::fs::metadata(path)
-        .map_err(|e| Error::io(path, e))?
-        .len();
-    if len > MAX_MESH_FILE_BYTES {
-        return Err(Error::input(
-            path,
-            Location::File,
-            format!(
-                "{len} bytes is more than the {} MiB lamella reads in a mesh file",
-                MAX_MESH_FILE_BYTES >> 20
-            ),
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = super::read_limited(path, MAX_MESH_FILE_BYTES, "a mesh file")?;
     match ext.as_str() {
         "obj" => {
             let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);

@@ -97,20 +97,7 @@ pub fn read_text(path: &Path) -> Result<String> {
 
 /// [`read_text`] with a size limit in bytes.
 pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String> {
-    let len = std::fs::metadata(path)
-        .map_err(|e| Error::io(path, e))?
-        .len();
-    if len > max_bytes {
-        return Err(Error::input(
-            path,
-            Location::File,
-            format!(
-                "{len} bytes is more than the {} MiB lamella reads in such a file",
-                max_bytes >> 20
-            ),
-        ));
-    }
-    let mut bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let mut bytes = read_limited(path, max_bytes, "such a file")?;
     if bytes.starts_with(b"\xEF\xBB\xBF") {
         bytes.drain(..3);
     }
@@ -121,6 +108,40 @@ pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String> {
             format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
         )
     })
+}
+
+/// A file's bytes, at most `max_bytes` of them: a larger file is refused
+/// (`what` names the kind of file in the message). The size the file system
+/// reports is checked first, and the read itself stops one byte past the
+/// limit, so a device or a pipe behind the name (`/dev/zero`) is refused
+/// too instead of being read until memory runs out.
+pub fn read_limited(path: &Path, max_bytes: u64, what: &str) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let too_big = |len: String| {
+        Error::input(
+            path,
+            Location::File,
+            format!(
+                "{len} is more than the {} MiB lamella reads in {what}",
+                max_bytes >> 20
+            ),
+        )
+    };
+    let len = std::fs::metadata(path)
+        .map_err(|e| Error::io(path, e))?
+        .len();
+    if len > max_bytes {
+        return Err(too_big(format!("{len} bytes")));
+    }
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut bytes = Vec::with_capacity(len as usize);
+    file.take(max_bytes + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::io(path, e))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_big(format!("a stream of over {max_bytes} bytes")));
+    }
+    Ok(bytes)
 }
 
 /// Whether two paths name the same existing file: the same canonical path,
