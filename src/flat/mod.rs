@@ -324,6 +324,15 @@ fn chord(s: &FlatStripIn, k: usize) -> (usize, usize) {
     (s.nodes[k.saturating_sub(1)], s.nodes[(k + 1).min(last)])
 }
 
+/// Whether the joint at node `i` is free: a strip through it that crosses
+/// no other strip has no direction of its own in the flat state, so it can
+/// be laid at the erected angle (no rotation) whatever the rest does.
+fn free_joint(pr: &FlatProblem, su: &Setup, i: usize) -> bool {
+    su.on[i]
+        .iter()
+        .any(|&(strip, _)| pr.strips[strip].nodes.len() < 2)
+}
+
 struct Setup {
     /// Mean node interval, mm.
     l_mean: f64,
@@ -364,19 +373,21 @@ fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Row
         }
     }
     for (i, n) in pr.nodes.iter().enumerate() {
-        let [(sa, ka), (sb, kb)] = su.on[i];
-        let (a0, a1) = chord(&pr.strips[sa], ka);
-        let (b0, b1) = chord(&pr.strips[sb], kb);
-        let (da, db) = (sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
-        let psi = turn(da, db);
-        let w = ANGLE_WEIGHT;
-        let (ga, gb) = (perp_over_sq(da), perp_over_sq(db));
-        let mut e = Vec::with_capacity(8);
-        for (node, sign, g) in [(a1, -1.0, ga), (a0, 1.0, ga), (b1, 1.0, gb), (b0, -1.0, gb)] {
-            e.push((2 * node, w * sign * g[0]));
-            e.push((2 * node + 1, w * sign * g[1]));
+        if !free_joint(pr, su, i) {
+            let [(sa, ka), (sb, kb)] = su.on[i];
+            let (a0, a1) = chord(&pr.strips[sa], ka);
+            let (b0, b1) = chord(&pr.strips[sb], kb);
+            let (da, db) = (sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
+            let psi = turn(da, db);
+            let w = ANGLE_WEIGHT;
+            let (ga, gb) = (perp_over_sq(da), perp_over_sq(db));
+            let mut e = Vec::with_capacity(8);
+            for (node, sign, g) in [(a1, -1.0, ga), (a0, 1.0, ga), (b1, 1.0, gb), (b0, -1.0, gb)] {
+                e.push((2 * node, w * sign * g[0]));
+                e.push((2 * node + 1, w * sign * g[1]));
+            }
+            rows.push(w * wrap_half(psi - n.erected_angle_deg.to_radians()), e);
         }
-        rows.push(w * wrap_half(psi - n.erected_angle_deg.to_radians()), e);
         let wa = ANCHOR_WEIGHT / lm;
         let q = p(x, i);
         rows.push(wa * (q[0] - su.start[i][0]), vec![(2 * i, wa)]);
@@ -690,11 +701,15 @@ fn finish(
         .iter()
         .enumerate()
         .map(|(i, n)| {
-            let [(sa, ka), (sb, kb)] = su.on[i];
-            let (a0, a1) = chord(&pr.strips[sa], ka);
-            let (b0, b1) = chord(&pr.strips[sb], kb);
-            let psi = turn(sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
-            let angle_deg = psi.to_degrees().rem_euclid(180.0);
+            let angle_deg = if free_joint(pr, su, i) {
+                n.erected_angle_deg
+            } else {
+                let [(sa, ka), (sb, kb)] = su.on[i];
+                let (a0, a1) = chord(&pr.strips[sa], ka);
+                let (b0, b1) = chord(&pr.strips[sb], kb);
+                let psi = turn(sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
+                psi.to_degrees().rem_euclid(180.0)
+            };
             let rotation_deg =
                 wrap_half((n.erected_angle_deg - angle_deg).to_radians()).to_degrees();
             FlatNode {

@@ -317,3 +317,72 @@ fn joints_past_the_tolerance_and_strips_that_break_flat_are_named() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("is overstressed while flat"), "{stdout}");
 }
+
+/// A strip that crosses only one other has no direction of its own in the
+/// flat state: its joint is free and lies flat at its erected angle. One
+/// crossing alone, and one A strip crossing 15 B strips in a plane, have a
+/// flat state with every joint at 0° rotation (they used to fail with "not a
+/// finite number", and the slots from that flat state with "the joint turns
+/// 90°").
+#[test]
+fn strips_with_one_node_lie_flat_at_their_erected_angle() {
+    let dir = scratch("one-node-strips");
+    let mut single = "units: mm\ncurves:\n".to_string();
+    single += "  - id: A00\n    family: A\n    points: [[0, -1000, 0], [0, 1000, 0]]\n";
+    single += "  - id: B00\n    family: B\n    points: [[-1000, 0, 0], [1000, 0, 0]]\n";
+    let mut comb = "units: mm\ncurves:\n".to_string();
+    comb += "  - id: A00\n    family: A\n    points: [[0, -100, 0], [3000, -100, 0]]\n";
+    for k in 0..15 {
+        let x = 100 + 180 * k;
+        comb += &format!(
+            "  - id: B{k:02}\n    family: B\n    points: [[{x}, -600, 0], [{x}, 600, 0]]\n"
+        );
+    }
+    let steel = root().join("profiles/steel-1.5.yaml");
+    for (name, text, nodes) in [("single", single, 1), ("comb", comb, 15)] {
+        let network = dir.join(format!("{name}.yaml"));
+        std::fs::write(&network, text).expect("write network");
+        let net = io::read_network(&network, ReadOptions::default()).expect("read");
+        let an =
+            lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyse");
+        let st = solve(&problem(&an, &profile("steel-1.5")).expect("problem"));
+        assert!(st.converged, "{name}");
+        assert_eq!(st.nodes.len(), nodes, "{name}");
+        for n in &st.nodes {
+            assert_eq!(n.rotation_deg, 0.0, "{name}: node {}", n.node);
+            assert!((n.angle_deg - 90.0).abs() < 1e-9, "{name}: node {}", n.node);
+        }
+        assert!(
+            st.gradient_norm.is_finite() && st.max_length_error < 1e-9,
+            "{name}"
+        );
+        let out = dir.join(format!("{name}-flat"));
+        let o = lamella_command()
+            .args(["flat".as_ref(), network.as_os_str(), "--profile".as_ref()])
+            .args([steel.as_os_str(), "--out".as_ref(), out.as_os_str()])
+            .output()
+            .expect("run");
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let o = lamella_command()
+            .args(["parts".as_ref(), network.as_os_str(), "--profile".as_ref()])
+            .args([
+                steel.as_os_str(),
+                "--out".as_ref(),
+                dir.join(format!("{name}-parts")).as_os_str(),
+            ])
+            .arg("--slots-from-flat")
+            .output()
+            .expect("run");
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}
