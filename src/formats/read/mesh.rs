@@ -328,12 +328,57 @@ pub fn parse_ply(bytes: &[u8], path: &Path) -> Result<TriMesh> {
     })
 }
 
+/// A binary STL (80-byte header, a triangle count, 50 bytes a triangle)
+/// must hold exactly the triangles its header counts: a reader that trusts
+/// the count traces part of a longer file, or nothing of a shorter one. A
+/// file that begins `solid` and names a `facet` (or ends the solid) in its
+/// first kilobyte is ascii and is left to the ascii reader.
+fn check_binary_stl_length(bytes: &[u8], path: &Path) -> Result<()> {
+    let head = &bytes[..bytes.len().min(1024)];
+    let text = String::from_utf8_lossy(head);
+    if text.trim_start().starts_with("solid")
+        && (text.contains("facet") || text.contains("endsolid"))
+    {
+        return Ok(());
+    }
+    if bytes.len() < 84 {
+        return Err(Error::input(
+            path,
+            Location::File,
+            format!(
+                "a binary STL needs an 84-byte header, this file has {} bytes",
+                bytes.len()
+            ),
+        ));
+    }
+    let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+    let body = bytes.len() - 84;
+    if body != 50 * count {
+        return Err(Error::input(
+            path,
+            Location::File,
+            format!(
+                "the binary STL header counts {count} triangles ({} bytes) but {body} bytes follow it ({} triangles{}): a truncated or damaged file",
+                50 * count,
+                body / 50,
+                if body % 50 == 0 {
+                    String::new()
+                } else {
+                    format!(" and {} bytes", body % 50)
+                }
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Parse STL bytes (ascii or binary), welding equal corners; `path` names
 /// the file in errors.
 pub fn parse_stl(bytes: &[u8], path: &Path) -> Result<TriMesh> {
     if bytes.is_empty() {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
+    check_binary_stl_length(bytes, path)?;
     let mut cursor = std::io::Cursor::new(bytes);
     let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| {
         Error::input(
@@ -631,6 +676,29 @@ mod tests {
         let m = parse_stl(&stl_binary(&sq), Path::new("s.stl")).expect("reads");
         assert_eq!(m.triangles, vec![[0, 1, 2], [2, 3, 0]]);
         assert_eq!(m.positions_mm[0], DVec3::new(1.0, 1.0, 0.0));
+    }
+
+    /// A binary STL whose header counts fewer or more triangles than it
+    /// holds is refused, naming both counts (it was read from the first
+    /// `count` triangles, or found no anticlastic region in one).
+    #[test]
+    fn binary_stl_counts_must_match_the_file() {
+        let p = Path::new("count.stl");
+        let mut b = stl_binary(&square());
+        assert_eq!(b.len(), 84 + 50 * 2);
+        b[80..84].copy_from_slice(&1u32.to_le_bytes());
+        assert_eq!(
+            err(parse_stl(&b, p)),
+            "count.stl: the binary STL header counts 1 triangles (50 bytes) but 100 bytes follow it (2 triangles): a truncated or damaged file"
+        );
+        b[80..84].copy_from_slice(&3u32.to_le_bytes());
+        assert!(err(parse_stl(&b, p)).contains("counts 3 triangles"));
+        b[80..84].copy_from_slice(&2u32.to_le_bytes());
+        b.extend([0u8; 7]);
+        assert!(err(parse_stl(&b, p)).contains("(2 triangles and 7 bytes)"));
+        b.truncate(84 + 100);
+        assert_eq!(parse_stl(&b, p).expect("reads"), square());
+        assert!(err(parse_stl(&b[..40], p)).contains("84-byte header"));
     }
 
     #[test]
