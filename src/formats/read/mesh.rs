@@ -361,7 +361,7 @@ fn check_binary_stl_length(bytes: &[u8], path: &Path) -> Result<()> {
                 "the binary STL header counts {count} triangles ({} bytes) but {body} bytes follow it ({} triangles{}): a truncated or damaged file",
                 50 * count,
                 body / 50,
-                if body % 50 == 0 {
+                if body.is_multiple_of(50) {
                     String::new()
                 } else {
                     format!(" and {} bytes", body % 50)
