@@ -26,9 +26,10 @@ pub const BLUE: Rgb3 = [0.0, 0.2, 0.75];
 /// Radius on paper below which a stroked circle is drawn as a square, mm.
 pub const SMALL_CIRCLE_MM: f64 = 0.5;
 
-/// The resource name printpdf gives the built-in Helvetica.
+/// The resource name of the built-in Helvetica (the page resources of
+/// [`super::pdf`]).
 pub const HELVETICA_RES: &str = "F5";
-/// The resource name printpdf gives the built-in Helvetica-Bold.
+/// The resource name of the built-in Helvetica-Bold.
 pub const HELVETICA_BOLD_RES: &str = "F6";
 
 /// Horizontal anchor of a text.
@@ -42,9 +43,8 @@ pub enum Align {
     Right,
 }
 
-/// One page's content stream, written directly as PDF operators (printpdf
-/// makes the document around it; its per-operation objects were most of
-/// the time and memory of big kits).
+/// One page's content stream, written directly as PDF operators
+/// ([`super::pdf`] writes the document around it).
 #[derive(Debug, Default)]
 pub struct Canvas {
     out: Vec<u8>,

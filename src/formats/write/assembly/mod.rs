@@ -21,13 +21,14 @@
 //! * **elastic check**: A and B strips by utilisation, governing first.
 //!
 //! Only the built-in Helvetica is used (no font embedded): text is
-//! WinAnsi, mapped by [`canvas::winansi`]. The bytes are deterministic:
-//! printpdf's dates are fixed at the epoch and the trailer's random `/ID`
-//! is replaced by one derived from the document's content.
+//! WinAnsi, mapped by [`canvas::winansi`]. The file around the pages is
+//! written by [`pdf`]. The bytes are deterministic: the dates are fixed at
+//! the epoch and the trailer's `/ID` is derived from the document's content.
 
 pub mod canvas;
 pub mod nested;
 pub mod overview;
+pub mod pdf;
 pub mod strips;
 pub mod tables;
 
@@ -370,7 +371,7 @@ fn write_pdf(
     let (w, h) = input.paper.size_mm();
     // Each page's drawing and then its title (heading, title block, page i
     // of N), compressed, in parallel.
-    let contents: Vec<[Vec<u8>; 2]> = pages
+    let contents: Vec<pdf::PageStreams> = pages
         .into_par_iter()
         .enumerate()
         .map(|(i, page)| {
@@ -385,86 +386,21 @@ fn write_pdf(
                 total,
                 input.paper,
             );
-            [page.body_deflated, deflate(&c.into_content())]
+            pdf::PageStreams {
+                body_deflated: page.body_deflated,
+                heading_deflated: deflate(&c.into_content()),
+            }
         })
         .collect();
-    // printpdf makes the document (page tree, the built-in fonts as shared
-    // resources, metadata); its pages carry a stand-in that names both
-    // fonts, replaced by the content streams drawn here.
-    let marker = || {
-        use printpdf::{BuiltinFont, Op, PdfFontHandle, Pt};
-        vec![
-            Op::StartTextSection,
-            Op::SetFont {
-                font: PdfFontHandle::Builtin(BuiltinFont::Helvetica),
-                size: Pt(8.0),
-            },
-            Op::SetFont {
-                font: PdfFontHandle::Builtin(BuiltinFont::HelveticaBold),
-                size: Pt(8.0),
-            },
-            Op::EndTextSection,
-        ]
-    };
-    let pdf_pages: Vec<printpdf::PdfPage> = (0..total)
-        .map(|_| printpdf::PdfPage::new(printpdf::Mm(w as f32), printpdf::Mm(h as f32), marker()))
-        .collect();
-    let mut doc =
-        printpdf::PdfDocument::new(&canvas::winansi(&format!("{project}: assembly sheets")));
-    doc.metadata.info.creator = format!("lamella {}", env!("CARGO_PKG_VERSION"));
-    doc.metadata.info.producer = doc.metadata.info.creator.clone();
-    doc.with_pages(pdf_pages);
-    let opts = printpdf::PdfSaveOptions {
-        optimize: false,
-        subset_fonts: false,
-        secure: true,
-        image_optimization: None,
-    };
-    let mut warnings = Vec::new();
-    let mut lo = doc.to_lopdf_document(&opts, &mut warnings);
-    drop(doc);
-    // Each page's stand-in stream is replaced where it is, so no object is
-    // left unreferenced: lopdf's prune and renumber passes look up every
-    // reference in a list (quadratic; 1.7 s of CPU for 11,414 pages).
-    let flate = || {
-        lopdf::Dictionary::from_iter(vec![(
-            "Filter",
-            lopdf::Object::Name(b"FlateDecode".to_vec()),
-        )])
-    };
-    for ((_, page_id), [body, heading]) in lo.get_pages().into_iter().zip(contents) {
-        let stand_in = match lo.get_object(page_id) {
-            Ok(lopdf::Object::Dictionary(d)) => d
-                .get(b"Contents")
-                .ok()
-                .and_then(|c| c.as_reference().ok())
-                .filter(|id| matches!(lo.get_object(*id), Ok(lopdf::Object::Stream(_)))),
-            _ => None,
-        };
-        let body_id = match stand_in {
-            Some(id) => {
-                lo.objects
-                    .insert(id, lopdf::Object::Stream(lopdf::Stream::new(flate(), body)));
-                id
-            }
-            None => lo.add_object(lopdf::Stream::new(flate(), body)),
-        };
-        let heading_id = lo.add_object(lopdf::Stream::new(flate(), heading));
-        if let Ok(lopdf::Object::Dictionary(d)) = lo.get_object_mut(page_id) {
-            d.set(
-                "Contents",
-                lopdf::Object::Array(vec![
-                    lopdf::Object::Reference(body_id),
-                    lopdf::Object::Reference(heading_id),
-                ]),
-            );
-        }
-    }
-    // printpdf's trailer /ID is random: a stable one from the content.
+    let title = canvas::winansi(&format!("{project}: assembly sheets"));
+    let creator = format!("lamella {}", env!("CARGO_PKG_VERSION"));
     let id = stable_id(&project, total, plan.parts.as_ref().map_or(0, Vec::len));
-    let s = || lopdf::Object::String(id.as_bytes().to_vec(), lopdf::StringFormat::Hexadecimal);
-    lo.trailer.set("ID", lopdf::Object::Array(vec![s(), s()]));
-    lo.save_to(&mut &mut *out)
+    let info = pdf::DocInfo {
+        title: &title,
+        creator: &creator,
+        id: id.as_bytes(),
+    };
+    pdf::write_document(out, w, h, &info, contents)
 }
 
 /// zlib-compressed bytes (FlateDecode), at the fastest level: at level 6
