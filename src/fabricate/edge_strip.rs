@@ -620,8 +620,8 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::formats::read::profile_file;
+    use crate::geom::plane::signed_area_mm2;
 
     fn steel() -> Profile {
         let mut p = profile_file::load(Path::new(concat!(

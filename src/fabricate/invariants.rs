@@ -9,9 +9,10 @@
 
 use kurbo::Point;
 
-use super::part::{signed_area_mm2, FeatureKind, Part, ROUND_HOLE_MM};
+use super::part::{FeatureKind, Part, ROUND_HOLE_MM};
 use crate::geom::plane::{
-    on_boundary, orient, point_in_polygon, segment_distance, segments_intersect, within_box,
+    on_boundary, orient, point_in_polygon, segment_distance, segments_intersect, signed_area_mm2,
+    within_box,
 };
 
 // ---------------------------------------------------------------------------

@@ -259,8 +259,8 @@ pub fn washers(profile: &Profile, nodes: &[GridNode]) -> Result<Vec<Part>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::formats::read::profile_file;
+    use crate::geom::plane::signed_area_mm2;
     use std::path::Path;
 
     fn steel() -> Profile {

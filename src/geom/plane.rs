@@ -80,6 +80,18 @@ pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
     inside
 }
 
+/// Signed area of a closed polyline (positive counter-clockwise), mm².
+pub fn signed_area_mm2(poly: &[Point]) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            a.x * b.y - b.x * a.y
+        })
+        .sum::<f64>()
+        * 0.5
+}
+
 /// Whether `p` lies on an edge of the closed polygon `poly`.
 pub fn on_boundary(p: Point, poly: &[Point]) -> bool {
     let n = poly.len();

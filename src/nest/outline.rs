@@ -1034,8 +1034,8 @@ pub fn grown_outline(p: &Part, d: f64) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::fabricate::part::Feature;
+    use crate::geom::plane::signed_area_mm2;
 
     fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
         box_poly((x, y, x + s, y + s))
