@@ -21,24 +21,70 @@ pub fn within_box(a: Point, b: Point, p: Point) -> bool {
     p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
 }
 
-/// Whether the closed segments a–b and c–d share at least one point:
-/// proper crossings, an endpoint touching the other segment, and collinear
-/// overlaps (also of a single point) all count. A degenerate segment (a = b)
-/// is the point a.
-pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let d1 = orient(c, d, a);
-    let d2 = orient(c, d, b);
-    let d3 = orient(a, b, c);
-    let d4 = orient(a, b, d);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return true;
+/// How orientations are evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Arithmetic {
+    /// Plain `f64` ([`orient`]): fast; for nearly collinear points the sign
+    /// may be wrong or 0.
+    Float,
+    /// The exact sign (adaptive precision, `robust::orient2d`): 0 exactly
+    /// when the points are collinear.
+    Exact,
+}
+
+impl Arithmetic {
+    /// Twice the signed area of the triangle a, b, c, positive when c lies
+    /// to the left of a→b (see [`orient`]), mm².
+    #[inline]
+    pub fn orient(self, a: Point, b: Point, c: Point) -> f64 {
+        match self {
+            Arithmetic::Float => orient(a, b, c),
+            Arithmetic::Exact => robust::orient2d(
+                robust::Coord { x: a.x, y: a.y },
+                robust::Coord { x: b.x, y: b.y },
+                robust::Coord { x: c.x, y: c.y },
+            ),
+        }
     }
-    (d1 == 0.0 && within_box(c, d, a))
-        || (d2 == 0.0 && within_box(c, d, b))
-        || (d3 == 0.0 && within_box(a, b, c))
-        || (d4 == 0.0 && within_box(a, b, d))
+
+    /// Whether the closed segments a–b and c–d share at least one point:
+    /// proper crossings, an endpoint touching the other segment, and
+    /// collinear overlaps (also of a single point) all count. A degenerate
+    /// segment (a = b) is the point a.
+    #[inline]
+    pub fn segments_intersect(self, a: Point, b: Point, c: Point, d: Point) -> bool {
+        let d1 = self.orient(c, d, a);
+        let d2 = self.orient(c, d, b);
+        let d3 = self.orient(a, b, c);
+        let d4 = self.orient(a, b, d);
+        if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+            && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+        {
+            return true;
+        }
+        (d1 == 0.0 && within_box(c, d, a))
+            || (d2 == 0.0 && within_box(c, d, b))
+            || (d3 == 0.0 && within_box(a, b, c))
+            || (d4 == 0.0 && within_box(a, b, d))
+    }
+
+    /// Whether c and d lie on the line through a and b and c→d runs against
+    /// a→b: of two consecutive edges a→b, b→c of a polyline, whether the
+    /// second folds back over the first (`collinear_opposite(a, b, b, c)`).
+    #[inline]
+    pub fn collinear_opposite(self, a: Point, b: Point, c: Point, d: Point) -> bool {
+        self.orient(a, b, c) == 0.0 && self.orient(a, b, d) == 0.0 && (b - a).dot(d - c) < 0.0
+    }
+}
+
+/// [`Arithmetic::segments_intersect`] in plain `f64`.
+pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
+    Arithmetic::Float.segments_intersect(a, b, c, d)
+}
+
+/// Whether `p` lies on the closed segment a–b (in plain `f64`).
+pub fn on_segment(p: Point, a: Point, b: Point) -> bool {
+    orient(a, b, p) == 0.0 && within_box(a, b, p)
 }
 
 /// Distance from `p` to the closed segment a–b, mm (to a when a = b).
@@ -266,7 +312,7 @@ pub fn segment_meets_rect(a: Point, b: Point, r: Rect) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     fn p(x: f64, y: f64) -> Point {
@@ -278,8 +324,9 @@ mod tests {
         vec![p(x, y), p(x + s, y), p(x + s, y + s), p(x, y + s)]
     }
 
-    /// 300 × 50 with two 3 × 26 notches from the top at x = 100 and 200.
-    fn notched() -> Vec<Point> {
+    /// 300 × 50 with two 3 × 26 notches from the top at x = 100 and 200
+    /// (counter-clockwise; the parts' tests use it too).
+    pub(crate) fn notched() -> Vec<Point> {
         vec![
             p(0.0, 0.0),
             p(300.0, 0.0),
@@ -511,5 +558,51 @@ mod tests {
         // edge's normal.
         let o = miter_offset(&[p(0.0, 0.0), p(10.0, 0.0), p(5.0, 0.0)], 1.0);
         assert_eq!(o[1], p(10.0, -1.0));
+    }
+
+    #[test]
+    fn exact_arithmetic_sees_what_float_rounds_away() {
+        // (0.5, 0.5 + 2⁻⁵³) lies just above the line y = x through
+        // (12, 12) and (24, 24): exactly, orient((24, 24), (12, 12), a) =
+        // (12 − 24)(0.5 + 2⁻⁵³ − 24) − (12 − 24)(0.5 − 24) = −12 · 2⁻⁵³;
+        // in f64 the 2⁻⁵³ is lost against 23.5 and the result is 0.
+        let a = p(0.5, 0.5 + 2f64.powi(-53));
+        let (b, c) = (p(24.0, 24.0), p(12.0, 12.0));
+        assert_eq!(Arithmetic::Float.orient(a, b, c), 0.0);
+        assert_eq!(orient(a, b, c), 0.0);
+        assert!(Arithmetic::Exact.orient(a, b, c) < 0.0);
+        assert!(Arithmetic::Exact.orient(a, c, b) > 0.0);
+        // So the point (12, 12) is on the segment a–(24, 24) in f64 only,
+        assert!(Arithmetic::Float.segments_intersect(c, c, a, b));
+        assert!(on_segment(c, a, b));
+        assert!(!Arithmetic::Exact.segments_intersect(c, c, a, b));
+        // and a→(24, 24)→(12, 12) folds back in f64 only.
+        assert!(Arithmetic::Float.collinear_opposite(a, b, b, c));
+        assert!(!Arithmetic::Exact.collinear_opposite(a, b, b, c));
+        // Both agree away from rounding: a proper crossing, an endpoint
+        // touching, collinear apart.
+        for arith in [Arithmetic::Float, Arithmetic::Exact] {
+            let (o, e) = (p(0.0, 0.0), p(2.0, 2.0));
+            assert!(arith.segments_intersect(o, e, p(0.0, 2.0), p(2.0, 0.0)));
+            assert!(arith.segments_intersect(o, e, p(1.0, 1.0), p(2.0, 0.0)));
+            assert!(!arith.segments_intersect(o, e, p(2.5, 2.5), p(3.0, 3.0)));
+            assert_eq!(arith.orient(o, p(4.0, 0.0), p(0.0, 3.0)), 12.0);
+        }
+    }
+
+    #[test]
+    fn folding_back_and_points_on_segments() {
+        let (a, b) = (p(0.0, 0.0), p(10.0, 0.0));
+        // a→b→(4, 0) turns back along itself; a→b→(14, 0) goes straight
+        // on; a→b→(4, 1) turns.
+        assert!(Arithmetic::Float.collinear_opposite(a, b, b, p(4.0, 0.0)));
+        assert!(!Arithmetic::Float.collinear_opposite(a, b, b, p(14.0, 0.0)));
+        assert!(!Arithmetic::Float.collinear_opposite(a, b, b, p(4.0, 1.0)));
+        // A segment anywhere on the line, against a→b.
+        assert!(Arithmetic::Float.collinear_opposite(a, b, p(30.0, 0.0), p(20.0, 0.0)));
+        assert!(on_segment(p(3.0, 0.0), a, b));
+        assert!(on_segment(b, a, b));
+        assert!(!on_segment(p(11.0, 0.0), a, b));
+        assert!(!on_segment(p(3.0, 0.5), a, b));
     }
 }
