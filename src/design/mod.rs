@@ -365,7 +365,7 @@ pub fn design(
     read_mesh: ReadMesh,
 ) -> Result<(RawNetwork, DesignReport)> {
     let (raw, mut report) = trace_network(spec, path, read_mesh)?;
-    let min_len = (spec.spacing_mm * 0.05).max(1.0);
+    let min_len = min_curve_length_mm(spec);
     for (count, family) in [(report.a_curves, "A"), (report.b_curves, "B")] {
         if count == 0 {
             return Err(Error::input(
@@ -435,20 +435,8 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
         return Vec::new();
     };
     let p = worst.position_world_mm;
-    if spec.surface.is_mesh() {
-        return vec![format!(
-            "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): on a soap film the families cross at right angles, so the film's curvature is estimated poorly there (near its rim the fits are one-sided, or the mesh is too coarse: lower film_edge_mm)",
-            off.len(),
-            worst.angle_deg,
-            net.curves[worst.a].id,
-            net.curves[worst.b].id,
-            p.x,
-            p.y,
-            p.z,
-        )];
-    }
-    vec![format!(
-        "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm): the families of a {} net cross at right angles, so the surface passes through itself there; clip it{}",
+    let what = format!(
+        "{} A×B crossing(s) are not at 90° (the worst {:.1}°, {}×{} at ({:.0}, {:.0}, {:.0}) mm)",
         off.len(),
         worst.angle_deg,
         net.curves[worst.a].id,
@@ -456,9 +444,17 @@ fn crossing_warnings(spec: &TraceSpec, net: &crate::network::Network) -> Vec<Str
         p.x,
         p.y,
         p.z,
-        if spec.net == Net::Principal { "principal" } else { "minimal surface's asymptotic" },
-        if spec.clip.is_none() { " (the spec has no clip)" } else { "" }
-    )]
+    );
+    let why = if spec.surface.is_mesh() {
+        "on a soap film the families cross at right angles, so the film's curvature is estimated poorly there (near its rim the fits are one-sided, or the mesh is too coarse: lower film_edge_mm)".to_string()
+    } else {
+        format!(
+            "the families of a {} net cross at right angles, so the surface passes through itself there; clip it{}",
+            if spec.net == Net::Principal { "principal" } else { "minimal surface's asymptotic" },
+            if spec.clip.is_none() { " (the spec has no clip)" } else { "" }
+        )
+    };
+    vec![format!("{what}: {why}")]
 }
 
 /// Trace the network a spec describes (unchecked).
@@ -581,33 +577,22 @@ fn trace_network(
             }
         }
     }
-    a_curves.push((0, a0));
-    b_curves.push((0, b0));
-    a_curves.sort_by_key(|c| c.0);
-    b_curves.sort_by_key(|c| c.0);
-    let min_len = (spec.spacing_mm * 0.05).max(1.0);
-    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
-    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.uv.len() >= 2);
-
-    // Fill: where the curves through the seed's two curves leave a family
-    // out (around a film's flat point, beyond a ring's band), seed more
-    // curves along the other family.
-    if spec.fill {
-        fill_gaps(
-            (&mut a_curves, &mut b_curves),
-            Fill {
-                spacing_mm: d,
-                max_k,
-                path,
-                budget: &budget,
-                hint: "raise spacing_mm or max_curves_per_side",
-            },
-            |parent: &Traced, s| parent.uv_at(s),
-            |&at| surface.point(at),
-            |family_is_a, _, at| trace(if family_is_a { fa } else { fb }, at).ok(),
-            |child: &Traced| child.length_mm() >= min_len && child.uv.len() >= 2,
-        )?;
-    }
+    // The families gathered and filled: where the curves through the seed's
+    // two curves leave a family out (around a film's flat point, beyond a
+    // ring's band), more curves seeded along the other family.
+    gather(
+        (&mut a_curves, &mut b_curves),
+        (a0, b0),
+        Fill {
+            spec,
+            path,
+            budget: &budget,
+            hint: "raise spacing_mm or max_curves_per_side",
+        },
+        |parent: &Traced, s| parent.uv_at(s),
+        |&at| surface.point(at),
+        |family_is_a, _, at| trace(if family_is_a { fa } else { fb }, at).ok(),
+    )?;
 
     // Edges: trace the cut boundary along each face from the curve ends on it.
     let edges = trace_edges(
@@ -702,18 +687,59 @@ pub const MAX_DESIGN_POINTS: usize = 500_000;
 /// Curves with their seeding numbers (0 through the seed, ±k beside it).
 type Numbered<C> = Vec<(i64, C)>;
 
+/// The shortest A or B curve a design keeps: 5 % of the spacing, at least
+/// 1 mm.
+fn min_curve_length_mm(spec: &TraceSpec) -> f64 {
+    (spec.spacing_mm * 0.05).max(1.0)
+}
+
 /// What filling the gaps of a design needs besides its curves.
 struct Fill<'a> {
-    /// The spacing of the curves, mm.
-    spacing_mm: f64,
-    /// The seeding's `max_curves_per_side`: a family holds at most
-    /// 2·max_k + 1 curves.
-    max_k: usize,
-    /// The spec, named in errors.
+    /// The spec: its spacing, its `max_curves_per_side` (a family holds at
+    /// most 2·max_k + 1 curves) and whether to fill at all.
+    spec: &'a TraceSpec,
+    /// The spec's file, named in errors.
     path: &'a Path,
     budget: &'a Budget<'a>,
     /// What to change when there are too many curves.
     hint: &'a str,
+}
+
+/// Both families' curves made whole: the seed's own two (`a0`, `b0`,
+/// numbered 0) added, each family in number order, the curves shorter than
+/// [`min_curve_length_mm`] or of fewer than two points dropped, and, where
+/// the spec asks for it, the gaps filled by [`fill_gaps`] (the same rule
+/// keeping the children).
+fn gather<C, S>(
+    (a_curves, b_curves): (&mut Numbered<C>, &mut Numbered<C>),
+    (a0, b0): (C, C),
+    fill: Fill,
+    seed_at: impl Fn(&C, f64) -> S,
+    point_of: impl Fn(&S) -> DVec3,
+    child_of: impl Fn(bool, &C, S) -> Option<C>,
+) -> Result<()>
+where
+    C: seed::FillCurve,
+{
+    a_curves.push((0, a0));
+    b_curves.push((0, b0));
+    a_curves.sort_by_key(|c| c.0);
+    b_curves.sort_by_key(|c| c.0);
+    let min_len = min_curve_length_mm(fill.spec);
+    let keep = |c: &C| c.length_mm() >= min_len && c.points_world_mm().len() >= 2;
+    a_curves.retain(|c| keep(&c.1));
+    b_curves.retain(|c| keep(&c.1));
+    if fill.spec.fill {
+        fill_gaps(
+            (a_curves, b_curves),
+            fill,
+            seed_at,
+            point_of,
+            child_of,
+            keep,
+        )?;
+    }
+    Ok(())
 }
 
 /// Fill the gaps a design's curves leave: along every curve of one family,
@@ -736,9 +762,10 @@ fn fill_gaps<C, S>(
 where
     C: seed::FillCurve,
 {
-    let d = fill.spacing_mm;
-    let limit = 2 * fill.max_k + 1;
-    let mut next_k = fill.max_k as i64 + 1;
+    let d = fill.spec.spacing_mm;
+    let max_k = fill.spec.max_curves_per_side;
+    let limit = 2 * max_k + 1;
+    let mut next_k = max_k as i64 + 1;
     for _round in 0..FILL_ROUNDS {
         let mut added = false;
         for family_is_a in [true, false] {
@@ -921,34 +948,22 @@ fn design_periodic(
         }
         budget.check()?;
     }
-    a_curves.push((0, a0));
-    b_curves.push((0, b0));
-    a_curves.sort_by_key(|c| c.0);
-    b_curves.sort_by_key(|c| c.0);
-    let min_len = (spec.spacing_mm * 0.05).max(1.0);
-    a_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
-    b_curves.retain(|c| c.1.length_mm() >= min_len && c.1.points_world_mm.len() >= 2);
-
-    // Fill: where the central curves left gaps (beyond flat vertices, in the
-    // clip's far corners), seed more curves along the other family.
-    if spec.fill {
-        fill_gaps(
-            (&mut a_curves, &mut b_curves),
-            Fill {
-                spacing_mm: d,
-                max_k,
-                path,
-                budget: &budget,
-                hint: "shrink the clip, raise spacing_mm or max_curves_per_side",
-            },
-            |parent: &Unfolded, s| (parent.site_at(s), s),
-            |(site, _)| site.placement.point(surface.point(site.uv)),
-            |_, parent, (site, s)| {
-                transverse(&site, tangent(parent, s)).map(|dir| trace(site, dir))
-            },
-            |child: &Unfolded| child.length_mm() >= min_len && child.points_world_mm.len() >= 2,
-        )?;
-    }
+    // The families gathered and filled: where the central curves left gaps
+    // (beyond flat vertices, in the clip's far corners), more curves seeded
+    // along the other family.
+    gather(
+        (&mut a_curves, &mut b_curves),
+        (a0, b0),
+        Fill {
+            spec,
+            path,
+            budget: &budget,
+            hint: "shrink the clip, raise spacing_mm or max_curves_per_side",
+        },
+        |parent: &Unfolded, s| (parent.site_at(s), s),
+        |(site, _)| site.placement.point(surface.point(site.uv)),
+        |_, parent, (site, s)| transverse(&site, tangent(parent, s)).map(|dir| trace(site, dir)),
+    )?;
 
     // Edges: the clip's faces on the unfolded surface, from the curve ends on them.
     let mut starts: Vec<(usize, Site, DVec3)> = Vec::new();

@@ -41,6 +41,7 @@ use crate::analysis::strip::Curvatures;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM};
+use crate::geom::plane::{bounds, segments_intersect, Arithmetic};
 use crate::network::Family;
 use crate::profile::Profile;
 use kurbo::{Point, Vec2};
@@ -330,16 +331,8 @@ fn edge_piece(
             ),
         ));
     }
-    let (min_x, max_x, min_y, max_y) = outline.iter().fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), p| (a.min(p.x), b.max(p.x), c.min(p.y), d.max(p.y)),
-    );
-    let shift = Vec2::new(-min_x, -min_y);
+    let bbox = bounds(&outline);
+    let shift = Vec2::new(-bbox.x0, -bbox.y0);
     let outline: Vec<Point> = outline.into_iter().map(|p| p + shift).collect();
     // Hole centres on the centre line at the node stations (knots of the line).
     let centre_at = |s: f64| {
@@ -376,8 +369,8 @@ fn edge_piece(
         strip: Some(edge.id.clone()),
         lamella: None,
         count: 1,
-        length_mm: max_x - min_x,
-        height_mm: max_y - min_y,
+        length_mm: bbox.width(),
+        height_mm: bbox.height(),
         station_start_mm: Some(from_mm),
         outline_part_mm: outline,
         holes_part_mm: Vec::new(),
@@ -475,26 +468,11 @@ pub fn is_simple(poly: &[Point]) -> bool {
 /// Whether two segments meet; neighbours (sharing an end) only when they
 /// overlap along a line or one folds back onto the other.
 fn segments_touch((a, b): (Point, Point), (c, d): (Point, Point), adjacent: bool) -> bool {
-    let orient = |p: Point, q: Point, r: Point| (q - p).cross(r - p);
-    let on = |p: Point, q: Point, r: Point| {
-        r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
-    };
     if adjacent {
         // Shared vertex: touching elsewhere means collinear and folding back.
-        let (o1, o2) = (orient(a, b, c), orient(a, b, d));
-        return o1 == 0.0 && o2 == 0.0 && (b - a).dot(d - c) < 0.0;
+        return Arithmetic::Float.collinear_opposite(a, b, c, d);
     }
-    let (d1, d2) = (orient(c, d, a), orient(c, d, b));
-    let (d3, d4) = (orient(a, b, c), orient(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return true;
-    }
-    (d1 == 0.0 && on(c, d, a))
-        || (d2 == 0.0 && on(c, d, b))
-        || (d3 == 0.0 && on(a, b, c))
-        || (d4 == 0.0 && on(a, b, d))
+    segments_intersect(a, b, c, d)
 }
 
 /// The most pieces an edge is split into before giving up.
@@ -620,8 +598,8 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::formats::read::profile_file;
+    use crate::geom::plane::signed_area_mm2;
 
     fn steel() -> Profile {
         let mut p = profile_file::load(Path::new(concat!(

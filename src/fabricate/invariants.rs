@@ -9,9 +9,10 @@
 
 use kurbo::Point;
 
-use super::part::{signed_area_mm2, FeatureKind, Part, ROUND_HOLE_MM};
+use super::part::{FeatureKind, Part, ROUND_HOLE_MM};
 use crate::geom::plane::{
-    on_boundary, orient, point_in_polygon, segment_distance, segments_intersect, within_box,
+    on_boundary, on_segment, point_in_polygon, segment_distance, segments_intersect,
+    signed_area_mm2,
 };
 
 // ---------------------------------------------------------------------------
@@ -72,8 +73,7 @@ fn conflict(e: &Edge, f: &Edge) -> bool {
         } else {
             (f, e)
         };
-        let on = |p: Point, a: Point, b: Point| orient(a, b, p) == 0.0 && within_box(a, b, p);
-        return on(f.b, e.a, e.b) || on(e.a, f.a, f.b);
+        return on_segment(f.b, e.a, e.b) || on_segment(e.a, f.a, f.b);
     }
     segments_intersect(e.a, e.b, f.a, f.b)
 }
@@ -390,6 +390,7 @@ pub fn check_part(part: &Part, clearance_mm: f64) -> Result<(), String> {
 mod tests {
     use super::super::part::{circle_cw, PartKind, ARC_TOLERANCE_MM};
     use super::*;
+    use crate::geom::plane::tests::notched;
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
@@ -410,24 +411,6 @@ mod tests {
             engraving: Vec::new(),
             features: vec![],
         }
-    }
-
-    /// 300 × 50 with two 3 × 26 notches from the top at x = 100 and 200.
-    fn notched() -> Vec<Point> {
-        vec![
-            p(0.0, 0.0),
-            p(300.0, 0.0),
-            p(300.0, 50.0),
-            p(201.5, 50.0),
-            p(201.5, 24.0),
-            p(198.5, 24.0),
-            p(198.5, 50.0),
-            p(101.5, 50.0),
-            p(101.5, 24.0),
-            p(98.5, 24.0),
-            p(98.5, 50.0),
-            p(0.0, 50.0),
-        ]
     }
 
     #[test]

@@ -285,6 +285,7 @@ mod tests {
     use super::super::part::{circle_cw, Part, PartKind, ARC_TOLERANCE_MM};
     use super::*;
     use crate::geom::plane::segments_intersect;
+    use crate::geom::plane::tests::notched;
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
@@ -293,22 +294,8 @@ mod tests {
     /// 300 × 50 with two 3 × 26 notches from the top at x = 100 and 200 and
     /// a 6 mm hole at (150, 25).
     fn lamella() -> (Vec<Point>, Vec<Vec<Point>>) {
-        let outline = vec![
-            p(0.0, 0.0),
-            p(300.0, 0.0),
-            p(300.0, 50.0),
-            p(201.5, 50.0),
-            p(201.5, 24.0),
-            p(198.5, 24.0),
-            p(198.5, 50.0),
-            p(101.5, 50.0),
-            p(101.5, 24.0),
-            p(98.5, 24.0),
-            p(98.5, 50.0),
-            p(0.0, 50.0),
-        ];
         (
-            outline,
+            notched(),
             vec![circle_cw(p(150.0, 25.0), 3.0, ARC_TOLERANCE_MM)],
         )
     }

@@ -23,10 +23,11 @@ pub mod washer;
 use crate::analysis::lines::{NetworkLines, StripLines};
 use crate::analysis::Analysis;
 use crate::error::Result;
+use crate::geom::plane::signed_area_mm2;
 use crate::network::Network;
 use crate::profile::Profile;
 use kurbo::Point;
-use part::{signed_area_mm2, Feature, FeatureKind, HoleUse, Part, PartKind};
+use part::{Feature, FeatureKind, HoleUse, Part, PartKind};
 use rayon::prelude::*;
 
 /// Every part of a network for one profile.

@@ -266,18 +266,6 @@ pub fn round_hole<'a>(part: &'a Part, hole: &[Point]) -> Option<&'a Feature> {
 /// ([`circle_cw`] puts them on it).
 pub const ROUND_HOLE_MM: f64 = 1e-6;
 
-/// Signed area of a closed polyline (positive counter-clockwise), mm².
-pub fn signed_area_mm2(poly: &[Point]) -> f64 {
-    let n = poly.len();
-    (0..n)
-        .map(|i| {
-            let (a, b) = (poly[i], poly[(i + 1) % n]);
-            a.x * b.y - b.x * a.y
-        })
-        .sum::<f64>()
-        * 0.5
-}
-
 /// Points on a circle, clockwise, so that no chord strays more than
 /// `tolerance_mm` from the arc (at least 8).
 pub fn circle_cw(center: Point, radius_mm: f64, tolerance_mm: f64) -> Vec<Point> {
@@ -328,6 +316,7 @@ pub const ARC_TOLERANCE_MM: f64 = 0.01;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::plane::signed_area_mm2;
 
     #[test]
     fn circles_are_clockwise_and_within_tolerance() {

@@ -148,8 +148,8 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::formats::read::profile_file;
+    use crate::geom::plane::signed_area_mm2;
     use std::path::Path;
 
     fn poplar() -> Profile {

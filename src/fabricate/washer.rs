@@ -27,6 +27,7 @@
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
+use crate::geom::plane::bounds;
 use crate::network::Family;
 use crate::profile::{JointSystem, Profile};
 use kurbo::{Point, Vec2};
@@ -126,16 +127,8 @@ pub fn washer_part(
     count: u32,
 ) -> Part {
     let star = star_outline(class_deg, arm_length_mm, arm_width_mm);
-    let (min_x, max_x, min_y, max_y) = star.iter().fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), p| (a.min(p.x), b.max(p.x), c.min(p.y), d.max(p.y)),
-    );
-    let shift = Vec2::new(-min_x, -min_y);
+    let bbox = bounds(&star);
+    let shift = Vec2::new(-bbox.x0, -bbox.y0);
     let centre = Point::ORIGIN + shift;
     Part {
         id: washer_id(class_deg),
@@ -143,8 +136,8 @@ pub fn washer_part(
         strip: None,
         lamella: None,
         count,
-        length_mm: max_x - min_x,
-        height_mm: max_y - min_y,
+        length_mm: bbox.width(),
+        height_mm: bbox.height(),
         station_start_mm: None,
         outline_part_mm: star.iter().map(|p| *p + shift).collect(),
         holes_part_mm: Vec::new(),
@@ -259,8 +252,8 @@ pub fn washers(profile: &Profile, nodes: &[GridNode]) -> Result<Vec<Part>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::formats::read::profile_file;
+    use crate::geom::plane::signed_area_mm2;
     use std::path::Path;
 
     fn steel() -> Profile {

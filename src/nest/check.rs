@@ -3,6 +3,7 @@
 use super::model::{placed_bbox, Nest};
 use super::outline;
 use crate::fabricate::Kit;
+use crate::geom::plane;
 use crate::profile::Profile;
 use kurbo::Point;
 
@@ -70,7 +71,7 @@ pub fn check_nest(kit: &Kit, nest: &Nest, profile: &Profile) -> std::result::Res
                 let (Some(oa), Some(ob)) = (&outlines[j], &outlines[k]) else {
                     continue;
                 };
-                let d = outline::distance(oa, ob, g);
+                let d = plane::polygon_distance(oa, ob, g);
                 if d < g - eps {
                     return Err(format!(
                         "{}: {} is {d:.3} mm from {}, closer than {g} mm",

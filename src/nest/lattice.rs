@@ -23,10 +23,10 @@
 //! Deterministic: no search over floating-point ties, copies in (y, x)
 //! order.
 
-use super::model::bbox;
-use super::outline::{self, bounds};
+use super::model::{bbox, bounds};
 use super::stock::Size;
 use crate::fabricate::part::{Part, PartKind};
+use crate::geom::plane;
 use kurbo::{Point, Vec2};
 
 /// Extra clearance beyond the gap, mm: plan.json rounds placements to
@@ -174,7 +174,7 @@ pub fn lattice_clear(outline: &[Point], lat: &Lattice, gap_mm: f64) -> bool {
                 continue;
             }
             let moved: Vec<Point> = outline.iter().map(|&q| q + t).collect();
-            if outline::distance(outline, &moved, gap_mm) < gap_mm {
+            if plane::polygon_distance(outline, &moved, gap_mm) < gap_mm {
                 return false;
             }
         }
@@ -364,11 +364,11 @@ mod tests {
         assert!((lat.cell_mm2() - (a * a + b * b)).abs() < 1e-6);
         // By hand: the copy at u has its bottom arm tip w/2 + g above the
         // original's horizontal bar, i.e. exactly g clear of it.
-        let d = outline::distance(&star, &moved(&star, lat.u_mm), 10.0);
+        let d = plane::polygon_distance(&star, &moved(&star, lat.u_mm), 10.0);
         assert!((d - g).abs() < 1e-9, "{d}");
         // Half a millimetre closer along u and they collide or come too near.
         let closer = lat.u_mm * (1.0 - 0.5 / lat.u_mm.hypot());
-        assert!(outline::distance(&star, &moved(&star, closer), 10.0) < gap);
+        assert!(plane::polygon_distance(&star, &moved(&star, closer), 10.0) < gap);
     }
 
     /// Oblique classes (hyperbolic paraboloids have 82°–90° nodes) get a
@@ -386,7 +386,7 @@ mod tests {
                         continue;
                     }
                     let t = lat.u_mm * f64::from(a) + lat.v_mm * f64::from(b);
-                    let d = outline::distance(&star, &moved(&star, t), gap);
+                    let d = plane::polygon_distance(&star, &moved(&star, t), gap);
                     assert!(d >= gap, "{angle}°: ({a}, {b}) at {d}");
                 }
             }

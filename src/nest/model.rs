@@ -3,6 +3,7 @@
 //! about its origin, then translated).
 
 use crate::fabricate::part::Part;
+use crate::geom::plane;
 use kurbo::Point;
 
 /// One copy of a part on a sheet.
@@ -129,17 +130,15 @@ pub struct Nest {
     pub currency: Option<String>,
 }
 
+/// Bounding box (x0, y0, x1, y1) of points ([`plane::bounds`]).
+pub(crate) fn bounds(v: &[Point]) -> (f64, f64, f64, f64) {
+    let r = plane::bounds(v);
+    (r.x0, r.y0, r.x1, r.y1)
+}
+
 /// Bounding box of a part's outline in its own frame.
 pub(super) fn bbox(p: &Part) -> (f64, f64, f64, f64) {
-    p.outline_part_mm.iter().fold(
-        (
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), q| (a.min(q.x), b.min(q.y), c.max(q.x), d.max(q.y)),
-    )
+    bounds(&p.outline_part_mm)
 }
 
 /// A point turned counter-clockwise by a quarter-turn multiple.

@@ -16,17 +16,18 @@
 //! outline grown as much. Where all of a sheet's parts find a place, the
 //! sheet is dropped. Collisions are tested by jagua-rs's collision-detection
 //! engine (one `CDEngine` per target sheet, the placed parts as hazards; f32),
-//! then confirmed in f64 by [`distance`] against the neighbours, so the
+//! then confirmed in f64 by [`polygon_distance`](plane::polygon_distance) against the neighbours, so the
 //! clearance holds exactly. Candidate positions: a bottom-left scan of a
 //! grid over the usable area (step a quarter of the part's smaller side, at
 //! most [`GRID_POINTS`] points), the first free point refined towards the
 //! lower-left by halving steps. Deterministic (no threads, fixed orders) and
 //! bounded ([`MAX_ATTEMPTS`] sheets tried, [`MAX_TARGETS`] target sheets).
 
-use super::model::{placed_bbox, rotate, Placement, SheetNest};
+use super::model::{bounds, placed_bbox, rotate, Placement, SheetNest};
 use crate::fabricate::part::{FeatureKind, SlotEdge};
 use crate::fabricate::part::{Part, PartKind};
 use crate::fabricate::Kit;
+use crate::geom::plane;
 use jagua_rs::collision_detection::hazards::filter::NoFilter;
 use jagua_rs::collision_detection::hazards::{Hazard, HazardEntity};
 use jagua_rs::collision_detection::{CDEConfig, CDEngine};
@@ -82,19 +83,6 @@ impl HazardEntity for Haz {
     }
 }
 
-/// Bounding box (x0, y0, x1, y1) of points.
-pub(crate) fn bounds(v: &[Point]) -> (f64, f64, f64, f64) {
-    v.iter().fold(
-        (
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), q| (a.min(q.x), b.min(q.y), c.max(q.x), d.max(q.y)),
-    )
-}
-
 /// A placed part's outline in sheet coordinates.
 pub fn placed_outline(p: &Part, pl: &Placement) -> Vec<Point> {
     p.outline_part_mm
@@ -106,139 +94,9 @@ pub fn placed_outline(p: &Part, pl: &Placement) -> Vec<Point> {
         .collect()
 }
 
-fn cross(o: Point, a: Point, b: Point) -> f64 {
-    (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
-}
-
-fn point_segment(p: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let len2 = ab.hypot2();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
-}
-
-fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let (d1, d2) = (cross(a, b, c), cross(a, b, d));
-    let (d3, d4) = (cross(c, d, a), cross(c, d, b));
-    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-}
-
-fn segment_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
-    if segments_cross(a, b, c, d) {
-        return 0.0;
-    }
-    point_segment(a, c, d)
-        .min(point_segment(b, c, d))
-        .min(point_segment(c, a, b))
-        .min(point_segment(d, a, b))
-}
-
-/// Whether `p` lies inside the closed polygon `poly` (even-odd rule).
-pub fn contains(poly: &[Point], p: Point) -> bool {
-    let n = poly.len();
-    let mut inside = false;
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
-/// Distance between two closed polygons (their filled areas), mm: 0 where
-/// they touch, cross or one holds the other. Segment pairs whose boxes are
-/// farther apart than `limit` are skipped, so a result at or above `limit`
-/// only says "at least `limit`".
-pub fn distance(a: &[Point], b: &[Point], limit: f64) -> f64 {
-    if a.is_empty() || b.is_empty() {
-        return f64::INFINITY;
-    }
-    let (na, nb) = (a.len(), b.len());
-    let ba = bounds(a);
-    // b's segments near a's box, by their lowest x.
-    let mut segs: Vec<(f64, usize)> = Vec::new();
-    let mut span = 0.0f64;
-    for j in 0..nb {
-        let (r, s) = (b[j], b[(j + 1) % nb]);
-        if r.x.max(s.x) < ba.0 - limit
-            || r.x.min(s.x) > ba.2 + limit
-            || r.y.max(s.y) < ba.1 - limit
-            || r.y.min(s.y) > ba.3 + limit
-        {
-            continue;
-        }
-        segs.push((r.x.min(s.x), j));
-        span = span.max((r.x - s.x).abs());
-    }
-    segs.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1.cmp(&q.1)));
-    let mut best = f64::INFINITY;
-    for i in 0..na {
-        let (p, q) = (a[i], a[(i + 1) % na]);
-        let (x0, x1) = (p.x.min(q.x) - limit, p.x.max(q.x) + limit);
-        let (y0, y1) = (p.y.min(q.y) - limit, p.y.max(q.y) + limit);
-        // Segments whose lowest x is in [x0 - span, x1].
-        let from = segs.partition_point(|e| e.0 < x0 - span);
-        for &(sx, j) in &segs[from..] {
-            if sx > x1 {
-                break;
-            }
-            let (r, s) = (b[j], b[(j + 1) % nb]);
-            if r.x.max(s.x) < x0 || r.y.max(s.y) < y0 || r.y.min(s.y) > y1 {
-                continue;
-            }
-            best = best.min(segment_distance(p, q, r, s));
-            if best == 0.0 {
-                return 0.0;
-            }
-        }
-    }
-    if contains(b, a[0]) || contains(a, b[0]) {
-        return 0.0;
-    }
-    best
-}
-
 fn jpoly(v: &[Point]) -> Option<SPolygon> {
     let pts: Vec<JPoint> = v.iter().map(|q| JPoint(q.x as f32, q.y as f32)).collect();
     SPolygon::new(pts).ok()
-}
-
-/// A closed polygon simplified (Douglas–Peucker) to within `tol`.
-fn simplify(v: &[Point], tol: f64) -> Vec<Point> {
-    let n = v.len();
-    if n < 8 {
-        return v.to_vec();
-    }
-    // Split at vertex 0 and the vertex farthest from it.
-    let far = (1..n)
-        .max_by(|&a, &b| v[a].distance(v[0]).total_cmp(&v[b].distance(v[0])))
-        .unwrap_or(n / 2);
-    let mut keep = vec![false; n];
-    keep[0] = true;
-    keep[far] = true;
-    let mut stack = vec![(0, far), (far, n)];
-    while let Some((a, b)) = stack.pop() {
-        let (pa, pb) = (v[a], v[b % n]);
-        let mut worst = (0.0, a);
-        for (k, &q) in v.iter().enumerate().take(b).skip(a + 1) {
-            let d = point_segment(q, pa, pb);
-            if d > worst.0 {
-                worst = (d, k);
-            }
-        }
-        if worst.0 > tol {
-            keep[worst.1] = true;
-            stack.push((a, worst.1));
-            stack.push((worst.1, b));
-        }
-    }
-    (0..n).filter(|&k| keep[k]).map(|k| v[k]).collect()
 }
 
 /// The polygon of a box, counter-clockwise.
@@ -256,7 +114,7 @@ fn box_poly(b: (f64, f64, f64, f64)) -> Vec<Point> {
 /// hazard (`hazard`): its grown bounding box (its slots are too narrow to
 /// take a part, and four edges query faster than hundreds).
 fn grown_poly(p: &Part, d: f64, hazard: bool) -> Option<SPolygon> {
-    let g = simplify(&grown_outline(p, d + SIMPLIFY_MM), SIMPLIFY_MM);
+    let g = plane::simplify_closed(&grown_outline(p, d + SIMPLIFY_MM), SIMPLIFY_MM);
     if hazard && p.kind == PartKind::Lamella {
         return jpoly(&box_poly(bounds(&g)));
     }
@@ -375,7 +233,7 @@ impl Pass<'_> {
     }
 
     /// Where part `p` turned by `rot` can go on `b` with its outline's box
-    /// lower-left corner at (x, y): free by the engine, then by [`distance`].
+    /// lower-left corner at (x, y): free by the engine, then by [`polygon_distance`](plane::polygon_distance).
     fn free_at(&self, b: &Board, shape: &Shape, x: f64, y: f64) -> bool {
         if self.exhausted() {
             return false;
@@ -408,7 +266,7 @@ impl Pass<'_> {
 
     /// Whether part `shape` at (x, y) (as in [`Pass::free_at`]) is at least
     /// the gap from every part on `b`, in f64: by boxes, else by
-    /// [`distance`].
+    /// [`polygon_distance`](plane::polygon_distance).
     fn confirm(&self, b: &Board, shape: &Shape, x: f64, y: f64) -> bool {
         let (tx, ty) = (x - shape.bbox.0, y - shape.bbox.1);
         let g = self.gap;
@@ -420,7 +278,7 @@ impl Pass<'_> {
             .collect();
         b.placed.iter().all(|(o, ob)| {
             ob.2 + g <= x || x + w + g <= ob.0 || ob.3 + g <= y || y + h + g <= ob.1 || {
-                distance(&moved, o, g) >= g + 1e-6
+                plane::polygon_distance(&moved, o, g) >= g + 1e-6
             }
         })
     }
@@ -1010,70 +868,14 @@ pub fn grown_outline(p: &Part, d: f64) -> Vec<Point> {
         out.push(Point::new(-d, h + d));
         return out;
     }
-    let v = &p.outline_part_mm;
-    let n = v.len();
-    (0..n)
-        .map(|i| {
-            let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
-            let e1 = (b - a).normalize();
-            let e2 = (c - b).normalize();
-            // Outward normals of a counter-clockwise polygon: (dy, −dx).
-            let n1 = kurbo::Vec2::new(e1.y, -e1.x);
-            let n2 = kurbo::Vec2::new(e2.y, -e2.x);
-            let m = n1 + n2;
-            let k = 1.0 + n1.dot(n2);
-            if k < 1e-6 {
-                b + n1 * d
-            } else {
-                b + m * (d / k)
-            }
-        })
-        .collect()
+    plane::miter_offset(&p.outline_part_mm, d)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fabricate::part::signed_area_mm2;
     use crate::fabricate::part::Feature;
-
-    fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
-        box_poly((x, y, x + s, y + s))
-    }
-
-    #[test]
-    fn distance_of_apart_touching_crossing_and_nested_polygons() {
-        let a = square(0.0, 0.0, 10.0);
-        assert!((distance(&a, &square(15.0, 0.0, 10.0), 10.0) - 5.0).abs() < 1e-12);
-        // Diagonal: corner to corner.
-        let d = distance(&a, &square(13.0, 14.0, 10.0), 10.0);
-        assert!((d - 5.0).abs() < 1e-12, "{d}");
-        assert_eq!(distance(&a, &square(10.0, 0.0, 10.0), 10.0), 0.0);
-        assert_eq!(distance(&a, &square(5.0, 5.0, 10.0), 10.0), 0.0);
-        assert_eq!(distance(&a, &square(2.0, 2.0, 3.0), 10.0), 0.0);
-        assert_eq!(distance(&square(2.0, 2.0, 3.0), &a, 10.0), 0.0);
-        // Farther than the limit: at least the limit.
-        assert!(distance(&a, &square(100.0, 0.0, 10.0), 10.0) >= 10.0);
-    }
-
-    #[test]
-    fn simplified_outlines_stay_within_the_tolerance() {
-        let v: Vec<Point> = (0..400)
-            .map(|k| {
-                let a = std::f64::consts::TAU * k as f64 / 400.0;
-                Point::new(100.0 * a.cos(), 100.0 * a.sin())
-            })
-            .collect();
-        let s = simplify(&v, 0.25);
-        assert!(s.len() < 100, "{}", s.len());
-        for q in &v {
-            let n = s.len();
-            let d = (0..n)
-                .map(|i| point_segment(*q, s[i], s[(i + 1) % n]))
-                .fold(f64::INFINITY, f64::min);
-            assert!(d <= 0.25 + 1e-9, "{d}");
-        }
-    }
+    use crate::geom::plane::signed_area_mm2;
 
     fn part(kind: PartKind, outline: Vec<Point>, features: Vec<Feature>) -> Part {
         Part {

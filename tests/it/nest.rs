@@ -295,8 +295,8 @@ fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part:
 /// gap apart. Moving one band 1 mm closer breaks `check_nest`.
 #[test]
 fn two_bowed_bands_share_one_sheet_by_outline() {
-    use lamella::fabricate::part::signed_area_mm2;
     use lamella::fabricate::{Kit, KitSummary};
+    use lamella::geom::plane::signed_area_mm2;
     let steel = support::profile("steel-1.5");
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;

@@ -15,10 +15,13 @@
 //! projection is in mm, the embedding is scaled to the boundary's length.
 
 use crate::design::mesh::TriMesh;
+use crate::geom::eigen::{symmetric_eigen3, Sweeps};
+use crate::geom::plane::orient;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 use glam::{DMat3, DVec2, DVec3};
+use kurbo::Point;
 
 /// How a chart was made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -113,48 +116,17 @@ pub fn projection(mesh: &TriMesh) -> Vec<DVec2> {
 }
 
 /// Unit eigenvector of the smallest eigenvalue of a symmetric 3×3 matrix
-/// (Jacobi rotations; exact enough for a plane fit).
-#[allow(clippy::needless_range_loop)] // Jacobi rotations read as index algebra
+/// (Jacobi rotations down to 1e-300; exact enough for a plane fit).
 fn smallest_eigenvector(m: DMat3) -> DVec3 {
-    let mut a = [
-        [m.x_axis.x, m.y_axis.x, m.z_axis.x],
-        [m.x_axis.y, m.y_axis.y, m.z_axis.y],
-        [m.x_axis.z, m.y_axis.z, m.z_axis.z],
-    ];
-    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    for _sweep in 0..50 {
-        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
-        if off < 1e-300 {
-            break;
-        }
-        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
-            if a[p][q].abs() < 1e-300 {
-                continue;
-            }
-            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-            let t = if theta == 0.0 { 1.0 } else { t };
-            let c = 1.0 / (t * t + 1.0).sqrt();
-            let s = t * c;
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = c * akp - s * akq;
-                a[k][q] = s * akp + c * akq;
-            }
-            for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = c * apk - s * aqk;
-                a[q][k] = s * apk + c * aqk;
-            }
-            for row in v.iter_mut() {
-                let (vp, vq) = (row[p], row[q]);
-                row[p] = c * vp - s * vq;
-                row[q] = s * vp + c * vq;
-            }
-        }
-    }
+    let (values, v) = symmetric_eigen3(
+        m.transpose().to_cols_array_2d(),
+        Sweeps {
+            relative: 0.0,
+            negligible: 1e-300,
+        },
+    );
     let k = (0..3)
-        .min_by(|&i, &j| a[i][i].total_cmp(&a[j][j]))
+        .min_by(|&i, &j| values[i].total_cmp(&values[j]))
         .unwrap_or(2);
     DVec3::new(v[0][k], v[1][k], v[2][k]).normalize_or(DVec3::Z)
 }
@@ -196,11 +168,14 @@ fn boundary_crosses(uv: &[DVec2], loops: &[Vec<u32>]) -> bool {
             if e.0 == f.0 || e.0 == f.1 || e.1 == f.0 || e.1 == f.1 {
                 continue;
             }
-            let [a, b, c, d] = [e.0, e.1, f.0, f.1].map(|v| uv[v as usize]);
-            let o1 = (b - a).perp_dot(c - a);
-            let o2 = (b - a).perp_dot(d - a);
-            let o3 = (d - c).perp_dot(a - c);
-            let o4 = (d - c).perp_dot(b - c);
+            let [a, b, c, d] = [e.0, e.1, f.0, f.1].map(|v| {
+                let q = uv[v as usize];
+                Point::new(q.x, q.y)
+            });
+            // Closed, and collinear edges count as crossing even apart: a
+            // rim in doubt is not charted by projection.
+            let (o1, o2) = (orient(a, b, c), orient(a, b, d));
+            let (o3, o4) = (orient(c, d, a), orient(c, d, b));
             if o1 * o2 <= 0.0 && o3 * o4 <= 0.0 {
                 return true;
             }

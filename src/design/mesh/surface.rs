@@ -423,10 +423,12 @@ fn solve5(mut a: [[f64; 5]; 5], mut b: [DVec3; 5]) -> [DVec3; 5] {
     x
 }
 
-/// A uniform grid over the chart listing, per cell, the vertices whose
-/// patch support meets it.
+/// A uniform grid of `nx` × `ny` square cells of side `cell` from `origin`
+/// in the chart, listing per cell the items (patches, triangles) whose box
+/// meets it: the items of cell k (row-major) are
+/// `items[start[k]..start[k + 1]]`, in item order.
 #[derive(Debug, Clone)]
-struct SupportGrid {
+struct CellGrid {
     origin: DVec2,
     cell: f64,
     nx: usize,
@@ -434,6 +436,85 @@ struct SupportGrid {
     start: Vec<u32>,
     items: Vec<u32>,
 }
+
+/// A box of cells, (x0, y0) to (x1, y1) inclusive.
+type CellSpan = ((usize, usize), (usize, usize));
+
+impl CellGrid {
+    /// The grid of no cells (for no items or a chart not finite).
+    fn empty() -> CellGrid {
+        CellGrid {
+            origin: DVec2::ZERO,
+            cell: 1.0,
+            nx: 0,
+            ny: 0,
+            start: vec![0],
+            items: Vec::new(),
+        }
+    }
+
+    /// The grid listing item i in every cell of `span(i)` for i in
+    /// 0..`count`.
+    fn new(
+        origin: DVec2,
+        cell: f64,
+        (nx, ny): (usize, usize),
+        count: usize,
+        span: impl Fn(&CellGrid, usize) -> CellSpan,
+    ) -> CellGrid {
+        let mut grid = CellGrid {
+            origin,
+            cell,
+            nx,
+            ny,
+            start: vec![0u32; nx * ny + 1],
+            items: Vec::new(),
+        };
+        let spans: Vec<CellSpan> = (0..count).map(|i| span(&grid, i)).collect();
+        for &((x0, y0), (x1, y1)) in &spans {
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    grid.start[y * nx + x + 1] += 1;
+                }
+            }
+        }
+        for k in 1..grid.start.len() {
+            grid.start[k] += grid.start[k - 1];
+        }
+        let mut fill = grid.start.clone();
+        grid.items = vec![0u32; grid.start[nx * ny] as usize];
+        for (i, &((x0, y0), (x1, y1))) in spans.iter().enumerate() {
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let k = y * nx + x;
+                    grid.items[fill[k] as usize] = i as u32;
+                    fill[k] += 1;
+                }
+            }
+        }
+        grid
+    }
+
+    /// The cell of a point, clamped to the grid.
+    fn cell_of(&self, q: DVec2) -> (usize, usize) {
+        let c = ((q - self.origin) / self.cell).floor();
+        (
+            (c.x.max(0.0) as usize).min(self.nx - 1),
+            (c.y.max(0.0) as usize).min(self.ny - 1),
+        )
+    }
+
+    /// The items listed in cell (x, y).
+    fn items_at(&self, (x, y): (usize, usize)) -> &[u32] {
+        let k = y * self.nx + x;
+        &self.items[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+}
+
+/// A uniform grid over the chart listing, per cell, the vertices whose
+/// patch support meets it.
+#[derive(Debug, Clone)]
+struct SupportGrid(CellGrid);
 
 impl SupportGrid {
     fn new(patches: &[Patch]) -> SupportGrid {
@@ -445,88 +526,39 @@ impl SupportGrid {
             mean_r += p.radius;
         }
         if patches.is_empty() || !lo.is_finite() {
-            return SupportGrid {
-                origin: DVec2::ZERO,
-                cell: 1.0,
-                nx: 0,
-                ny: 0,
-                start: vec![0],
-                items: Vec::new(),
-            };
+            return SupportGrid(CellGrid::empty());
         }
         let cell = (mean_r / patches.len() as f64).max(1e-9);
         let size = hi - lo;
         let nx = ((size.x / cell).ceil() as usize).clamp(1, 4096);
         let ny = ((size.y / cell).ceil() as usize).clamp(1, 4096);
         let cell = (size.x / nx as f64).max(size.y / ny as f64).max(1e-9);
-        let span = |p: &Patch| {
-            let a = ((p.uv - DVec2::splat(p.radius) - lo) / cell).floor();
-            let b = ((p.uv + DVec2::splat(p.radius) - lo) / cell).floor();
+        SupportGrid(CellGrid::new(lo, cell, (nx, ny), patches.len(), |g, i| {
+            let p = &patches[i];
             (
-                (a.x.max(0.0) as usize).min(nx - 1),
-                (a.y.max(0.0) as usize).min(ny - 1),
-                (b.x.max(0.0) as usize).min(nx - 1),
-                (b.y.max(0.0) as usize).min(ny - 1),
+                g.cell_of(p.uv - DVec2::splat(p.radius)),
+                g.cell_of(p.uv + DVec2::splat(p.radius)),
             )
-        };
-        let mut count = vec![0u32; nx * ny + 1];
-        for p in patches {
-            let (x0, y0, x1, y1) = span(p);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    count[y * nx + x + 1] += 1;
-                }
-            }
-        }
-        for k in 1..count.len() {
-            count[k] += count[k - 1];
-        }
-        let mut fill = count.clone();
-        let mut items = vec![0u32; count[nx * ny] as usize];
-        for (i, p) in patches.iter().enumerate() {
-            let (x0, y0, x1, y1) = span(p);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let k = y * nx + x;
-                    items[fill[k] as usize] = i as u32;
-                    fill[k] += 1;
-                }
-            }
-        }
-        SupportGrid {
-            origin: lo,
-            cell,
-            nx,
-            ny,
-            start: count,
-            items,
-        }
+        }))
     }
 
     fn candidates(&self, q: DVec2) -> &[u32] {
-        if self.nx == 0 || !q.is_finite() {
+        let g = &self.0;
+        if g.nx == 0 || !q.is_finite() {
             return &[];
         }
-        let c = ((q - self.origin) / self.cell).floor();
-        if c.x < 0.0 || c.y < 0.0 || c.x >= self.nx as f64 || c.y >= self.ny as f64 {
+        let c = ((q - g.origin) / g.cell).floor();
+        if c.x < 0.0 || c.y < 0.0 || c.x >= g.nx as f64 || c.y >= g.ny as f64 {
             return &[];
         }
-        let k = c.y as usize * self.nx + c.x as usize;
-        &self.items[self.start[k] as usize..self.start[k + 1] as usize]
+        g.items_at((c.x as usize, c.y as usize))
     }
 }
 
 /// A uniform grid over the chart: each cell lists the triangles whose
 /// bounding box meets it, so a point is located among a handful.
 #[derive(Debug, Clone)]
-struct UvGrid {
-    origin: DVec2,
-    cell: f64,
-    nx: usize,
-    ny: usize,
-    start: Vec<u32>,
-    items: Vec<u32>,
-}
+struct UvGrid(CellGrid);
 
 /// Barycentric slack of point location: points this far outside a
 /// triangle (relative) still count as inside, so the chart has no cracks
@@ -541,14 +573,7 @@ impl UvGrid {
             hi = hi.max(*q);
         }
         if triangles.is_empty() || !lo.is_finite() {
-            return UvGrid {
-                origin: DVec2::ZERO,
-                cell: 1.0,
-                nx: 0,
-                ny: 0,
-                start: vec![0],
-                items: Vec::new(),
-            };
+            return UvGrid(CellGrid::empty());
         }
         let size = (hi - lo).max(DVec2::splat(1e-9));
         let cells = (triangles.len() as f64 / 2.0).max(1.0);
@@ -556,71 +581,30 @@ impl UvGrid {
         let nx = ((size.x / cell).ceil() as usize).clamp(1, 4096);
         let ny = ((size.y / cell).ceil() as usize).clamp(1, 4096);
         let cell = (size.x / nx as f64).max(size.y / ny as f64);
-        let index = |q: DVec2| -> (usize, usize) {
-            let c = (q - lo) / cell;
-            (
-                (c.x.floor().max(0.0) as usize).min(nx - 1),
-                (c.y.floor().max(0.0) as usize).min(ny - 1),
-            )
-        };
-        let mut count = vec![0u32; nx * ny + 1];
-        let span = |t: &[u32; 3]| {
-            let [a, b, c] = t.map(|i| uv[i as usize]);
-            (index(a.min(b).min(c)), index(a.max(b).max(c)))
-        };
-        for t in triangles {
-            let ((x0, y0), (x1, y1)) = span(t);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    count[y * nx + x + 1] += 1;
-                }
-            }
-        }
-        for k in 1..count.len() {
-            count[k] += count[k - 1];
-        }
-        let mut fill = count.clone();
-        let mut items = vec![0u32; count[nx * ny] as usize];
-        for (ti, t) in triangles.iter().enumerate() {
-            let ((x0, y0), (x1, y1)) = span(t);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let k = y * nx + x;
-                    items[fill[k] as usize] = ti as u32;
-                    fill[k] += 1;
-                }
-            }
-        }
-        UvGrid {
-            origin: lo,
+        UvGrid(CellGrid::new(
+            lo,
             cell,
-            nx,
-            ny,
-            start: count,
-            items,
-        }
+            (nx, ny),
+            triangles.len(),
+            |g, i| {
+                let [a, b, c] = triangles[i].map(|k| uv[k as usize]);
+                (g.cell_of(a.min(b).min(c)), g.cell_of(a.max(b).max(c)))
+            },
+        ))
     }
 
     fn locate(&self, q: DVec2, uv: &[DVec2], triangles: &[[u32; 3]]) -> Option<(usize, [f64; 3])> {
-        if self.nx == 0 || !q.is_finite() {
+        let g = &self.0;
+        if g.nx == 0 || !q.is_finite() {
             return None;
         }
-        let c = (q - self.origin) / self.cell;
+        let c = (q - g.origin) / g.cell;
         let slack = 1e-9;
-        if c.x < -slack
-            || c.y < -slack
-            || c.x > self.nx as f64 + slack
-            || c.y > self.ny as f64 + slack
-        {
+        if c.x < -slack || c.y < -slack || c.x > g.nx as f64 + slack || c.y > g.ny as f64 + slack {
             return None;
         }
-        let (x, y) = (
-            (c.x.floor().max(0.0) as usize).min(self.nx - 1),
-            (c.y.floor().max(0.0) as usize).min(self.ny - 1),
-        );
-        let k = y * self.nx + x;
         let mut best: Option<(usize, [f64; 3], f64)> = None;
-        for &ti in &self.items[self.start[k] as usize..self.start[k + 1] as usize] {
+        for &ti in g.items_at(g.cell_of(q)) {
             let [a, b, cc] = triangles[ti as usize].map(|i| uv[i as usize]);
             let area = (b - a).perp_dot(cc - a);
             if area.abs() < 1e-300 {

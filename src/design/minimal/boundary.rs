@@ -2,7 +2,10 @@
 //! loops bound a planar domain (simple, disjoint, nested), and resampling.
 
 use crate::error::{Error, Location, Result};
+use crate::geom::eigen::{symmetric_eigen3, Sweeps};
+use crate::geom::plane::{point_in_polygon, signed_area_mm2, Arithmetic};
 use glam::{DVec2, DVec3};
+use kurbo::Point;
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -82,6 +85,17 @@ impl Frame {
         let d = p - self.origin;
         DVec2::new(d.dot(self.u), d.dot(self.v))
     }
+    /// Coordinates of every point of `points` in the plane, as plane points
+    /// for [`crate::geom::plane`].
+    pub fn project_all(&self, points: &[DVec3]) -> Vec<Point> {
+        points
+            .iter()
+            .map(|&p| {
+                let q = self.project(p);
+                Point::new(q.x, q.y)
+            })
+            .collect()
+    }
     /// The same plane seen from the other side (v and n reversed).
     pub fn flipped(&self) -> Frame {
         Frame {
@@ -107,7 +121,13 @@ pub fn best_fit_frame(loops: &[Vec<DVec3>]) -> Frame {
             }
         }
     }
-    let (values, vectors) = jacobi_eigen(c);
+    let (values, vectors) = symmetric_eigen3(
+        c,
+        Sweeps {
+            relative: 1e-17,
+            negligible: 0.0,
+        },
+    );
     let mut order = [0usize, 1, 2];
     order.sort_by(|&a, &b| values[b].total_cmp(&values[a]));
     let col = |k: usize| DVec3::new(vectors[0][k], vectors[1][k], vectors[2][k]).normalize();
@@ -120,77 +140,6 @@ pub fn best_fit_frame(loops: &[Vec<DVec3>]) -> Frame {
         v,
         n: u.cross(v),
     }
-}
-
-/// Eigenvalues and eigenvectors (columns) of a symmetric 3 × 3 matrix.
-fn jacobi_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
-    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    for _sweep in 0..50 {
-        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
-        let scale = a[0][0].abs() + a[1][1].abs() + a[2][2].abs();
-        if off <= 1e-300 || off <= 1e-17 * scale {
-            break;
-        }
-        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
-            if a[p][q] == 0.0 {
-                continue;
-            }
-            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-            let t = if theta == 0.0 { 1.0 } else { t };
-            let c = 1.0 / (t * t + 1.0).sqrt();
-            let s = t * c;
-            // A ← Jᵀ A J with the rotation J in the (p, q) plane.
-            for row in a.iter_mut() {
-                let (akp, akq) = (row[p], row[q]);
-                row[p] = c * akp - s * akq;
-                row[q] = s * akp + c * akq;
-            }
-            let (rp, rq) = (a[p], a[q]);
-            a[p] = std::array::from_fn(|k| c * rp[k] - s * rq[k]);
-            a[q] = std::array::from_fn(|k| s * rp[k] + c * rq[k]);
-            for row in v.iter_mut() {
-                let (vp, vq) = (row[p], row[q]);
-                row[p] = c * vp - s * vq;
-                row[q] = s * vp + c * vq;
-            }
-        }
-    }
-    ([a[0][0], a[1][1], a[2][2]], v)
-}
-
-/// Twice the signed area of a closed 2D polygon (shoelace), positive when
-/// counter-clockwise.
-pub fn signed_area2(poly: &[DVec2]) -> f64 {
-    (0..poly.len())
-        .map(|i| poly[i].perp_dot(poly[(i + 1) % poly.len()]))
-        .sum()
-}
-
-fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
-    robust::orient2d(
-        robust::Coord { x: a.x, y: a.y },
-        robust::Coord { x: b.x, y: b.y },
-        robust::Coord { x: c.x, y: c.y },
-    )
-}
-
-/// `p` on the closed segment a–b, given that it is collinear with it.
-fn within(a: DVec2, b: DVec2, p: DVec2) -> bool {
-    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
-}
-
-/// Whether two closed segments share a point (exact predicates).
-fn segments_meet(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
-    let (o1, o2) = (orient(a, b, c), orient(a, b, d));
-    let (o3, o4) = (orient(c, d, a), orient(c, d, b));
-    if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
-        return true;
-    }
-    (o1 == 0.0 && within(a, b, c))
-        || (o2 == 0.0 && within(a, b, d))
-        || (o3 == 0.0 && within(c, d, a))
-        || (o4 == 0.0 && within(c, d, b))
 }
 
 /// How the projected loops fail to bound a planar domain.
@@ -246,10 +195,7 @@ pub struct PlanarDomain {
 /// Check that the loops projected with `frame` are simple, disjoint and
 /// nested as one outer loop around holes.
 pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain, DomainProblem> {
-    let proj: Vec<Vec<DVec2>> = loops
-        .iter()
-        .map(|l| l.iter().map(|&p| frame.project(p)).collect())
-        .collect();
+    let proj: Vec<Vec<Point>> = loops.iter().map(|l| frame.project_all(l)).collect();
     // Every segment, swept by its smallest x.
     struct Seg {
         lo: f64,
@@ -298,13 +244,13 @@ pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain,
                     } else {
                         (px[t], px[0], px[1])
                     };
-                    if orient(p, q, r) == 0.0 && (q - p).dot(r - q) < 0.0 {
+                    if Arithmetic::Exact.collinear_opposite(p, q, q, r) {
                         selfs.insert((x.l, s, t));
                     }
-                } else if segments_meet(a, b, c, d) {
+                } else if Arithmetic::Exact.segments_intersect(a, b, c, d) {
                     selfs.insert((x.l, s, t));
                 }
-            } else if segments_meet(a, b, c, d) {
+            } else if Arithmetic::Exact.segments_intersect(a, b, c, d) {
                 crossings.insert((x.l.min(y.l), x.l.max(y.l)));
             }
         }
@@ -336,7 +282,7 @@ pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain,
             }
         }
     }
-    let frame = if signed_area2(&proj[outer]) < 0.0 {
+    let frame = if signed_area_mm2(&proj[outer]) < 0.0 {
         frame.flipped()
     } else {
         frame
@@ -344,8 +290,7 @@ pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain,
     // Areas change sign with the frame: recompute in the oriented frame.
     let reversed = (0..n)
         .map(|i| {
-            let a: Vec<DVec2> = loops[i].iter().map(|&p| frame.project(p)).collect();
-            let ccw = signed_area2(&a) > 0.0;
+            let ccw = signed_area_mm2(&frame.project_all(&loops[i])) > 0.0;
             if i == outer {
                 !ccw
             } else {
@@ -368,27 +313,9 @@ pub fn steep_annulus(loops: &[Vec<DVec3>], domain: &PlanarDomain) -> bool {
     let f = domain.frame;
     let height =
         |l: &[DVec3]| l.iter().map(|&p| (p - f.origin).dot(f.n)).sum::<f64>() / l.len() as f64;
-    let radius = |l: &[DVec3]| {
-        let q: Vec<DVec2> = l.iter().map(|&p| f.project(p)).collect();
-        (signed_area2(&q).abs() / 2.0 / std::f64::consts::PI).sqrt()
-    };
+    let radius =
+        |l: &[DVec3]| (signed_area_mm2(&f.project_all(l)).abs() / std::f64::consts::PI).sqrt();
     (height(&loops[0]) - height(&loops[1])).abs() > (radius(&loops[0]) - radius(&loops[1])).abs()
-}
-
-/// Crossing-number test of a point strictly inside or outside a polygon.
-fn point_in_polygon(p: DVec2, poly: &[DVec2]) -> bool {
-    let mut inside = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) {
-            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-            if p.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
 }
 
 /// Segment lengths of a closed loop, mm.

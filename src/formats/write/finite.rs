@@ -89,6 +89,77 @@ macro_rules! ok_scalars {
     };
 }
 
+/// The methods both serializers share: no value, an optional one and a
+/// newtype are looked through; a unit is nothing to check.
+macro_rules! see_through {
+    () => {
+        fn serialize_none(self) -> Result<(), Found> {
+            Ok(())
+        }
+        fn serialize_some<T: Serialize + ?Sized>(self, v: &T) -> Result<(), Found> {
+            v.serialize(self)
+        }
+        fn serialize_unit(self) -> Result<(), Found> {
+            Ok(())
+        }
+        fn serialize_newtype_struct<T: Serialize + ?Sized>(
+            self,
+            _: &'static str,
+            v: &T,
+        ) -> Result<(), Found> {
+            v.serialize(self)
+        }
+    };
+}
+
+/// The compound values (sequences, tuples, maps, structs, variants) of a
+/// serializer, each opened by `$open` (called with the serializer).
+macro_rules! compounds {
+    ($open:expr) => {
+        fn serialize_seq(self, _: Option<usize>) -> Result<Self::SerializeSeq, Found> {
+            ($open)(self)
+        }
+        fn serialize_tuple(self, _: usize) -> Result<Self::SerializeTuple, Found> {
+            ($open)(self)
+        }
+        fn serialize_tuple_struct(
+            self,
+            _: &'static str,
+            _: usize,
+        ) -> Result<Self::SerializeTupleStruct, Found> {
+            ($open)(self)
+        }
+        fn serialize_tuple_variant(
+            self,
+            _: &'static str,
+            _: u32,
+            _: &'static str,
+            _: usize,
+        ) -> Result<Self::SerializeTupleVariant, Found> {
+            ($open)(self)
+        }
+        fn serialize_map(self, _: Option<usize>) -> Result<Self::SerializeMap, Found> {
+            ($open)(self)
+        }
+        fn serialize_struct(
+            self,
+            _: &'static str,
+            _: usize,
+        ) -> Result<Self::SerializeStruct, Found> {
+            ($open)(self)
+        }
+        fn serialize_struct_variant(
+            self,
+            _: &'static str,
+            _: u32,
+            _: &'static str,
+            _: usize,
+        ) -> Result<Self::SerializeStructVariant, Found> {
+            ($open)(self)
+        }
+    };
+}
+
 impl<'a> ser::Serializer for &'a mut Walker {
     type Ok = ();
     type Error = Found;
@@ -111,24 +182,9 @@ impl<'a> ser::Serializer for &'a mut Walker {
     fn serialize_f64(self, v: f64) -> Result<(), Found> {
         self.number(v)
     }
-    fn serialize_none(self) -> Result<(), Found> {
-        Ok(())
-    }
-    fn serialize_some<T: Serialize + ?Sized>(self, v: &T) -> Result<(), Found> {
-        v.serialize(self)
-    }
-    fn serialize_unit(self) -> Result<(), Found> {
-        Ok(())
-    }
+    see_through!();
     fn serialize_unit_variant(self, _: &'static str, _: u32, _: &'static str) -> Result<(), Found> {
         Ok(())
-    }
-    fn serialize_newtype_struct<T: Serialize + ?Sized>(
-        self,
-        _: &'static str,
-        v: &T,
-    ) -> Result<(), Found> {
-        v.serialize(self)
     }
     fn serialize_newtype_variant<T: Serialize + ?Sized>(
         self,
@@ -139,43 +195,11 @@ impl<'a> ser::Serializer for &'a mut Walker {
     ) -> Result<(), Found> {
         self.within(Seg::Field(variant), v)
     }
-    fn serialize_seq(self, _: Option<usize>) -> Result<Compound<'a>, Found> {
-        Ok(Compound {
-            w: self,
-            index: 0,
-            key: None,
-        })
-    }
-    fn serialize_tuple(self, len: usize) -> Result<Compound<'a>, Found> {
-        self.serialize_seq(Some(len))
-    }
-    fn serialize_tuple_struct(self, _: &'static str, len: usize) -> Result<Compound<'a>, Found> {
-        self.serialize_seq(Some(len))
-    }
-    fn serialize_tuple_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        len: usize,
-    ) -> Result<Compound<'a>, Found> {
-        self.serialize_seq(Some(len))
-    }
-    fn serialize_map(self, len: Option<usize>) -> Result<Compound<'a>, Found> {
-        self.serialize_seq(len)
-    }
-    fn serialize_struct(self, _: &'static str, len: usize) -> Result<Compound<'a>, Found> {
-        self.serialize_seq(Some(len))
-    }
-    fn serialize_struct_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        len: usize,
-    ) -> Result<Compound<'a>, Found> {
-        self.serialize_seq(Some(len))
-    }
+    compounds!(|w| Ok(Compound {
+        w,
+        index: 0,
+        key: None
+    }));
 }
 
 impl Compound<'_> {
@@ -227,35 +251,25 @@ impl ser::SerializeMap for Compound<'_> {
     }
 }
 
-impl ser::SerializeStruct for Compound<'_> {
-    type Ok = ();
-    type Error = Found;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        name: &'static str,
-        v: &T,
-    ) -> Result<(), Found> {
-        self.w.within(Seg::Field(name), v)
-    }
-    fn end(self) -> Result<(), Found> {
-        Ok(())
-    }
+macro_rules! struct_like {
+    ($($tr:ident),*) => {$(
+        impl ser::$tr for Compound<'_> {
+            type Ok = ();
+            type Error = Found;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                name: &'static str,
+                v: &T,
+            ) -> Result<(), Found> {
+                self.w.within(Seg::Field(name), v)
+            }
+            fn end(self) -> Result<(), Found> {
+                Ok(())
+            }
+        }
+    )*};
 }
-
-impl ser::SerializeStructVariant for Compound<'_> {
-    type Ok = ();
-    type Error = Found;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        name: &'static str,
-        v: &T,
-    ) -> Result<(), Found> {
-        self.w.within(Seg::Field(name), v)
-    }
-    fn end(self) -> Result<(), Found> {
-        Ok(())
-    }
-}
+struct_like!(SerializeStruct, SerializeStructVariant);
 
 /// Map keys are strings in JSON; anything else is left unnamed.
 impl ser::Serializer for &mut KeyText {
@@ -277,15 +291,7 @@ impl ser::Serializer for &mut KeyText {
         serialize_i64: i64, serialize_u8: u8, serialize_u16: u16, serialize_u32: u32,
         serialize_u64: u64, serialize_char: char, serialize_bytes: &[u8],
         serialize_unit_struct: &'static str, serialize_f32: f32, serialize_f64: f64);
-    fn serialize_none(self) -> Result<(), Found> {
-        Ok(())
-    }
-    fn serialize_some<T: Serialize + ?Sized>(self, v: &T) -> Result<(), Found> {
-        v.serialize(self)
-    }
-    fn serialize_unit(self) -> Result<(), Found> {
-        Ok(())
-    }
+    see_through!();
     fn serialize_unit_variant(
         self,
         _: &'static str,
@@ -294,13 +300,6 @@ impl ser::Serializer for &mut KeyText {
     ) -> Result<(), Found> {
         self.0 = Some(variant.to_string());
         Ok(())
-    }
-    fn serialize_newtype_struct<T: Serialize + ?Sized>(
-        self,
-        _: &'static str,
-        v: &T,
-    ) -> Result<(), Found> {
-        v.serialize(self)
     }
     fn serialize_newtype_variant<T: Serialize + ?Sized>(
         self,
@@ -311,43 +310,7 @@ impl ser::Serializer for &mut KeyText {
     ) -> Result<(), Found> {
         Ok(())
     }
-    fn serialize_seq(self, _: Option<usize>) -> Result<Self::SerializeSeq, Found> {
-        Err(Found)
-    }
-    fn serialize_tuple(self, _: usize) -> Result<Self::SerializeTuple, Found> {
-        Err(Found)
-    }
-    fn serialize_tuple_struct(
-        self,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Self::SerializeTupleStruct, Found> {
-        Err(Found)
-    }
-    fn serialize_tuple_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Self::SerializeTupleVariant, Found> {
-        Err(Found)
-    }
-    fn serialize_map(self, _: Option<usize>) -> Result<Self::SerializeMap, Found> {
-        Err(Found)
-    }
-    fn serialize_struct(self, _: &'static str, _: usize) -> Result<Self::SerializeStruct, Found> {
-        Err(Found)
-    }
-    fn serialize_struct_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Self::SerializeStructVariant, Found> {
-        Err(Found)
-    }
+    compounds!(|_| Err(Found));
 }
 
 #[cfg(test)]
