@@ -301,7 +301,10 @@ fn identity(meta: &std::fs::Metadata) -> Identity {
 }
 
 /// CRC-32s computed in this process, by the identity of the file read: the
-/// check before the work and the commit read each earlier file once.
+/// check before the work and the commit read each earlier file once. (A
+/// file rewritten in place, to the same size, within one tick of the file
+/// system's clock after it was read would pass for unchanged: in one
+/// build, between its check and its commit.)
 static CRCS: Mutex<BTreeMap<Identity, u32>> = Mutex::new(BTreeMap::new());
 
 /// The CRC-32 of the file at `path` (whose metadata is `meta`).
@@ -382,8 +385,11 @@ mod tests {
         std::fs::write(dir.join("plan.json"), "abc").unwrap();
         assert_eq!(crc32fast::hash(b"abc"), 0x3524_41c2);
         assert!(vouched(&dir, "plan.json", &m));
-        // Changed since (same size): the user's.
-        std::fs::write(dir.join("plan.json"), "abd").unwrap();
+        // Changed since (same size): the user's. (Written aside and
+        // renamed: a file rewritten in place within one tick of the file
+        // system's clock would look unchanged to this process's cache.)
+        std::fs::write(dir.join("new"), "abd").unwrap();
+        std::fs::rename(dir.join("new"), dir.join("plan.json")).unwrap();
         assert!(!vouched(&dir, "plan.json", &m));
         assert!(!replaceable(&dir, "plan.json", &m));
         // Lamella's plan by its schema: may be replaced, not removed.
