@@ -237,9 +237,6 @@ impl Staging {
         step();
         remove_file(&p.tmp.join(MARKER))?;
         if dir_exists {
-            if let Ok(meta) = std::fs::metadata(&p.dir) {
-                let _ = std::fs::set_permissions(&p.tmp, meta.permissions());
-            }
             for rel in &carry {
                 let to = p.tmp.join(rel);
                 if let Some(parent) = to.parent() {
@@ -249,6 +246,11 @@ impl Staging {
                 }
                 step();
                 rename(&p.dir.join(rel), &to)?;
+            }
+            // DIR's permissions go with it (after the moves into the
+            // staging folder, which a read-only DIR's would stop).
+            if let Ok(meta) = std::fs::metadata(&p.dir) {
+                let _ = std::fs::set_permissions(&p.tmp, meta.permissions());
             }
             let old = swap(&p)?;
             let mut new_names: BTreeSet<String> = files.keys().cloned().collect();
