@@ -8,7 +8,7 @@
 //! Everything is computed before anything is written; an overstressed
 //! strip stops the build before the first file (unless allowed).
 
-use super::{refuse_inputs, Inputs, Session};
+use super::{check_outputs, Inputs, Output, Session};
 use crate::check::CheckReport;
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
@@ -111,6 +111,15 @@ impl BuildReport {
 /// The files every build writes besides the sheets.
 pub const FIXED_FILES: [&str; 4] = ["plan.json", "takeoff.csv", "takeoff.json", "assembly.pdf"];
 
+/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
+const KIT: [&str; 5] = [
+    "plan.json",
+    "takeoff.csv",
+    "takeoff.json",
+    "assembly.pdf",
+    crate::formats::out::manifest::SHEETS,
+];
+
 /// Run every stage and write the kit into `out`. Returns the report; when
 /// a strip is overstressed and `allow_overstress` is off, nothing is
 /// written and `report.files` is empty. `progress` shows the stage and the
@@ -121,9 +130,7 @@ pub fn build(
     opts: &BuildOptions,
     progress: &ProgressBar,
 ) -> Result<BuildReport> {
-    for name in FIXED_FILES {
-        refuse_inputs(&out.join(name), &inputs.files())?;
-    }
+    check_outputs(&[Output::Dir(out, &KIT)], &inputs.files())?;
     let mut clock = Clock::start();
     progress.set_message("reading");
     let mut session = Session::open(inputs)?;
@@ -171,8 +178,9 @@ pub fn build(
             stages: clock.stages,
         });
     }
-    // Refuse a foreign plan.json or takeoff before the long work.
-    let staging = Staging::begin(out, &FIXED_FILES)?;
+    // Checked again (a foreign plan.json or takeoff, a `sheets` link)
+    // before the long work: DIR may have changed while the checks ran.
+    let staging = Staging::begin(out, &KIT)?;
     // The plan's strips and nodes first, so the analysis can go once the
     // parts are made (a big network's analysis and kit need not both stay).
     let mut the_plan = session.plan(false)?;

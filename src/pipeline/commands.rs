@@ -1,9 +1,10 @@
 //! The commands short of `build`: each asks a [`Session`] for the stage it
 //! stops at, makes its plan and writes its files. Every output path is
-//! checked against the inputs before anything is read; everything is
-//! computed before anything is written.
+//! checked against the inputs, the other outputs and what is there before
+//! anything is read ([`check_outputs`]); everything is computed before
+//! anything is written.
 
-use super::{refuse_inputs, Inputs, Session};
+use super::{check_outputs, Inputs, Output, Session};
 use crate::design::DesignReport;
 use crate::error::{Error, Result};
 use crate::formats::out::write_atomic;
@@ -44,25 +45,27 @@ pub fn write_plan(target: &Path, plan: &mut Plan) -> Result<()> {
 
 /// `lamella nodes`: nodes, frames and curvatures; `DIR/plan.json`.
 pub fn nodes(inputs: Inputs, out: &Path) -> Result<Done> {
-    let target = plan_path(out);
-    refuse_inputs(&target, &inputs.files())?;
+    let real = check_outputs(&[Output::Dir(out, &["plan.json"])], &inputs.files())?;
     let mut session = Session::open(inputs)?;
     let mut plan = session.plan(false)?;
-    write_plan(&target, &mut plan)?;
+    write_plan(&plan_path(&real[0]), &mut plan)?;
     Ok(Done {
         session,
         plan: Some(plan),
-        written: vec![target],
+        written: vec![plan_path(out)],
     })
 }
 
 /// `lamella check`: the elastic check (and, when `suggest`, the largest
 /// section that passes); `DIR/plan.json` when `out` is given.
 pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> {
-    let target = out.map(plan_path);
-    if let Some(t) = &target {
-        refuse_inputs(t, &inputs.files())?;
-    }
+    let target = match out {
+        Some(dir) => {
+            let real = check_outputs(&[Output::Dir(dir, &["plan.json"])], &inputs.files())?;
+            Some((plan_path(&real[0]), plan_path(dir)))
+        }
+        None => None,
+    };
     let mut session = Session::open(inputs)?;
     session.check(false)?;
     if suggest {
@@ -73,11 +76,11 @@ pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> 
         plan: None,
         written: Vec::new(),
     };
-    if let Some(t) = target {
+    if let Some((real, shown)) = target {
         let mut plan = done.session.plan(false)?;
-        write_plan(&t, &mut plan)?;
+        write_plan(&real, &mut plan)?;
         done.plan = Some(plan);
-        done.written.push(t);
+        done.written.push(shown);
     }
     Ok(done)
 }
@@ -98,17 +101,17 @@ pub enum PartsGoal {
 /// `lamella parts` and `lamella nest`: every part (and its nest);
 /// `DIR/plan.json`, and the sparrow instance when asked for.
 pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
-    let target = plan_path(out);
-    refuse_inputs(&target, &inputs.files())?;
     let instance = match goal {
         PartsGoal::Nest {
             instance: Some(file),
-        } => {
-            refuse_inputs(file, &inputs.files())?;
-            Some(file.clone())
-        }
+        } => Some(file.clone()),
         _ => None,
     };
+    let mut outputs = vec![Output::Dir(out, &["plan.json"])];
+    if let Some(file) = &instance {
+        outputs.push(Output::File("instance", file));
+    }
+    let real = check_outputs(&outputs, &inputs.files())?;
     let mut session = Session::open(inputs)?;
     session.kit()?;
     if let PartsGoal::Nest { .. } = goal {
@@ -128,10 +131,10 @@ pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
         None => None,
     };
     let mut plan = session.plan(false)?;
-    write_plan(&target, &mut plan)?;
-    let mut written = vec![target];
-    if let (Some(file), Some(text)) = (instance, instance_text) {
-        write_atomic(&file, text.as_bytes())?;
+    write_plan(&plan_path(&real[0]), &mut plan)?;
+    let mut written = vec![plan_path(out)];
+    if let (Some(file), Some(text), Some(real_file)) = (instance, instance_text, real.get(1)) {
+        write_atomic(real_file, text.as_bytes())?;
         written.push(file);
     }
     Ok(Done {
@@ -144,11 +147,10 @@ pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
 /// `lamella flat`: the flat assembly state; `DIR/plan.json` (with `flat`)
 /// and `DIR/flat.svg`.
 pub fn flat(inputs: Inputs, out: &Path) -> Result<Done> {
-    let target = plan_path(out);
-    let svg_target = out.join("flat.svg");
-    for t in [&target, &svg_target] {
-        refuse_inputs(t, &inputs.files())?;
-    }
+    let real = check_outputs(
+        &[Output::Dir(out, &["plan.json", "flat.svg"])],
+        &inputs.files(),
+    )?;
     let mut session = Session::open(inputs)?;
     session.flat()?;
     session.check(false)?;
@@ -165,12 +167,12 @@ pub fn flat(inputs: Inputs, out: &Path) -> Result<Done> {
         .cloned()
         .unwrap_or_default();
     let svg = flat_svg::to_svg(&drawing, &title);
-    write_plan(&target, &mut plan)?;
-    write_atomic(&svg_target, svg.as_bytes())?;
+    write_plan(&plan_path(&real[0]), &mut plan)?;
+    write_atomic(&real[0].join("flat.svg"), svg.as_bytes())?;
     Ok(Done {
         session,
         plan: Some(plan),
-        written: vec![target, svg_target],
+        written: vec![plan_path(out), out.join("flat.svg")],
     })
 }
 
@@ -193,10 +195,11 @@ pub struct Traced {
 /// `lamella trace`: the network a trace spec describes, written as a
 /// network file (`.json`, else YAML with normals).
 pub fn trace(spec_path: &Path, out: &Path) -> Result<Traced> {
-    refuse_inputs(out, &[("trace spec", spec_path)])?;
+    let output = [Output::File("network", out)];
+    let mut real = check_outputs(&output, &[("trace spec", spec_path)])?;
     let spec = read::trace_spec::load(spec_path)?;
     if let Some(mesh) = crate::design::mesh_source::mesh_path(&spec, spec_path) {
-        refuse_inputs(out, &[("mesh", &mesh)])?;
+        real = check_outputs(&output, &[("trace spec", spec_path), ("mesh", &mesh)])?;
     }
     let (network, report) = crate::design::design(&spec, spec_path, &read::mesh::read_mesh)?;
     let comment = format!(
@@ -213,7 +216,7 @@ pub fn trace(spec_path: &Path, out: &Path) -> Result<Traced> {
         Some("json") => read::network_file::to_json(&network, COORDINATE_DECIMALS),
         _ => read::network_file::to_yaml(&network, COORDINATE_DECIMALS, &comment),
     };
-    write_atomic(out, text.as_bytes())?;
+    write_atomic(&real[0], text.as_bytes())?;
     Ok(Traced {
         network,
         report,

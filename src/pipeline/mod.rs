@@ -23,6 +23,7 @@ use crate::check::{CheckReport, Suggestion};
 use crate::error::{Error, Result};
 use crate::fabricate::Kit;
 use crate::flat::{FlatProblem, FlatState};
+use crate::formats::out;
 use crate::formats::read::{self, ReadOptions};
 use crate::nest::Nest;
 use crate::network::Network;
@@ -360,4 +361,143 @@ pub fn refuse_inputs(out: &Path, inputs: &[(&str, &Path)]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// One output of a command, for [`check_outputs`].
+#[derive(Debug, Clone, Copy)]
+pub enum Output<'a> {
+    /// An output folder (`--out DIR`) and the entries the command writes
+    /// in it (`sheets`: the sheets' folder).
+    Dir(&'a Path, &'a [&'a str]),
+    /// A file the user named, and what the command writes into it
+    /// (`instance`, `network`).
+    File(&'a str, &'a Path),
+}
+
+/// Check every output of a command before anything is written: against
+/// the inputs (none may be overwritten, nor removed from a kit's
+/// `sheets/`), against one another (no two the same file, no file where a
+/// folder goes) and against what is there ([`out::output_dir`],
+/// [`out::output_file`]: a link the user named is followed, a folder, a
+/// device or a FIFO where a file goes is refused; in an output folder, a
+/// file lamella did not write where it writes one is refused,
+/// [`out::manifest::check_names`]). What a killed build into an output
+/// folder left is finished first ([`out::staging::recover_stale`]).
+/// Returns the paths to write, one per output in order, links followed.
+pub fn check_outputs(outputs: &[Output], inputs: &[(&str, &Path)]) -> Result<Vec<PathBuf>> {
+    let mut real = Vec::with_capacity(outputs.len());
+    for o in outputs {
+        match *o {
+            Output::Dir(dir, names) => {
+                for name in names {
+                    refuse_inputs(&dir.join(name), inputs)?;
+                }
+                if names.contains(&out::manifest::SHEETS) {
+                    let sheets = dir.join(out::manifest::SHEETS);
+                    if std::fs::symlink_metadata(&sheets).is_ok_and(|m| m.is_dir()) {
+                        for e in std::fs::read_dir(&sheets)
+                            .map_err(|e| Error::io(&sheets, e))?
+                            .flatten()
+                        {
+                            let rel = format!("sheets/{}", e.file_name().to_string_lossy());
+                            if out::manifest::is_lamella_name(&rel) {
+                                refuse_inputs(&e.path(), inputs)?;
+                            }
+                        }
+                    }
+                }
+                real.push(out::output_dir(dir)?);
+            }
+            Output::File(_, file) => {
+                refuse_inputs(file, inputs)?;
+                real.push(out::output_file(file)?);
+            }
+        }
+    }
+    // A file the user named must not be another output, nor where an
+    // output folder or a file in it goes.
+    for (i, o) in outputs.iter().enumerate() {
+        let Output::File(what, file) = *o else {
+            continue;
+        };
+        let f = normalized(&real[i]);
+        let clash = |shown: PathBuf| {
+            Err(Error::output(
+                file,
+                format!(
+                    "is also where this command writes {}: choose another path for the {what}",
+                    shown.display()
+                ),
+            ))
+        };
+        for (j, other) in outputs.iter().enumerate() {
+            if i == j {
+                continue;
+            }
+            match *other {
+                Output::File(_, g) => {
+                    if f == normalized(&real[j]) || read::same_file(&real[i], &real[j]) {
+                        return clash(g.to_path_buf());
+                    }
+                }
+                Output::Dir(dir, names) => {
+                    let d = normalized(&real[j]);
+                    if d.starts_with(&f) {
+                        return clash(dir.to_path_buf());
+                    }
+                    for name in names {
+                        let n = d.join(name);
+                        let inside = *name == out::manifest::SHEETS && f.starts_with(&n);
+                        if f == n || inside || read::same_file(&real[i], &real[j].join(name)) {
+                            return clash(dir.join(name));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for (o, r) in outputs.iter().zip(&real) {
+        if let Output::Dir(_, names) = *o {
+            out::staging::recover_stale(r)?;
+            out::manifest::check_names(r, names)?;
+        }
+    }
+    Ok(real)
+}
+
+/// `path` absolute, its longest existing part with links resolved and the
+/// rest with `.` and `..` taken as written: two paths to the same place
+/// compare equal, whether it exists yet or not.
+fn normalized(path: &Path) -> PathBuf {
+    let abs = if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        std::env::current_dir()
+            .map(|d| d.join(path))
+            .unwrap_or_else(|_| path.to_path_buf())
+    };
+    let mut rest = Vec::new();
+    let mut base = abs.as_path();
+    loop {
+        if let Ok(c) = base.canonicalize() {
+            let mut out = c;
+            for part in rest.iter().rev() {
+                match part {
+                    std::path::Component::CurDir => {}
+                    std::path::Component::ParentDir => {
+                        out.pop();
+                    }
+                    other => out.push(other.as_os_str()),
+                }
+            }
+            return out;
+        }
+        match (base.parent(), base.components().next_back()) {
+            (Some(parent), Some(last)) => {
+                rest.push(last);
+                base = parent;
+            }
+            _ => return abs,
+        }
+    }
 }

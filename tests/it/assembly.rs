@@ -170,7 +170,13 @@ fn check_kit(sample: &str, profile: &str, paper: &str) {
     let bytes = std::fs::read(&pdf).expect("assembly.pdf written");
     assert!(bytes.starts_with(b"%PDF-"), "a PDF");
     let manifest = std::fs::read_to_string(out.join(".lamella-manifest")).expect("manifest");
-    assert!(manifest.lines().any(|l| l == "assembly.pdf"), "{manifest}");
+    let pdf_bytes = std::fs::metadata(&pdf).expect("pdf").len();
+    assert!(
+        manifest
+            .lines()
+            .any(|l| l.starts_with(&format!("{pdf_bytes} ")) && l.ends_with(" assembly.pdf")),
+        "{manifest}"
+    );
     let plan: Value = serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan"))
         .expect("plan json");
     let expected = expected_pages(&plan, paper);

@@ -22,6 +22,7 @@ mod nest;
 mod nest_stock;
 mod nodes;
 mod offset;
+mod output_safety;
 mod parts;
 mod readers;
 mod robustness;
