@@ -369,3 +369,55 @@ fn bad_mesh_and_film_specs_get_one_line_errors() {
         &["`mesh`", "surface: mesh"],
     );
 }
+
+/// A mesh with some triangles wound against their neighbours is
+/// reoriented, and `trace` says so (how many, and the first in file
+/// order) in its warnings, on stderr and in the design report; the net is
+/// the one traced on the consistently wound mesh.
+#[test]
+fn inconsistent_winding_is_repaired_with_a_warning() {
+    let dir = scratch("winding");
+    let (v, mut t) = saddle_grid(20, 1500.0, 3000.0);
+    std::fs::write(dir.join("good.obj"), obj_text(&v, &t)).unwrap();
+    for k in [4, 76, 299] {
+        t[k].swap(1, 2);
+    }
+    std::fs::write(dir.join("bad.obj"), obj_text(&v, &t)).unwrap();
+    let spec =
+        |mesh: &str| format!("surface: mesh\nmesh: {mesh}\nseed_mm: [0, 0, 0]\nspacing_mm: 300\n");
+    std::fs::write(dir.join("good.trace.yaml"), spec("good.obj")).unwrap();
+    std::fs::write(dir.join("bad.trace.yaml"), spec("bad.obj")).unwrap();
+    let warning =
+        "3 triangle(s) were flipped to agree with their neighbours (the first: triangle 4)";
+    let (code, _, stderr) = lamella_in(&dir, &["trace", "bad.trace.yaml", "--out", "bad.yaml"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+    let (code, _, stderr) = lamella_in(&dir, &["trace", "good.trace.yaml", "--out", "good.yaml"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(!stderr.contains("flipped"), "{stderr}");
+    let body = |f: &str| {
+        std::fs::read_to_string(dir.join(f))
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with("name:"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert!(
+        body("bad.yaml") == body("good.yaml"),
+        "the repaired mesh traces another net"
+    );
+    let spec_path = dir.join("bad.trace.yaml");
+    let (_, report) = design(
+        &trace_spec::load(&spec_path).unwrap(),
+        &spec_path,
+        &read_mesh,
+    )
+    .unwrap();
+    assert!(
+        report.warnings.iter().any(|w| w == warning),
+        "{:?}",
+        report.warnings
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
