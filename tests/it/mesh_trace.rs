@@ -4,7 +4,7 @@
 //! their samples and run through `nodes` and `check`; bad meshes get
 //! one-line errors.
 
-use crate::support::meshes::{obj_text, param_mesh};
+use crate::support::meshes::{obj_text, param_mesh, saddle_grid};
 use crate::support::*;
 use glam::{DMat3, DVec2, DVec3};
 use lamella::design::design;
@@ -93,6 +93,60 @@ fn traced_enneper_mesh_converges_to_the_closed_form() {
     assert!(coarse < 0.2, "{coarse} mm on the 40² mesh");
     assert!(fine < 0.1, "{fine} mm on the 80² mesh");
     assert!(order > 0.8, "order {order:.2}");
+}
+
+/// A saddle z = (x² − y²)/(2R) on a regular grid with straight rim
+/// sides, written as OBJ at 0.001 mm, traces at every cell count (it was
+/// refused at 80 × 80 and 150 × 150: its symmetric best-fit plane puts two
+/// rim sides exactly along a chart axis, their collinear edges counted as
+/// crossing, and the mesh was charted onto a circle instead, whose corners
+/// folded the traced normals). Its asymptotic lines are its rulings
+/// x ± y = const: every traced curve is straight and keeps its x ± y.
+#[test]
+fn a_regular_grid_saddle_traces_at_fine_cells() {
+    let (half_mm, r_mm) = (1500.0, 3000.0);
+    for n in [80, 150] {
+        let dir = scratch(&format!("saddle{n}"));
+        let (v, t) = saddle_grid(n, half_mm, r_mm);
+        std::fs::write(dir.join("saddle.obj"), obj_text(&v, &t)).unwrap();
+        std::fs::write(
+            dir.join("saddle.trace.yaml"),
+            "surface: mesh\nmesh: saddle.obj\nseed_mm: [0, 0, 0]\nspacing_mm: 300\n\
+             sampling:\n  step_mm: 25\n",
+        )
+        .unwrap();
+        let (code, stdout, stderr) =
+            lamella_in(&dir, &["trace", "saddle.trace.yaml", "--out", "net.yaml"]);
+        assert_eq!(code, Some(0), "{n} × {n}: {stderr}");
+        assert!(
+            stdout.contains("charted by its best-fit plane"),
+            "{n} × {n}: {stdout}"
+        );
+        let spec_path = dir.join("saddle.trace.yaml");
+        let spec = trace_spec::load(&spec_path).unwrap();
+        let (net, report) = design(&spec, &spec_path, &read_mesh).unwrap();
+        assert!(report.a_curves >= 10 && report.b_curves >= 10, "{report:?}");
+        let mut worst = 0.0f64;
+        for c in net
+            .curves
+            .iter()
+            .filter(|c| c.family != lamella::Family::Edge)
+        {
+            let (p0, p1) = (c.points[0], *c.points.last().unwrap());
+            // The ruling through the first point: x ∓ y constant.
+            let sum = (p1.x + p1.y - p0.x - p0.y).abs() < (p1.x - p1.y - p0.x + p0.y).abs();
+            let key = |p: DVec3| if sum { p.x + p.y } else { p.x - p.y };
+            for p in &c.points {
+                worst = worst.max((key(*p) - key(p0)).abs());
+            }
+        }
+        eprintln!("saddle {n} × {n}: curves within {worst:.4} mm of their rulings");
+        assert!(
+            worst < 0.2,
+            "{n} × {n}: a curve leaves its ruling by {worst} mm"
+        );
+        std::fs::remove_dir_all(dir).unwrap();
+    }
 }
 
 const FILMS: [&str; 5] = [
@@ -314,4 +368,56 @@ fn bad_mesh_and_film_specs_get_one_line_errors() {
         &format!("surface: enneper\nscale_mm: 1000\nseed: [0, 0]\nmesh: m.obj\n{base}"),
         &["`mesh`", "surface: mesh"],
     );
+}
+
+/// A mesh with some triangles wound against their neighbours is
+/// reoriented, and `trace` says so (how many, and the first in file
+/// order) in its warnings, on stderr and in the design report; the net is
+/// the one traced on the consistently wound mesh.
+#[test]
+fn inconsistent_winding_is_repaired_with_a_warning() {
+    let dir = scratch("winding");
+    let (v, mut t) = saddle_grid(20, 1500.0, 3000.0);
+    std::fs::write(dir.join("good.obj"), obj_text(&v, &t)).unwrap();
+    for k in [4, 76, 299] {
+        t[k].swap(1, 2);
+    }
+    std::fs::write(dir.join("bad.obj"), obj_text(&v, &t)).unwrap();
+    let spec =
+        |mesh: &str| format!("surface: mesh\nmesh: {mesh}\nseed_mm: [0, 0, 0]\nspacing_mm: 300\n");
+    std::fs::write(dir.join("good.trace.yaml"), spec("good.obj")).unwrap();
+    std::fs::write(dir.join("bad.trace.yaml"), spec("bad.obj")).unwrap();
+    let warning =
+        "3 triangle(s) were flipped to agree with their neighbours (the first: triangle 4)";
+    let (code, _, stderr) = lamella_in(&dir, &["trace", "bad.trace.yaml", "--out", "bad.yaml"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+    let (code, _, stderr) = lamella_in(&dir, &["trace", "good.trace.yaml", "--out", "good.yaml"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(!stderr.contains("flipped"), "{stderr}");
+    let body = |f: &str| {
+        std::fs::read_to_string(dir.join(f))
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with("name:"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert!(
+        body("bad.yaml") == body("good.yaml"),
+        "the repaired mesh traces another net"
+    );
+    let spec_path = dir.join("bad.trace.yaml");
+    let (_, report) = design(
+        &trace_spec::load(&spec_path).unwrap(),
+        &spec_path,
+        &read_mesh,
+    )
+    .unwrap();
+    assert!(
+        report.warnings.iter().any(|w| w == warning),
+        "{:?}",
+        report.warnings
+    );
+    std::fs::remove_dir_all(dir).unwrap();
 }

@@ -511,3 +511,61 @@ fn two_rings_of_different_radii_span_a_lopsided_catenoid() {
     assert!(max < 0.05 && mean < 0.03);
     assert!(f.report.min_angle_deg > 20.0);
 }
+
+/// Two loops whose plans cross (an ellipse along x at z = 0, one along y
+/// at z = 600 mm: a plus sign in plan) are refused with one line naming
+/// both loops and a crossing point, not lofted into a tube through itself;
+/// two coaxial rings sampled half a chord apart (their plans cross at
+/// every chord) still project onto each other and are lofted.
+#[test]
+fn loops_crossing_in_plan_are_refused_and_coaxial_rings_are_not() {
+    let ellipse = |sx: f64, sy: f64, z: f64| -> Vec<DVec3> {
+        (0..48)
+            .map(|i| {
+                let t = TAU * i as f64 / 48.0;
+                rounded(DVec3::new(1500.0 * sx * t.cos(), 1500.0 * sy * t.sin(), z))
+            })
+            .collect()
+    };
+    let opts = FormFindOptions::with_target_edge_mm(100.0);
+    let e = form_find(
+        &[ellipse(1.0, 0.4, 0.0), ellipse(0.4, 1.0, 600.0)],
+        &opts,
+        spec(),
+    )
+    .map(|_| ())
+    .unwrap_err()
+    .to_string();
+    assert!(!e.contains('\n'), "{e}");
+    assert!(
+        e.starts_with("film.yaml: field `boundaries[0]`: loops 0 and 1 cross in projection"),
+        "{e}"
+    );
+    // The crossing point is on loop 0 (z = 0) where the ellipses meet in
+    // plan, |x| = |y| = 1500 × 0.4 / √(1 + 0.4²) ≈ 557 mm.
+    let at: Vec<f64> = e
+        .split(" at (")
+        .nth(1)
+        .unwrap()
+        .split(')')
+        .next()
+        .unwrap()
+        .split(", ")
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!(
+        (at[0].abs() - 557.0).abs() < 15.0 && (at[1].abs() - 557.0).abs() < 15.0,
+        "{e}"
+    );
+    assert_eq!(at[2], 0.0, "{e}");
+    let half_turned: Vec<DVec3> = (0..48)
+        .map(|i| {
+            let t = TAU * (i as f64 + 0.5) / 48.0;
+            rounded(DVec3::new(1000.0 * t.cos(), 1000.0 * t.sin(), 400.0))
+        })
+        .collect();
+    let f =
+        form_find(&[ring(1000.0, -400.0, 48), half_turned], &opts, spec()).expect("coaxial rings");
+    assert_eq!(f.report.initial, InitialMesh::Loft);
+    assert!(chart_is_valid(&f));
+}

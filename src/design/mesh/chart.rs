@@ -16,7 +16,7 @@
 
 use crate::design::mesh::TriMesh;
 use crate::geom::eigen::{symmetric_eigen3, Sweeps};
-use crate::geom::plane::orient;
+use crate::geom::plane::segments_intersect;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
@@ -172,11 +172,10 @@ fn boundary_crosses(uv: &[DVec2], loops: &[Vec<u32>]) -> bool {
                 let q = uv[v as usize];
                 Point::new(q.x, q.y)
             });
-            // Closed, and collinear edges count as crossing even apart: a
-            // rim in doubt is not charted by projection.
-            let (o1, o2) = (orient(a, b, c), orient(a, b, d));
-            let (o3, o4) = (orient(c, d, a), orient(c, d, b));
-            if o1 * o2 <= 0.0 && o3 * o4 <= 0.0 {
+            // Closed segments: touching and collinear overlap count as
+            // crossing (a rim in doubt is not charted by projection), but
+            // two collinear edges apart (one straight side of the rim) do not.
+            if segments_intersect(a, b, c, d) {
                 return true;
             }
         }
@@ -320,6 +319,33 @@ mod tests {
         let w = c.uv.iter().map(|q| q.length()).fold(0.0, f64::max);
         assert!(w > 600.0 && w < 800.0, "{w}");
         assert!(folded_triangle(&m, &c.uv).is_none());
+    }
+
+    /// A rim with straight sides (a regular grid, exported at 0.001 mm)
+    /// has collinear boundary edges: apart, they do not cross, and the
+    /// height field keeps its projection even when a side lies exactly
+    /// along a chart axis. Collinear edges that overlap or touch still do.
+    #[test]
+    fn straight_rim_sides_do_not_cross_but_overlapping_ones_do() {
+        let n = 6;
+        let flat = grid(n, |u, v| DVec3::new(1000.0 * u, 1000.0 * v, 0.0));
+        let uv: Vec<DVec2> = flat.positions_mm.iter().map(|p| p.truncate()).collect();
+        let rim = square_loop(n);
+        assert!(!boundary_crosses(&uv, std::slice::from_ref(&rim)));
+        // The rim's last vertex moved onto its first side (the rim folds
+        // back along it): two collinear edges overlap.
+        let mut folded = uv.clone();
+        folded[rim[rim.len() - 1] as usize] = DVec2::new(500.0, 0.0);
+        assert!(boundary_crosses(&folded, std::slice::from_ref(&rim)));
+        // A saddle symmetric under x ↔ y with z ↦ −z: its best-fit normal
+        // is exactly z, so the sides are exactly vertical or horizontal in
+        // the chart.
+        let saddle = grid(n, |u, v| {
+            let (x, y) = (1000.0 * u - 500.0, 1000.0 * v - 500.0);
+            DVec3::new(x, y, (x * x - y * y) / 6000.0)
+        });
+        let c = make_chart(&saddle, &[rim]).unwrap();
+        assert_eq!(c.kind, ChartKind::Projection);
     }
 
     #[test]

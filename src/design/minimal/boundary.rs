@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Location, Result};
 use crate::geom::eigen::{symmetric_eigen3, Sweeps};
-use crate::geom::plane::{point_in_polygon, signed_area_mm2, Arithmetic};
+use crate::geom::plane::{point_in_polygon, point_segment_distance, signed_area_mm2, Arithmetic};
 use glam::{DVec2, DVec3};
 use kurbo::Point;
 use std::collections::BTreeSet;
@@ -303,6 +303,58 @@ pub fn planar_domain(loops: &[Vec<DVec3>], frame: Frame) -> Result<PlanarDomain,
         outer,
         reversed,
     })
+}
+
+/// The first place where two loops cross or touch in projection with
+/// `frame`: (loop, loop, the crossing point on the first loop, mm), pairs
+/// and segments in order; `None` when no two loops meet in projection.
+pub fn plan_crossing(loops: &[Vec<DVec3>], frame: Frame) -> Option<(usize, usize, DVec3)> {
+    let proj: Vec<Vec<Point>> = loops.iter().map(|l| frame.project_all(l)).collect();
+    let exact = Arithmetic::Exact;
+    for i in 0..loops.len() {
+        for j in i + 1..loops.len() {
+            let (p, q) = (&proj[i], &proj[j]);
+            for s in 0..p.len() {
+                let (a, b) = (p[s], p[(s + 1) % p.len()]);
+                for t in 0..q.len() {
+                    let (c, d) = (q[t], q[(t + 1) % q.len()]);
+                    if !exact.segments_intersect(a, b, c, d) {
+                        continue;
+                    }
+                    // Where a–b meets the line c–d (its start when they
+                    // are collinear, its end when only that touches).
+                    let (da, db) = (exact.orient(c, d, a), exact.orient(c, d, b));
+                    let f = if da == db {
+                        0.0
+                    } else {
+                        (da / (da - db)).clamp(0.0, 1.0)
+                    };
+                    let (x, y) = (loops[i][s], loops[i][(s + 1) % loops[i].len()]);
+                    return Some((i, j, x + (y - x) * f));
+                }
+            }
+        }
+    }
+    None
+}
+
+/// Whether two loops project onto each other with `frame` (coaxial rings
+/// of one plan, sampled alike or not): every vertex of each lies within
+/// half the longest projected segment of the two of the other's
+/// projection. Two samplings of one plan curve differ by less than their
+/// chords' sagitta, far below that; loops whose plans cross do not.
+pub fn project_onto_each_other(a: &[DVec3], b: &[DVec3], frame: Frame) -> bool {
+    let (p, q) = (frame.project_all(a), frame.project_all(b));
+    let longest = |l: &[Point]| {
+        (0..l.len())
+            .map(|i| l[i].distance(l[(i + 1) % l.len()]))
+            .fold(0.0, f64::max)
+    };
+    let tol = 0.5 * longest(&p).max(longest(&q));
+    let near = |x: Point, l: &[Point]| {
+        (0..l.len()).any(|i| point_segment_distance(x, l[i], l[(i + 1) % l.len()]) <= tol)
+    };
+    p.iter().all(|&x| near(x, &q)) && q.iter().all(|&x| near(x, &p))
 }
 
 /// Whether two loops bounding a planar annulus are better lofted: the

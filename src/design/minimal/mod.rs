@@ -18,8 +18,11 @@
 //!    planar domain is triangulated by a constrained Delaunay triangulation
 //!    (spade) refined to triangles of at most h₀²/2 and angles of at least
 //!    [`initial::CDT_MIN_ANGLE_DEG`] (input angles excepted); the chart is
-//!    the projection. Otherwise, with exactly two loops (two coaxial rings
-//!    project onto each other), or with two loops bounding a steep annulus
+//!    the projection. Otherwise, with exactly two loops that project onto
+//!    each other (two coaxial rings: every vertex of each within half the
+//!    longest chord of the other's plan; two loops whose plans cross
+//!    otherwise are a one-line error naming a crossing point), or with two
+//!    loops bounding a steep annulus
 //!    (their heights over the plane differ by more than their equivalent
 //!    radii in it: the projection would squeeze the tube into a thin ring
 //!    of slivers), a tube is lofted between them: both
@@ -244,6 +247,22 @@ pub fn form_find(
     let domain = match boundary::planar_domain(&loops, frame) {
         Ok(d) if loops.len() == 2 && boundary::steep_annulus(&loops, &d) => None,
         Ok(d) => Some(d),
+        // Two loops whose plans cross (not two rings projecting onto each
+        // other): a tube lofted between them would pass through itself.
+        Err(boundary::DomainProblem::Crossing(..))
+            if loops.len() == 2
+                && !boundary::project_onto_each_other(&loops[0], &loops[1], frame) =>
+        {
+            let (a, b, p) = boundary::plan_crossing(&loops, frame).unwrap_or((0, 1, loops[0][0]));
+            return Err(Error::input(
+                path,
+                Location::Field(format!("boundaries[{a}]")),
+                format!(
+                    "loops {a} and {b} cross in projection onto the boundaries' best-fit plane at ({:.1}, {:.1}, {:.1}) mm (on loop {a}): two loops must nest (a hole) or project onto each other (coaxial rings)",
+                    p.x, p.y, p.z
+                ),
+            ));
+        }
         Err(_) if loops.len() == 2 => None,
         Err(p) => {
             return Err(Error::input(

@@ -66,3 +66,28 @@ pub fn obj_text(v: &[DVec3], t: &[[u32; 3]]) -> String {
     }
     s
 }
+
+/// Vertices (mm) and counter-clockwise triangles of the saddle
+/// z = (x² − y²) / (2 `r_mm`) over the square [−`half_mm`, `half_mm`]² on a
+/// regular n × n grid (no jitter), every cell split along the same
+/// diagonal: a mesh with straight rim sides, as a grid exported from a
+/// modeller.
+pub fn saddle_grid(n: usize, half_mm: f64, r_mm: f64) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let h = 2.0 * half_mm / n as f64;
+    let mut v = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (-half_mm + i as f64 * h, -half_mm + j as f64 * h);
+            v.push(DVec3::new(x, y, (x * x - y * y) / (2.0 * r_mm)));
+        }
+    }
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut t = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    (v, t)
+}
