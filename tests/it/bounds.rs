@@ -1,0 +1,141 @@
+//! Every size a user can write has a bound checked before the work it
+//! sizes: an input beyond it gets a one-line error naming the file and the
+//! field (with an estimate of the work where one is made) and exit status
+//! 1, never a panic, an abort on an allocation or a run without end. The
+//! bounds are listed in README.md (Limits).
+
+use crate::support::{lamella, root, scratch};
+use std::path::Path;
+
+/// Run `lamella ARGS…`; expect exit 1 and one line of stderr holding every
+/// fragment.
+#[track_caller]
+fn refused(args: &[&str], fragments: &[&str]) {
+    let (code, _, stderr) = lamella(args);
+    assert_eq!(code, Some(1), "{args:?}: {stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{args:?}: {stderr}");
+    for f in fragments {
+        assert!(stderr.contains(f), "`{f}` not in {stderr}");
+    }
+}
+
+/// `lamella trace` of a spec with `text`, written to `dir/name.trace.yaml`.
+#[track_caller]
+fn trace_refused(dir: &Path, name: &str, text: &str, fragments: &[&str]) {
+    let spec = dir.join(format!("{name}.trace.yaml"));
+    std::fs::write(&spec, text).unwrap();
+    let out = dir.join(format!("{name}.yaml"));
+    refused(
+        &[
+            "trace",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        fragments,
+    );
+    assert!(!out.exists(), "{name}: a network was written");
+}
+
+/// The saddle of samples/film-saddle.trace.yaml (4 m × 4 m in plan), its
+/// coordinates times `scale`, with a film edge of `edge_mm`.
+fn saddle(scale: f64, edge_mm: f64) -> String {
+    let corners = [
+        [-2000.0, -2000.0, 800.0],
+        [2000.0, -2000.0, -800.0],
+        [2000.0, 2000.0, 800.0],
+        [-2000.0, 2000.0, -800.0],
+    ];
+    let mut s = String::from("surface: minimal\nboundaries_mm:\n  -\n");
+    for c in corners {
+        let [x, y, z] = c.map(|v: f64| v * scale);
+        s.push_str(&format!("    - [{x:e}, {y:e}, {z:e}]\n"));
+    }
+    s.push_str(&format!("film_edge_mm: {edge_mm}\nspacing_mm: 300\n"));
+    s
+}
+
+#[test]
+fn film_coordinates_beyond_ten_km_are_refused() {
+    let dir = scratch("film-coordinates");
+    // 1e150: once a panic (capacity overflow), 1e10: an abort on a 1 TB
+    // allocation, 1e6: over a minute.
+    for (name, scale) in [("e150", 1e150), ("e10", 1e10), ("e6", 1e6)] {
+        trace_refused(
+            &dir,
+            name,
+            &saddle(scale, 50.0),
+            &[
+                "field `boundaries[0]`",
+                "point 0",
+                "limited to 1e7 mm (10 km)",
+            ],
+        );
+    }
+}
+
+#[test]
+fn a_fine_film_edge_is_refused_with_its_triangle_estimate() {
+    let dir = scratch("film-edge");
+    for (name, edge, estimate) in [
+        ("half", 0.5, "~1.5e8 triangles"),
+        ("two", 2.0, "~9.2e6 triangles"),
+    ] {
+        trace_refused(
+            &dir,
+            name,
+            &saddle(1.0, edge),
+            &[
+                &format!("{name}.trace.yaml: field `film_edge_mm`: {edge:.2} mm"),
+                "a film of about 16.000 m²",
+                estimate,
+                "the limit is 500000",
+            ],
+        );
+    }
+}
+
+#[test]
+fn a_film_with_a_fine_spacing_and_fill_is_refused_before_form_finding() {
+    // film_edge_mm defaults to a sixth of spacing_mm: 1.67 mm on the rings.
+    let dir = scratch("film-spacing");
+    let sample = std::fs::read_to_string(root().join("samples/film-rings.trace.yaml")).unwrap();
+    let text: String = sample
+        .lines()
+        .filter(|l| !l.starts_with("film_edge_mm") && !l.starts_with("max_curves_per_side"))
+        .map(|l| {
+            if l.starts_with("spacing_mm") {
+                "spacing_mm: 10".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(text.contains("fill: true"));
+    trace_refused(
+        &dir,
+        "rings",
+        &text,
+        &[
+            "field `film_edge_mm`: 1.67 mm",
+            "triangles; the limit is 500000",
+        ],
+    );
+}
+
+#[test]
+fn a_long_thin_film_boundary_is_refused_by_its_point_count() {
+    // 4 km by 1 mm: a small area, but ~3.6e5 boundary points at 20 mm.
+    let dir = scratch("film-boundary");
+    let text = "surface: minimal\nboundaries_mm:\n  -\n    - [0, 0, 0]\n    - [4000000, 0, 0]\n    - [4000000, 1, 0]\n    - [0, 1, 0]\nfilm_edge_mm: 20\nspacing_mm: 300\n";
+    trace_refused(
+        &dir,
+        "thin",
+        text,
+        &[
+            "field `film_edge_mm`: 20.00 mm on boundaries 8000002 mm long",
+            "~3.6e5 boundary points; the limit is 100000",
+        ],
+    );
+}
