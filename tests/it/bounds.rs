@@ -139,3 +139,104 @@ fn a_long_thin_film_boundary_is_refused_by_its_point_count() {
         ],
     );
 }
+
+/// A copy of `profiles/NAME.yaml` with `from` replaced by `to` (once,
+/// checked), written into `dir`.
+fn profile_with(dir: &Path, name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(root().join(format!("profiles/{name}.yaml"))).unwrap();
+    assert!(text.contains(from), "{from} not in {name}");
+    let p = dir.join(format!("{name}.yaml"));
+    std::fs::write(&p, text.replacen(from, to, 1)).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+/// `lamella COMMAND samples/hypar-small.yaml --profile PROFILE --out DIR/out`.
+#[track_caller]
+fn profile_refused(command: &str, dir: &Path, profile: &str, fragments: &[&str]) {
+    let sample = root().join("samples/hypar-small.yaml");
+    let out = dir.join("out");
+    refused(
+        &[
+            command,
+            sample.to_str().unwrap(),
+            "--profile",
+            profile,
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        fragments,
+    );
+    assert!(!out.exists(), "{command}: output written");
+}
+
+#[test]
+fn four_billion_washers_per_node_are_refused() {
+    // Once an abort after 15 s of making washers.
+    let dir = scratch("washers");
+    let p = profile_with(&dir, "steel-1.5", "per_node: 2 ", "per_node: 4000000000 ");
+    profile_refused(
+        "build",
+        &dir,
+        &p,
+        &["field `washer.per_node`: must be at most 8, got 4000000000"],
+    );
+}
+
+#[test]
+fn many_splice_bolts_are_refused() {
+    let dir = scratch("splice-bolts");
+    let p = profile_with(
+        &dir,
+        "steel-1.5",
+        "bolts_per_side: 2",
+        "bolts_per_side: 100000",
+    );
+    profile_refused(
+        "parts",
+        &dir,
+        &p,
+        &["field `splice.bolts_per_side`: must be at most 16, got 100000"],
+    );
+}
+
+#[test]
+fn two_hundred_stock_sizes_are_refused() {
+    // Once about 0.9 s of nesting per size.
+    let dir = scratch("stock-sizes");
+    let mut sizes = String::from("  sizes:\n");
+    for i in 0..200 {
+        sizes.push_str(&format!(
+            "    - length_mm: {}\n      width_mm: 1500.0\n      price_per_unit: 95.0\n",
+            2000 + i
+        ));
+    }
+    let p = profile_with(
+        &dir,
+        "steel-1.5",
+        "  length_mm: 3000.0\n  width_mm: 1500.0\n  price_per_unit: 95.0 ",
+        &format!("{sizes}  #"),
+    );
+    profile_refused(
+        "nest",
+        &dir,
+        &p,
+        &["field `stock.sizes`: 200 sizes", "the limit is 16"],
+    );
+}
+
+#[test]
+fn a_long_list_of_rotations_is_refused() {
+    let dir = scratch("rotations");
+    let p = profile_with(
+        &dir,
+        "steel-1.5",
+        "allowed_rotations_deg: [0, 90, 180, 270]",
+        "allowed_rotations_deg: [0, 90, 180, 270, 0, 90]",
+    );
+    profile_refused(
+        "parts",
+        &dir,
+        &p,
+        &["field `cutting.allowed_rotations_deg`: lists 6 rotations; at most 4"],
+    );
+}
