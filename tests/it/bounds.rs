@@ -200,6 +200,30 @@ fn many_splice_bolts_are_refused() {
 }
 
 #[test]
+fn a_nanometre_lamella_is_refused_by_its_shear_block_count() {
+    // Once an abort on a 12 GB vector of block stations.
+    let dir = scratch("thin-lamella");
+    let p = profile_with(
+        &dir,
+        "steel-1.5",
+        "thickness_mm: 1.5\n",
+        "thickness_mm: 1e-9\n",
+    );
+    for command in ["parts", "build"] {
+        profile_refused(
+            command,
+            &dir,
+            &p,
+            &[
+                "steel-1.5.yaml: strip A00: shear blocks at most",
+                "lamella.thickness_mm",
+                "blocks; the limit is 10000 a strip",
+            ],
+        );
+    }
+}
+
+#[test]
 fn two_hundred_stock_sizes_are_refused() {
     // Once about 0.9 s of nesting per size.
     let dir = scratch("stock-sizes");
