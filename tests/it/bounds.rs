@@ -264,3 +264,23 @@ fn a_long_list_of_rotations_is_refused() {
         &["field `cutting.allowed_rotations_deg`: lists 6 rotations; at most 4"],
     );
 }
+
+#[test]
+fn a_dxf_beyond_the_network_size_limit_is_refused_unread() {
+    // A sparse file: 257 MiB on paper, no disk space.
+    let dir = scratch("dxf-size");
+    let p = dir.join("big.dxf");
+    std::fs::File::create(&p)
+        .unwrap()
+        .set_len(257 << 20)
+        .unwrap();
+    refused(
+        &[
+            "nodes",
+            p.to_str().unwrap(),
+            "--out",
+            dir.join("out").to_str().unwrap(),
+        ],
+        &["big.dxf: 269484032 bytes is more than the 256 MiB lamella reads in such a file"],
+    );
+}
