@@ -284,3 +284,53 @@ fn a_dxf_beyond_the_network_size_limit_is_refused_unread() {
         &["big.dxf: 269484032 bytes is more than the 256 MiB lamella reads in such a file"],
     );
 }
+
+/// `lamella trace` of a mesh spec naming `dir/file`.
+#[track_caller]
+fn mesh_refused(dir: &Path, file: &str, fragments: &[&str]) {
+    let text = format!("surface: mesh\nmesh: {file}\nseed_mm: [0, 0, 0]\nspacing_mm: 300\n");
+    trace_refused(dir, "m", &text, fragments);
+}
+
+#[test]
+fn a_ply_header_counting_billions_is_refused_before_its_body() {
+    let dir = scratch("ply-count");
+    std::fs::write(
+        dir.join("big.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n",
+    )
+    .unwrap();
+    mesh_refused(
+        &dir,
+        "big.ply",
+        &[
+            "big.ply: 4000000000 `vertex` elements in the header",
+            "at most 1000000 triangles",
+        ],
+    );
+}
+
+#[test]
+fn a_binary_stl_of_more_than_a_million_triangles_is_refused_before_its_body() {
+    // 84 + 50 × 1000001 bytes, sparse: the header's count matches the length.
+    let dir = scratch("stl-count");
+    let count: u32 = 1_000_001;
+    let p = dir.join("big.stl");
+    let mut head = vec![0u8; 84];
+    head[80..84].copy_from_slice(&count.to_le_bytes());
+    std::fs::write(&p, &head).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&p)
+        .unwrap()
+        .set_len(84 + 50 * u64::from(count))
+        .unwrap();
+    mesh_refused(
+        &dir,
+        "big.stl",
+        &[
+            "big.stl: 1000001 triangles in the binary STL header",
+            "at most 1000000 triangles",
+        ],
+    );
+}
