@@ -334,3 +334,28 @@ fn a_binary_stl_of_more_than_a_million_triangles_is_refused_before_its_body() {
         ],
     );
 }
+
+#[test]
+fn a_mesh_design_filled_at_a_fine_spacing_is_refused_in_seconds() {
+    // Spacing 10 mm with fill over the 3 m clip of mesh-enneper: the fill
+    // rebuilt one point index of every curve so far for each curve it
+    // added, and took over five minutes to reach its curve limit.
+    let dir = scratch("mesh-fill");
+    let sample = std::fs::read_to_string(root().join("samples/mesh-enneper.trace.yaml")).unwrap();
+    let mesh = root().join("samples/meshes/enneper-4m.obj");
+    let text = sample
+        .replace(
+            "mesh: meshes/enneper-4m.obj",
+            &format!("mesh: {}", mesh.display()),
+        )
+        .replace(
+            "spacing_mm: 270",
+            "spacing_mm: 10\nfill: true\nmax_curves_per_side: 1000",
+        );
+    trace_refused(
+        &dir,
+        "fine",
+        &text,
+        &["field `fill`: filling needs more than 2001 curves of family A"],
+    );
+}
