@@ -38,42 +38,63 @@ impl FillCurve for super::periodic::Unfolded {
     }
 }
 
-/// Nearest-sample distance queries over curves' points (an R-tree).
+/// Nearest-sample distance queries over curves' points: R-trees of
+/// growing sizes (the logarithmic method), so that adding a curve costs a
+/// bulk load of about its own size, amortised, rather than of every point
+/// so far (a fill that adds thousands of curves once rebuilt one tree of
+/// up to 500,000 points for each: minutes).
 pub(crate) struct PointIndex {
-    points: Vec<[f64; 3]>,
-    tree: rstar::RTree<[f64; 3]>,
+    /// Each tree with its points, the largest first; every tree holds
+    /// more than twice the points of the next.
+    levels: Vec<(Vec<[f64; 3]>, Tree)>,
 }
+
+/// One level of a [`PointIndex`].
+type Tree = rstar::RTree<[f64; 3]>;
 
 impl PointIndex {
     pub(crate) fn new<'a>(curves: impl Iterator<Item = &'a Vec<DVec3>>) -> PointIndex {
-        let points: Vec<[f64; 3]> = curves
-            .flat_map(|c| c.iter().filter(|p| p.is_finite()).map(|p| p.to_array()))
-            .collect();
-        PointIndex {
-            tree: rstar::RTree::bulk_load(points.clone()),
-            points,
-        }
+        let mut index = PointIndex { levels: Vec::new() };
+        let points: Vec<DVec3> = curves.flatten().copied().collect();
+        index.add(&points);
+        index
     }
     pub(crate) fn add(&mut self, points: &[DVec3]) {
-        // Rebuilt in bulk rather than inserted one by one: rstar 0.12's
-        // insertion panics ("This is a bug in rstar") on some runs of
-        // coincident points, which a child traced along an existing curve
-        // makes. Non-finite points (none from a sound trace) are left out.
-        self.points.extend(
-            points
-                .iter()
-                .filter(|p| p.is_finite())
-                .map(|p| p.to_array()),
-        );
-        self.tree = rstar::RTree::bulk_load(self.points.clone());
+        // Trees are bulk-loaded rather than inserted into one point at a
+        // time: rstar 0.12's insertion panics ("This is a bug in rstar") on
+        // some runs of coincident points, which a child traced along an
+        // existing curve makes. Non-finite points (none from a sound trace)
+        // are left out.
+        let mut new: Vec<[f64; 3]> = points
+            .iter()
+            .filter(|p| p.is_finite())
+            .map(|p| p.to_array())
+            .collect();
+        if new.is_empty() {
+            return;
+        }
+        while self
+            .levels
+            .last()
+            .is_some_and(|(last, _)| last.len() <= 2 * new.len())
+        {
+            if let Some((mut merged, _)) = self.levels.pop() {
+                merged.append(&mut new);
+                new = merged;
+            }
+        }
+        self.levels
+            .push((new.clone(), rstar::RTree::bulk_load(new)));
     }
     pub(crate) fn nearest_distance(&self, p: DVec3) -> f64 {
         if !p.is_finite() {
             return 0.0;
         }
-        self.tree
-            .nearest_neighbor(&p.to_array())
-            .map_or(f64::INFINITY, |q| p.distance(DVec3::from_array(*q)))
+        self.levels
+            .iter()
+            .filter_map(|(_, tree)| tree.nearest_neighbor(&p.to_array()))
+            .map(|q| p.distance(DVec3::from_array(*q)))
+            .fold(f64::INFINITY, f64::min)
     }
 }
 
@@ -139,4 +160,42 @@ pub(crate) fn crossing_uv(p: &Traced, q: &Traced) -> Option<DVec2> {
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PointIndex;
+    use glam::DVec3;
+
+    #[test]
+    fn the_index_finds_the_nearest_point_of_every_curve_added() {
+        // Curves of 1 to 40 points added one by one: the trees merge, and
+        // every query agrees with a scan of all points.
+        let point = |i: usize| {
+            let t = i as f64;
+            DVec3::new((t * 0.37).sin() * 900.0, (t * 0.11).cos() * 700.0, t % 13.0)
+        };
+        let first: Vec<DVec3> = (0..5).map(point).collect();
+        let mut index = PointIndex::new(std::iter::once(&first));
+        let mut all = first.clone();
+        let mut next = 5;
+        for c in 0..60 {
+            let curve: Vec<DVec3> = (next..next + 1 + (c * 7) % 40).map(point).collect();
+            next += curve.len();
+            index.add(&curve);
+            all.extend(&curve);
+            for q in [DVec3::ZERO, DVec3::new(500.0, -300.0, 4.0), point(next + 3)] {
+                let scan = all
+                    .iter()
+                    .map(|p| p.distance(q))
+                    .fold(f64::INFINITY, f64::min);
+                assert_eq!(index.nearest_distance(q), scan);
+            }
+        }
+        assert!(index.levels.len() <= 12, "{}", index.levels.len());
+        assert_eq!(
+            index.levels.iter().map(|l| l.0.len()).sum::<usize>(),
+            all.len()
+        );
+    }
 }

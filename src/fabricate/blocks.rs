@@ -48,6 +48,13 @@ pub fn place(
     }
     let first = (span / spacing_mm).ceil() as usize - 1;
     let most = ((iv.free_hi_mm - iv.free_lo_mm) / (block_mm + gap_mm)).floor() as usize + 1;
+    // No number of blocks helps when more than fit apart are needed, or
+    // when a support is farther than the spacing from the free region:
+    // refused before any block is placed.
+    let reach = (iv.free_lo_mm - iv.start_mm).max(iv.end_mm - iv.free_hi_mm);
+    if first > most || reach > spacing_mm + 1e-9 {
+        return Err(cannot_keep(iv, spacing_mm, block_mm));
+    }
     for n in first.max(1)..=most.max(first.max(1)) {
         let centres: Vec<f64> = (1..=n)
             .map(|k| {
@@ -66,11 +73,16 @@ pub fn place(
             return Ok(centres);
         }
     }
-    Err(format!(
+    Err(cannot_keep(iv, spacing_mm, block_mm))
+}
+
+/// Why no number of blocks keeps the spacing in `iv`.
+fn cannot_keep(iv: Interval, spacing_mm: f64, block_mm: f64) -> String {
+    format!(
         "shear blocks cannot keep {spacing_mm:.1} mm spacing in the {:.1} mm left between the nodes' \
          zones",
         (iv.free_hi_mm - iv.free_lo_mm).max(0.0) + block_mm
-    ))
+    )
 }
 
 #[cfg(test)]
@@ -141,5 +153,26 @@ mod tests {
             free_hi_mm: 520.0,
         };
         assert!(place(far, 300.0, 30.0, 30.0).is_err());
+    }
+
+    #[test]
+    fn more_blocks_than_fit_are_refused_before_any_is_placed() {
+        // A 1e-9 mm lamella's slenderness spacing asks for ~3.5e9 blocks in
+        // 700 mm (once a 28 GB vector of stations); 11 fit apart.
+        let iv = Interval {
+            start_mm: 0.0,
+            end_mm: 700.0,
+            free_lo_mm: 30.0,
+            free_hi_mm: 670.0,
+        };
+        let e = place(iv, 2e-7, 30.0, 30.0).unwrap_err();
+        assert!(
+            e.starts_with("shear blocks cannot keep 0.0 mm spacing"),
+            "{e}"
+        );
+        // Tiny blocks fit by the billion, but the supports reach farther
+        // than the spacing into the free region.
+        let e = place(iv, 2e-7, 1e-9, 0.0).unwrap_err();
+        assert!(e.starts_with("shear blocks cannot keep"), "{e}");
     }
 }

@@ -521,6 +521,10 @@ fn place_cuts(
     Ok(cuts)
 }
 
+/// Most shear blocks one strip may need (counted from its intervals between
+/// supports and the spacing before any is placed).
+pub const MAX_SHEAR_BLOCKS_PER_STRIP: usize = 10_000;
+
 /// The profile's shear blocks, where the strip is doubled.
 fn shear_block(profile: &Profile) -> Option<&ShearBlock> {
     profile
@@ -561,6 +565,22 @@ fn block_stations(
     }
     supports.sort_by(|x, y| x.0.total_cmp(&y.0));
     supports.push((strip.length_mm, strip.length_mm, strip.length_mm, None));
+    let needed: f64 = supports
+        .windows(2)
+        .map(|w| ((w[1].0 - w[0].0) / spacing).ceil() - 1.0)
+        .filter(|&n| n > 0.0)
+        .sum();
+    if needed > MAX_SHEAR_BLOCKS_PER_STRIP as f64 {
+        return Err((
+            None,
+            format!(
+                "shear blocks at most {spacing:.3e} mm apart (shear_block.max_spacing_mm, or \
+                 shear_block.slenderness_limit × lamella.thickness_mm / √12) along {:.0} mm mean \
+                 ~{needed:.1e} blocks; the limit is {MAX_SHEAR_BLOCKS_PER_STRIP} a strip",
+                strip.length_mm
+            ),
+        ));
+    }
     let mut stations = Vec::new();
     for w in supports.windows(2) {
         let (a, b2) = (w[0], w[1]);

@@ -176,6 +176,9 @@ pub(super) fn balance(sizes: &[f64], k: usize) -> Vec<Vec<usize>> {
     if sizes.is_empty() || k == 0 {
         return Vec::new();
     }
+    // More lanes than items stay empty (and are dropped at the end): the
+    // lanes a profile's width allows are not allocated beyond the items.
+    let k = k.min(sizes.len());
     let mut order: Vec<usize> = (0..sizes.len()).collect();
     order.sort_by(|&a, &b| sizes[b].total_cmp(&sizes[a]).then(a.cmp(&b)));
     let mut lanes: Vec<Vec<usize>> = vec![Vec::new(); k];
@@ -211,4 +214,18 @@ pub(super) fn balance(sizes: &[f64], k: usize) -> Vec<Vec<usize>> {
     }
     best.retain(|l| !l.is_empty());
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::balance;
+
+    #[test]
+    fn lanes_beyond_the_items_are_not_made() {
+        // A coil whose width holds ~1e13 lanes of a tiny lamella: once a
+        // vector of that many lanes; now each item its own lane, at once.
+        let lanes = balance(&[300.0, 500.0, 100.0], 10_000_000_000_000);
+        assert_eq!(lanes, vec![vec![1], vec![0], vec![2]]);
+        assert_eq!(balance(&[300.0, 500.0, 100.0], 3), lanes);
+    }
 }

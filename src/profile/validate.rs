@@ -90,6 +90,30 @@ fn count(field: &str, n: Option<u32>) -> Check {
     }
 }
 
+/// A count of hardware per place, at least 1 and at most `max` (every one
+/// is a part to make and nest).
+fn count_at_most(field: &str, n: u32, max: u32) -> Check {
+    count(field, Some(n))?;
+    if n > max {
+        return fail(field, format!("must be at most {max}, got {n}"));
+    }
+    Ok(())
+}
+
+/// Most washers per node (`washer.per_node`).
+pub const MAX_WASHERS_PER_NODE: u32 = 8;
+
+/// Most bolts on each side of a splice (`splice.bolts_per_side`).
+pub const MAX_SPLICE_BOLTS_PER_SIDE: u32 = 16;
+
+/// Most stock sizes (`stock.sizes`): the nest tries every size, at about a
+/// second each on a big kit.
+pub const MAX_STOCK_SIZES: usize = 16;
+
+/// Most allowed rotations listed (`cutting.allowed_rotations_deg`): the
+/// four quarter turns.
+pub const MAX_ROTATIONS: usize = 4;
+
 /// Text, when given, is not blank.
 fn not_blank(field: &str, text: Option<&str>) -> Check {
     if text.is_some_and(|t| t.trim().is_empty()) {
@@ -224,7 +248,7 @@ fn washer(w: &Washer, has_node_bolt: bool) -> Check {
     positive("washer.thickness_mm", w.thickness_mm)?;
     positive("washer.arm_length_mm", w.arm_length_mm)?;
     positive("washer.arm_width_mm", w.arm_width_mm)?;
-    count("washer.per_node", Some(w.per_node))?;
+    count_at_most("washer.per_node", w.per_node, MAX_WASHERS_PER_NODE)?;
     if !has_node_bolt {
         return fail(
             "washer",
@@ -261,7 +285,11 @@ fn stud(s: &Stud) -> Check {
 fn splice(s: &Splice) -> Check {
     positive("splice.plate_length_mm", s.plate_length_mm)?;
     positive("splice.bolt_diameter_mm", s.bolt_diameter_mm)?;
-    count("splice.bolts_per_side", Some(s.bolts_per_side))
+    count_at_most(
+        "splice.bolts_per_side",
+        s.bolts_per_side,
+        MAX_SPLICE_BOLTS_PER_SIDE,
+    )
 }
 
 /// `stock:` the values every form may give, then the fields its form
@@ -347,6 +375,15 @@ fn sheet_sizes(st: &RawStock, list: &[StockSize], height_mm: f64) -> Check {
     }
     if list.is_empty() {
         return fail("stock.sizes", "must list at least one size");
+    }
+    if list.len() > MAX_STOCK_SIZES {
+        return fail(
+            "stock.sizes",
+            format!(
+                "{} sizes means a nest per size (about a second each); the limit is {MAX_STOCK_SIZES}",
+                list.len()
+            ),
+        );
     }
     let mut labels: Vec<String> = Vec::with_capacity(list.len());
     for (i, z) in list.iter().enumerate() {
@@ -444,6 +481,15 @@ fn cutting(c: &Cutting, grain: Grain) -> Check {
         return fail(
             "cutting.allowed_rotations_deg",
             "must allow at least one rotation",
+        );
+    }
+    if rotations.len() > MAX_ROTATIONS {
+        return fail(
+            "cutting.allowed_rotations_deg",
+            format!(
+                "lists {} rotations; at most {MAX_ROTATIONS} (0, 90, 180, 270, each once)",
+                rotations.len()
+            ),
         );
     }
     if let Some(r) = rotations.iter().find(|r| ![0, 90, 180, 270].contains(*r)) {

@@ -6,6 +6,7 @@
 mod support;
 
 mod assembly;
+mod bounds;
 mod build;
 mod check;
 mod check_cli;

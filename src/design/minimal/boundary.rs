@@ -13,7 +13,12 @@ use std::path::Path;
 /// dropped; coincident consecutive points are an error), mm.
 pub const COINCIDENT_MM: f64 = 1e-6;
 
-/// The loops as given, checked: finite, at least 3 points, no repeated
+/// Largest |coordinate| of a boundary point, mm: 10 km from the origin, as
+/// for a network ([`crate::network::MAX_COORDINATE_MM`]).
+pub const MAX_COORDINATE_MM: f64 = crate::network::MAX_COORDINATE_MM;
+
+/// The loops as given, checked: finite, within [`MAX_COORDINATE_MM`] of the
+/// origin, at least 3 points, no repeated
 /// closing point, no coincident consecutive points.
 pub fn clean_loops(boundaries_mm: &[Vec<DVec3>], path: &Path) -> Result<Vec<Vec<DVec3>>> {
     if boundaries_mm.is_empty() {
@@ -31,6 +36,19 @@ pub fn clean_loops(boundaries_mm: &[Vec<DVec3>], path: &Path) -> Result<Vec<Vec<
                 path,
                 at(),
                 format!("point {j} has a coordinate that is not a finite number"),
+            ));
+        }
+        if let Some(j) = b
+            .iter()
+            .position(|p| p.abs().max_element() > MAX_COORDINATE_MM)
+        {
+            return Err(Error::input(
+                path,
+                at(),
+                format!(
+                    "point {j} has a coordinate of {:e} mm; boundary coordinates are limited to {MAX_COORDINATE_MM:e} mm (10 km) from the origin",
+                    b[j].abs().max_element()
+                ),
             ));
         }
         let mut pts = b.clone();

@@ -273,6 +273,11 @@ pub fn form_find(
         }
     };
     let lengths: Vec<Vec<f64>> = loops.iter().map(|l| boundary::segment_lengths(l)).collect();
+    check_work(
+        &estimate(&loops, &lengths, domain.as_ref(), opts.target_edge_mm),
+        opts.target_edge_mm,
+        path,
+    )?;
     let levels = coarse_levels(&lengths, opts);
     let h0_mm = opts.target_edge_mm * f64::from(1u32 << levels);
     let mut pieces: Vec<Vec<usize>> = lengths.iter().map(|l| boundary::pieces(l, h0_mm)).collect();
@@ -409,6 +414,112 @@ fn check_options(opts: &FormFindOptions, path: &Path) -> Result<()> {
             format!(
                 "at most 12 (each multiplies the triangles by 4), got {}",
                 opts.max_refinements
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Most points a film's boundary loops may have at the target edge length
+/// (every segment split as [`boundary::pieces`] splits it there).
+pub const MAX_BOUNDARY_POINTS: usize = 100_000;
+
+/// Most triangles a film may be estimated to have at the target edge
+/// length (about half a minute of form finding on two cores).
+pub const MAX_TRIANGLES: usize = 500_000;
+
+/// The size of a film, estimated from its loops before any mesh is made.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmEstimate {
+    /// Points on the boundary loops at the target edge length.
+    pub boundary_points: f64,
+    /// Length of all boundary loops, mm.
+    pub boundary_mm: f64,
+    /// The film's area, mm²: the planar domain's area in projection, or
+    /// for a loft the loops' mean length times the distance between their
+    /// centroids (at least the target edge).
+    pub area_mm2: f64,
+    /// Triangles at the target edge length: the area over an equilateral
+    /// triangle's, target² × √3/4.
+    pub triangles: f64,
+}
+
+/// Estimate a film's size at `target_edge_mm` from its cleaned loops, their
+/// segment lengths and the planar domain (none: a loft between two loops).
+pub fn estimate(
+    loops: &[Vec<DVec3>],
+    lengths: &[Vec<f64>],
+    domain: Option<&boundary::PlanarDomain>,
+    target_edge_mm: f64,
+) -> FilmEstimate {
+    let boundary_points = lengths
+        .iter()
+        .flatten()
+        .map(|&l| {
+            (l / (boundary::PIECE_SLACK * target_edge_mm))
+                .ceil()
+                .max(1.0)
+        })
+        .sum::<f64>();
+    let boundary_mm = lengths.iter().flatten().sum::<f64>();
+    let area_mm2 = match domain {
+        Some(d) => {
+            let area =
+                |l: &[DVec3]| crate::geom::plane::signed_area_mm2(&d.frame.project_all(l)).abs();
+            (0..loops.len())
+                .map(|i| {
+                    if i == d.outer {
+                        area(&loops[i])
+                    } else {
+                        -area(&loops[i])
+                    }
+                })
+                .sum::<f64>()
+                .max(0.0)
+        }
+        None => {
+            let centroid = |l: &[DVec3]| l.iter().copied().sum::<DVec3>() / l.len() as f64;
+            let mean_length = boundary_mm / loops.len().max(1) as f64;
+            let apart = match loops {
+                [a, b] => centroid(a).distance(centroid(b)),
+                _ => 0.0,
+            };
+            mean_length * apart.max(target_edge_mm)
+        }
+    };
+    let triangles = area_mm2 / (target_edge_mm * target_edge_mm * 3f64.sqrt() / 4.0);
+    FilmEstimate {
+        boundary_points,
+        boundary_mm,
+        area_mm2,
+        triangles,
+    }
+}
+
+/// Refuse a film whose estimate exceeds [`MAX_BOUNDARY_POINTS`] or
+/// [`MAX_TRIANGLES`], naming `film_edge_mm` (the spec's name of the target).
+fn check_work(e: &FilmEstimate, target_edge_mm: f64, path: &Path) -> Result<()> {
+    let at = || Location::Field("film_edge_mm".into());
+    let hint =
+        "raise film_edge_mm (by default a sixth of spacing_mm) or make the boundaries smaller";
+    if e.boundary_points > MAX_BOUNDARY_POINTS as f64 {
+        return Err(Error::input(
+            path,
+            at(),
+            format!(
+                "{target_edge_mm:.2} mm on boundaries {:.0} mm long means ~{:.1e} boundary points; the limit is {MAX_BOUNDARY_POINTS}: {hint}",
+                e.boundary_mm, e.boundary_points
+            ),
+        ));
+    }
+    if e.triangles > MAX_TRIANGLES as f64 {
+        return Err(Error::input(
+            path,
+            at(),
+            format!(
+                "{target_edge_mm:.2} mm on these boundaries (a film of about {:.3} m²) means ~{:.1e} triangles; the limit is {MAX_TRIANGLES}: {hint}",
+                e.area_mm2 * 1e-6,
+                e.triangles
             ),
         ));
     }

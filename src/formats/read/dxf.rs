@@ -21,6 +21,18 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
     if meta.len() == 0 {
         return Err(Error::input(path, Location::File, "the file is empty"));
     }
+    let max_bytes = super::yaml_guard::MAX_NETWORK_FILE_BYTES;
+    if meta.len() > max_bytes {
+        return Err(Error::input(
+            path,
+            Location::File,
+            format!(
+                "{} bytes is more than the {} MiB lamella reads in such a file",
+                meta.len(),
+                max_bytes >> 20
+            ),
+        ));
+    }
     let drawing = dxf::Drawing::load_file(path)
         .map_err(|e| Error::input(path, Location::File, format!("invalid DXF: {e}")))?;
     let unit = match unit_override {

@@ -30,6 +30,23 @@ use std::path::Path;
 /// The largest mesh file read, bytes (1 GiB).
 pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
 
+/// Most triangles a mesh may have (after fan triangulation): tracing on a
+/// mesh of a million triangles takes about half a minute and 3 GB. Counted
+/// while an OBJ is read, from the header of a PLY or a binary STL before
+/// its body is read.
+pub const MAX_MESH_TRIANGLES: usize = 1_000_000;
+
+/// The refusal of a mesh of `count` triangles (or vertices, `what`).
+fn too_large(path: &Path, at: Location, count: usize, what: &str) -> Error {
+    Error::input(
+        path,
+        at,
+        format!(
+            "{count} {what} is more than lamella traces on: a mesh may have at most {MAX_MESH_TRIANGLES} triangles (a million take about half a minute and 3 GB)"
+        ),
+    )
+}
+
 /// Read a mesh file (`.obj`, `.ply` or `.stl`, any case); coordinates in mm.
 pub fn read_mesh(path: &Path) -> Result<TriMesh> {
     let ext = path
@@ -44,7 +61,7 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
         ));
     }
     let bytes = super::read_limited(path, MAX_MESH_FILE_BYTES, "a mesh file")?;
-    match ext.as_str() {
+    let mesh = match ext.as_str() {
         "obj" => {
             let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
             let text = std::str::from_utf8(bytes).map_err(|e| {
@@ -58,7 +75,16 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
         }
         "ply" => parse_ply(&bytes, path),
         _ => parse_stl(&bytes, path),
+    }?;
+    if mesh.triangles.len() > MAX_MESH_TRIANGLES {
+        return Err(too_large(
+            path,
+            Location::File,
+            mesh.triangles.len(),
+            "triangles",
+        ));
     }
+    Ok(mesh)
 }
 
 /// Parse OBJ text (see the module documentation); `path` names the file in errors.
@@ -72,6 +98,7 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<TriMesh> {
     // positive indices are checked against the final vertex count, so a file
     // that lists its vertices after its faces is still read.
     let mut faces: Vec<(usize, Vec<i64>)> = Vec::new();
+    let mut face_triangles = 0usize;
     let mut logical = String::new();
     let mut first_line = 0usize;
     let lines: Vec<&str> = text.lines().collect();
@@ -164,6 +191,15 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<TriMesh> {
                         ),
                     ));
                 }
+                face_triangles += idx.len() - 2;
+                if face_triangles > MAX_MESH_TRIANGLES {
+                    return Err(too_large(
+                        path,
+                        at(first_line),
+                        face_triangles,
+                        "triangles in the faces up to here",
+                    ));
+                }
                 faces.push((first_line, idx));
             }
             _ => {}
@@ -205,12 +241,43 @@ fn fan(face: &[u32], out: &mut Vec<[u32; 3]>) {
     }
 }
 
+/// The `element NAME COUNT` lines of a PLY header (read as text up to
+/// `end_header`, within its first 64 KiB), so that a count is checked before
+/// the body is read; malformed lines are left to the PLY reader.
+fn ply_header_counts(bytes: &[u8]) -> Vec<(String, usize)> {
+    let head = &bytes[..bytes.len().min(64 << 10)];
+    let text = String::from_utf8_lossy(head);
+    text.lines()
+        .take_while(|l| l.trim() != "end_header")
+        .filter_map(|l| {
+            let mut w = l.split_whitespace();
+            if w.next()? != "element" {
+                return None;
+            }
+            let name = w.next()?.to_string();
+            // A count beyond usize is beyond the limit too.
+            let count = w.next()?.parse::<u128>().ok()?;
+            Some((name, usize::try_from(count).unwrap_or(usize::MAX)))
+        })
+        .collect()
+}
+
 /// Parse PLY bytes (ascii or binary); `path` names the file in errors.
 pub fn parse_ply(bytes: &[u8], path: &Path) -> Result<TriMesh> {
     use ply_rs_bw::parser::Parser;
     use ply_rs_bw::ply::{DefaultElement, Property};
     if bytes.is_empty() {
         return Err(Error::input(path, Location::File, "the file is empty"));
+    }
+    for (name, count) in ply_header_counts(bytes) {
+        if (name == "vertex" || name == "face") && count > MAX_MESH_TRIANGLES {
+            return Err(too_large(
+                path,
+                Location::File,
+                count,
+                &format!("`{name}` elements in the header"),
+            ));
+        }
     }
     let parser = Parser::<DefaultElement>::new();
     let mut source = bytes;
@@ -369,6 +436,14 @@ fn check_binary_stl_length(bytes: &[u8], path: &Path) -> Result<()> {
             ),
         ));
     }
+    if count > MAX_MESH_TRIANGLES {
+        return Err(too_large(
+            path,
+            Location::File,
+            count,
+            "triangles in the binary STL header",
+        ));
+    }
     Ok(())
 }
 
@@ -412,6 +487,9 @@ pub fn parse_stl(bytes: &[u8], path: &Path) -> Result<TriMesh> {
             });
         }
         triangles.push(tri);
+        if triangles.len() > MAX_MESH_TRIANGLES {
+            return Err(too_large(path, at(), triangles.len(), "triangles"));
+        }
     }
     if triangles.is_empty() {
         return Err(Error::input(path, Location::File, "no triangles found"));
