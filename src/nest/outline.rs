@@ -161,7 +161,32 @@ struct Pass<'a> {
     shapes: RefCell<HashMap<usize, Option<Rc<Vec<Shape>>>>>,
 }
 
-impl Pass<'_> {
+impl<'a> Pass<'a> {
+    /// A pass over `kit` with empty caches, allowed `limit` collision
+    /// queries.
+    fn new(
+        kit: &'a Kit,
+        areas: &[f64],
+        margin: f64,
+        gap: f64,
+        rotations: &'a [u32],
+        limit: u64,
+    ) -> Self {
+        Pass {
+            kit,
+            margin,
+            gap,
+            rotations,
+            areas: areas.to_vec(),
+            queries: Cell::new(0),
+            limit,
+            hazards: RefCell::new(HashMap::new()),
+            shapes: RefCell::new(HashMap::new()),
+            bases: RefCell::new(HashMap::new()),
+            surrogates: RefCell::new(HashMap::new()),
+        }
+    }
+
     fn exhausted(&self) -> bool {
         self.queries.get() >= self.limit
     }
@@ -457,19 +482,7 @@ pub fn eliminate(
     gap: f64,
     rotations: &[u32],
 ) -> usize {
-    let pass = Pass {
-        kit,
-        margin,
-        gap,
-        rotations,
-        areas: areas.to_vec(),
-        queries: Cell::new(0),
-        limit: MAX_QUERIES,
-        hazards: RefCell::new(HashMap::new()),
-        shapes: RefCell::new(HashMap::new()),
-        bases: RefCell::new(HashMap::new()),
-        surrogates: RefCell::new(HashMap::new()),
-    };
+    let pass = Pass::new(kit, areas, margin, gap, rotations, MAX_QUERIES);
     let only_small = |s: &SheetNest| {
         s.placements
             .iter()
@@ -572,19 +585,7 @@ pub fn place_bands(
     if bands.is_empty() {
         return 0;
     }
-    let pass = Pass {
-        kit,
-        margin,
-        gap,
-        rotations,
-        areas: areas.to_vec(),
-        queries: Cell::new(0),
-        limit: MAX_BAND_QUERIES,
-        hazards: RefCell::new(HashMap::new()),
-        shapes: RefCell::new(HashMap::new()),
-        bases: RefCell::new(HashMap::new()),
-        surrogates: RefCell::new(HashMap::new()),
-    };
+    let pass = Pass::new(kit, areas, margin, gap, rotations, MAX_BAND_QUERIES);
     // Longest first (the outline's longer box side), ties by index.
     let len = |pl: &Placement| {
         let (x0, y0, x1, y1) = bounds(&kit.parts[pl.part].outline_part_mm);
