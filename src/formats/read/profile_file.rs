@@ -394,6 +394,7 @@ impl From<ProfileFile> for RawProfile {
         RawProfile {
             name: f.name,
             description: f.description,
+            source: std::path::PathBuf::new(),
             material: f.material.into(),
             section: f.lamella.into(),
             joint: f.joint.into(),
