@@ -409,6 +409,35 @@ impl From<ProfileFile> for RawProfile {
     }
 }
 
+/// `From` both ways between a file's enum and the model's enum of the same
+/// name and variants.
+macro_rules! same_variants {
+    ($name:ident { $($variant:ident),+ $(,)? }) => {
+        impl From<$name> for profile::$name {
+            fn from(v: $name) -> profile::$name {
+                match v {
+                    $($name::$variant => profile::$name::$variant,)+
+                }
+            }
+        }
+
+        impl From<profile::$name> for $name {
+            fn from(v: profile::$name) -> $name {
+                match v {
+                    $(profile::$name::$variant => $name::$variant,)+
+                }
+            }
+        }
+    };
+}
+
+same_variants!(Grain { None, AlongStrip });
+same_variants!(JointSystem {
+    Interlocking,
+    TwoLevel
+});
+same_variants!(StockKind { Sheet, Coil });
+
 impl From<Material> for profile::Material {
     fn from(m: Material) -> profile::Material {
         profile::Material {
@@ -420,15 +449,6 @@ impl From<Material> for profile::Material {
             modification_factor: m.modification_factor,
             density_kg_per_m3: m.density_kg_per_m3,
             grain: m.grain.into(),
-        }
-    }
-}
-
-impl From<Grain> for profile::Grain {
-    fn from(g: Grain) -> profile::Grain {
-        match g {
-            Grain::None => profile::Grain::None,
-            Grain::AlongStrip => profile::Grain::AlongStrip,
         }
     }
 }
@@ -452,15 +472,6 @@ impl From<Joint> for profile::Joint {
             slot_clearance_mm: j.slot_clearance_mm,
             rotation_tolerance_deg: j.rotation_tolerance_deg,
             level_offset_mm: j.level_offset_mm,
-        }
-    }
-}
-
-impl From<JointSystem> for profile::JointSystem {
-    fn from(s: JointSystem) -> profile::JointSystem {
-        match s {
-            JointSystem::Interlocking => profile::JointSystem::Interlocking,
-            JointSystem::TwoLevel => profile::JointSystem::TwoLevel,
         }
     }
 }
@@ -548,15 +559,6 @@ impl From<StockSize> for profile::StockSize {
     }
 }
 
-impl From<StockKind> for profile::StockKind {
-    fn from(k: StockKind) -> profile::StockKind {
-        match k {
-            StockKind::Sheet => profile::StockKind::Sheet,
-            StockKind::Coil => profile::StockKind::Coil,
-        }
-    }
-}
-
 impl From<Cutting> for profile::Cutting {
     fn from(c: Cutting) -> profile::Cutting {
         profile::Cutting {
@@ -608,15 +610,6 @@ impl From<&profile::Material> for Material {
     }
 }
 
-impl From<profile::Grain> for Grain {
-    fn from(g: profile::Grain) -> Grain {
-        match g {
-            profile::Grain::None => Grain::None,
-            profile::Grain::AlongStrip => Grain::AlongStrip,
-        }
-    }
-}
-
 impl From<&profile::Section> for Lamella {
     fn from(l: &profile::Section) -> Lamella {
         Lamella {
@@ -636,15 +629,6 @@ impl From<&profile::Joint> for Joint {
             slot_clearance_mm: j.slot_clearance_mm,
             rotation_tolerance_deg: j.rotation_tolerance_deg,
             level_offset_mm: j.level_offset_mm,
-        }
-    }
-}
-
-impl From<profile::JointSystem> for JointSystem {
-    fn from(s: profile::JointSystem) -> JointSystem {
-        match s {
-            profile::JointSystem::Interlocking => JointSystem::Interlocking,
-            profile::JointSystem::TwoLevel => JointSystem::TwoLevel,
         }
     }
 }
@@ -727,15 +711,6 @@ impl From<&profile::Stock> for Stock {
             }),
             price_per_m: s.price_per_m,
             length_step_mm: s.length_step_mm,
-        }
-    }
-}
-
-impl From<profile::StockKind> for StockKind {
-    fn from(k: profile::StockKind) -> StockKind {
-        match k {
-            profile::StockKind::Sheet => StockKind::Sheet,
-            profile::StockKind::Coil => StockKind::Coil,
         }
     }
 }
