@@ -143,11 +143,7 @@ impl Hermite5 {
         if t >= self.t[n - 1] {
             return (n - 2, 1.0);
         }
-        let k = self
-            .t
-            .partition_point(|&x| x <= t)
-            .saturating_sub(1)
-            .min(n - 2);
+        let k = segment_of(&self.t, t);
         let h = self.t[k + 1] - self.t[k];
         (k, ((t - self.t[k]) / h).clamp(0.0, 1.0))
     }
@@ -433,6 +429,15 @@ fn kernel_fit(
         sum_a2 += a * a;
     }
     (coef, sum_a2)
+}
+
+/// The piece of the ascending `knots` (at least two) that holds `x`: the
+/// last k with knots[k] ≤ x, at most the last piece.
+fn segment_of(knots: &[f64], x: f64) -> usize {
+    knots
+        .partition_point(|&k| k <= x)
+        .saturating_sub(1)
+        .min(knots.len() - 2)
 }
 
 type Small = [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
@@ -722,11 +727,7 @@ impl SmoothCurve {
         if station_mm >= self.s[n - 1] {
             return (n - 2, 1.0);
         }
-        let k = self
-            .s
-            .partition_point(|&x| x <= station_mm)
-            .saturating_sub(1)
-            .min(n - 2);
+        let k = segment_of(&self.s, station_mm);
         self.solve_in_segment(k, station_mm)
     }
 
