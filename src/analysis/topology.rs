@@ -710,6 +710,17 @@ mod tests {
         }
     }
 
+    /// A0: the straight curve from the origin to (1000, 0, 0) in `n` steps.
+    fn a0_along_x(n: usize) -> RawCurve {
+        line(
+            "A0",
+            Family::A,
+            DVec3::ZERO,
+            DVec3::new(1000.0, 0.0, 0.0),
+            n,
+        )
+    }
+
     /// The network of `curves` (tolerance 0.5 mm), its smooth curves and
     /// its topology.
     fn topology(curves: Vec<RawCurve>) -> (Network, Topology) {
@@ -737,13 +748,7 @@ mod tests {
         let lift = DVec3::new(0.0, 0.0, 0.2);
         let b0 = DVec3::new(300.0, 0.0, 0.0) - 400.0 * d + lift;
         let (_, t) = topology(vec![
-            line(
-                "A0",
-                Family::A,
-                DVec3::ZERO,
-                DVec3::new(1000.0, 0.0, 0.0),
-                20,
-            ),
+            a0_along_x(20),
             line("B0", Family::B, b0, b0 + 700.0 * d, 14),
         ]);
         assert_eq!(t.nodes.len(), 1);
@@ -775,13 +780,7 @@ mod tests {
         let d = DVec3::new(-0.5, 0.75f64.sqrt(), 0.0);
         let b0 = DVec3::new(500.0, 0.0, 0.0) - 300.0 * d;
         let (_, t) = topology(vec![
-            line(
-                "A0",
-                Family::A,
-                DVec3::ZERO,
-                DVec3::new(1000.0, 0.0, 0.0),
-                20,
-            ),
+            a0_along_x(20),
             line("B0", Family::B, b0, b0 + 600.0 * d, 12),
         ]);
         let n = &t.nodes[0];
@@ -813,13 +812,7 @@ mod tests {
             normals: None,
         };
         let (_, t) = topology(vec![
-            line(
-                "A0",
-                Family::A,
-                DVec3::ZERO,
-                DVec3::new(1000.0, 0.0, 0.0),
-                50,
-            ),
+            a0_along_x(50),
             weave,
             line(
                 "B1",
@@ -876,13 +869,7 @@ mod tests {
         let d = DVec3::new(5f64.to_radians().cos(), 5f64.to_radians().sin(), 0.0);
         let b0 = DVec3::new(500.0, 0.0, 0.0) - 300.0 * d;
         let (_, t) = topology(vec![
-            line(
-                "A0",
-                Family::A,
-                DVec3::ZERO,
-                DVec3::new(1000.0, 0.0, 0.0),
-                20,
-            ),
+            a0_along_x(20),
             line("B0", Family::B, b0, b0 + 600.0 * d, 30),
         ]);
         assert_eq!(t.nodes.len(), 1);

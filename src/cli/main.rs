@@ -34,11 +34,8 @@ enum Command {
     /// moved into place only when complete. Exit status 3 (nothing written)
     /// when a strip is overstressed, unless --allow-overstress.
     Build {
-        /// The network file (.yaml, .yml, .json, .obj, .dxf).
-        network: PathBuf,
-        /// The material profile (profiles/*.yaml).
-        #[arg(long)]
-        profile: PathBuf,
+        #[command(flatten)]
+        stage: StageArgs,
         /// Output directory. Created if missing; lamella's files from an
         /// earlier build are replaced, other files are left alone.
         #[arg(long)]
@@ -71,11 +68,8 @@ enum Command {
     /// joint turns past the profile's rotation tolerance or a strip is
     /// overstressed while flat; 1 for two-level grids (no flat state).
     Flat {
-        /// The network file (.yaml, .yml, .json, .obj, .dxf).
-        network: PathBuf,
-        /// The material profile (profiles/*.yaml).
-        #[arg(long)]
-        profile: PathBuf,
+        #[command(flatten)]
+        stage: StageArgs,
         /// Directory for plan.json and flat.svg (created if missing).
         #[arg(long)]
         out: PathBuf,
@@ -108,11 +102,8 @@ enum Command {
     /// the profile's design strength. Exit status 0 when every strip passes,
     /// 3 when any strip is overstressed.
     Check {
-        /// The network file (.yaml, .yml, .json, .obj, .dxf).
-        network: PathBuf,
-        /// The material profile (profiles/*.yaml).
-        #[arg(long)]
-        profile: PathBuf,
+        #[command(flatten)]
+        stage: StageArgs,
         /// Also write DIR/plan.json with the profile and per-strip, per-lamella results.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -131,11 +122,8 @@ enum Command {
     /// everything `parts` writes plus `sheets` and `nesting`, and print the
     /// sheets used against the lower bound.
     Nest {
-        /// The network file (.yaml, .yml, .json, .obj, .dxf).
-        network: PathBuf,
-        /// The material profile (profiles/*.yaml).
-        #[arg(long)]
-        profile: PathBuf,
+        #[command(flatten)]
+        stage: StageArgs,
         /// Directory for plan.json (created if missing).
         #[arg(long)]
         out: PathBuf,
@@ -155,11 +143,8 @@ enum Command {
     /// DIR/plan.json with everything `check` writes plus `parts`, and print
     /// a parts summary.
     Parts {
-        /// The network file (.yaml, .yml, .json, .obj, .dxf).
-        network: PathBuf,
-        /// The material profile (profiles/*.yaml).
-        #[arg(long)]
-        profile: PathBuf,
+        #[command(flatten)]
+        stage: StageArgs,
         /// Directory for plan.json (created if missing).
         #[arg(long)]
         out: PathBuf,
@@ -170,6 +155,16 @@ enum Command {
         #[command(flatten)]
         read: ReadArgs,
     },
+}
+
+/// The network file and the material profile a stage reads.
+#[derive(clap::Args, Clone)]
+struct StageArgs {
+    /// The network file (.yaml, .yml, .json, .obj, .dxf).
+    network: PathBuf,
+    /// The material profile (profiles/*.yaml).
+    #[arg(long)]
+    profile: PathBuf,
 }
 
 #[derive(clap::Args, Clone)]
@@ -249,11 +244,17 @@ fn inputs(
     }
 }
 
+impl StageArgs {
+    /// The session's inputs: this network and profile, read as `read` says.
+    fn inputs(self, read: &ReadArgs, slots_from_flat: bool) -> Inputs {
+        inputs(self.network, Some(self.profile), read, slots_from_flat)
+    }
+}
+
 fn run(cli: Cli) -> lamella::Result<ExitCode> {
     match cli.command {
         Command::Build {
-            network,
-            profile,
+            stage,
             out,
             kerf_compensation,
             allow_overstress,
@@ -269,7 +270,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             };
             let progress = report::progress(quiet);
             let r = pipeline::build::build(
-                inputs(network, Some(profile), &read, slots_from_flat),
+                stage.inputs(&read, slots_from_flat),
                 &out,
                 &opts,
                 &progress,
@@ -277,13 +278,8 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             progress.finish_and_clear();
             Ok(report::build(&r?, quiet))
         }
-        Command::Flat {
-            network,
-            profile,
-            out,
-            read,
-        } => Ok(report::flat(&commands::flat(
-            inputs(network, Some(profile), &read, false),
+        Command::Flat { stage, out, read } => Ok(report::flat(&commands::flat(
+            stage.inputs(&read, false),
             &out,
         )?)),
         Command::Nodes { network, out, read } => Ok(report::nodes(&commands::nodes(
@@ -292,40 +288,33 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
         )?)),
         Command::Trace { spec, out } => Ok(report::trace(&commands::trace(&spec, &out)?)),
         Command::Check {
-            network,
-            profile,
+            stage,
             out,
             suggest,
             top,
             read,
         } => Ok(report::check(
-            &commands::check(
-                inputs(network, Some(profile), &read, false),
-                out.as_deref(),
-                suggest,
-            )?,
+            &commands::check(stage.inputs(&read, false), out.as_deref(), suggest)?,
             top,
         )),
         Command::Parts {
-            network,
-            profile,
+            stage,
             out,
             slots_from_flat,
             read,
         } => Ok(report::parts(&commands::parts(
-            inputs(network, Some(profile), &read, slots_from_flat),
+            stage.inputs(&read, slots_from_flat),
             &out,
             &commands::PartsGoal::Parts,
         )?)),
         Command::Nest {
-            network,
-            profile,
+            stage,
             out,
             export_instance,
             slots_from_flat,
             read,
         } => Ok(report::parts(&commands::parts(
-            inputs(network, Some(profile), &read, slots_from_flat),
+            stage.inputs(&read, slots_from_flat),
             &out,
             &commands::PartsGoal::Nest {
                 instance: export_instance,

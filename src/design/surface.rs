@@ -238,6 +238,29 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     (x, w)
 }
 
+/// The real parts of a complex 3-vector.
+fn re(c: [C64; 3]) -> DVec3 {
+    DVec3::new(c[0].re, c[1].re, c[2].re)
+}
+
+/// The imaginary parts of a complex 3-vector.
+fn im(c: [C64; 3]) -> DVec3 {
+    DVec3::new(c[0].im, c[1].im, c[2].im)
+}
+
+/// The jet at `p` of the Weierstrass–Enneper surface with φ = `phi` and
+/// φ' = `dphi` there: X_u = Re φ, X_v = −Im φ and their derivatives.
+fn jet(p: DVec3, phi: [C64; 3], dphi: [C64; 3]) -> SurfaceJet {
+    SurfaceJet {
+        p,
+        pu: re(phi),
+        pv: -im(phi),
+        puu: re(dphi),
+        puv: -im(dphi),
+        pvv: -re(dphi),
+    }
+}
+
 fn gl24() -> &'static (Vec<f64>, Vec<f64>) {
     static GL: std::sync::OnceLock<(Vec<f64>, Vec<f64>)> = std::sync::OnceLock::new();
     GL.get_or_init(|| gauss_legendre(24))
@@ -246,16 +269,7 @@ fn gl24() -> &'static (Vec<f64>, Vec<f64>) {
 impl Surface for SchwarzD {
     fn derivatives(&self, q: DVec2) -> SurfaceJet {
         let (phi, dphi) = SchwarzD::phi(C64::new(q.x, q.y));
-        let re = |c: [C64; 3]| DVec3::new(c[0].re, c[1].re, c[2].re);
-        let im = |c: [C64; 3]| DVec3::new(c[0].im, c[1].im, c[2].im);
-        SurfaceJet {
-            p: DVec3::ZERO,
-            pu: re(phi),
-            pv: -im(phi),
-            puu: re(dphi),
-            puv: -im(dphi),
-            pvv: -re(dphi),
-        }
+        jet(DVec3::ZERO, phi, dphi)
     }
     fn eval(&self, q: DVec2) -> SurfaceJet {
         let z = C64::new(q.x, q.y);
@@ -285,16 +299,7 @@ impl Surface for SchwarzD {
         }
         let integral = [z.mul(acc[0]), z.mul(acc[1]), z.mul(acc[2])];
         let (phi, dphi) = SchwarzD::phi(z);
-        let re = |c: [C64; 3]| DVec3::new(c[0].re, c[1].re, c[2].re);
-        let im = |c: [C64; 3]| DVec3::new(c[0].im, c[1].im, c[2].im);
-        SurfaceJet {
-            p: re(integral),
-            pu: re(phi),
-            pv: -im(phi),
-            puu: re(dphi),
-            puv: -im(dphi),
-            pvv: -re(dphi),
-        }
+        jet(re(integral), phi, dphi)
     }
     fn in_domain(&self, q: DVec2) -> bool {
         q.length() < SCHWARZ_D_RADIUS

@@ -89,6 +89,17 @@ fn cannot_keep(iv: Interval, spacing_mm: f64, block_mm: f64) -> String {
 mod tests {
     use super::*;
 
+    /// The interval from 0 to `end_mm` with block centres allowed in
+    /// `free_lo_mm..=free_hi_mm`.
+    fn from_zero(end_mm: f64, free_lo_mm: f64, free_hi_mm: f64) -> Interval {
+        Interval {
+            start_mm: 0.0,
+            end_mm,
+            free_lo_mm,
+            free_hi_mm,
+        }
+    }
+
     #[test]
     fn slenderness_caps_the_spacing() {
         // 1.5 mm steel, λ = 700: 700 · 1.5/√12 = 303.1 mm, so the profile's
@@ -99,12 +110,7 @@ mod tests {
 
     #[test]
     fn blocks_are_even_within_both_limits() {
-        let iv = Interval {
-            start_mm: 0.0,
-            end_mm: 1000.0,
-            free_lo_mm: 60.0,
-            free_hi_mm: 940.0,
-        };
+        let iv = from_zero(1000.0, 60.0, 940.0);
         let c = place(iv, 300.0, 30.0, 30.0).unwrap();
         assert_eq!(c.len(), 3);
         for (k, x) in c.iter().enumerate() {
@@ -122,12 +128,7 @@ mod tests {
     fn blocks_move_off_the_node_zones_and_add_up() {
         // Zones reach 200 mm into a 600 mm interval on one side: the even
         // position (300) is free, but 2 blocks' 200/400 would not be.
-        let iv = Interval {
-            start_mm: 0.0,
-            end_mm: 600.0,
-            free_lo_mm: 250.0,
-            free_hi_mm: 560.0,
-        };
+        let iv = from_zero(600.0, 250.0, 560.0);
         let c = place(iv, 300.0, 30.0, 30.0).unwrap();
         let mut s = vec![0.0];
         s.extend(&c);
@@ -138,20 +139,10 @@ mod tests {
 
     #[test]
     fn no_room_is_an_error() {
-        let iv = Interval {
-            start_mm: 0.0,
-            end_mm: 700.0,
-            free_lo_mm: 400.0,
-            free_hi_mm: 300.0,
-        };
+        let iv = from_zero(700.0, 400.0, 300.0);
         assert!(place(iv, 300.0, 30.0, 30.0).is_err());
         // Room for blocks, but not where the spacing needs them.
-        let far = Interval {
-            start_mm: 0.0,
-            end_mm: 700.0,
-            free_lo_mm: 500.0,
-            free_hi_mm: 520.0,
-        };
+        let far = from_zero(700.0, 500.0, 520.0);
         assert!(place(far, 300.0, 30.0, 30.0).is_err());
     }
 

@@ -263,22 +263,6 @@ pub fn place_label(
         .map(|l| l.strokes_part_mm)
 }
 
-/// Places the orientation mark ([`font::orientation_mark_strokes`]) by the rules
-/// of [`place_label`], its whole height from `max_height_mm` down to
-/// `min_height_mm`. The stroke, or `None` when nothing fits.
-pub fn orientation_mark(
-    part_outline: &[Point],
-    holes: &[Vec<Point>],
-    anchor: Point,
-    max_height_mm: f64,
-    min_height_mm: f64,
-    clearance_mm: f64,
-) -> Option<Vec<Vec<Point>>> {
-    Placer::new(part_outline, holes, clearance_mm)
-        .orientation_mark(anchor, &LabelSize::new(max_height_mm, min_height_mm))
-        .map(|l| l.strokes_part_mm)
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::invariants::{check_part, strokes_inside_and_clear};
@@ -522,13 +506,14 @@ mod tests {
     #[test]
     fn orientation_mark_is_placed_clear() {
         let (outline, holes) = lamella();
-        let placed = orientation_mark(&outline, &holes, p(100.0, 12.0), 12.0, 4.0, CLEARANCE)
-            .expect("fits under the notch or beside it");
+        let mark = |anchor: Point, max_height_mm: f64, min_height_mm: f64| {
+            Placer::new(&outline, &holes, CLEARANCE)
+                .orientation_mark(anchor, &LabelSize::new(max_height_mm, min_height_mm))
+                .map(|l| l.strokes_part_mm)
+        };
+        let placed = mark(p(100.0, 12.0), 12.0, 4.0).expect("fits under the notch or beside it");
         check(placed.clone());
-        assert_eq!(
-            orientation_mark(&outline, &holes, p(100.0, 25.0), 80.0, 60.0, CLEARANCE),
-            None
-        );
+        assert_eq!(mark(p(100.0, 25.0), 80.0, 60.0), None);
         // With a label: both fit, apart.
         let mut placer = Placer::new(&outline, &holes, CLEARANCE);
         let size = LabelSize::new(8.0, 3.0);

@@ -950,7 +950,7 @@ mod tests {
         Cutting, Grain, Joint, Material, RawProfile, RawStock, Section, Splice, StockKind,
     };
     use glam::DVec3;
-    use std::path::Path;
+    use std::path::{Path, PathBuf};
 
     /// A straight A strip along x from the origin, 1000 mm, crossed at
     /// x = 300 and x = 700 by straight B strips along y from y = −100 to
@@ -1006,6 +1006,7 @@ mod tests {
         Profile::new(RawProfile {
             name: "steel".into(),
             description: String::new(),
+            source: PathBuf::new(),
             material: Material {
                 name: "S355".into(),
                 youngs_modulus_mpa: 210_000.0,

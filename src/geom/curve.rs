@@ -143,11 +143,7 @@ impl Hermite5 {
         if t >= self.t[n - 1] {
             return (n - 2, 1.0);
         }
-        let k = self
-            .t
-            .partition_point(|&x| x <= t)
-            .saturating_sub(1)
-            .min(n - 2);
+        let k = segment_of(&self.t, t);
         let h = self.t[k + 1] - self.t[k];
         (k, ((t - self.t[k]) / h).clamp(0.0, 1.0))
     }
@@ -404,25 +400,7 @@ fn kernel_fit(
         let q = 1.0 - r * r;
         q * q
     };
-    let mut sums = [0.0f64; 2 * MAX_DEGREE + 1];
-    let mut rhs = [DVec3::ZERO; MAX_DEGREE + 1];
-    for (tj, vj) in t.iter().zip(v) {
-        let (tau, w) = ((tj - t0) / scale, weight(*tj));
-        let mut pw = w;
-        for (q, s) in sums.iter_mut().enumerate().take(2 * deg + 1) {
-            if q <= deg {
-                rhs[q] += *vj * pw;
-            }
-            *s += pw;
-            pw *= tau;
-        }
-    }
-    let mut m = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    for (r, row) in m.iter_mut().enumerate().take(k) {
-        for (c, cell) in row.iter_mut().enumerate().take(k) {
-            *cell = sums[r + c];
-        }
-    }
+    let (m, rhs) = normal_equations(t, v, t0, scale, deg, weight);
     // M is symmetric positive definite: factor once (Cholesky, M = LLᵀ),
     // solve for the three coordinates and for row 2 of M⁻¹.
     let Some(l) = cholesky(&m, k) else {
@@ -453,7 +431,51 @@ fn kernel_fit(
     (coef, sum_a2)
 }
 
+/// The piece of the ascending `knots` (at least two) that holds `x`: the
+/// last k with knots[k] ≤ x, at most the last piece.
+fn segment_of(knots: &[f64], x: f64) -> usize {
+    knots
+        .partition_point(|&k| k <= x)
+        .saturating_sub(1)
+        .min(knots.len() - 2)
+}
+
 type Small = [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+
+/// The normal equations of the least-squares polynomial of degree `deg`
+/// through (t, v) in τ = (t − t0)/scale, each point weighted by
+/// `weight(t)`: the (Hankel) matrix of weighted power sums and the
+/// right-hand sides.
+fn normal_equations(
+    t: &[f64],
+    v: &[DVec3],
+    t0: f64,
+    scale: f64,
+    deg: usize,
+    weight: impl Fn(f64) -> f64,
+) -> (Small, [DVec3; MAX_DEGREE + 1]) {
+    let k = deg + 1;
+    let mut sums = [0.0f64; 2 * MAX_DEGREE + 1];
+    let mut rhs = [DVec3::ZERO; MAX_DEGREE + 1];
+    for (tj, vj) in t.iter().zip(v) {
+        let (tau, w) = ((tj - t0) / scale, weight(*tj));
+        let mut pw = w;
+        for (q, s) in sums.iter_mut().enumerate().take(2 * deg + 1) {
+            if q <= deg {
+                rhs[q] += *vj * pw;
+            }
+            *s += pw;
+            pw *= tau;
+        }
+    }
+    let mut m = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    for (r, row) in m.iter_mut().enumerate().take(k) {
+        for (c, cell) in row.iter_mut().enumerate().take(k) {
+            *cell = sums[r + c];
+        }
+    }
+    (m, rhs)
+}
 
 /// Cholesky factor L (lower) of the leading k×k block of a symmetric
 /// positive definite matrix; None if it is not (numerically) definite.
@@ -529,26 +551,7 @@ fn cholesky_solve3(l: &Small, b: &[DVec3; MAX_DEGREE + 1], k: usize) -> [DVec3; 
 /// returns the coefficients of τ^0..τ^deg (unused ones zero).
 fn poly_fit(t: &[f64], v: &[DVec3], t0: f64, scale: f64, deg: usize) -> [DVec3; MAX_DEGREE + 1] {
     let k = deg + 1;
-    // Power sums for the (Hankel) normal matrix and the right-hand sides.
-    let mut sums = [0.0f64; 2 * MAX_DEGREE + 1];
-    let mut rhs = [DVec3::ZERO; MAX_DEGREE + 1];
-    for (tj, vj) in t.iter().zip(v) {
-        let tau = (tj - t0) / scale;
-        let mut pw = 1.0;
-        for (q, s) in sums.iter_mut().enumerate().take(2 * deg + 1) {
-            if q <= deg {
-                rhs[q] += *vj * pw;
-            }
-            *s += pw;
-            pw *= tau;
-        }
-    }
-    let mut m = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    for (r, row) in m.iter_mut().enumerate().take(k) {
-        for (c, cell) in row.iter_mut().enumerate().take(k) {
-            *cell = sums[r + c];
-        }
-    }
+    let (mut m, mut rhs) = normal_equations(t, v, t0, scale, deg, |_| 1.0);
     // Gaussian elimination with partial pivoting.
     for col in 0..k {
         let piv = (col..k)
@@ -724,11 +727,7 @@ impl SmoothCurve {
         if station_mm >= self.s[n - 1] {
             return (n - 2, 1.0);
         }
-        let k = self
-            .s
-            .partition_point(|&x| x <= station_mm)
-            .saturating_sub(1)
-            .min(n - 2);
+        let k = segment_of(&self.s, station_mm);
         self.solve_in_segment(k, station_mm)
     }
 

@@ -76,8 +76,15 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
     // of small parts emptied into the others.
     let finish = |sheets: &mut Vec<SheetNest>| {
         sheets.retain(|s| !s.placements.is_empty());
-        outline::place_bands(kit, &ctx.areas, sheets, ctx.margin, ctx.gap, &ctx.rotations);
-        outline::eliminate(kit, &ctx.areas, sheets, ctx.margin, ctx.gap, &ctx.rotations);
+        let setting = outline::Setting {
+            kit,
+            areas_mm2: &ctx.areas,
+            margin_mm: ctx.margin,
+            gap_mm: ctx.gap,
+            rotations_deg: &ctx.rotations,
+        };
+        outline::place_bands(setting, sheets);
+        outline::eliminate(setting, sheets);
     };
     let (mut sheets, lanes_used) = if coil && st.sizes[0].length_mm.is_none() {
         ctx.coil()?

@@ -138,6 +138,21 @@ struct Board {
     free: f64,
 }
 
+/// What both outline passes work in.
+#[derive(Clone, Copy)]
+pub struct Setting<'a> {
+    /// The parts.
+    pub kit: &'a Kit,
+    /// Every part's net area by index (`fabricate::net_area_mm2`), mm².
+    pub areas_mm2: &'a [f64],
+    /// Edge margin all round a sheet, mm.
+    pub margin_mm: f64,
+    /// Kerf + part spacing between parts, mm.
+    pub gap_mm: f64,
+    /// The allowed rotations, degrees.
+    pub rotations_deg: &'a [u32],
+}
+
 /// The pass's settings.
 struct Pass<'a> {
     kit: &'a Kit,
@@ -161,7 +176,25 @@ struct Pass<'a> {
     shapes: RefCell<HashMap<usize, Option<Rc<Vec<Shape>>>>>,
 }
 
-impl Pass<'_> {
+impl<'a> Pass<'a> {
+    /// A pass in `setting` with empty caches, allowed `limit` collision
+    /// queries.
+    fn new(setting: Setting<'a>, limit: u64) -> Self {
+        Pass {
+            kit: setting.kit,
+            margin: setting.margin_mm,
+            gap: setting.gap_mm,
+            rotations: setting.rotations_deg,
+            areas: setting.areas_mm2.to_vec(),
+            queries: Cell::new(0),
+            limit,
+            hazards: RefCell::new(HashMap::new()),
+            shapes: RefCell::new(HashMap::new()),
+            bases: RefCell::new(HashMap::new()),
+            surrogates: RefCell::new(HashMap::new()),
+        }
+    }
+
     fn exhausted(&self) -> bool {
         self.queries.get() >= self.limit
     }
@@ -448,28 +481,9 @@ struct Shape {
 /// The sheet-elimination pass: sheets of non-lamella parts, fewest-filled
 /// first, emptied into the free space of the others by true outline where
 /// every part finds a place; returns how many sheets were dropped.
-/// `areas`: every part's net area by index (`fabricate::net_area_mm2`).
-pub fn eliminate(
-    kit: &Kit,
-    areas: &[f64],
-    sheets: &mut Vec<SheetNest>,
-    margin: f64,
-    gap: f64,
-    rotations: &[u32],
-) -> usize {
-    let pass = Pass {
-        kit,
-        margin,
-        gap,
-        rotations,
-        areas: areas.to_vec(),
-        queries: Cell::new(0),
-        limit: MAX_QUERIES,
-        hazards: RefCell::new(HashMap::new()),
-        shapes: RefCell::new(HashMap::new()),
-        bases: RefCell::new(HashMap::new()),
-        surrogates: RefCell::new(HashMap::new()),
-    };
+pub fn eliminate(setting: Setting, sheets: &mut Vec<SheetNest>) -> usize {
+    let kit = setting.kit;
+    let pass = Pass::new(setting, MAX_QUERIES);
     let only_small = |s: &SheetNest| {
         s.placements
             .iter()
@@ -548,15 +562,12 @@ fn put_on(
 /// stay as they were. Past
 /// [`MAX_BAND_QUERIES`] each band left goes alone onto a sheet left empty,
 /// in its lower-left corner. Returns how many sheets were dropped.
-/// `areas`: every part's net area by index (`fabricate::net_area_mm2`).
-pub fn place_bands(
-    kit: &Kit,
-    areas: &[f64],
-    sheets: &mut Vec<SheetNest>,
-    margin: f64,
-    gap: f64,
-    rotations: &[u32],
-) -> usize {
+pub fn place_bands(setting: Setting, sheets: &mut Vec<SheetNest>) -> usize {
+    let Setting {
+        kit,
+        margin_mm: margin,
+        ..
+    } = setting;
     let is_band = |pl: &Placement| kit.parts[pl.part].kind == PartKind::EdgeStrip;
     // Each band with the sheet it was on.
     let mut bands: Vec<(usize, Placement)> = sheets
@@ -572,19 +583,7 @@ pub fn place_bands(
     if bands.is_empty() {
         return 0;
     }
-    let pass = Pass {
-        kit,
-        margin,
-        gap,
-        rotations,
-        areas: areas.to_vec(),
-        queries: Cell::new(0),
-        limit: MAX_BAND_QUERIES,
-        hazards: RefCell::new(HashMap::new()),
-        shapes: RefCell::new(HashMap::new()),
-        bases: RefCell::new(HashMap::new()),
-        surrogates: RefCell::new(HashMap::new()),
-    };
+    let pass = Pass::new(setting, MAX_BAND_QUERIES);
     // Longest first (the outline's longer box side), ties by index.
     let len = |pl: &Placement| {
         let (x0, y0, x1, y1) = bounds(&kit.parts[pl.part].outline_part_mm);

@@ -17,13 +17,19 @@ use std::path::PathBuf;
 
 /// A validated material profile: the working type every stage reads, built
 /// from a [`RawProfile`] by [`Profile::new`].
+pub type Profile = ProfileOf<Stock>;
+
+/// The sections of a material profile, with the stock as `S`: [`Stock`]
+/// in the working [`Profile`], [`RawStock`] (as written) in a
+/// [`RawProfile`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Profile {
+pub struct ProfileOf<S> {
     /// The profile's name.
     pub name: String,
     /// Free text from the file (may be empty).
     pub description: String,
-    /// The file it was read from (empty when built in memory).
+    /// The file it was read from (empty when built in memory, and until
+    /// the reader sets it).
     pub source: PathBuf,
     /// Elastic and strength values.
     pub material: Material,
@@ -42,7 +48,7 @@ pub struct Profile {
     /// Splice plates for strips longer than the stock, if any.
     pub splice: Option<Splice>,
     /// What parts are cut from.
-    pub stock: Stock,
+    pub stock: S,
     /// Cutting allowances and allowed rotations (quarter turns).
     pub cutting: Cutting,
 }
@@ -50,33 +56,7 @@ pub struct Profile {
 /// A profile as a reader found it, before any check: every section as
 /// given, the stock in whichever form it was written ([`RawStock`]).
 /// [`Profile::new`] checks it and builds the working profile.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RawProfile {
-    /// The profile's name.
-    pub name: String,
-    /// Free text (may be empty).
-    pub description: String,
-    /// Elastic and strength values.
-    pub material: Material,
-    /// The lamella section and lamellas per strip.
-    pub section: Section,
-    /// How strips meet at the nodes.
-    pub joint: Joint,
-    /// The bolt through every node, if any.
-    pub node_bolt: Option<Bolt>,
-    /// Star washers at the nodes, if any.
-    pub washer: Option<Washer>,
-    /// Shear blocks of a doubled strip, if any.
-    pub shear_block: Option<ShearBlock>,
-    /// Studs of a two-level joint, if any.
-    pub stud: Option<Stud>,
-    /// Splice plates, if any.
-    pub splice: Option<Splice>,
-    /// The stock, as written.
-    pub stock: RawStock,
-    /// Cutting allowances and allowed rotations.
-    pub cutting: Cutting,
-}
+pub type RawProfile = ProfileOf<RawStock>;
 
 /// The material's elastic and strength values.
 #[derive(Debug, Clone, PartialEq)]
@@ -442,13 +422,13 @@ impl LamellaOffset {
 
 impl Profile {
     /// Check a raw profile ([`validate::profile`]) and build the working
-    /// profile (`source` empty: the reader sets it).
+    /// profile (`source` as the raw one's: the reader sets it).
     pub fn new(raw: RawProfile) -> Result<Profile, FieldError> {
         validate::profile(&raw)?;
         Ok(Profile {
             name: raw.name,
             description: raw.description,
-            source: PathBuf::new(),
+            source: raw.source,
             material: raw.material,
             section: raw.section,
             joint: raw.joint,

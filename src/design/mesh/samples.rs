@@ -24,6 +24,18 @@ impl Rng {
     }
 }
 
+/// The quad `a b c d` (in order round it) as two triangles, split along
+/// the diagonal `rng` picks.
+fn split_quad(tris: &mut Vec<[u32; 3]>, [a, b, c, d]: [u32; 4], rng: &mut Rng) {
+    if rng.unit() < 0.5 {
+        tris.push([a, b, c]);
+        tris.push([a, c, d]);
+    } else {
+        tris.push([a, b, d]);
+        tris.push([b, c, d]);
+    }
+}
+
 /// Round to 0.001 mm, as exported coordinates are.
 pub fn round_mm(p: DVec3) -> DVec3 {
     (p * 1000.0).round() / 1000.0
@@ -63,13 +75,7 @@ pub fn grid(
     for j in 0..nv {
         for i in 0..nu {
             let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-            if rng.unit() < 0.5 {
-                tris.push([a, b, c]);
-                tris.push([a, c, d]);
-            } else {
-                tris.push([a, b, d]);
-                tris.push([b, c, d]);
-            }
+            split_quad(&mut tris, [a, b, c, d], &mut rng);
         }
     }
     (uv, tris)
@@ -132,13 +138,7 @@ pub fn polar(
                 ring(i + 1, k + 1),
                 ring(i, k + 1),
             );
-            if rng.unit() < 0.5 {
-                tris.push([a, b, c]);
-                tris.push([a, c, d]);
-            } else {
-                tris.push([a, b, d]);
-                tris.push([b, c, d]);
-            }
+            split_quad(&mut tris, [a, b, c, d], &mut rng);
         }
     }
     let positions = rt

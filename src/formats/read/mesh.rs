@@ -21,6 +21,7 @@
 //! Non-finite coordinates are refused here, where the file position is
 //! known; the mesh's topology is checked by [`crate::design::mesh::topology`].
 
+use super::obj::{vertex, vertex_index};
 use crate::error::{Error, Location, Result};
 use crate::geom::mesh::TriMesh;
 use glam::DVec3;
@@ -122,41 +123,13 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<TriMesh> {
         let Some(tag) = words.next() else { continue };
         match tag {
             "v" => {
-                let mut xyz = [0.0f64; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let w = words.next().ok_or_else(|| {
-                        Error::input(path, at(first_line), "vertex needs x, y and z")
-                    })?;
-                    let x = w.parse::<f64>().map_err(|_| {
-                        Error::input(
-                            path,
-                            at(first_line),
-                            format!("vertex coordinate {} '{w}' is not a number", k + 1),
-                        )
-                    })?;
-                    if !x.is_finite() {
-                        return Err(Error::input(
-                            path,
-                            at(first_line),
-                            format!("vertex coordinate {} '{w}' is not finite", k + 1),
-                        ));
-                    }
-                    *slot = x;
-                }
-                positions.push(DVec3::from_array(xyz));
+                positions.push(vertex(&mut words, path, first_line, true)?);
             }
             "f" => {
                 let n = positions.len() as i64;
                 let mut idx = Vec::new();
                 for w in words {
-                    let v = w.split('/').next().unwrap_or(w);
-                    let k: i64 = v.parse().map_err(|_| {
-                        Error::input(
-                            path,
-                            at(first_line),
-                            format!("vertex index '{w}' is not an integer"),
-                        )
-                    })?;
+                    let k = vertex_index(w, path, first_line)?;
                     let resolved = match k {
                         0 => {
                             return Err(Error::input(

@@ -127,26 +127,10 @@ pub fn to_yaml(net: &RawNetwork, decimals: usize, meta_comment: &str) -> String 
         let _ = writeln!(out, "  - id: {}", yaml_str(&c.id));
         let _ = writeln!(out, "    family: {}", c.family.as_str());
         out.push_str("    points:\n");
-        for p in &c.points {
-            let _ = writeln!(
-                out,
-                "      - [{}, {}, {}]",
-                fmt_num(p.x, decimals),
-                fmt_num(p.y, decimals),
-                fmt_num(p.z, decimals)
-            );
-        }
+        write_yaml_triples(&mut out, &c.points, decimals);
         if let Some(ns) = &c.normals {
             out.push_str("    normals:\n");
-            for n in ns {
-                let _ = writeln!(
-                    out,
-                    "      - [{}, {}, {}]",
-                    fmt_num(n.x, 7),
-                    fmt_num(n.y, 7),
-                    fmt_num(n.z, 7)
-                );
-            }
+            write_yaml_triples(&mut out, ns, 7);
         }
     }
     out
@@ -188,18 +172,27 @@ pub fn to_json(net: &RawNetwork, decimals: usize) -> String {
     out
 }
 
+/// The coordinates of `p` by [`fmt_num`].
+fn fmt_xyz(p: DVec3, decimals: usize) -> [String; 3] {
+    p.to_array().map(|x| fmt_num(x, decimals))
+}
+
+/// Each of `v` as a YAML list item `      - [x, y, z]` on its own line.
+fn write_yaml_triples(out: &mut String, v: &[DVec3], decimals: usize) {
+    for &p in v {
+        let [x, y, z] = fmt_xyz(p, decimals);
+        let _ = writeln!(out, "      - [{x}, {y}, {z}]");
+    }
+}
+
+/// `v` as JSON arrays `[x,y,z]`, comma-separated.
 fn write_triples(out: &mut String, v: &[DVec3], decimals: usize) {
-    for (k, p) in v.iter().enumerate() {
+    for (k, &p) in v.iter().enumerate() {
         if k > 0 {
             out.push(',');
         }
-        let _ = write!(
-            out,
-            "[{},{},{}]",
-            fmt_num(p.x, decimals),
-            fmt_num(p.y, decimals),
-            fmt_num(p.z, decimals)
-        );
+        let [x, y, z] = fmt_xyz(p, decimals);
+        let _ = write!(out, "[{x},{y},{z}]");
     }
 }
 

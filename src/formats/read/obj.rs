@@ -6,6 +6,52 @@ use crate::network::{Family, RawCurve, RawNetwork, Unit};
 use glam::DVec3;
 use std::path::Path;
 
+/// The x, y and z of a `v` element from the words after its tag (`line`:
+/// where it starts, for errors); `refuse_non_finite`: a coordinate that
+/// is infinite or not a number is an error too.
+pub(crate) fn vertex<'a>(
+    words: &mut impl Iterator<Item = &'a str>,
+    path: &Path,
+    line: usize,
+    refuse_non_finite: bool,
+) -> Result<DVec3> {
+    let mut xyz = [0.0f64; 3];
+    for (k, slot) in xyz.iter_mut().enumerate() {
+        let w = words
+            .next()
+            .ok_or_else(|| Error::input(path, Location::Line(line), "vertex needs x, y and z"))?;
+        let x = w.parse::<f64>().map_err(|_| {
+            Error::input(
+                path,
+                Location::Line(line),
+                format!("vertex coordinate {} '{w}' is not a number", k + 1),
+            )
+        })?;
+        if refuse_non_finite && !x.is_finite() {
+            return Err(Error::input(
+                path,
+                Location::Line(line),
+                format!("vertex coordinate {} '{w}' is not finite", k + 1),
+            ));
+        }
+        *slot = x;
+    }
+    Ok(DVec3::from_array(xyz))
+}
+
+/// The vertex index of one word of an `f` or `l` element (`7`, `7/2`,
+/// `7//3`, `-1`), as written: 1-based or, below 0, counted back.
+pub(crate) fn vertex_index(w: &str, path: &Path, line: usize) -> Result<i64> {
+    let v = w.split('/').next().unwrap_or(w);
+    v.parse().map_err(|_| {
+        Error::input(
+            path,
+            Location::Line(line),
+            format!("vertex index '{w}' is not an integer"),
+        )
+    })
+}
+
 /// Parse OBJ text. OBJ carries no unit: the caller says which (`unit`).
 pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -38,20 +84,7 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
         let Some(tag) = words.next() else { continue };
         match tag {
             "v" => {
-                let mut xyz = [0.0f64; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let w = words.next().ok_or_else(|| {
-                        Error::input(path, Location::Line(line_no), "vertex needs x, y and z")
-                    })?;
-                    *slot = w.parse::<f64>().map_err(|_| {
-                        Error::input(
-                            path,
-                            Location::Line(line_no),
-                            format!("vertex coordinate {} '{w}' is not a number", k + 1),
-                        )
-                    })?;
-                }
-                vertices.push(DVec3::from_array(xyz));
+                vertices.push(vertex(&mut words, path, line_no, false)?);
                 vertices_since_name += 1;
             }
             "o" | "g" => {
@@ -78,14 +111,7 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
                 lines_since_name += 1;
                 let mut idx = Vec::new();
                 for w in words {
-                    let v = w.split('/').next().unwrap_or(w);
-                    let k: i64 = v.parse().map_err(|_| {
-                        Error::input(
-                            path,
-                            Location::Line(line_no),
-                            format!("vertex index '{w}' is not an integer"),
-                        )
-                    })?;
+                    let k = vertex_index(w, path, line_no)?;
                     let n = vertices.len() as i64;
                     let resolved = if k > 0 {
                         k - 1

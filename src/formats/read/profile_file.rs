@@ -394,6 +394,7 @@ impl From<ProfileFile> for RawProfile {
         RawProfile {
             name: f.name,
             description: f.description,
+            source: std::path::PathBuf::new(),
             material: f.material.into(),
             section: f.lamella.into(),
             joint: f.joint.into(),
@@ -408,114 +409,133 @@ impl From<ProfileFile> for RawProfile {
     }
 }
 
-impl From<Material> for profile::Material {
-    fn from(m: Material) -> profile::Material {
-        profile::Material {
-            name: m.name,
-            youngs_modulus_mpa: m.youngs_modulus_mpa,
-            shear_modulus_mpa: m.shear_modulus_mpa,
-            characteristic_strength_mpa: m.characteristic_strength_mpa,
-            partial_factor: m.partial_factor,
-            modification_factor: m.modification_factor,
-            density_kg_per_m3: m.density_kg_per_m3,
-            grain: m.grain.into(),
+/// `From` both ways between a file's enum and the model's enum of the same
+/// name and variants.
+macro_rules! same_variants {
+    ($name:ident { $($variant:ident),+ $(,)? }) => {
+        impl From<$name> for profile::$name {
+            fn from(v: $name) -> profile::$name {
+                match v {
+                    $($name::$variant => profile::$name::$variant,)+
+                }
+            }
         }
-    }
+
+        impl From<profile::$name> for $name {
+            fn from(v: profile::$name) -> $name {
+                match v {
+                    $(profile::$name::$variant => $name::$variant,)+
+                }
+            }
+        }
+    };
 }
 
-impl From<Grain> for profile::Grain {
-    fn from(g: Grain) -> profile::Grain {
-        match g {
-            Grain::None => profile::Grain::None,
-            Grain::AlongStrip => profile::Grain::AlongStrip,
+same_variants!(Grain { None, AlongStrip });
+same_variants!(JointSystem {
+    Interlocking,
+    TwoLevel
+});
+same_variants!(StockKind { Sheet, Coil });
+
+/// `From` both ways between a file's section and the model's of the same
+/// fields: by value into the model, by reference back (each field cloned);
+/// an enum field converts by [`same_variants`].
+macro_rules! same_fields {
+    ($file:ident = $model:ident { $($field:ident),+ $(,)? }) => {
+        impl From<$file> for profile::$model {
+            fn from(v: $file) -> profile::$model {
+                profile::$model {
+                    $($field: v.$field.into(),)+
+                }
+            }
         }
-    }
+
+        impl From<&profile::$model> for $file {
+            fn from(v: &profile::$model) -> $file {
+                $file {
+                    $($field: v.$field.clone().into(),)+
+                }
+            }
+        }
+    };
 }
 
-impl From<Lamella> for profile::Section {
-    fn from(l: Lamella) -> profile::Section {
-        profile::Section {
-            thickness_mm: l.thickness_mm,
-            height_mm: l.height_mm,
-            per_strip: l.per_strip,
-            gap_mm: l.gap_mm,
-            end_allowance_mm: l.end_allowance_mm,
-        }
+same_fields!(
+    Material = Material {
+        name,
+        youngs_modulus_mpa,
+        shear_modulus_mpa,
+        characteristic_strength_mpa,
+        partial_factor,
+        modification_factor,
+        density_kg_per_m3,
+        grain
     }
-}
-
-impl From<Joint> for profile::Joint {
-    fn from(j: Joint) -> profile::Joint {
-        profile::Joint {
-            system: j.system.into(),
-            slot_clearance_mm: j.slot_clearance_mm,
-            rotation_tolerance_deg: j.rotation_tolerance_deg,
-            level_offset_mm: j.level_offset_mm,
-        }
+);
+same_fields!(
+    Lamella = Section {
+        thickness_mm,
+        height_mm,
+        per_strip,
+        gap_mm,
+        end_allowance_mm
     }
-}
-
-impl From<JointSystem> for profile::JointSystem {
-    fn from(s: JointSystem) -> profile::JointSystem {
-        match s {
-            JointSystem::Interlocking => profile::JointSystem::Interlocking,
-            JointSystem::TwoLevel => profile::JointSystem::TwoLevel,
-        }
+);
+same_fields!(
+    Joint = Joint {
+        system,
+        slot_clearance_mm,
+        rotation_tolerance_deg,
+        level_offset_mm
     }
-}
-
-impl From<Bolt> for profile::Bolt {
-    fn from(b: Bolt) -> profile::Bolt {
-        profile::Bolt {
-            diameter_mm: b.diameter_mm,
-            hole_clearance_mm: b.hole_clearance_mm,
-            designation: b.designation,
-        }
+);
+same_fields!(
+    Bolt = Bolt {
+        diameter_mm,
+        hole_clearance_mm,
+        designation
     }
-}
-
-impl From<Washer> for profile::Washer {
-    fn from(w: Washer) -> profile::Washer {
-        profile::Washer {
-            thickness_mm: w.thickness_mm,
-            arm_length_mm: w.arm_length_mm,
-            arm_width_mm: w.arm_width_mm,
-            per_node: w.per_node,
-        }
+);
+same_fields!(
+    Washer = Washer {
+        thickness_mm,
+        arm_length_mm,
+        arm_width_mm,
+        per_node
     }
-}
-
-impl From<ShearBlock> for profile::ShearBlock {
-    fn from(s: ShearBlock) -> profile::ShearBlock {
-        profile::ShearBlock {
-            length_mm: s.length_mm,
-            max_spacing_mm: s.max_spacing_mm,
-            slenderness_limit: s.slenderness_limit,
-            clearance_mm: s.clearance_mm,
-            bolt_diameter_mm: s.bolt_diameter_mm,
-        }
+);
+same_fields!(
+    ShearBlock = ShearBlock {
+        length_mm,
+        max_spacing_mm,
+        slenderness_limit,
+        clearance_mm,
+        bolt_diameter_mm
     }
-}
-
-impl From<Stud> for profile::Stud {
-    fn from(s: Stud) -> profile::Stud {
-        profile::Stud {
-            length_mm: s.length_mm,
-            fastener_diameter_mm: s.fastener_diameter_mm,
-            bar_length_mm: s.bar_length_mm,
-        }
+);
+same_fields!(
+    Stud = Stud {
+        length_mm,
+        fastener_diameter_mm,
+        bar_length_mm
     }
-}
-
-impl From<Splice> for profile::Splice {
-    fn from(s: Splice) -> profile::Splice {
-        profile::Splice {
-            plate_length_mm: s.plate_length_mm,
-            bolts_per_side: s.bolts_per_side,
-            bolt_diameter_mm: s.bolt_diameter_mm,
-        }
+);
+same_fields!(
+    Splice = Splice {
+        plate_length_mm,
+        bolts_per_side,
+        bolt_diameter_mm
     }
-}
+);
+same_fields!(
+    Cutting = Cutting {
+        kerf_mm,
+        part_spacing_mm,
+        edge_margin_mm,
+        allowed_rotations_deg
+    }
+);
 
 impl From<Stock> for RawStock {
     fn from(s: Stock) -> RawStock {
@@ -547,26 +567,6 @@ impl From<StockSize> for profile::StockSize {
     }
 }
 
-impl From<StockKind> for profile::StockKind {
-    fn from(k: StockKind) -> profile::StockKind {
-        match k {
-            StockKind::Sheet => profile::StockKind::Sheet,
-            StockKind::Coil => profile::StockKind::Coil,
-        }
-    }
-}
-
-impl From<Cutting> for profile::Cutting {
-    fn from(c: Cutting) -> profile::Cutting {
-        profile::Cutting {
-            kerf_mm: c.kerf_mm,
-            part_spacing_mm: c.part_spacing_mm,
-            edge_margin_mm: c.edge_margin_mm,
-            allowed_rotations_deg: c.allowed_rotations_deg,
-        }
-    }
-}
-
 // ---------------------------------------------------------------------------
 // Model → file form
 
@@ -588,115 +588,6 @@ impl From<&Profile> for ProfileFile {
             splice: p.splice.as_ref().map(Into::into),
             stock: (&p.stock).into(),
             cutting: (&p.cutting).into(),
-        }
-    }
-}
-
-impl From<&profile::Material> for Material {
-    fn from(m: &profile::Material) -> Material {
-        Material {
-            name: m.name.clone(),
-            youngs_modulus_mpa: m.youngs_modulus_mpa,
-            shear_modulus_mpa: m.shear_modulus_mpa,
-            characteristic_strength_mpa: m.characteristic_strength_mpa,
-            partial_factor: m.partial_factor,
-            modification_factor: m.modification_factor,
-            density_kg_per_m3: m.density_kg_per_m3,
-            grain: m.grain.into(),
-        }
-    }
-}
-
-impl From<profile::Grain> for Grain {
-    fn from(g: profile::Grain) -> Grain {
-        match g {
-            profile::Grain::None => Grain::None,
-            profile::Grain::AlongStrip => Grain::AlongStrip,
-        }
-    }
-}
-
-impl From<&profile::Section> for Lamella {
-    fn from(l: &profile::Section) -> Lamella {
-        Lamella {
-            thickness_mm: l.thickness_mm,
-            height_mm: l.height_mm,
-            per_strip: l.per_strip,
-            gap_mm: l.gap_mm,
-            end_allowance_mm: l.end_allowance_mm,
-        }
-    }
-}
-
-impl From<&profile::Joint> for Joint {
-    fn from(j: &profile::Joint) -> Joint {
-        Joint {
-            system: j.system.into(),
-            slot_clearance_mm: j.slot_clearance_mm,
-            rotation_tolerance_deg: j.rotation_tolerance_deg,
-            level_offset_mm: j.level_offset_mm,
-        }
-    }
-}
-
-impl From<profile::JointSystem> for JointSystem {
-    fn from(s: profile::JointSystem) -> JointSystem {
-        match s {
-            profile::JointSystem::Interlocking => JointSystem::Interlocking,
-            profile::JointSystem::TwoLevel => JointSystem::TwoLevel,
-        }
-    }
-}
-
-impl From<&profile::Bolt> for Bolt {
-    fn from(b: &profile::Bolt) -> Bolt {
-        Bolt {
-            diameter_mm: b.diameter_mm,
-            hole_clearance_mm: b.hole_clearance_mm,
-            designation: b.designation.clone(),
-        }
-    }
-}
-
-impl From<&profile::Washer> for Washer {
-    fn from(w: &profile::Washer) -> Washer {
-        Washer {
-            thickness_mm: w.thickness_mm,
-            arm_length_mm: w.arm_length_mm,
-            arm_width_mm: w.arm_width_mm,
-            per_node: w.per_node,
-        }
-    }
-}
-
-impl From<&profile::ShearBlock> for ShearBlock {
-    fn from(s: &profile::ShearBlock) -> ShearBlock {
-        ShearBlock {
-            length_mm: s.length_mm,
-            max_spacing_mm: s.max_spacing_mm,
-            slenderness_limit: s.slenderness_limit,
-            clearance_mm: s.clearance_mm,
-            bolt_diameter_mm: s.bolt_diameter_mm,
-        }
-    }
-}
-
-impl From<&profile::Stud> for Stud {
-    fn from(s: &profile::Stud) -> Stud {
-        Stud {
-            length_mm: s.length_mm,
-            fastener_diameter_mm: s.fastener_diameter_mm,
-            bar_length_mm: s.bar_length_mm,
-        }
-    }
-}
-
-impl From<&profile::Splice> for Splice {
-    fn from(s: &profile::Splice) -> Splice {
-        Splice {
-            plate_length_mm: s.plate_length_mm,
-            bolts_per_side: s.bolts_per_side,
-            bolt_diameter_mm: s.bolt_diameter_mm,
         }
     }
 }
@@ -726,26 +617,6 @@ impl From<&profile::Stock> for Stock {
             }),
             price_per_m: s.price_per_m,
             length_step_mm: s.length_step_mm,
-        }
-    }
-}
-
-impl From<profile::StockKind> for StockKind {
-    fn from(k: profile::StockKind) -> StockKind {
-        match k {
-            profile::StockKind::Sheet => StockKind::Sheet,
-            profile::StockKind::Coil => StockKind::Coil,
-        }
-    }
-}
-
-impl From<&profile::Cutting> for Cutting {
-    fn from(c: &profile::Cutting) -> Cutting {
-        Cutting {
-            kerf_mm: c.kerf_mm,
-            part_spacing_mm: c.part_spacing_mm,
-            edge_margin_mm: c.edge_margin_mm,
-            allowed_rotations_deg: c.allowed_rotations_deg.clone(),
         }
     }
 }
