@@ -170,6 +170,28 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         widest_taken = widest_taken.max(t.1 - t.0);
         widest_taken
     };
+    // Place a text where `place` finds room, engrave it and take its span;
+    // returns (centre x, cap height, width).
+    let mut widest = 0.0;
+    let mut place_text = |text: &str,
+                          want: f64,
+                          reach: &dyn Fn(f64) -> f64,
+                          max_h: f64,
+                          engraving: &mut Vec<Engraving>|
+     -> Option<(f64, f64, f64)> {
+        let width = |th: f64| font::text_width_mm(text, th);
+        let (cx, th, y0) = place(&width, want, reach, max_h, &taken, widest)?;
+        let w = width(th);
+        put(
+            Engraved::Text(text.to_string()),
+            th,
+            cx - 0.5 * w,
+            y0,
+            engraving,
+        );
+        widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
+        Some((cx, th, w))
+    };
     // Crossing ids beside slots and node holes, in x order.
     let mut marks: Vec<(f64, &str, Option<usize>)> = p
         .features
@@ -185,45 +207,22 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
     marks.dedup_by(|a, b| a.1 == b.1 && a.2 == b.2);
     // One per mark, the id and the orientation mark.
     engraving.reserve_exact(marks.len() + 2);
-    let mut widest = 0.0;
     for (x, id, node) in marks {
-        let width = |th: f64| font::text_width_mm(id, th);
         let reach = |w: f64| CROSSING_SEARCH_WIDTHS * w + 10.0;
-        match place(&width, x, &reach, CROSSING_HEIGHT_MM, &taken, widest) {
-            Some((cx, th, y0)) => {
-                let w = width(th);
-                put(
-                    Engraved::Text(id.to_string()),
-                    th,
-                    cx - 0.5 * w,
-                    y0,
-                    &mut engraving,
-                );
-                widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
-            }
-            None => missing.push(format!(
+        if place_text(id, x, &reach, CROSSING_HEIGHT_MM, &mut engraving).is_none() {
+            missing.push(format!(
                 "{}: no room to engrave the crossing strip {id} beside node {}",
                 p.id,
                 node.map_or_else(|| "?".into(), |n| n.to_string())
-            )),
+            ));
         }
     }
     // The part id near the start, then the orientation mark after it.
     let id = p.id.clone();
-    let width = |th: f64| font::text_width_mm(&id, th);
     let far = |_: f64| len;
-    let want = c + 0.5 * width(ID_HEIGHT_MM.min(band)) + c;
-    match place(&width, want, &far, ID_HEIGHT_MM, &taken, widest) {
-        Some((cx, th, y0)) => {
-            let w = width(th);
-            put(
-                Engraved::Text(id.clone()),
-                th,
-                cx - 0.5 * w,
-                y0,
-                &mut engraving,
-            );
-            widest = take((cx - 0.5 * w - c, cx + 0.5 * w + c), &mut taken);
+    let want = c + 0.5 * font::text_width_mm(&id, ID_HEIGHT_MM.min(band)) + c;
+    match place_text(&id, want, &far, ID_HEIGHT_MM, &mut engraving) {
+        Some((cx, th, w)) => {
             let mark_w = |mh: f64| font::ORIENTATION_MARK_LENGTH * mh;
             let at = cx + 0.5 * w + c + mark_w(th);
             match place(&mark_w, at, &far, th, &taken, widest) {

@@ -27,7 +27,7 @@
 //! both on one face.
 
 use crate::error::{Error, Result};
-use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind};
+use crate::fabricate::part::{HoleUse, Part, PartKind};
 use crate::profile::{JointSystem, Profile};
 use kurbo::Point;
 
@@ -101,43 +101,10 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
         ));
     }
     let count = u32::try_from(nodes).unwrap_or(u32::MAX);
-    let hole = |x: f64| {
-        let centre = Point::new(x, 0.5 * side);
-        Feature {
-            kind: FeatureKind::Hole,
-            hole_use: Some(HoleUse::Node),
-            node: None,
-            crossing: None,
-            center_part_mm: centre,
-            width_mm: d,
-            depth_mm: 0.0,
-            edge: None,
-            angle_range_deg: None,
-            station_mm: None,
-        }
-    };
     // By x: family B's level (lower), then family A's.
-    let fb = hole(0.5 * len - o);
-    let fa = hole(0.5 * len + o);
-    let part = Part {
-        id: STUD_ID.into(),
-        kind: PartKind::Stud,
-        strip: None,
-        lamella: None,
-        count,
-        length_mm: len,
-        height_mm: side,
-        station_start_mm: None,
-        outline_part_mm: vec![
-            Point::new(0.0, 0.0),
-            Point::new(len, 0.0),
-            Point::new(len, side),
-            Point::new(0.0, side),
-        ],
-        holes_part_mm: Vec::new(),
-        engraving: Vec::new(),
-        features: vec![fb, fa],
-    };
+    let hole = |x: f64| (Point::new(x, 0.5 * side), d, HoleUse::Node);
+    let holes = [hole(0.5 * len - o), hole(0.5 * len + o)];
+    let part = super::rectangle_part(STUD_ID, PartKind::Stud, count, len, side, &holes);
     Ok(Some(StudCut {
         part,
         per_bar,
@@ -148,6 +115,7 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fabricate::part::FeatureKind;
     use crate::formats::read::profile_file;
     use crate::geom::plane::signed_area_mm2;
     use std::path::Path;
