@@ -1052,6 +1052,7 @@ mod tests {
                 edge_margin_mm: 10.0,
                 allowed_rotations_deg: vec![0, 180],
             },
+            check: Default::default(),
         })
         .expect("a valid profile")
     }

@@ -51,6 +51,8 @@ pub struct ProfileOf<S> {
     pub stock: S,
     /// Cutting allowances and allowed rotations (quarter turns).
     pub cutting: Cutting,
+    /// Limits of the elastic check beyond the stresses.
+    pub check: CheckLimits,
 }
 
 /// A profile as a reader found it, before any check: every section as
@@ -203,6 +205,19 @@ pub struct Cutting {
     pub edge_margin_mm: f64,
     /// Rotations allowed on the stock, degrees, each one of 0, 90, 180, 270.
     pub allowed_rotations_deg: Vec<u32>,
+}
+
+/// Sagitta limit when the profile gives none, mm ([`CheckLimits`]).
+pub const DEFAULT_MAX_SAGITTA_MM: f64 = 1.0;
+
+/// Limits of the elastic check beyond the stresses (`check:` in a profile
+/// file; optional, as is every field of it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CheckLimits {
+    /// Largest in-plane bow of a lamella's unrolled line, mm: how far the
+    /// normal-curvature residual kn bends the line off its chord
+    /// (docs/geometry.md, "Sagitta"). None: [`DEFAULT_MAX_SAGITTA_MM`].
+    pub max_sagitta_mm: Option<f64>,
 }
 
 /// The form of the stock.
@@ -439,7 +454,14 @@ impl Profile {
             splice: raw.splice,
             stock: Stock::from(raw.stock),
             cutting: raw.cutting,
+            check: raw.check,
         })
+    }
+
+    /// Largest sagitta a lamella's unrolled line may have, mm
+    /// (`check.max_sagitta_mm`, else [`DEFAULT_MAX_SAGITTA_MM`]).
+    pub fn max_sagitta_mm(&self) -> f64 {
+        self.check.max_sagitta_mm.unwrap_or(DEFAULT_MAX_SAGITTA_MM)
     }
 
     /// Lamella thickness t, mm (positive, below the height).

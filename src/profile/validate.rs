@@ -34,7 +34,11 @@ pub fn profile(raw: &RawProfile) -> Check {
         splice(s)?;
     }
     stock(&raw.stock, raw.section.height_mm)?;
-    cutting(&raw.cutting, raw.material.grain)
+    cutting(&raw.cutting, raw.material.grain)?;
+    if let Some(m) = raw.check.max_sagitta_mm {
+        positive("check.max_sagitta_mm", m)?;
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------

@@ -47,6 +47,9 @@ pub struct ProfileFile {
     pub stock: Stock,
     /// Cutting allowances and allowed part rotations.
     pub cutting: Cutting,
+    /// Limits of the elastic check beyond the stresses; optional.
+    #[serde(default, skip_serializing_if = "CheckLimits::is_empty")]
+    pub check: CheckLimits,
 }
 
 /// `material:` the strip material.
@@ -280,6 +283,24 @@ pub struct Cutting {
     pub allowed_rotations_deg: Vec<u32>,
 }
 
+/// `check:` limits of the elastic check beyond the stresses; every field
+/// optional.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CheckLimits {
+    /// Largest sagitta of a lamella's unrolled line, mm; default
+    /// [`profile::DEFAULT_MAX_SAGITTA_MM`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_sagitta_mm: Option<f64>,
+}
+
+impl CheckLimits {
+    /// No field given (the section is then not written).
+    pub fn is_empty(&self) -> bool {
+        self.max_sagitta_mm.is_none()
+    }
+}
+
 /// Read and validate a profile file.
 pub fn load(path: &Path) -> Result<Profile> {
     if !path.exists() {
@@ -405,6 +426,7 @@ impl From<ProfileFile> for RawProfile {
             splice: f.splice.map(Into::into),
             stock: f.stock.into(),
             cutting: f.cutting.into(),
+            check: f.check.into(),
         }
     }
 }
@@ -528,6 +550,7 @@ same_fields!(
         bolt_diameter_mm
     }
 );
+same_fields!(CheckLimits = CheckLimits { max_sagitta_mm });
 same_fields!(
     Cutting = Cutting {
         kerf_mm,
@@ -588,6 +611,7 @@ impl From<&Profile> for ProfileFile {
             splice: p.splice.as_ref().map(Into::into),
             stock: (&p.stock).into(),
             cutting: (&p.cutting).into(),
+            check: (&p.check).into(),
         }
     }
 }
