@@ -15,8 +15,16 @@
 //! Each lamella of a doubled strip lies on its own offset line (dy, dz); the
 //! frame turns by the same angle on it over a longer or shorter length, so
 //! its curvatures are the curve's divided by the stretch ds'/ds.
+//!
+//! A flat straight strip cannot take normal curvature kn (bending about its
+//! strong axis): wherever the network is not exactly asymptotic, the
+//! lamella's line unrolled into its own plane bows off its chord. That
+//! sagitta ([`sagitta_mm`]) is compared with the profile's
+//! `check.max_sagitta_mm`; a lamella over it fails the check too
+//! (docs/geometry.md, "Sagitta").
 
 use crate::analysis::lines::{LamellaLine, NetworkLines, StripLines};
+use crate::analysis::strip::Curvatures;
 use crate::analysis::Analysis;
 use crate::profile::{LamellaOffset, Profile};
 use rayon::prelude::*;
@@ -113,6 +121,9 @@ pub struct LamellaCheck {
     pub min_bending_radius_mm: Option<f64>,
     /// Largest |tg| of this lamella on its own line, °/m.
     pub max_twist_deg_per_m: f64,
+    /// How far the lamella's line, unrolled into its own plane, bows off
+    /// its chord under the normal curvature kn, mm ([`sagitta_mm`]).
+    pub sagitta_mm: f64,
 }
 
 /// The check of one strip: each lamella, and the worst.
@@ -137,6 +148,20 @@ impl StripCheck {
     pub fn passes(&self) -> bool {
         self.worst().utilization <= 1.0
     }
+    /// The lamella whose unrolled line bows most (the first of equals).
+    pub fn most_bowed(&self) -> &LamellaCheck {
+        let mut best = &self.lamellas[0];
+        for l in &self.lamellas[1..] {
+            if l.sagitta_mm.total_cmp(&best.sagitta_mm).is_gt() {
+                best = l;
+            }
+        }
+        best
+    }
+    /// The largest sagitta of its lamellas, mm.
+    pub fn sagitta_mm(&self) -> f64 {
+        self.most_bowed().sagitta_mm
+    }
 }
 
 /// The whole network's check.
@@ -153,14 +178,40 @@ pub struct CheckReport {
     pub limit_bending_radius_mm: f64,
     /// Largest twist in pure torsion, °/m (with `limit_bending_radius_mm`, mm).
     pub limit_twist_deg_per_m: f64,
+    /// Largest sagitta of a lamella's unrolled line, mm (the profile's
+    /// `check.max_sagitta_mm`).
+    pub limit_sagitta_mm: f64,
     /// One per A and B strip, in strip order (edges are never checked).
     pub strips: Vec<StripCheck>,
 }
 
 impl CheckReport {
-    /// Every strip passes (utilisation ≤ 1 on every lamella).
+    /// Every strip passes: utilisation ≤ 1 and sagitta ≤ the limit on
+    /// every lamella.
     pub fn passes(&self) -> bool {
-        self.strips.iter().all(StripCheck::passes)
+        self.strips.iter().all(StripCheck::passes) && self.bowed() == 0
+    }
+    /// Number of strips with a lamella whose sagitta is above the limit.
+    pub fn bowed(&self) -> usize {
+        self.strips
+            .iter()
+            .filter(|s| !self.straight_enough(s))
+            .count()
+    }
+    /// Every lamella of `strip` bows at most `limit_sagitta_mm` (a
+    /// non-finite sagitta fails).
+    pub fn straight_enough(&self, strip: &StripCheck) -> bool {
+        strip.sagitta_mm() <= self.limit_sagitta_mm
+    }
+    /// The strip with the largest sagitta (the first of equals); None without strips.
+    pub fn most_bowed(&self) -> Option<&StripCheck> {
+        let mut best: Option<&StripCheck> = None;
+        for s in &self.strips {
+            if best.is_none_or(|b| s.sagitta_mm().total_cmp(&b.sagitta_mm()).is_gt()) {
+                best = Some(s);
+            }
+        }
+        best
     }
     /// Number of strips with a lamella above utilisation 1.
     pub fn overstressed(&self) -> usize {
@@ -191,6 +242,83 @@ impl CheckReport {
 fn stretch(dy: f64, dz: f64, kg: f64, kn: f64, tg: f64) -> f64 {
     let a = 1.0 - dy * kg - dz * kn;
     (a * a + (dz * tg).powi(2) + (dy * tg).powi(2)).sqrt()
+}
+
+/// How far a lamella's line, unrolled into its own plane, bows off its
+/// chord, mm: the sagitta that the normal curvature kn leaves over the
+/// strip (docs/geometry.md, "Sagitta").
+///
+/// The line's tangent turns in the lamella's plane by dθ = kn ds (on an
+/// offset line kn/(ds'/ds) over ds', the same angle), so the unrolled line
+/// is the plane curve of curvature kn over the lamella's own arc length.
+/// Between consecutive samples kn is taken at its mean, so each step is an
+/// arc. The sagitta is the largest distance of the line from the chord
+/// from its first point to its last (from the first point when they
+/// meet): at the steps' ends, and inside a step where its tangent runs
+/// along the chord. Exact for a constant kn: on a circle of radius R over
+/// the chord c, R − √(R² − c²/4). NaN when the curvatures are not finite.
+pub fn sagitta_mm(samples: &[Curvatures], off: LamellaOffset) -> f64 {
+    // Each step: its start (x, y), the tangent's angle there, the angle it
+    // turns through and its length on the lamella's line.
+    let mut steps: Vec<([f64; 2], f64, f64, f64)> = Vec::with_capacity(samples.len());
+    let (mut at, mut angle) = ([0.0f64, 0.0f64], 0.0f64);
+    let stretch_of =
+        |c: &Curvatures| stretch(off.dy_mm, off.dz_mm, c.kg_per_mm, c.kn_per_mm, c.tg_per_mm);
+    for w in samples.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        let ds = b.station_mm - a.station_mm;
+        let length = 0.5 * (stretch_of(a) + stretch_of(b)) * ds;
+        let turn = 0.5 * (a.kn_per_mm + b.kn_per_mm) * ds;
+        steps.push((at, angle, turn, length));
+        at = arc_point(at, angle, turn, length);
+        angle += turn;
+    }
+    let span = (at[0] * at[0] + at[1] * at[1]).sqrt();
+    if !span.is_finite() {
+        return f64::NAN;
+    }
+    // Distance from the chord (from the first point when the ends meet).
+    let (ux, uy) = if span > 1e-9 {
+        (at[0] / span, at[1] / span)
+    } else {
+        (1.0, 0.0)
+    };
+    let off_chord = |p: [f64; 2]| {
+        if span > 1e-9 {
+            (p[0] * uy - p[1] * ux).abs()
+        } else {
+            (p[0] * p[0] + p[1] * p[1]).sqrt()
+        }
+    };
+    let chord_angle = uy.atan2(ux);
+    let mut most = off_chord(at);
+    for &(start, angle, turn, length) in &steps {
+        most = most.max(off_chord(start));
+        // Within the step, farthest where the tangent runs along the chord
+        // (angle ≡ chord_angle mod π), if it does there.
+        if turn.abs() > 0.0 && span > 1e-9 {
+            let n = ((angle + 0.5 * turn - chord_angle) / std::f64::consts::PI).round();
+            let t = (chord_angle + n * std::f64::consts::PI - angle) / turn;
+            if (0.0..=1.0).contains(&t) {
+                most = most.max(off_chord(arc_point(start, angle, t * turn, t * length)));
+            }
+        }
+    }
+    most
+}
+
+/// The end of an arc of `length` from `start`, leaving at `angle` and
+/// turning through `turn`: its chord, of length·sin(turn/2)/(turn/2), runs
+/// at the mean angle.
+fn arc_point(start: [f64; 2], angle: f64, turn: f64, length: f64) -> [f64; 2] {
+    let half = 0.5 * turn;
+    let chord = if half.abs() < 1e-9 {
+        length
+    } else {
+        length * half.sin() / half
+    };
+    let mid = angle + half;
+    [start[0] + chord * mid.cos(), start[1] + chord * mid.sin()]
 }
 
 /// Worst point of one lamella over the strip's samples:
@@ -293,6 +421,7 @@ fn check_strips(
                         min_bending_radius_mm: (kmax > s.straight_curvature_per_mm())
                             .then(|| 1.0 / kmax),
                         max_twist_deg_per_m: tmax.to_degrees() * 1000.0,
+                        sagitta_mm: sagitta_mm(&s.samples, offsets[k]),
                     },
                 )
                 .collect();
@@ -320,6 +449,7 @@ fn check_strips(
             design_strength_mpa: profile.design_strength_mpa(),
             limit_bending_radius_mm: profile.min_bending_radius_mm(),
             limit_twist_deg_per_m: profile.max_twist_per_mm().to_degrees() * 1000.0,
+            limit_sagitta_mm: profile.max_sagitta_mm(),
             strips,
         },
         lines,
@@ -546,6 +676,114 @@ mod tests {
         assert_eq!(b.min_bending_radius_mm, None);
         assert!(report.passes());
         close(max_utilization(&an, &steel_single()), 0.605475, 1e-4, "max");
+    }
+
+    /// Samples every `step` mm over `length` mm at constant curvatures.
+    fn constant(length: f64, step: f64, kg: f64, kn: f64, tg: f64) -> Vec<Curvatures> {
+        let n = (length / step).ceil() as usize;
+        (0..=n)
+            .map(|i| Curvatures {
+                station_mm: length * i as f64 / n as f64,
+                kg_per_mm: kg,
+                kn_per_mm: kn,
+                tg_per_mm: tg,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_sagitta_of_a_circular_arc_by_hand() {
+        // A line of length L = 2000 mm with kn = 1/R, R = 5000 mm, turns
+        // through L/R = 0.4 rad: chord c = 2R·sin(0.2) = 1986.6933 mm,
+        // sagitta R − √(R² − c²/4) = 5000 − 4900.3330 = 99.6670 mm
+        // (≈ L²/(8R) = 100 mm).
+        let (r, l) = (5000.0f64, 2000.0f64);
+        let c = 2.0 * r * (l / (2.0 * r)).sin();
+        let want = r - (r * r - c * c / 4.0).sqrt();
+        assert!((want - 99.667).abs() < 1e-3, "{want}");
+        let got = sagitta_mm(&constant(l, 50.0, 0.0, 1.0 / r, 0.0), LamellaOffset::CENTRE);
+        assert!((got - want).abs() < 0.01, "{got} against {want}");
+        // kn of either sign, coarse samples: the same.
+        let got = sagitta_mm(
+            &constant(l, 400.0, 0.0, -1.0 / r, 0.0),
+            LamellaOffset::CENTRE,
+        );
+        assert!((got - want).abs() < 0.01, "{got} against {want}");
+        // A flat strip on its own line: no bow, whatever kg and tg do.
+        let flat = sagitta_mm(&constant(l, 50.0, 1e-3, 0.0, 1e-3), LamellaOffset::CENTRE);
+        assert!(flat < 1e-9, "{flat}");
+        // A lamella offset dz = 25 mm towards the centre lies on radius
+        // R − 25 (stretch 1 − dz·kn): the same angle over a shorter line.
+        let inner = LamellaOffset {
+            number: 2,
+            dy_mm: 0.0,
+            dz_mm: 25.0,
+        };
+        let ri = r - 25.0;
+        let ci = 2.0 * ri * (l / (2.0 * r)).sin();
+        let want = ri - (ri * ri - ci * ci / 4.0).sqrt();
+        let got = sagitta_mm(&constant(l, 50.0, 0.0, 1.0 / r, 0.0), inner);
+        assert!((got - want).abs() < 0.01, "{got} against {want}");
+    }
+
+    /// A0: an arc of radius 1000 mm in z = 0 over 60°, normals pointing
+    /// away from its centre (kg = tg = 0, |kn| = 1/1000: bent about its
+    /// strong axis). B0: a vertical line through it at 30°, normals the
+    /// same radial direction (straight, kg = kn = tg = 0).
+    fn arc_standing_on_its_normal() -> Network {
+        let radial = |a: f64| DVec3::new(a.cos(), a.sin(), 0.0);
+        let arc: Vec<DVec3> = (0..=60)
+            .map(|k| radial(f64::from(k).to_radians()) * 1000.0)
+            .collect();
+        let normals = (0..=60)
+            .map(|k| radial(f64::from(k).to_radians()))
+            .collect();
+        let at = radial(30f64.to_radians());
+        let line = (0..=20)
+            .map(|k| at * 1000.0 + DVec3::Z * (10.0 * f64::from(k) - 100.0))
+            .collect();
+        let raw = RawNetwork {
+            name: "arc-on-edge".into(),
+            unit: Unit::Mm,
+            tolerance: None,
+            curves: vec![
+                raw("A0", Family::A, arc, normals),
+                raw("B0", Family::B, line, vec![at; 21]),
+            ],
+        };
+        Network::new(raw, Path::new("test.yaml")).expect("valid network")
+    }
+
+    #[test]
+    fn an_arc_bent_about_its_strong_axis_fails_on_its_sagitta() {
+        // 60° of R = 1000 mm: half chord R·sin 30° = 500 mm, sagitta
+        // 1000 − √(1000² − 500²) = 133.9746 mm; no stress at all.
+        let want = 1000.0 - (1000.0f64.powi(2) - 500.0f64.powi(2)).sqrt();
+        let net = arc_standing_on_its_normal();
+        let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
+        let report = check(&an, &steel_single(), false).0;
+        let a = &report.strips[0];
+        assert!((a.sagitta_mm() - want).abs() < 0.01, "{}", a.sagitta_mm());
+        assert!(a.worst().utilization < 1e-6, "{}", a.worst().utilization);
+        assert!(report.strips[1].sagitta_mm() < 1e-6);
+        assert_eq!(
+            report.limit_sagitta_mm,
+            crate::profile::DEFAULT_MAX_SAGITTA_MM
+        );
+        assert_eq!((report.overstressed(), report.bowed()), (0, 1));
+        assert!(!report.passes());
+        assert_eq!(report.most_bowed().map(|s| s.id.as_str()), Some("A0"));
+        // Doubled: both lamellas lie 5.75 mm above and below the arc
+        // (y = z × x is vertical), each on a circle of the same radius.
+        let mut doubled = steel_single();
+        doubled.section.per_strip = 2;
+        doubled.section.gap_mm = 10.0;
+        doubled.check.max_sagitta_mm = Some(150.0);
+        let report = check(&an, &doubled, false).0;
+        for l in &report.strips[0].lamellas {
+            assert!((l.sagitta_mm - want).abs() < 0.01, "{}", l.sagitta_mm);
+        }
+        assert!(report.passes(), "within a 150 mm limit");
     }
 
     #[test]

@@ -136,7 +136,7 @@ pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
         return ExitCode::from(1);
     };
     println!(
-        "{} on {}: {} × {} mm, {} per strip; f_d = {:.1} MPa; limits: R ≥ {:.0} mm in pure bending, twist ≤ {:.1} °/m in pure twist",
+        "{} on {}: {} × {} mm, {} per strip; f_d = {:.1} MPa; limits: R ≥ {:.0} mm in pure bending, twist ≤ {:.1} °/m in pure twist, sagitta ≤ {:.2} mm",
         profile.name,
         s.network().name,
         profile.section.thickness_mm,
@@ -144,18 +144,19 @@ pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
         profile.section.per_strip,
         report.design_strength_mpa,
         report.limit_bending_radius_mm,
-        report.limit_twist_deg_per_m
+        report.limit_twist_deg_per_m,
+        report.limit_sagitta_mm
     );
     println!(
-        "{:<12} {:>7} {:>11} {:>11} {:>13} {:>10}  governs",
-        "strip", "lamella", "utilisation", "station mm", "min radius mm", "twist °/m"
+        "{:<12} {:>7} {:>11} {:>11} {:>13} {:>10} {:>10}  governs",
+        "strip", "lamella", "utilisation", "station mm", "min radius mm", "twist °/m", "sagitta mm"
     );
     let ranking = report.ranking();
     for &i in ranking.iter().take(top.unwrap_or(usize::MAX)) {
         let s = &report.strips[i];
         let l = s.worst();
         println!(
-            "{:<12} {:>7} {:>11.3} {:>11.1} {:>13} {:>10.2}  {}{}",
+            "{:<12} {:>7} {:>11.3} {:>11.1} {:>13} {:>10.2} {:>10.3}  {}{}{}",
             s.id,
             l.line.offset.number,
             l.utilization,
@@ -163,11 +164,17 @@ pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
             l.min_bending_radius_mm
                 .map_or("straight".to_string(), |r| format!("{r:.0}")),
             l.max_twist_deg_per_m,
+            s.sagitta_mm(),
             l.governs.as_str(),
             if l.utilization > 1.0 {
                 "  OVERSTRESSED"
             } else {
                 ""
+            },
+            if report.straight_enough(s) {
+                ""
+            } else {
+                "  BOWED"
             }
         );
     }
@@ -176,15 +183,18 @@ pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
     }
     let worst = ranking.first().map(|&i| &report.strips[i]);
     let passes = report.passes();
+    let stressed_ok = report.overstressed() == 0;
     match worst {
         Some(w) if passes => println!(
-            "PASS: all {} strips bend and twist into place elastically; highest utilisation {:.2} ({} lamella {}, {} governs)",
+            "PASS: all {} strips bend and twist into place elastically; highest utilisation {:.2} ({} lamella {}, {} governs); largest sagitta {:.3} mm",
             report.strips.len(),
             w.worst().utilization,
             w.id,
             w.worst().line.offset.number,
-            w.worst().governs.as_str()
+            w.worst().governs.as_str(),
+            report.most_bowed().map_or(0.0, |b| b.sagitta_mm())
         ),
+        Some(_) if stressed_ok => {}
         Some(w) => println!(
             "FAIL: {} of {} strips overstressed; worst {} lamella {} at {:.2} × the design strength ({} governs)",
             report.overstressed(),
@@ -196,8 +206,21 @@ pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
         ),
         None => println!("no strips"),
     }
+    if let Some(b) = report.most_bowed().filter(|b| !report.straight_enough(b)) {
+        let l = b.most_bowed();
+        println!(
+            "FAIL: {} of {} strips bowed; {} lamella {} unrolled bows {:.3} mm off its chord in its own plane (normal curvature kn, strong-axis bending), over the {:.3} mm limit (check.max_sagitta_mm)",
+            report.bowed(),
+            report.strips.len(),
+            b.id,
+            l.line.offset.number,
+            l.sagitta_mm,
+            report.limit_sagitta_mm
+        );
+    }
     if let Some(suggestion) = s.suggested() {
-        print_suggestion(suggestion, profile, passes);
+        // The section changes the stresses only, never the bow.
+        print_suggestion(suggestion, profile, stressed_ok);
     }
     wrote(done);
     if passes {

@@ -147,6 +147,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
                         .map(|l| PlanLamellaCheck {
                             min_bending_radius_mm: l.min_bending_radius_mm.map(|r| round(r, MM)),
                             max_twist_deg_per_m: round(l.max_twist_deg_per_m, DEG),
+                            sagitta_mm: round(l.sagitta_mm, MM),
                             check: plan_stress(l),
                         }),
                 })
@@ -167,6 +168,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
                     let worst = sc.worst();
                     PlanStripCheck {
                         lamella: worst.line.offset.number,
+                        sagitta_mm: round(sc.sagitta_mm(), MM),
                         stress: plan_stress(worst),
                     }
                 }),
@@ -579,6 +581,9 @@ fn plan_check(report: &CheckReport, suggestion: Option<&Suggestion>) -> PlanChec
     PlanCheckSummary {
         passes: report.passes(),
         strips_overstressed: report.overstressed(),
+        strips_bowed: report.bowed(),
+        max_sagitta_mm: round(report.most_bowed().map_or(0.0, StripCheck::sagitta_mm), MM),
+        limit_sagitta_mm: round(report.limit_sagitta_mm, MM),
         max_utilization: round(report.max_utilization(), UTIL),
         limit_bending_radius_mm: round(report.limit_bending_radius_mm, MM),
         limit_twist_deg_per_m: round(report.limit_twist_deg_per_m, DEG),

@@ -469,10 +469,20 @@ pub struct PlanProfile {
 /// The elastic check's verdict over all A and B strips (`check` only).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct PlanCheckSummary {
-    /// Every lamella of every A and B strip has utilisation ≤ 1.
+    /// Every lamella of every A and B strip has utilisation ≤ 1 and a
+    /// sagitta within `limit_sagitta_mm`.
     pub passes: bool,
     /// Number of strips with a lamella above utilisation 1.
     pub strips_overstressed: usize,
+    /// Number of strips with a lamella whose sagitta is above `limit_sagitta_mm`.
+    #[serde(default)]
+    pub strips_bowed: usize,
+    /// Largest sagitta of any lamella, mm (4 decimals).
+    #[serde(default)]
+    pub max_sagitta_mm: f64,
+    /// The profile's `check.max_sagitta_mm` (or its default), mm.
+    #[serde(default)]
+    pub limit_sagitta_mm: f64,
     /// Highest utilisation σv/f_d over all lamellas (6 decimals).
     pub max_utilization: f64,
     /// The profile's limits: bending radius in pure bending, twist in pure twist.
@@ -520,6 +530,10 @@ pub struct PlanStress {
 pub struct PlanStripCheck {
     /// The worst lamella's number.
     pub lamella: u32,
+    /// The largest sagitta of the strip's lamellas, unrolled into their own
+    /// planes, mm (4 decimals; absent in plans written before it was reported).
+    #[serde(default)]
+    pub sagitta_mm: f64,
     /// The worst lamella's stresses (flattened into this object).
     #[serde(flatten)]
     pub stress: PlanStress,
@@ -572,6 +586,10 @@ pub struct PlanLamellaCheck {
     pub min_bending_radius_mm: Option<f64>,
     /// Largest twist of this lamella on its own line, °/m.
     pub max_twist_deg_per_m: f64,
+    /// How far its line, unrolled into its own plane, bows off its chord
+    /// under kn, mm (4 decimals; absent in plans written before it was reported).
+    #[serde(default)]
+    pub sagitta_mm: f64,
     /// The stresses at its governing point.
     pub check: PlanStress,
 }
