@@ -209,7 +209,7 @@ pub fn check(done: &Done, top: Option<usize>) -> ExitCode {
     if let Some(b) = report.most_bowed().filter(|b| !report.straight_enough(b)) {
         let l = b.most_bowed();
         println!(
-            "FAIL: {} of {} strips bowed; {} lamella {} unrolled bows {:.3} mm off its chord in its own plane (normal curvature kn, strong-axis bending), over the {:.3} mm limit (check.max_sagitta_mm)",
+            "FAIL: {} of {} strips bowed; {} lamella {} bows {:.3} mm off its chord, unrolled in its own plane (normal curvature kn: strong-axis bending), over the {:.3} mm limit (check.max_sagitta_mm)",
             report.bowed(),
             report.strips.len(),
             b.id,

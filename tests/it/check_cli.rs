@@ -145,6 +145,16 @@ fn bad(name: &str, text: &str, fragments: &[&str]) {
 fn bad_profiles_name_the_field() {
     let s = steel();
     bad(
+        "zero-sagitta",
+        &format!("{s}check:\n  max_sagitta_mm: 0.0\n"),
+        &["check.max_sagitta_mm", "positive"],
+    );
+    bad(
+        "unknown-check-field",
+        &format!("{s}check:\n  max_bow_mm: 1.0\n"),
+        &["max_bow_mm"],
+    );
+    bad(
         "negative-thickness",
         &s.replace("thickness_mm: 1.5", "thickness_mm: -1.5"),
         &["lamella.thickness_mm", "positive"],
@@ -339,4 +349,134 @@ fn nodes_writes_centre_line_lamellas_oriented_angles_and_typed_warnings() {
         assert!((oriented.min(180.0 - oriented) - acute).abs() < 2e-6, "{n}");
     }
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// A hand-written network on a sphere of radius 5000 mm (normals radial):
+/// A strips are meridians, B strips latitude circles, at −10°, 0° and 10°,
+/// each over ±20°. No curve is asymptotic: kn = 1/R on all of them, so a
+/// meridian, unrolled flat, bows R·(1 − cos 20°) = 301.5 mm off its chord,
+/// while kg (0 on the meridians, tan(lat)/R on the latitudes) and tg (0)
+/// stress the steel lamellas little.
+fn sphere_network() -> String {
+    let r = 5000.0f64;
+    let point = |lat_deg: f64, lon_deg: f64| {
+        let (lat, lon) = (lat_deg.to_radians(), lon_deg.to_radians());
+        [lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin()]
+    };
+    let mut yaml = String::from("name: sphere\nunits: mm\ncurves:\n");
+    for (family, meridian) in [("A", true), ("B", false)] {
+        for (k, fixed) in [-10.0, 0.0, 10.0].into_iter().enumerate() {
+            yaml += &format!("  - id: {family}{k}\n    family: {family}\n    points:\n");
+            let along: Vec<[f64; 3]> = (0..=40)
+                .map(|i| {
+                    let t = -20.0 + f64::from(i);
+                    if meridian {
+                        point(t, fixed)
+                    } else {
+                        point(fixed, t)
+                    }
+                })
+                .collect();
+            for n in &along {
+                yaml += &format!(
+                    "      - [{:.6}, {:.6}, {:.6}]\n",
+                    r * n[0],
+                    r * n[1],
+                    r * n[2]
+                );
+            }
+            yaml += "    normals:\n";
+            for n in &along {
+                yaml += &format!("      - [{:.9}, {:.9}, {:.9}]\n", n[0], n[1], n[2]);
+            }
+        }
+    }
+    yaml
+}
+
+#[test]
+fn a_network_off_the_asymptotic_lines_fails_on_its_sagitta() {
+    let dir = scratch("sphere");
+    let net = dir.join("sphere.yaml");
+    std::fs::write(&net, sphere_network()).unwrap();
+    let out = dir.join("out");
+    let (code, stdout, stderr) = lamella(&[
+        "check",
+        net.to_str().unwrap(),
+        "--profile",
+        "profiles/steel-1.5.yaml",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(3), "{stdout}{stderr}");
+    // Not for the stresses: for the bow, named with the strip, its
+    // sagitta and the limit.
+    assert!(!stdout.contains("overstressed"), "{stdout}");
+    let fail: Vec<&str> = stdout.lines().filter(|l| l.starts_with("FAIL")).collect();
+    assert_eq!(fail.len(), 1, "{stdout}");
+    assert!(
+        fail[0].starts_with("FAIL: 6 of 6 strips bowed; A")
+            && fail[0].contains("over the 1.000 mm limit (check.max_sagitta_mm)"),
+        "{stdout}"
+    );
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    let check = &plan["check"];
+    assert_eq!(check["passes"], false);
+    assert_eq!(check["strips_overstressed"], 0);
+    assert_eq!(check["strips_bowed"], 6);
+    assert_eq!(check["limit_sagitta_mm"], 1.0);
+    // The meridians: R·(1 − cos 20°) = 5000 × 0.0603074 = 301.537 mm.
+    let want = 5000.0 * (1.0 - 20f64.to_radians().cos());
+    let got = check["max_sagitta_mm"].as_f64().unwrap();
+    assert!((got - want).abs() < 0.5, "{got} against {want}");
+    let strip = &plan["strips"][0];
+    assert_eq!(strip["id"], "A0");
+    let sagitta = strip["check"]["sagitta_mm"].as_f64().unwrap();
+    assert!((sagitta - want).abs() < 0.5, "{sagitta}");
+    for l in strip["lamellas"].as_array().unwrap() {
+        assert!(l["sagitta_mm"].as_f64().unwrap() > 290.0, "{l}");
+    }
+    // A limit above the bow passes.
+    let loose = dir.join("loose.yaml");
+    std::fs::write(
+        &loose,
+        format!("{}check:\n  max_sagitta_mm: 400\n", steel()),
+    )
+    .unwrap();
+    let (code, stdout, _) = lamella(&[
+        "check",
+        net.to_str().unwrap(),
+        "--profile",
+        loose.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{stdout}");
+    assert!(stdout.contains("PASS: all 6 strips"), "{stdout}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn shipped_asymptotic_samples_still_pass_with_their_sagitta_reported() {
+    for sample in [
+        "catenoid",
+        "hypar-small",
+        "scherk",
+        "film-saddle",
+        "mesh-enneper",
+    ] {
+        let (code, stdout, _) = lamella(&[
+            "check",
+            &format!("samples/{sample}.yaml"),
+            "--profile",
+            "profiles/steel-1.5.yaml",
+        ]);
+        assert_eq!(code, Some(0), "{sample}: {stdout}");
+        let pass = stdout.lines().find(|l| l.starts_with("PASS")).unwrap();
+        let sagitta: f64 = pass
+            .rsplit("largest sagitta ")
+            .next()
+            .and_then(|t| t.trim_end_matches(" mm").parse().ok())
+            .unwrap();
+        assert!(sagitta < 0.1, "{sample}: {pass}");
+    }
 }
