@@ -386,3 +386,60 @@ fn strips_with_one_node_lie_flat_at_their_erected_angle() {
         );
     }
 }
+
+/// A deep Enneper (1 m per unit over |u ± v| ≤ 1.1, strips 150 mm apart):
+/// the projection onto its plane folds at the corners, where the surface
+/// turns past vertical, and the least-bending minimisation stops. `flat`
+/// either converges or states in one line the least rotation any flat
+/// layout it found needs (exit 3); never "NOT converged", never a folded
+/// joint passed off as a flat state.
+#[test]
+fn a_deep_enneper_converges_or_states_the_least_rotation_it_needs() {
+    let dir = scratch("deep-enneper");
+    let spec = dir.join("deep.trace.yaml");
+    std::fs::write(
+        &spec,
+        "name: enneper-deep\nsurface: enneper\nscale_mm: 1000\nseed: [0.0, 0.0]\nspacing_mm: 150\ndesign: central\nclip:\n  parameters:\n    polygon: [[1.1, 0], [0, 1.1], [-1.1, 0], [0, -1.1]]\nsampling:\n  step_mm: 25\n",
+    )
+    .expect("write spec");
+    let network = dir.join("deep.yaml");
+    let o = lamella_command()
+        .args(["trace".as_ref(), spec.as_os_str(), "--out".as_ref()])
+        .arg(&network)
+        .output()
+        .expect("trace");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let net = io::read_network(&network, ReadOptions::default()).expect("read");
+    let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyse");
+    let st = solve(&problem(&an, &profile("steel-1.5")).expect("problem"));
+    assert!(
+        st.converged || st.least_rotation_deg.is_some(),
+        "not converged and no least rotation stated"
+    );
+    let steel = root().join("profiles/steel-1.5.yaml");
+    let o = lamella_command()
+        .args(["flat".as_ref(), network.as_os_str(), "--profile".as_ref()])
+        .args([steel.as_os_str(), "--out".as_ref()])
+        .arg(dir.join("flat"))
+        .output()
+        .expect("flat");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(!stdout.contains("NOT converged"), "{stdout}");
+    match st.least_rotation_deg {
+        Some(best) if best > 60.0 => {
+            assert_eq!(o.status.code(), Some(3), "{stdout}");
+            let fail: Vec<&str> = stdout.lines().filter(|l| l.starts_with("FAIL")).collect();
+            assert_eq!(
+                fail,
+                [format!(
+                    "FAIL: no flat state within ±60° found; the best needs ±{best:.2}°"
+                )],
+                "{stdout}"
+            );
+        }
+        _ => {
+            assert!(stdout.contains("largest rotation"), "{stdout}");
+            assert!(!stdout.contains("did not converge"), "{stdout}");
+        }
+    }
+}
