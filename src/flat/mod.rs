@@ -203,7 +203,8 @@ pub struct FlatState {
     /// Bending energy Σ EI φ²/ℓ of the result, N·mm.
     pub energy_nmm: f64,
     /// The same of the start (the erected nodes projected onto their plane,
-    /// lengths then made right), N·mm.
+    /// lengths then made right; after a continuation its start, see
+    /// [`solve`]), N·mm.
     pub start_energy_nmm: f64,
     /// The objective at the result and at the start (energy and the weak
     /// pulls, lengths met at the result).
@@ -685,6 +686,8 @@ fn solve_least_energy(pr: &FlatProblem) -> (FlatState, Setup, Vec<f64>) {
 const CONTINUATION_STAGES: usize = 24;
 /// Penalty weight of the lengths along the continuation.
 const FIRM_LENGTH_WEIGHT: f64 = 1e5;
+/// Rounds of minimisation and projection after the continuation.
+const POLISH_ROUNDS: usize = 3;
 /// Levenberg–Marquardt iterations per continuation stage.
 const STAGE_ITERATIONS: usize = 60;
 
@@ -693,9 +696,13 @@ const STAGE_ITERATIONS: usize = 60;
 /// First Levenberg–Marquardt from the projected start (module docs). When
 /// that stops short of the tolerances, or folds a joint (its strips' chords
 /// turn through 0° or 180° against the erected sense), again by
-/// continuation: from the raw projection, whose lengths it has, through
-/// lengths moved towards the erected ones in [`CONTINUATION_STAGES`]
-/// stages, every step rejected that would fold a joint. When that fails
+/// continuation: from the raw projection (or, where that folds joints, the
+/// grid as a spring net with its rim on a circle, when that folds fewer),
+/// the angle pull made dominant to unfold it, then through
+/// lengths moved from its own towards the erected ones in
+/// [`CONTINUATION_STAGES`] stages, every step rejected that leaves more
+/// joints folded, then [`POLISH_ROUNDS`] rounds of minimisation at the
+/// ordinary length weight and projection. When that fails
 /// too, the layout that holds the joints nearest their erected angles (the
 /// angle pull made dominant, still no step folding a joint) is returned
 /// with [`FlatState::least_rotation_deg`] set.
@@ -706,11 +713,28 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
         return st;
     }
     let mut iterations = st.iterations;
+    let target: Vec<Vec<f64>> = pr.strips.iter().map(|s| s.lengths_mm.clone()).collect();
     // Continuation from the raw projection.
-    let raw: Vec<f64> = start_positions(pr)
+    let mut raw: Vec<f64> = start_positions(pr)
         .iter()
         .flat_map(|q| [q[0], q[1]])
         .collect();
+    // Where the projection folds joints (the surface turns past vertical),
+    // a start that folds fewer: the grid as a spring net with its rim on a
+    // circle.
+    let folds = |x: &[f64]| {
+        folded(pr, &su, &sense, x)
+            .into_iter()
+            .filter(|&f| f)
+            .count()
+    };
+    if folds(&raw) > 0 {
+        if let Some(net) = spring_net(pr, &raw) {
+            if folds(&net) < folds(&raw) {
+                raw = net;
+            }
+        }
+    }
     let su = Setup {
         start: raw.chunks(2).map(|c| [c[0], c[1]]).collect(),
         ..su
@@ -728,7 +752,6 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
                 .collect()
         })
         .collect();
-    let target: Vec<Vec<f64>> = pr.strips.iter().map(|s| s.lengths_mm.clone()).collect();
     let directed = erected_directed(pr, &su);
     let mut x = raw.clone();
     // Unfold the projection where it folds (past a vertical tangent plane):
@@ -765,8 +788,17 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
         directed: Some(&directed),
         ..Terms::standard(&target)
     };
+    // Polish: the lengths back to their ordinary penalty weight, a
+    // projection onto them after each round.
     let mut y = x.clone();
-    let (length_ok, steps) = project_lengths(pr, &mut y);
+    let (mut length_ok, mut steps) = project_lengths(pr, &mut y);
+    for _ in 0..POLISH_ROUNDS {
+        iterations += steps;
+        let mut z = y.clone();
+        iterations += minimise(pr, &su, &mut z, &standard, &sense, MAX_ITERATIONS);
+        (length_ok, steps) = project_lengths(pr, &mut z);
+        y = z;
+    }
     iterations += steps;
     let g_start = norm(&weighted_residuals(pr, &su, &raw, false, &standard).gradient(raw.len()))
         .max(1e-6 / su.l_mean);
@@ -822,6 +854,72 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
         worst
     });
     st
+}
+
+/// The grid as a net of springs (stiffness 1/length) with its rim nodes
+/// (fewer than four neighbours) on a circle about the centroid of `x`, in
+/// their angular order about it, the others at rest: a planar embedding
+/// whose cells are convex where the rim is (Tutte), as positions.
+fn spring_net(pr: &FlatProblem, x: &[f64]) -> Option<Vec<f64>> {
+    let n = pr.nodes.len();
+    let mut nb: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+    for s in &pr.strips {
+        for (w, l) in s.nodes.windows(2).zip(&s.lengths_mm) {
+            let k = 1.0 / l.max(1e-9);
+            nb[w[0]].push((w[1], k));
+            nb[w[1]].push((w[0], k));
+        }
+    }
+    let c = (0..n).fold([0.0, 0.0], |a, i| [a[0] + x[2 * i], a[1] + x[2 * i + 1]]);
+    let c = [c[0] / n as f64, c[1] / n as f64];
+    let radius = (0..n)
+        .map(|i| {
+            let d = sub(p(x, i), c);
+            d[0].hypot(d[1])
+        })
+        .fold(0.0, f64::max);
+    let rim: Vec<bool> = nb.iter().map(|v| v.len() < 4).collect();
+    let mut out = x.to_vec();
+    let mut index = vec![usize::MAX; n];
+    let mut inner = 0;
+    for i in 0..n {
+        if rim[i] {
+            let d = sub(p(x, i), c);
+            let a = d[1].atan2(d[0]);
+            out[2 * i] = c[0] + radius * a.cos();
+            out[2 * i + 1] = c[1] + radius * a.sin();
+        } else {
+            index[i] = inner;
+            inner += 1;
+        }
+    }
+    if inner == 0 || inner == n {
+        return (inner == 0).then_some(out);
+    }
+    let mut t = Vec::new();
+    let mut rhs = [vec![0.0; inner], vec![0.0; inner]];
+    for i in (0..n).filter(|&i| !rim[i]) {
+        let r = index[i];
+        let mut diag = 0.0;
+        for &(j, k) in &nb[i] {
+            diag += k;
+            if rim[j] {
+                rhs[0][r] += k * out[2 * j];
+                rhs[1][r] += k * out[2 * j + 1];
+            } else if index[j] < r {
+                t.push(Triplet::new(r, index[j], -k));
+            }
+        }
+        t.push(Triplet::new(r, r, diag));
+    }
+    let zero = vec![0.0; inner];
+    let xs = solve_spd(inner, t.clone(), &zero, 0.0, &rhs[0])?;
+    let ys = solve_spd(inner, t, &zero, 0.0, &rhs[1])?;
+    for i in (0..n).filter(|&i| !rim[i]) {
+        out[2 * i] = xs[index[i]];
+        out[2 * i + 1] = ys[index[i]];
+    }
+    Some(out)
 }
 
 /// Per node, the erected angle from A's chord to B's, directed, radians:

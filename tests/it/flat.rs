@@ -389,12 +389,13 @@ fn strips_with_one_node_lie_flat_at_their_erected_angle() {
 
 /// A deep Enneper (1 m per unit over |u ± v| ≤ 1.1, strips 150 mm apart):
 /// the projection onto its plane folds at the corners, where the surface
-/// turns past vertical, and the least-bending minimisation stops. `flat`
-/// either converges or states in one line the least rotation any flat
-/// layout it found needs (exit 3); never "NOT converged", never a folded
-/// joint passed off as a flat state.
+/// turns past vertical, and the minimisation from it stopped after 216
+/// iterations "NOT converged" with a joint at 0.29°. Now it converges, no
+/// joint folded, every rotation within the steel profile's ±60°; were it to
+/// fail, `flat` would state in one line the least rotation it found (exit
+/// 3), never "NOT converged".
 #[test]
-fn a_deep_enneper_converges_or_states_the_least_rotation_it_needs() {
+fn a_deep_enneper_converges_with_no_joint_folded() {
     let dir = scratch("deep-enneper");
     let spec = dir.join("deep.trace.yaml");
     std::fs::write(
@@ -411,11 +412,18 @@ fn a_deep_enneper_converges_or_states_the_least_rotation_it_needs() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let net = io::read_network(&network, ReadOptions::default()).expect("read");
     let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyse");
-    let st = solve(&problem(&an, &profile("steel-1.5")).expect("problem"));
-    assert!(
-        st.converged || st.least_rotation_deg.is_some(),
-        "not converged and no least rotation stated"
-    );
+    let pr = problem(&an, &profile("steel-1.5")).expect("problem");
+    assert_eq!(pr.nodes.len(), 169);
+    let st = solve(&pr);
+    assert!(st.converged, "gradient {}", st.gradient_norm);
+    assert_eq!(st.least_rotation_deg, None);
+    assert!(st.max_length_error < 1e-9, "{}", st.max_length_error);
+    for n in &st.nodes {
+        // Folded would be a flat angle past 0° or 180°: a rotation near 90°.
+        assert!(n.rotation_deg.abs() < 60.0, "node {}: {n:?}", n.node);
+    }
+    assert!(st.energy_nmm <= st.start_energy_nmm);
+    assert_eq!(solve(&pr), st);
     let steel = root().join("profiles/steel-1.5.yaml");
     let o = lamella_command()
         .args(["flat".as_ref(), network.as_os_str(), "--profile".as_ref()])
@@ -424,22 +432,10 @@ fn a_deep_enneper_converges_or_states_the_least_rotation_it_needs() {
         .output()
         .expect("flat");
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(!stdout.contains("NOT converged"), "{stdout}");
-    match st.least_rotation_deg {
-        Some(best) if best > 60.0 => {
-            assert_eq!(o.status.code(), Some(3), "{stdout}");
-            let fail: Vec<&str> = stdout.lines().filter(|l| l.starts_with("FAIL")).collect();
-            assert_eq!(
-                fail,
-                [format!(
-                    "FAIL: no flat state within ±60° found; the best needs ±{best:.2}°"
-                )],
-                "{stdout}"
-            );
-        }
-        _ => {
-            assert!(stdout.contains("largest rotation"), "{stdout}");
-            assert!(!stdout.contains("did not converge"), "{stdout}");
-        }
-    }
+    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains(", converged (") && !stdout.contains("NOT converged"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("\nPASS: "), "{stdout}");
 }
