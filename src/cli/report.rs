@@ -368,10 +368,10 @@ pub fn flat(done: &Done) -> ExitCode {
     let (Some((_, st)), Ok(profile)) = (s.flat_state(), s.profile()) else {
         return ExitCode::from(1);
     };
-    let converged = if st.converged {
-        "converged"
-    } else {
-        "NOT converged"
+    let converged = match (st.least_rotation_deg, st.converged) {
+        (Some(_), _) => "no least-bending state found; laid out for least rotation",
+        (None, true) => "converged",
+        (None, false) => "NOT converged",
     };
     println!(
         "{} flat ({}): {} nodes, {} strips; footprint {:.0} × {:.0} mm; energy {:.1} N·mm (start {:.1}); {} iterations, {converged} (projected gradient {:.1e}, lengths to {:.1e})",
@@ -389,6 +389,11 @@ pub fn flat(done: &Done) -> ExitCode {
     );
     let tolerance = profile.joint.rotation_tolerance_deg;
     let mut fails = Vec::new();
+    // A layout of least rotation whose lengths hold and whose joints are
+    // within the slots is a flat state to assemble in, stationary or not.
+    let beyond = st
+        .least_rotation_deg
+        .filter(|&best| best > tolerance || st.max_length_error > lamella::flat::LENGTH_TOLERANCE);
     if let Some(i) = st.max_rotation() {
         let n = &st.nodes[i];
         println!(
@@ -419,7 +424,12 @@ pub fn flat(done: &Done) -> ExitCode {
             ));
         }
     }
-    if !st.converged {
+    if let Some(best) = beyond {
+        // One statement instead of the figures of a layout that misses.
+        fails = vec![format!(
+            "no flat state within ±{tolerance}° found; the best needs ±{best:.2}°"
+        )];
+    } else if !st.converged && st.least_rotation_deg.is_none() {
         fails.push("the flat state did not converge".into());
     }
     let names: Vec<String> = done

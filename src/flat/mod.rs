@@ -203,7 +203,8 @@ pub struct FlatState {
     /// Bending energy Σ EI φ²/ℓ of the result, N·mm.
     pub energy_nmm: f64,
     /// The same of the start (the erected nodes projected onto their plane,
-    /// lengths then made right), N·mm.
+    /// lengths then made right; after a continuation its start, see
+    /// [`solve`]), N·mm.
     pub start_energy_nmm: f64,
     /// The objective at the result and at the start (energy and the weak
     /// pulls, lengths met at the result).
@@ -219,6 +220,12 @@ pub struct FlatState {
     pub strips: Vec<FlatStrip>,
     /// Extent of the layout along its x and y, mm.
     pub footprint_mm: [f64; 2],
+    /// Set when no least-bending flat state was found (the minimisation
+    /// stopped, or folded a joint past 0° or 180°, from the projected start
+    /// and along the continuation from it): this state is then the layout
+    /// that holds the joints nearest their erected angles, and this its
+    /// largest rotation, degrees (90 when even it folds a joint).
+    pub least_rotation_deg: Option<f64>,
 }
 
 impl FlatState {
@@ -317,6 +324,16 @@ fn wrap_half(a: f64) -> f64 {
     x
 }
 
+/// An angle wrapped into (−π, π].
+fn wrap_full(a: f64) -> f64 {
+    let p = std::f64::consts::PI;
+    let mut x = a.rem_euclid(2.0 * p);
+    if x > p {
+        x -= 2.0 * p;
+    }
+    x
+}
+
 /// The chord of a strip at its k-th node: next − previous (one-sided at the
 /// ends), and the two node indices.
 fn chord(s: &FlatStripIn, k: usize) -> (usize, usize) {
@@ -345,16 +362,57 @@ fn p(x: &[f64], i: usize) -> [f64; 2] {
     [x[2 * i], x[2 * i + 1]]
 }
 
+/// The weights of a minimisation and the lengths it holds the strips to.
+struct Terms<'a> {
+    /// Factor on the bending residuals.
+    bend: f64,
+    /// Weight of the pull towards the erected angles.
+    angle: f64,
+    /// Target node-to-node lengths per strip, mm.
+    lengths: &'a [Vec<f64>],
+    /// Penalty weight of the lengths (per mean interval).
+    length: f64,
+    /// Per node, the erected angle from A's chord to B's as directed
+    /// (radians in (−π, π]): when given, the angle pull tells a folded
+    /// joint from an unfolded one (otherwise lines, modulo π).
+    directed: Option<&'a [f64]>,
+}
+
+impl<'a> Terms<'a> {
+    /// The flat state's own: bending, [`ANGLE_WEIGHT`], the erected lengths.
+    fn standard(lengths: &'a [Vec<f64>]) -> Terms<'a> {
+        Terms {
+            bend: 1.0,
+            angle: ANGLE_WEIGHT,
+            lengths,
+            length: LENGTH_WEIGHT,
+            directed: None,
+        }
+    }
+}
+
 /// Residuals at `x`: bending, (optionally) lengths, angle pull, anchors.
 fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Rows {
+    let lengths: Vec<Vec<f64>> = pr.strips.iter().map(|s| s.lengths_mm.clone()).collect();
+    weighted_residuals(pr, su, x, with_lengths, &Terms::standard(&lengths))
+}
+
+/// [`residuals`] with the weights and target lengths of `terms`.
+fn weighted_residuals(
+    pr: &FlatProblem,
+    su: &Setup,
+    x: &[f64],
+    with_lengths: bool,
+    terms: &Terms,
+) -> Rows {
     let mut rows = Rows::new();
     let lm = su.l_mean;
-    for s in &pr.strips {
+    for (s, target) in pr.strips.iter().zip(terms.lengths) {
         for j in 1..s.nodes.len().saturating_sub(1) {
             let (a, b, c) = (s.nodes[j - 1], s.nodes[j], s.nodes[j + 1]);
             let (d1, d2) = (sub(p(x, b), p(x, a)), sub(p(x, c), p(x, b)));
             let ell = 0.5 * (s.lengths_mm[j - 1] + s.lengths_mm[j]);
-            let w = (lm / ell).sqrt();
+            let w = terms.bend * (lm / ell).sqrt();
             let (g1, g2) = (perp_over_sq(d1), perp_over_sq(d2));
             rows.push(
                 w * turn(d1, d2),
@@ -369,7 +427,7 @@ fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Row
             );
         }
         if with_lengths {
-            length_rows(&mut rows, s, x, LENGTH_WEIGHT / lm);
+            length_rows(&mut rows, s, target, x, terms.length / lm);
         }
     }
     for (i, n) in pr.nodes.iter().enumerate() {
@@ -379,14 +437,18 @@ fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Row
             let (b0, b1) = chord(&pr.strips[sb], kb);
             let (da, db) = (sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
             let psi = turn(da, db);
-            let w = ANGLE_WEIGHT;
+            let w = terms.angle;
             let (ga, gb) = (perp_over_sq(da), perp_over_sq(db));
             let mut e = Vec::with_capacity(8);
             for (node, sign, g) in [(a1, -1.0, ga), (a0, 1.0, ga), (b1, 1.0, gb), (b0, -1.0, gb)] {
                 e.push((2 * node, w * sign * g[0]));
                 e.push((2 * node + 1, w * sign * g[1]));
             }
-            rows.push(w * wrap_half(psi - n.erected_angle_deg.to_radians()), e);
+            let miss = match terms.directed {
+                Some(d) => wrap_full(psi - d[i]),
+                None => wrap_half(psi - n.erected_angle_deg.to_radians()),
+            };
+            rows.push(w * miss, e);
         }
         let wa = ANCHOR_WEIGHT / lm;
         let q = p(x, i);
@@ -397,14 +459,14 @@ fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Row
 }
 
 /// Length residuals (|d| − L)·w of a strip.
-fn length_rows(rows: &mut Rows, s: &FlatStripIn, x: &[f64], w: f64) {
-    for j in 0..s.lengths_mm.len() {
+fn length_rows(rows: &mut Rows, s: &FlatStripIn, target: &[f64], x: &[f64], w: f64) {
+    for (j, &length) in target.iter().enumerate() {
         let (a, b) = (s.nodes[j], s.nodes[j + 1]);
         let d = sub(p(x, b), p(x, a));
         let len = d[0].hypot(d[1]);
         let u = [d[0] / len, d[1] / len];
         rows.push(
-            w * (len - s.lengths_mm[j]),
+            w * (len - length),
             vec![
                 (2 * a, -w * u[0]),
                 (2 * a + 1, -w * u[1]),
@@ -418,7 +480,7 @@ fn length_rows(rows: &mut Rows, s: &FlatStripIn, x: &[f64], w: f64) {
 fn lengths_only(pr: &FlatProblem, x: &[f64]) -> Rows {
     let mut rows = Rows::new();
     for s in &pr.strips {
-        length_rows(&mut rows, s, x, 1.0);
+        length_rows(&mut rows, s, &s.lengths_mm, x, 1.0);
     }
     rows
 }
@@ -505,8 +567,9 @@ fn start_positions(pr: &FlatProblem) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// Solve the flat state.
-pub fn solve(pr: &FlatProblem) -> FlatState {
+/// The least-energy minimisation from the projected start: the state, its
+/// setup and its node positions.
+fn solve_least_energy(pr: &FlatProblem) -> (FlatState, Setup, Vec<f64>) {
     let n = 2 * pr.nodes.len();
     let mut on = vec![[(usize::MAX, 0usize); 2]; pr.nodes.len()];
     let mut total_len = 0.0;
@@ -605,7 +668,7 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
     // grid) is measured against 1e-6 per mean interval instead.
     let g_start = norm(&residuals(pr, &su, &start_x, false).gradient(n)).max(1e-6 / su.l_mean);
     let gradient_norm = norm(&gt) / g_start;
-    finish(
+    let st = finish(
         pr,
         &su,
         &x,
@@ -615,7 +678,399 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
         objective(&x),
         gradient_norm,
         length_ok,
-    )
+    );
+    (st, su, x)
+}
+
+/// Stages of the continuation on the lengths (see [`solve`]).
+const CONTINUATION_STAGES: usize = 24;
+/// Penalty weight of the lengths along the continuation.
+const FIRM_LENGTH_WEIGHT: f64 = 1e5;
+/// Rounds of minimisation and projection after the continuation.
+const POLISH_ROUNDS: usize = 3;
+/// Levenberg–Marquardt iterations per continuation stage.
+const STAGE_ITERATIONS: usize = 60;
+
+/// Solve the flat state.
+///
+/// First Levenberg–Marquardt from the projected start (module docs). When
+/// that stops short of the tolerances, or folds a joint (its strips' chords
+/// turn through 0° or 180° against the erected sense), again by
+/// continuation: from the raw projection (or, where that folds joints, the
+/// grid as a spring net with its rim on a circle, when that folds fewer),
+/// the angle pull made dominant to unfold it, then through
+/// lengths moved from its own towards the erected ones in
+/// [`CONTINUATION_STAGES`] stages, every step rejected that leaves more
+/// joints folded, then [`POLISH_ROUNDS`] rounds of minimisation at the
+/// ordinary length weight and projection. When that fails
+/// too, the layout that holds the joints nearest their erected angles (the
+/// angle pull made dominant, still no step folding a joint) is returned
+/// with [`FlatState::least_rotation_deg`] set.
+pub fn solve(pr: &FlatProblem) -> FlatState {
+    let (st, su, x) = solve_least_energy(pr);
+    let sense = erected_senses(pr, &su);
+    if st.converged && !any_folded(pr, &su, &sense, &x) {
+        return st;
+    }
+    let mut iterations = st.iterations;
+    let target: Vec<Vec<f64>> = pr.strips.iter().map(|s| s.lengths_mm.clone()).collect();
+    // Continuation from the raw projection.
+    let mut raw: Vec<f64> = start_positions(pr)
+        .iter()
+        .flat_map(|q| [q[0], q[1]])
+        .collect();
+    // Where the projection folds joints (the surface turns past vertical),
+    // a start that folds fewer: the grid as a spring net with its rim on a
+    // circle.
+    let folds = |x: &[f64]| {
+        folded(pr, &su, &sense, x)
+            .into_iter()
+            .filter(|&f| f)
+            .count()
+    };
+    if folds(&raw) > 0 {
+        if let Some(net) = spring_net(pr, &raw) {
+            if folds(&net) < folds(&raw) {
+                raw = net;
+            }
+        }
+    }
+    let su = Setup {
+        start: raw.chunks(2).map(|c| [c[0], c[1]]).collect(),
+        ..su
+    };
+    let from: Vec<Vec<f64>> = pr
+        .strips
+        .iter()
+        .map(|s| {
+            s.nodes
+                .windows(2)
+                .map(|w| {
+                    let d = sub(p(&raw, w[1]), p(&raw, w[0]));
+                    d[0].hypot(d[1]).max(1e-9)
+                })
+                .collect()
+        })
+        .collect();
+    let directed = erected_directed(pr, &su);
+    let mut x = raw.clone();
+    // Unfold the projection where it folds (past a vertical tangent plane):
+    // the angle pull dominant, on the projection's own lengths.
+    let unfold = Terms {
+        bend: 1e-3,
+        angle: 1.0,
+        lengths: &from,
+        length: FIRM_LENGTH_WEIGHT,
+        directed: Some(&directed),
+    };
+    iterations += minimise(pr, &su, &mut x, &unfold, &sense, MAX_ITERATIONS);
+    let start_energy = energy(pr, &raw);
+    for k in 1..=CONTINUATION_STAGES {
+        let t = k as f64 / CONTINUATION_STAGES as f64;
+        let lengths: Vec<Vec<f64>> = from
+            .iter()
+            .zip(&target)
+            .map(|(a, b)| a.iter().zip(b).map(|(a, b)| a + t * (b - a)).collect())
+            .collect();
+        let iters = if k == CONTINUATION_STAGES {
+            MAX_ITERATIONS
+        } else {
+            STAGE_ITERATIONS
+        };
+        let terms = Terms {
+            directed: Some(&directed),
+            length: FIRM_LENGTH_WEIGHT,
+            ..Terms::standard(&lengths)
+        };
+        iterations += minimise(pr, &su, &mut x, &terms, &sense, iters);
+    }
+    let standard = Terms {
+        directed: Some(&directed),
+        ..Terms::standard(&target)
+    };
+    // Polish: the lengths back to their ordinary penalty weight, a
+    // projection onto them after each round.
+    let mut y = x.clone();
+    let (mut length_ok, mut steps) = project_lengths(pr, &mut y);
+    for _ in 0..POLISH_ROUNDS {
+        iterations += steps;
+        let mut z = y.clone();
+        iterations += minimise(pr, &su, &mut z, &standard, &sense, MAX_ITERATIONS);
+        (length_ok, steps) = project_lengths(pr, &mut z);
+        y = z;
+    }
+    iterations += steps;
+    let g_start = norm(&weighted_residuals(pr, &su, &raw, false, &standard).gradient(raw.len()))
+        .max(1e-6 / su.l_mean);
+    let gradient_norm = projected_gradient(pr, &su, &y, &standard) / g_start;
+    let objective = |x: &[f64]| weighted_residuals(pr, &su, x, false, &standard).sum_sq();
+    let st = finish(
+        pr,
+        &su,
+        &y,
+        iterations,
+        start_energy,
+        objective(&raw),
+        objective(&y),
+        gradient_norm,
+        length_ok,
+    );
+    if st.converged && !any_folded(pr, &su, &sense, &y) {
+        return st;
+    }
+    // The layout of least rotation: the angle pull dominant, from the
+    // continuation's result (no joint folded by it).
+    let relaxed = Terms {
+        bend: 1e-3,
+        angle: 1.0,
+        lengths: &target,
+        length: FIRM_LENGTH_WEIGHT,
+        directed: Some(&directed),
+    };
+    iterations += minimise(pr, &su, &mut x, &relaxed, &sense, MAX_ITERATIONS);
+    let (length_ok, steps) = project_lengths(pr, &mut x);
+    iterations += steps;
+    let g_start = norm(&weighted_residuals(pr, &su, &raw, false, &relaxed).gradient(raw.len()))
+        .max(1e-6 / su.l_mean);
+    let gradient_norm = projected_gradient(pr, &su, &x, &relaxed) / g_start;
+    let objective = |x: &[f64]| weighted_residuals(pr, &su, x, false, &relaxed).sum_sq();
+    let mut st = finish(
+        pr,
+        &su,
+        &x,
+        iterations,
+        start_energy,
+        objective(&raw),
+        objective(&x),
+        gradient_norm,
+        length_ok,
+    );
+    let worst = st
+        .max_rotation()
+        .map_or(0.0, |i| st.nodes[i].rotation_deg.abs());
+    st.least_rotation_deg = Some(if any_folded(pr, &su, &sense, &x) {
+        90.0
+    } else {
+        worst
+    });
+    st
+}
+
+/// The grid as a net of springs (stiffness 1/length) with its rim nodes
+/// (fewer than four neighbours) on a circle about the centroid of `x`, in
+/// their angular order about it, the others at rest: a planar embedding
+/// whose cells are convex where the rim is (Tutte), as positions.
+fn spring_net(pr: &FlatProblem, x: &[f64]) -> Option<Vec<f64>> {
+    let n = pr.nodes.len();
+    let mut nb: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+    for s in &pr.strips {
+        for (w, l) in s.nodes.windows(2).zip(&s.lengths_mm) {
+            let k = 1.0 / l.max(1e-9);
+            nb[w[0]].push((w[1], k));
+            nb[w[1]].push((w[0], k));
+        }
+    }
+    let c = (0..n).fold([0.0, 0.0], |a, i| [a[0] + x[2 * i], a[1] + x[2 * i + 1]]);
+    let c = [c[0] / n as f64, c[1] / n as f64];
+    let radius = (0..n)
+        .map(|i| {
+            let d = sub(p(x, i), c);
+            d[0].hypot(d[1])
+        })
+        .fold(0.0, f64::max);
+    let rim: Vec<bool> = nb.iter().map(|v| v.len() < 4).collect();
+    let mut out = x.to_vec();
+    let mut index = vec![usize::MAX; n];
+    let mut inner = 0;
+    for i in 0..n {
+        if rim[i] {
+            let d = sub(p(x, i), c);
+            let a = d[1].atan2(d[0]);
+            out[2 * i] = c[0] + radius * a.cos();
+            out[2 * i + 1] = c[1] + radius * a.sin();
+        } else {
+            index[i] = inner;
+            inner += 1;
+        }
+    }
+    if inner == 0 || inner == n {
+        return (inner == 0).then_some(out);
+    }
+    let mut t = Vec::new();
+    let mut rhs = [vec![0.0; inner], vec![0.0; inner]];
+    for i in (0..n).filter(|&i| !rim[i]) {
+        let r = index[i];
+        let mut diag = 0.0;
+        for &(j, k) in &nb[i] {
+            diag += k;
+            if rim[j] {
+                rhs[0][r] += k * out[2 * j];
+                rhs[1][r] += k * out[2 * j + 1];
+            } else if index[j] < r {
+                t.push(Triplet::new(r, index[j], -k));
+            }
+        }
+        t.push(Triplet::new(r, r, diag));
+    }
+    let zero = vec![0.0; inner];
+    let xs = solve_spd(inner, t.clone(), &zero, 0.0, &rhs[0])?;
+    let ys = solve_spd(inner, t, &zero, 0.0, &rhs[1])?;
+    for i in (0..n).filter(|&i| !rim[i]) {
+        out[2 * i] = xs[index[i]];
+        out[2 * i + 1] = ys[index[i]];
+    }
+    Some(out)
+}
+
+/// Per node, the erected angle from A's chord to B's, directed, radians:
+/// the erected line angle plus the multiple of π nearest the angle of the
+/// erected chords about the normal (0 for free joints).
+fn erected_directed(pr: &FlatProblem, su: &Setup) -> Vec<f64> {
+    let pi = std::f64::consts::PI;
+    (0..pr.nodes.len())
+        .map(|i| {
+            if free_joint(pr, su, i) {
+                return 0.0;
+            }
+            let [(sa, ka), (sb, kb)] = su.on[i];
+            let (a0, a1) = chord(&pr.strips[sa], ka);
+            let (b0, b1) = chord(&pr.strips[sb], kb);
+            let w = |k: usize| pr.nodes[k].position_world_mm;
+            let (da, db) = (w(a1) - w(a0), w(b1) - w(b0));
+            let chords = pr.nodes[i].normal_world.dot(da.cross(db)).atan2(da.dot(db));
+            let line = pr.nodes[i].erected_angle_deg.to_radians();
+            wrap_full(line + ((chords - line) / pi).round() * pi)
+        })
+        .collect()
+}
+
+/// Per node, the sense in which B's chord turns from A's about the erected
+/// normal (+1 or −1; 0 for free joints and degenerate chords).
+fn erected_senses(pr: &FlatProblem, su: &Setup) -> Vec<f64> {
+    (0..pr.nodes.len())
+        .map(|i| {
+            if free_joint(pr, su, i) {
+                return 0.0;
+            }
+            let [(sa, ka), (sb, kb)] = su.on[i];
+            let (a0, a1) = chord(&pr.strips[sa], ka);
+            let (b0, b1) = chord(&pr.strips[sb], kb);
+            let w = |k: usize| pr.nodes[k].position_world_mm;
+            let c = pr.nodes[i]
+                .normal_world
+                .dot((w(a1) - w(a0)).cross(w(b1) - w(b0)));
+            if c > 0.0 {
+                1.0
+            } else if c < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// Per node, whether its joint is folded at `x`: the chords turn against
+/// the erected sense (or lie on one line).
+fn folded(pr: &FlatProblem, su: &Setup, sense: &[f64], x: &[f64]) -> Vec<bool> {
+    (0..pr.nodes.len())
+        .map(|i| {
+            if sense[i] == 0.0 {
+                return false;
+            }
+            let [(sa, ka), (sb, kb)] = su.on[i];
+            let (a0, a1) = chord(&pr.strips[sa], ka);
+            let (b0, b1) = chord(&pr.strips[sb], kb);
+            let (da, db) = (sub(p(x, a1), p(x, a0)), sub(p(x, b1), p(x, b0)));
+            sense[i] * (da[0] * db[1] - da[1] * db[0]) <= 0.0
+        })
+        .collect()
+}
+
+fn any_folded(pr: &FlatProblem, su: &Setup, sense: &[f64], x: &[f64]) -> bool {
+    folded(pr, su, sense, x).into_iter().any(|f| f)
+}
+
+/// Levenberg–Marquardt on `terms` (lengths as a penalty) from `x`, every
+/// step rejected that leaves more joints folded than before it. Iterations
+/// taken.
+fn minimise(
+    pr: &FlatProblem,
+    su: &Setup,
+    x: &mut Vec<f64>,
+    terms: &Terms,
+    sense: &[f64],
+    max_iterations: usize,
+) -> usize {
+    let n = x.len();
+    let mut rows = weighted_residuals(pr, su, x, true, terms);
+    let mut cost = rows.sum_sq();
+    let g0 = norm(&rows.gradient(n)).max(1e-300);
+    let mut fold = folded(pr, su, sense, x);
+    let mut lambda = 1e-3;
+    let mut iterations = 0;
+    for _ in 0..max_iterations {
+        iterations += 1;
+        let g = rows.gradient(n);
+        if norm(&g) <= 1e-12 * g0 {
+            break;
+        }
+        let (t, diag) = rows.normal_matrix(n);
+        let neg: Vec<f64> = g.iter().map(|v| -v).collect();
+        let Some(step) = solve_spd(n, t, &diag, lambda, &neg) else {
+            lambda *= 10.0;
+            continue;
+        };
+        let trial: Vec<f64> = x.iter().zip(&step).map(|(a, b)| a + b).collect();
+        let trial_fold = folded(pr, su, sense, &trial);
+        let count = |f: &[bool]| f.iter().filter(|&&b| b).count();
+        let folds = count(&trial_fold) > count(&fold);
+        let trial_rows = weighted_residuals(pr, su, &trial, true, terms);
+        let trial_cost = trial_rows.sum_sq();
+        if trial_cost < cost && !folds {
+            let small = norm(&step) <= 1e-12 * (1.0 + norm(x));
+            let gain = (cost - trial_cost) / cost.max(1e-300);
+            *x = trial;
+            rows = trial_rows;
+            cost = trial_cost;
+            fold = trial_fold;
+            lambda = (lambda / 3.0).max(1e-12);
+            if small || gain < 1e-15 {
+                break;
+            }
+        } else {
+            lambda *= 4.0;
+            if lambda > 1e12 {
+                break;
+            }
+        }
+    }
+    iterations
+}
+
+/// Norm of the gradient of the objective of `terms` (no lengths) projected
+/// onto the tangent space of the length constraints at `x`.
+fn projected_gradient(pr: &FlatProblem, su: &Setup, x: &[f64], terms: &Terms) -> f64 {
+    let g = weighted_residuals(pr, su, x, false, terms).gradient(x.len());
+    let lr = lengths_only(pr, x);
+    let m = lr.r.len();
+    let jg: Vec<f64> = lr
+        .entries
+        .iter()
+        .map(|row| row.iter().map(|&(c, v)| v * g[c]).sum())
+        .collect();
+    match solve_spd(m, jjt(&lr), &vec![0.0; m], 0.0, &jg) {
+        Some(y) => {
+            let mut gt = g.clone();
+            for (row, yi) in lr.entries.iter().zip(&y) {
+                for &(c, v) in row {
+                    gt[c] -= v * yi;
+                }
+            }
+            norm(&gt)
+        }
+        None => norm(&g),
+    }
 }
 
 /// Make every length hold: minimum-norm Gauss–Newton steps through
@@ -764,6 +1219,7 @@ fn finish(
         } else {
             [hi[0] - lo[0], hi[1] - lo[1]]
         },
+        least_rotation_deg: None,
     }
 }
 

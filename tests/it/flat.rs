@@ -386,3 +386,56 @@ fn strips_with_one_node_lie_flat_at_their_erected_angle() {
         );
     }
 }
+
+/// A deep Enneper (1 m per unit over |u ± v| ≤ 1.1, strips 150 mm apart):
+/// the projection onto its plane folds at the corners, where the surface
+/// turns past vertical, and the minimisation from it stopped after 216
+/// iterations "NOT converged" with a joint at 0.29°. Now it converges, no
+/// joint folded, every rotation within the steel profile's ±60°; were it to
+/// fail, `flat` would state in one line the least rotation it found (exit
+/// 3), never "NOT converged".
+#[test]
+fn a_deep_enneper_converges_with_no_joint_folded() {
+    let dir = scratch("deep-enneper");
+    let spec = dir.join("deep.trace.yaml");
+    std::fs::write(
+        &spec,
+        "name: enneper-deep\nsurface: enneper\nscale_mm: 1000\nseed: [0.0, 0.0]\nspacing_mm: 150\ndesign: central\nclip:\n  parameters:\n    polygon: [[1.1, 0], [0, 1.1], [-1.1, 0], [0, -1.1]]\nsampling:\n  step_mm: 25\n",
+    )
+    .expect("write spec");
+    let network = dir.join("deep.yaml");
+    let o = lamella_command()
+        .args(["trace".as_ref(), spec.as_os_str(), "--out".as_ref()])
+        .arg(&network)
+        .output()
+        .expect("trace");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let net = io::read_network(&network, ReadOptions::default()).expect("read");
+    let an = lamella::analyze(&net, lamella::AnalysisOptions::for_network(&net)).expect("analyse");
+    let pr = problem(&an, &profile("steel-1.5")).expect("problem");
+    assert_eq!(pr.nodes.len(), 169);
+    let st = solve(&pr);
+    assert!(st.converged, "gradient {}", st.gradient_norm);
+    assert_eq!(st.least_rotation_deg, None);
+    assert!(st.max_length_error < 1e-9, "{}", st.max_length_error);
+    for n in &st.nodes {
+        // Folded would be a flat angle past 0° or 180°: a rotation near 90°.
+        assert!(n.rotation_deg.abs() < 60.0, "node {}: {n:?}", n.node);
+    }
+    assert!(st.energy_nmm <= st.start_energy_nmm);
+    assert_eq!(solve(&pr), st);
+    let steel = root().join("profiles/steel-1.5.yaml");
+    let o = lamella_command()
+        .args(["flat".as_ref(), network.as_os_str(), "--profile".as_ref()])
+        .args([steel.as_os_str(), "--out".as_ref()])
+        .arg(dir.join("flat"))
+        .output()
+        .expect("flat");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains(", converged (") && !stdout.contains("NOT converged"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("\nPASS: "), "{stdout}");
+}
