@@ -389,8 +389,10 @@ pub fn flat(done: &Done) -> ExitCode {
     );
     let tolerance = profile.joint.rotation_tolerance_deg;
     let mut fails = Vec::new();
-    // A layout of least rotation whose lengths hold and whose joints are
-    // within the slots is a flat state to assemble in, stationary or not.
+    // A layout of least rotation that misses the slots or the lengths is
+    // stated as the best found; one within them that is not stationary is
+    // no state the grid rests in (it would have to be held there), so it
+    // fails too, saying so.
     let beyond = st
         .least_rotation_deg
         .filter(|&best| best > tolerance || st.max_length_error > lamella::flat::LENGTH_TOLERANCE);
@@ -429,7 +431,12 @@ pub fn flat(done: &Done) -> ExitCode {
         fails = vec![format!(
             "no flat state within ±{tolerance}° found; the best needs ±{best:.2}°"
         )];
-    } else if !st.converged && st.least_rotation_deg.is_none() {
+    } else if let (Some(best), false) = (st.least_rotation_deg, st.converged) {
+        fails.push(format!(
+            "no flat state at rest found: a layout within ±{best:.2}° holds the lengths but is not stationary (projected gradient {:.1e}), so the grid would have to be held in it",
+            st.gradient_norm
+        ));
+    } else if !st.converged {
         fails.push("the flat state did not converge".into());
     }
     let names: Vec<String> = done
