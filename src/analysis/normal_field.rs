@@ -11,9 +11,13 @@
 //! * at every node, from the two crossing tangents (z = tₐ × t_b): first
 //!   derivatives only, the most reliable observation there is;
 //! * along an asymptotic curve (A, B), from its binormal, whose direction is
-//!   the surface normal; its uncertainty is the curvature's rounding noise
-//!   over the curvature itself (σθ = σκ/κ), so it weighs nothing near
-//!   inflections and on straight stretches.
+//!   the surface normal; its uncertainty is the curvature's error over the
+//!   curvature itself (σθ = σκ/κ), so it weighs nothing near inflections and
+//!   on straight stretches. σκ is the rounding noise and the interpolant's
+//!   own error between samples (about h·|Δd³| over a segment h long): on a
+//!   grid's polylines, sampled at their nodes only, the binormal between
+//!   nodes a cell apart is an interpolant's guess and the nodes govern,
+//!   ends and short boundary strips included.
 //!
 //! θ(s) is the weighted least-squares cubic B-spline (uniform knots) through
 //! these observations with a small third-difference penalty (P-spline) that
