@@ -11,9 +11,13 @@
 //! * at every node, from the two crossing tangents (z = tₐ × t_b): first
 //!   derivatives only, the most reliable observation there is;
 //! * along an asymptotic curve (A, B), from its binormal, whose direction is
-//!   the surface normal; its uncertainty is the curvature's rounding noise
-//!   over the curvature itself (σθ = σκ/κ), so it weighs nothing near
-//!   inflections and on straight stretches.
+//!   the surface normal; its uncertainty is the curvature's error over the
+//!   curvature itself (σθ = σκ/κ), so it weighs nothing near inflections and
+//!   on straight stretches. σκ is the rounding noise and the interpolant's
+//!   own error between samples (about h·|Δd³| over a segment h long): on a
+//!   grid's polylines, sampled at their nodes only, the binormal between
+//!   nodes a cell apart is an interpolant's guess and the nodes govern,
+//!   ends and short boundary strips included.
 //!
 //! θ(s) is the weighted least-squares cubic B-spline (uniform knots) through
 //! these observations with a small third-difference penalty (P-spline) that
@@ -325,7 +329,7 @@ impl NormalField {
         let mut binormals: Vec<Observation> =
             Vec::with_capacity(if use_binormal { count } else { 0 });
         let mut first_points_down: Option<bool> = None;
-        let mut push = |piece: &Piece, u: f64, station: f64, near: usize| {
+        let mut push = |piece: &Piece, u: f64, station: f64, near: usize, interp: f64| {
             let (p, x, kvec) = point_tangent_curvature(piece, u);
             // The rotation-minimising frame, carried from the last station.
             let r = match (points_mm.last(), tangents.last(), refs.last()) {
@@ -342,7 +346,8 @@ impl NormalField {
             let kappa = kvec.length();
             let sigma_kappa = smooth
                 .curvature_noise_per_mm(near)
-                .hypot(opts.curvature_floor_per_mm);
+                .hypot(opts.curvature_floor_per_mm)
+                .hypot(interp);
             let sigma = sigma_kappa / kappa.max(1e-300);
             if sigma > opts.max_binormal_sigma_rad {
                 return;
@@ -357,6 +362,7 @@ impl NormalField {
         };
         for (k, &sample_mm) in samples[..n - 1].iter().enumerate() {
             let piece = smooth.piece(k);
+            let interp = interpolation_error_per_mm(&piece, samples[k + 1] - sample_mm);
             let parts = parts_of(k);
             for p in 0..parts {
                 let u = p as f64 / parts as f64;
@@ -365,10 +371,18 @@ impl NormalField {
                 } else {
                     smooth.station_in(&piece, k, u)
                 };
-                push(&piece, u, station, if 2 * p < parts { k } else { k + 1 });
+                push(
+                    &piece,
+                    u,
+                    station,
+                    if 2 * p < parts { k } else { k + 1 },
+                    interp,
+                );
             }
         }
-        push(&smooth.piece(n - 2), 1.0, length, n - 1);
+        let last = smooth.piece(n - 2);
+        let interp = interpolation_error_per_mm(&last, length - samples[n - 2]);
+        push(&last, 1.0, length, n - 1, interp);
         let mut field = NormalField {
             stations_mm,
             points_mm,
@@ -479,6 +493,15 @@ impl NormalField {
         let (theta, dtheta) = self.angle.eval(station_mm);
         (u1 * theta.cos() + u2 * theta.sin(), dtheta)
     }
+}
+
+/// The interpolant's own curvature error over a segment `h_mm` long, 1/mm:
+/// the second derivative of an interpolant is off by about h² times the
+/// curve's fourth, which the change of its third over the segment measures
+/// (h·|Δd³|). Negligible between dense samples; between samples a cell
+/// apart (a grid's polylines) it is what the binormal is worth.
+fn interpolation_error_per_mm(piece: &Piece, h_mm: f64) -> f64 {
+    h_mm * (piece.jet(1.0).d3 - piece.jet(0.0).d3).length()
 }
 
 /// `theta` moved by a multiple of `period` to lie nearest `target`.

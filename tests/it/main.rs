@@ -29,3 +29,4 @@ mod readers;
 mod robustness;
 mod trace;
 mod traced_accuracy;
+mod web_ends;
