@@ -391,13 +391,8 @@ impl<'a> Terms<'a> {
     }
 }
 
-/// Residuals at `x`: bending, (optionally) lengths, angle pull, anchors.
-fn residuals(pr: &FlatProblem, su: &Setup, x: &[f64], with_lengths: bool) -> Rows {
-    let lengths: Vec<Vec<f64>> = pr.strips.iter().map(|s| s.lengths_mm.clone()).collect();
-    weighted_residuals(pr, su, x, with_lengths, &Terms::standard(&lengths))
-}
-
-/// [`residuals`] with the weights and target lengths of `terms`.
+/// Residuals at `x`: bending, (optionally) lengths, angle pull, anchors,
+/// with the weights and target lengths of `terms`.
 fn weighted_residuals(
     pr: &FlatProblem,
     su: &Setup,
@@ -600,74 +595,21 @@ fn solve_least_energy(pr: &FlatProblem) -> (FlatState, Setup, Vec<f64>) {
         start: start_x.chunks(2).map(|c| [c[0], c[1]]).collect(),
         ..su
     };
+    let lengths: Vec<Vec<f64>> = pr.strips.iter().map(|s| s.lengths_mm.clone()).collect();
+    let standard = Terms::standard(&lengths);
     let start_energy = energy(pr, &x);
-    let objective = |x: &[f64]| residuals(pr, &su, x, false).sum_sq();
+    let objective = |x: &[f64]| weighted_residuals(pr, &su, x, false, &standard).sum_sq();
     let start_objective = objective(&x);
-    let mut rows = residuals(pr, &su, &x, true);
-    let mut cost = rows.sum_sq();
-    let g0 = norm(&rows.gradient(n)).max(1e-300);
-    let mut lambda = 1e-3;
-    for _ in 0..MAX_ITERATIONS {
-        iterations += 1;
-        let g = rows.gradient(n);
-        if norm(&g) <= 1e-12 * g0 {
-            break;
-        }
-        let (t, diag) = rows.normal_matrix(n);
-        let neg: Vec<f64> = g.iter().map(|v| -v).collect();
-        let Some(step) = solve_spd(n, t, &diag, lambda, &neg) else {
-            lambda *= 10.0;
-            continue;
-        };
-        let trial: Vec<f64> = x.iter().zip(&step).map(|(a, b)| a + b).collect();
-        let trial_rows = residuals(pr, &su, &trial, true);
-        let trial_cost = trial_rows.sum_sq();
-        if trial_cost < cost {
-            let small = norm(&step) <= 1e-12 * (1.0 + norm(&x));
-            let gain = (cost - trial_cost) / cost.max(1e-300);
-            x = trial;
-            rows = trial_rows;
-            cost = trial_cost;
-            lambda = (lambda / 3.0).max(1e-12);
-            if small || gain < 1e-15 {
-                break;
-            }
-        } else {
-            lambda *= 4.0;
-            if lambda > 1e12 {
-                break;
-            }
-        }
-    }
+    iterations += minimise(pr, &su, &mut x, &standard, None, MAX_ITERATIONS);
     let (length_ok, steps) = project_lengths(pr, &mut x);
     iterations += steps;
-    // Stationarity: the objective's gradient projected onto the tangent
-    // space of the length constraints.
-    let obj_rows = residuals(pr, &su, &x, false);
-    let g = obj_rows.gradient(n);
-    let lr = lengths_only(pr, &x);
-    let m = lr.r.len();
-    let jg: Vec<f64> = lr
-        .entries
-        .iter()
-        .map(|row| row.iter().map(|&(c, v)| v * g[c]).sum())
-        .collect();
-    let gt = match solve_spd(m, jjt(&lr), &vec![0.0; m], 0.0, &jg) {
-        Some(y) => {
-            let mut gt = g.clone();
-            for (row, yi) in lr.entries.iter().zip(&y) {
-                for &(c, v) in row {
-                    gt[c] -= v * yi;
-                }
-            }
-            gt
-        }
-        None => g.clone(),
-    };
     // Relative to the start's gradient; a start already at rest (a planar
     // grid) is measured against 1e-6 per mean interval instead.
-    let g_start = norm(&residuals(pr, &su, &start_x, false).gradient(n)).max(1e-6 / su.l_mean);
-    let gradient_norm = norm(&gt) / g_start;
+    // Stationarity: the objective's gradient projected onto the tangent
+    // space of the length constraints.
+    let g_start = norm(&weighted_residuals(pr, &su, &start_x, false, &standard).gradient(n))
+        .max(1e-6 / su.l_mean);
+    let gradient_norm = projected_gradient(pr, &su, &x, &standard) / g_start;
     let st = finish(
         pr,
         &su,
@@ -763,7 +705,7 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
         length: FIRM_LENGTH_WEIGHT,
         directed: Some(&directed),
     };
-    iterations += minimise(pr, &su, &mut x, &unfold, &sense, MAX_ITERATIONS);
+    iterations += minimise(pr, &su, &mut x, &unfold, Some(&sense), MAX_ITERATIONS);
     let start_energy = energy(pr, &raw);
     for k in 1..=CONTINUATION_STAGES {
         let t = k as f64 / CONTINUATION_STAGES as f64;
@@ -782,7 +724,7 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
             length: FIRM_LENGTH_WEIGHT,
             ..Terms::standard(&lengths)
         };
-        iterations += minimise(pr, &su, &mut x, &terms, &sense, iters);
+        iterations += minimise(pr, &su, &mut x, &terms, Some(&sense), iters);
     }
     let standard = Terms {
         directed: Some(&directed),
@@ -795,7 +737,7 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
     for _ in 0..POLISH_ROUNDS {
         iterations += steps;
         let mut z = y.clone();
-        iterations += minimise(pr, &su, &mut z, &standard, &sense, MAX_ITERATIONS);
+        iterations += minimise(pr, &su, &mut z, &standard, Some(&sense), MAX_ITERATIONS);
         (length_ok, steps) = project_lengths(pr, &mut z);
         y = z;
     }
@@ -827,7 +769,7 @@ pub fn solve(pr: &FlatProblem) -> FlatState {
         length: FIRM_LENGTH_WEIGHT,
         directed: Some(&directed),
     };
-    iterations += minimise(pr, &su, &mut x, &relaxed, &sense, MAX_ITERATIONS);
+    iterations += minimise(pr, &su, &mut x, &relaxed, Some(&sense), MAX_ITERATIONS);
     let (length_ok, steps) = project_lengths(pr, &mut x);
     iterations += steps;
     let g_start = norm(&weighted_residuals(pr, &su, &raw, false, &relaxed).gradient(raw.len()))
@@ -991,22 +933,27 @@ fn any_folded(pr: &FlatProblem, su: &Setup, sense: &[f64], x: &[f64]) -> bool {
     folded(pr, su, sense, x).into_iter().any(|f| f)
 }
 
-/// Levenberg–Marquardt on `terms` (lengths as a penalty) from `x`, every
-/// step rejected that leaves more joints folded than before it. Iterations
-/// taken.
+/// Levenberg–Marquardt on `terms` (lengths as a penalty) from `x`; with
+/// the joints' erected `sense`, every step rejected that leaves more joints
+/// folded than before it. Iterations taken.
 fn minimise(
     pr: &FlatProblem,
     su: &Setup,
     x: &mut Vec<f64>,
     terms: &Terms,
-    sense: &[f64],
+    sense: Option<&[f64]>,
     max_iterations: usize,
 ) -> usize {
     let n = x.len();
     let mut rows = weighted_residuals(pr, su, x, true, terms);
     let mut cost = rows.sum_sq();
     let g0 = norm(&rows.gradient(n)).max(1e-300);
-    let mut fold = folded(pr, su, sense, x);
+    let folds_in = |x: &[f64]| {
+        sense.map_or(0, |sense| {
+            folded(pr, su, sense, x).iter().filter(|&&b| b).count()
+        })
+    };
+    let mut fold = folds_in(x);
     let mut lambda = 1e-3;
     let mut iterations = 0;
     for _ in 0..max_iterations {
@@ -1022,9 +969,8 @@ fn minimise(
             continue;
         };
         let trial: Vec<f64> = x.iter().zip(&step).map(|(a, b)| a + b).collect();
-        let trial_fold = folded(pr, su, sense, &trial);
-        let count = |f: &[bool]| f.iter().filter(|&&b| b).count();
-        let folds = count(&trial_fold) > count(&fold);
+        let trial_fold = folds_in(&trial);
+        let folds = trial_fold > fold;
         let trial_rows = weighted_residuals(pr, su, &trial, true, terms);
         let trial_cost = trial_rows.sum_sq();
         if trial_cost < cost && !folds {
