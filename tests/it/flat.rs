@@ -439,3 +439,33 @@ fn a_deep_enneper_converges_with_no_joint_folded() {
     );
     assert!(stdout.contains("\nPASS: "), "{stdout}");
 }
+
+/// The catenoid's grid (its strips close around the neck) reaches no
+/// stationary flat state; the least-rotation layout holds its lengths
+/// within the slots but is not at rest, so the verdict fails and says so.
+#[test]
+fn a_layout_not_at_rest_never_passes() {
+    let out = scratch("flat-not-at-rest");
+    let path = root().join("samples/catenoid.yaml");
+    let prof = root().join("profiles/steel-1.5.yaml");
+    let (code, stdout, stderr) = crate::support::lamella(&[
+        "flat".as_ref(),
+        path.as_os_str(),
+        "--profile".as_ref(),
+        prof.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert_eq!(code, Some(3), "{stdout}{stderr}");
+    assert!(
+        stdout.contains("laid out for least rotation"),
+        "the first line says the fallback was used: {stdout}"
+    );
+    let verdict = stdout.lines().last().unwrap_or_default();
+    assert!(
+        verdict.starts_with("FAIL: no flat state at rest found: a layout within ±")
+            && verdict.contains("not stationary"),
+        "{verdict}"
+    );
+    assert!(!stdout.contains("PASS"), "{stdout}");
+}
