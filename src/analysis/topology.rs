@@ -728,6 +728,7 @@ mod tests {
             name: "t".into(),
             unit: Unit::Mm,
             tolerance: Some(0.5),
+            precision: None,
             curves,
         };
         let net = Network::new(raw, Path::new("t.yaml")).expect("valid network");

@@ -640,6 +640,7 @@ mod tests {
             name: "arc-and-line".into(),
             unit: Unit::Mm,
             tolerance: None,
+            precision: None,
             curves: vec![
                 raw("A0", Family::A, arc, vec![DVec3::Z; 61]),
                 raw("B0", Family::B, line, turning),
@@ -746,6 +747,7 @@ mod tests {
             name: "arc-on-edge".into(),
             unit: Unit::Mm,
             tolerance: None,
+            precision: None,
             curves: vec![
                 raw("A0", Family::A, arc, normals),
                 raw("B0", Family::B, line, vec![at; 21]),

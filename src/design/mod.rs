@@ -77,6 +77,11 @@ pub struct Prepared {
     pub notes: Vec<String>,
     /// Warnings about the surface (synclastic regions).
     pub warnings: Vec<String>,
+    /// How far traced curves may stand from the surface's own, mm: a mesh's
+    /// (see [`mesh_source`]); 0 on a closed form.
+    pub precision_mm: f64,
+    /// A mesh's median edge, mm (0 on a closed form).
+    pub cell_mm: f64,
 }
 
 /// How the design stage reads the mesh file a `surface: mesh` spec names
@@ -94,6 +99,8 @@ pub fn prepare_surface(spec: &TraceSpec, path: &Path, read_mesh: ReadMesh) -> Re
             seed_uv: m.seed_uv,
             notes: m.notes,
             warnings: m.warnings,
+            precision_mm: m.precision_mm,
+            cell_mm: m.cell_mm,
         });
     }
     Ok(Prepared {
@@ -101,6 +108,8 @@ pub fn prepare_surface(spec: &TraceSpec, path: &Path, read_mesh: ReadMesh) -> Re
         seed_uv: DVec2::from_array(spec.seed.unwrap_or_default()),
         notes: Vec::new(),
         warnings: Vec::new(),
+        precision_mm: 0.0,
+        cell_mm: 0.0,
     })
 }
 
@@ -469,6 +478,8 @@ fn trace_network(
         seed_uv: seed,
         notes,
         warnings,
+        precision_mm,
+        cell_mm,
     } = prepare_surface(spec, path, read_mesh)?;
     let clip = Clip::from_spec(clip_spec.as_ref());
     let opts = TraceOptions {
@@ -501,8 +512,21 @@ fn trace_network(
             ),
         ));
     }
+    let declare = |(mut raw, report): (RawNetwork, DesignReport)| {
+        if cell_mm > 0.0 {
+            let rough = raw
+                .curves
+                .iter()
+                .filter(|c| c.family != Family::Edge)
+                .map(|c| crate::geom::curve::roughness_mm(&c.points, 2.0 * cell_mm))
+                .fold(0.0f64, f64::max);
+            let p = precision_mm.max(2.0 * rough);
+            raw.precision = Some(p);
+        }
+        (raw, report)
+    };
     if spec.periodic {
-        return design_periodic(spec, path, &surface, &clip, opts);
+        return design_periodic(spec, path, &surface, &clip, opts).map(declare);
     }
     let (fa, fb) = match spec.net {
         Net::Asymptotic => (Field::AsymptoticA, Field::AsymptoticB),
@@ -520,6 +544,7 @@ fn trace_network(
         .map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
     let b0 = trace(fb, seed)
         .map_err(|s| seed_err(format!("no curve through the seed: {}", s.as_str())))?;
+    let (a0, b0) = (orient_seed_curve(a0, seed), orient_seed_curve(b0, seed));
     if a0.length_mm() < spec.sampling.tolerance_mm || b0.length_mm() < spec.sampling.tolerance_mm {
         return Err(Error::input(
             path,
@@ -618,7 +643,35 @@ fn trace_network(
     );
     report.notes = notes;
     report.warnings = warnings;
-    Ok((raw, report))
+    Ok(declare((raw, report)))
+}
+
+/// The world direction the seed's two curves run along: each is turned so
+/// that its tangent at the seed has a positive component along it (+x
+/// first; +y for a curve across x; +z for one across both). A fixed world
+/// direction, not the surface's parameters or a mesh's vertex order, so
+/// the same design traced on a closed form, on its mesh or on a film
+/// numbers its curves alike (they are numbered along the seed's curves).
+pub const SEED_CURVE_DIRECTION: DVec3 = DVec3::new(
+    1.0,
+    std::f64::consts::FRAC_1_PI,
+    std::f64::consts::FRAC_1_PI * std::f64::consts::FRAC_1_PI,
+);
+
+/// A seed curve turned to run along [`SEED_CURVE_DIRECTION`] at the seed.
+fn orient_seed_curve(t: Traced, seed: DVec2) -> Traced {
+    let n = t.points_world_mm.len();
+    if n < 2 {
+        return t;
+    }
+    let s = station_of(&t, seed);
+    let k = t.stations_mm.partition_point(|&x| x <= s).clamp(1, n - 1);
+    let tangent = t.points_world_mm[k] - t.points_world_mm[k - 1];
+    if tangent.dot(SEED_CURVE_DIRECTION) < 0.0 {
+        t.reversed()
+    } else {
+        t
+    }
 }
 
 /// A traced curve ready for the network file: world points and normals.
@@ -673,6 +726,7 @@ fn assemble(
             name,
             unit: Unit::Mm,
             tolerance: Some(0.5),
+            precision: None,
             curves,
         },
         report,

@@ -178,6 +178,19 @@ pub struct Traced {
 }
 
 impl Traced {
+    /// The same curve run the other way.
+    pub fn reversed(mut self) -> Traced {
+        let length = self.length_mm();
+        self.uv.reverse();
+        self.points_world_mm.reverse();
+        self.stations_mm.reverse();
+        for s in &mut self.stations_mm {
+            *s = length - *s;
+        }
+        std::mem::swap(&mut self.stop_start, &mut self.stop_end);
+        self
+    }
+
     /// Arc length, mm (the last station).
     pub fn length_mm(&self) -> f64 {
         *self.stations_mm.last().unwrap_or(&0.0)

@@ -894,6 +894,7 @@ mod tests {
             name: "flat".into(),
             unit: Unit::Mm,
             tolerance: None,
+            precision: None,
             curves,
         };
         let net = Network::new(raw, Path::new("flat.yaml")).expect("network");

@@ -969,6 +969,7 @@ mod tests {
             name: "straight".into(),
             unit: Unit::Mm,
             tolerance: None,
+            precision: None,
             curves: vec![
                 line(
                     "A0",

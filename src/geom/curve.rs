@@ -323,6 +323,34 @@ pub fn smooth_samples(t: &[f64], v: &[DVec3], precision_mm: f64) -> SmoothedSamp
     }
 }
 
+/// Root-mean-square distance of samples from their local degree-4 fits
+/// over ±`half_window_mm` of chord length (at least 9 samples each), mm:
+/// the roughness a curve carries at scales below the window (0 for fewer
+/// than 9 samples). A smooth curve whose bending radius is well above the
+/// window has none to speak of; a curve traced through a field that kinks
+/// from triangle to triangle shows its wiggles here.
+pub fn roughness_mm(points_mm: &[DVec3], half_window_mm: f64) -> f64 {
+    let n = points_mm.len();
+    if n < FIT_WINDOW + 2 {
+        return 0.0;
+    }
+    let mut t = Vec::with_capacity(n);
+    let mut acc = 0.0;
+    t.push(0.0);
+    for w in points_mm.windows(2) {
+        acc += w[1].distance(w[0]).max(1e-9);
+        t.push(acc);
+    }
+    let fit = fit_window(&t, points_mm, half_window_mm, 0.0);
+    let sum: f64 = fit
+        .values
+        .iter()
+        .zip(points_mm)
+        .map(|(a, b)| a.distance_squared(*b))
+        .sum();
+    (sum / n as f64).sqrt()
+}
+
 /// Degree-4 fits over [t_i − w, t_i + w] (shifted inside the curve at its
 /// ends, at least 7 samples).
 fn fit_window(t: &[f64], v: &[DVec3], w: f64, eps: f64) -> SmoothedSamples {

@@ -180,6 +180,11 @@ pub struct RawNetwork {
     pub unit: Unit,
     /// Node tolerance in file units, if the file gives one.
     pub tolerance: Option<f64>,
+    /// How far the points may lie from the smooth curves they stand for,
+    /// in file units, if the file says (a network traced on a mesh or a
+    /// film): curves are smoothed to the larger of it and the grid the
+    /// coordinates are rounded to.
+    pub precision: Option<f64>,
     /// The curves in file order.
     pub curves: Vec<RawCurve>,
 }
@@ -198,6 +203,9 @@ pub struct Curve {
     /// Unit surface normals, one per point, if the file gave them.
     pub normals_world: Option<Vec<DVec3>>,
 }
+
+/// The largest precision a network file may declare, mm.
+pub const MAX_PRECISION_MM: f64 = 10.0;
 
 /// A validated network, in millimetres, world frame.
 ///
@@ -271,7 +279,23 @@ impl Network {
                 ),
             ));
         }
-        let precision_mm = coordinate_precision(&raw.curves).map_or(0.0, |q| q * scale);
+        let declared_mm = match raw.precision {
+            None => 0.0,
+            Some(p) if p.is_finite() && p >= 0.0 && p * scale <= MAX_PRECISION_MM => p * scale,
+            Some(p) => {
+                return Err(Error::input(
+                    source,
+                    Location::Field("precision".into()),
+                    format!(
+                        "precision must be a number from 0 to {MAX_PRECISION_MM} mm, got {p} {}",
+                        raw.unit.as_str()
+                    ),
+                ))
+            }
+        };
+        let precision_mm = coordinate_precision(&raw.curves)
+            .map_or(0.0, |q| q * scale)
+            .max(declared_mm);
         let mut seen: HashMap<String, usize> = HashMap::with_capacity(raw.curves.len());
         let mut curves = Vec::with_capacity(raw.curves.len());
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
@@ -529,6 +553,7 @@ mod tests {
             name: "big".into(),
             unit: Unit::Mm,
             tolerance: None,
+            precision: None,
             curves: vec![a],
         };
         let e = Network::new(raw, Path::new("big.yaml")).expect_err("refused");

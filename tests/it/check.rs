@@ -313,6 +313,7 @@ fn planar_arc() -> lamella::network::RawNetwork {
         name: "arc".into(),
         unit: lamella::network::Unit::Mm,
         tolerance: Some(0.5),
+        precision: None,
         curves,
     }
 }

@@ -43,6 +43,7 @@ fn planar_70() -> RawNetwork {
         name: "planar-70".into(),
         unit: Unit::Mm,
         tolerance: None,
+        precision: None,
         curves,
     }
 }

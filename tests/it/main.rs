@@ -18,6 +18,7 @@ mod invariance;
 mod layers;
 mod mesh;
 mod mesh_trace;
+mod mesh_truth;
 mod minimal;
 mod nest;
 mod nest_stock;

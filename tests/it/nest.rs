@@ -61,7 +61,7 @@ const TABLE: [(&str, [Promise; 3]); 12] = {
         ("film-oculus", [PartsRefuse("slots leave"), B, B]),
         ("film-rings", [B, B, B]),
         ("film-saddle", [AtMost(4), B, B]),
-        ("film-three-peaks", [AtMost(4), B, B]),
+        ("film-three-peaks", [PartsRefuse("slots leave"), B, B]),
         (
             "schwarz-d-pavilion-1to5",
             [

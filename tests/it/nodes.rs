@@ -19,6 +19,7 @@ fn net(curves: Vec<RawCurve>) -> RawNetwork {
         name: "t".into(),
         unit: Unit::Mm,
         tolerance: Some(0.5),
+        precision: None,
         curves,
     }
 }

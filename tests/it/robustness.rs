@@ -245,6 +245,7 @@ fn sparse_curves_get_curvature_between_their_samples() {
         name: "sparse".into(),
         unit: Unit::Mm,
         tolerance: None,
+        precision: None,
         curves: vec![
             RawCurve {
                 id: "A0".into(),

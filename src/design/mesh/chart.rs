@@ -63,11 +63,9 @@ pub const MIN_RELATIVE_AREA: f64 = 1e-9;
 /// The chart of a mesh given its boundary loops (vertex indices in order,
 /// each loop oriented like its triangles).
 pub fn make_chart(mesh: &TriMesh, boundary_loops: &[Vec<u32>]) -> Result<Chart, ChartError> {
-    let projected = projection(mesh);
-    if folded_triangle(mesh, &projected).is_none() && !boundary_crosses(&projected, boundary_loops)
-    {
+    if let Some(uv) = unfolded_projection(mesh, boundary_loops) {
         return Ok(Chart {
-            uv: projected,
+            uv,
             kind: ChartKind::Projection,
         });
     }
@@ -82,6 +80,14 @@ pub fn make_chart(mesh: &TriMesh, boundary_loops: &[Vec<u32>]) -> Result<Chart, 
             kind: ChartKind::Embedding,
         }),
     }
+}
+
+/// The projection onto the best-fit plane when it is a chart (no triangle
+/// folds, no two boundary edges cross), else None.
+pub fn unfolded_projection(mesh: &TriMesh, boundary_loops: &[Vec<u32>]) -> Option<Vec<DVec2>> {
+    let projected = projection(mesh);
+    (folded_triangle(mesh, &projected).is_none() && !boundary_crosses(&projected, boundary_loops))
+        .then_some(projected)
 }
 
 /// Vertices projected onto the best-fit plane, the plane's axes chosen so

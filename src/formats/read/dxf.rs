@@ -148,6 +148,7 @@ pub fn read(path: &Path, unit_override: Option<Unit>) -> Result<RawNetwork> {
         name: crate::formats::read::default_name(path),
         unit,
         tolerance: None,
+        precision: None,
         curves,
     })
 }

@@ -16,6 +16,8 @@ struct NetworkFile {
     units: String,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     tolerance: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    precision: Option<f64>,
     /// Free-form metadata (e.g. the trace spec a network came from); ignored.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     meta: Option<serde_yaml::Value>,
@@ -106,9 +108,13 @@ pub fn parse(text: &str, syntax: Syntax, path: &Path) -> Result<RawNetwork> {
         name,
         unit,
         tolerance: file.tolerance,
+        precision: file.precision,
         curves,
     })
 }
+
+/// Digits after the point of a declared precision.
+const PRECISION_DECIMALS: usize = 6;
 
 /// Write a network as YAML in the file format, coordinates with `decimals`
 /// digits after the point, in the network's own unit. Deterministic.
@@ -121,6 +127,9 @@ pub fn to_yaml(net: &RawNetwork, decimals: usize, meta_comment: &str) -> String 
     let _ = writeln!(out, "units: {}", net.unit.as_str());
     if let Some(t) = net.tolerance {
         let _ = writeln!(out, "tolerance: {}", fmt_num(t, decimals));
+    }
+    if let Some(p) = net.precision {
+        let _ = writeln!(out, "precision: {}", fmt_num(p, PRECISION_DECIMALS));
     }
     out.push_str("curves:\n");
     for c in &net.curves {
@@ -147,6 +156,9 @@ pub fn to_json(net: &RawNetwork, decimals: usize) -> String {
     );
     if let Some(t) = net.tolerance {
         let _ = write!(out, ",\"tolerance\":{}", fmt_num(t, decimals));
+    }
+    if let Some(p) = net.precision {
+        let _ = write!(out, ",\"precision\":{}", fmt_num(p, PRECISION_DECIMALS));
     }
     out.push_str(",\"curves\":[");
     for (i, c) in net.curves.iter().enumerate() {
@@ -230,6 +242,7 @@ pub fn raw_from_network(net: &Network) -> RawNetwork {
         name: net.name.clone(),
         unit: Unit::Mm,
         tolerance: Some(net.tolerance_mm),
+        precision: None,
         curves: net
             .curves
             .iter()

@@ -193,6 +193,7 @@ pub fn parse(text: &str, unit: Unit, path: &Path) -> Result<RawNetwork> {
         name: crate::formats::read::default_name(path),
         unit,
         tolerance: None,
+        precision: None,
         curves,
     })
 }

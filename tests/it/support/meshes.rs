@@ -91,3 +91,64 @@ pub fn saddle_grid(n: usize, half_mm: f64, r_mm: f64) -> (Vec<DVec3>, Vec<[u32; 
     }
     (v, t)
 }
+
+/// A triangle mesh as a mesher leaves it: points over the parameter
+/// rectangle `lo`–`hi` about `h` apart, moved at random by up to `jitter`
+/// of `h` (a seeded generator), those on the rectangle's sides kept on them,
+/// triangulated by Delaunay in the parameter plane (the `delaunator` crate,
+/// independent of lamella) and placed on `surface` through `place`: every
+/// vertex exactly on the surface (rounded when written). Triangles are
+/// counter-clockwise in the parameter plane.
+pub fn delaunay_mesh(
+    lo: DVec2,
+    hi: DVec2,
+    h: f64,
+    jitter: f64,
+    seed: u64,
+    place: impl Fn(DVec2) -> DVec3,
+) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let nu = ((hi.x - lo.x) / h).round().max(1.0) as usize;
+    let nv = ((hi.y - lo.y) / h).round().max(1.0) as usize;
+    let (hu, hv) = ((hi.x - lo.x) / nu as f64, (hi.y - lo.y) / nv as f64);
+    let mut uv = Vec::with_capacity((nu + 1) * (nv + 1));
+    for j in 0..=nv {
+        for i in 0..=nu {
+            let (ju, jv) = (
+                jitter * jitter_seeded(i, j, 2 * seed + 1),
+                jitter * jitter_seeded(i, j, 2 * seed + 2),
+            );
+            let on_u_side = i == 0 || i == nu;
+            let on_v_side = j == 0 || j == nv;
+            let du = if on_u_side { 0.0 } else { ju * hu };
+            let dv = if on_v_side { 0.0 } else { jv * hv };
+            uv.push(DVec2::new(
+                lo.x + i as f64 * hu + du,
+                lo.y + j as f64 * hv + dv,
+            ));
+        }
+    }
+    let points: Vec<delaunator::Point> = uv
+        .iter()
+        .map(|q| delaunator::Point { x: q.x, y: q.y })
+        .collect();
+    let tri = delaunator::triangulate(&points);
+    let mut t = Vec::with_capacity(tri.triangles.len() / 3);
+    for c in tri.triangles.chunks(3) {
+        let [a, b, d] = [c[0], c[1], c[2]];
+        let area = (uv[b] - uv[a]).perp_dot(uv[d] - uv[a]);
+        if area.abs() < 1e-12 * h * h {
+            continue;
+        }
+        if area > 0.0 {
+            t.push([a as u32, b as u32, d as u32]);
+        } else {
+            t.push([a as u32, d as u32, b as u32]);
+        }
+    }
+    (uv.into_iter().map(place).collect(), t)
+}
+
+/// [`jitter`] with a seed folded in.
+fn jitter_seeded(i: usize, j: usize, k: u64) -> f64 {
+    jitter(i, j, k.wrapping_mul(0x2545_F491_4F6C_DD1D))
+}

@@ -95,6 +95,7 @@ pub fn network(
         name: name.to_string(),
         unit: Unit::Mm,
         tolerance: None,
+        precision: None,
         curves: lines
             .iter()
             .map(|l| sample_line(surface, l, scale_mm, sampling))
