@@ -175,10 +175,18 @@ impl StripGeometry {
         let (normals, normal_source) = match &curve.normals_world {
             Some(file) => {
                 let t: Vec<f64> = (0..n).map(|i| smooth.sample_param(i)).collect();
-                (
-                    Normals::File(Hermite5::new(t, file.clone())),
-                    NormalSource::File,
-                )
+                // Normals of a curve smoothed to its precision are as rough as
+                // its points (a network traced on a mesh or a film carries its
+                // surface's noise in both): smoothed over the same window,
+                // where that is wider than the 7-sample fit.
+                let window_mm = smooth.smoothing_mm();
+                let seven_samples_mm = 3.5 * smooth.length_mm() / (n - 1).max(1) as f64;
+                let h = if window_mm > seven_samples_mm && n >= 9 {
+                    Hermite5::smoothed(t, file, window_mm)
+                } else {
+                    Hermite5::new(t, file.clone())
+                };
+                (Normals::File(h), NormalSource::File)
             }
             None => {
                 let mut at_nodes: Vec<NodeNormal> = Vec::with_capacity(nodes.len());

@@ -670,4 +670,26 @@ mod tests {
             assert_eq!((t.stop_start, t.stop_end), (Stop::Clip, Stop::Clip));
         }
     }
+
+    #[test]
+    fn a_reversed_trace_runs_back_over_the_same_points() {
+        let t = Traced {
+            uv: vec![
+                DVec2::new(0.0, 0.0),
+                DVec2::new(1.0, 0.0),
+                DVec2::new(1.0, 2.0),
+            ],
+            points_world_mm: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 2.0, 0.0)],
+            stations_mm: vec![0.0, 1.0, 3.0],
+            stop_start: Stop::Clip,
+            stop_end: Stop::DomainEdge,
+        };
+        let r = t.clone().reversed();
+        assert_eq!(r.stations_mm, vec![0.0, 2.0, 3.0]);
+        assert_eq!(r.points_world_mm[0], DVec3::new(1.0, 2.0, 0.0));
+        assert_eq!(r.uv[2], DVec2::ZERO);
+        assert_eq!((r.stop_start, r.stop_end), (Stop::DomainEdge, Stop::Clip));
+        assert_eq!(r.uv_at(0.5), DVec2::new(1.0, 1.5));
+        assert_eq!(r.reversed(), t);
+    }
 }

@@ -114,6 +114,14 @@ impl Hermite5 {
         }
     }
 
+    /// Values smoothed by local degree-4 fits over ±`half_width_mm` of the
+    /// parameter (at least 9 samples each, as curves are smoothed to their
+    /// precision), then interpolated with the fitted derivatives.
+    pub fn smoothed(t: Vec<f64>, values: &[DVec3], half_width_mm: f64) -> Hermite5 {
+        let fit = fit_window(&t, values, half_width_mm, 0.0);
+        Hermite5::from_parts(t, fit.values, fit.d1, fit.d2)
+    }
+
     /// A Hermite interpolant with given values and derivatives at `t`.
     pub fn from_parts(t: Vec<f64>, p: Vec<DVec3>, d1: Vec<DVec3>, d2: Vec<DVec3>) -> Hermite5 {
         debug_assert!(t.len() >= 2 && t.len() == p.len() && p.len() == d1.len());
@@ -945,5 +953,33 @@ mod tests {
             let (k, u) = c.locate_station(s);
             assert!((c.station_at(k, u) - s).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn roughness_sees_wiggles_below_the_window_and_not_a_smooth_arc() {
+        // An arc of radius 5 m sampled every 25 mm: a degree-4 fit over
+        // ±200 mm follows it to far below a micrometre.
+        let arc: Vec<DVec3> = (0..200)
+            .map(|i| {
+                let a = i as f64 * 25.0 / 5000.0;
+                DVec3::new(5000.0 * a.sin(), 5000.0 * (1.0 - a.cos()), 0.0)
+            })
+            .collect();
+        assert!(
+            roughness_mm(&arc, 200.0) < 1e-4,
+            "{}",
+            roughness_mm(&arc, 200.0)
+        );
+        // The same arc with a lateral wiggle of 0.05 mm and a 75 mm
+        // wavelength: the fit cannot follow it, so the roughness is its
+        // RMS, 0.05/√2 = 0.035 mm (less the few percent the fit absorbs).
+        let wiggly: Vec<DVec3> = arc
+            .iter()
+            .enumerate()
+            .map(|(i, p)| *p + DVec3::Z * 0.05 * (2.0 * PI * i as f64 * 25.0 / 75.0).sin())
+            .collect();
+        let r = roughness_mm(&wiggly, 200.0);
+        assert!((r - 0.05 / 2f64.sqrt()).abs() < 0.004, "{r}");
+        assert_eq!(roughness_mm(&arc[..5], 200.0), 0.0);
     }
 }

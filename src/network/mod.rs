@@ -576,4 +576,43 @@ mod tests {
         let exact = curve(vec![DVec3::new(1.0 / 3.0, 2.0f64.sqrt(), 0.1)]);
         assert_eq!(coordinate_precision(&[exact]), None);
     }
+
+    #[test]
+    fn a_declared_precision_raises_the_decimals_grid_and_a_bad_one_is_refused() {
+        let raw = |precision: Option<f64>| RawNetwork {
+            name: "film".into(),
+            unit: Unit::M,
+            tolerance: None,
+            precision,
+            curves: vec![
+                curve(vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0)]),
+                RawCurve {
+                    id: "B".into(),
+                    family: Family::B,
+                    points: vec![DVec3::new(0.5, -0.5, 0.0), DVec3::new(0.5, 0.5, 0.0)],
+                    normals: None,
+                },
+            ],
+        };
+        // Coordinates to one decimal of a metre: a grid of 100 mm; 1e-4 m
+        // declared is finer, so the grid stands.
+        let net = Network::new(raw(None), Path::new("f.yaml")).unwrap();
+        assert_eq!(net.precision_mm, 100.0);
+        let net = Network::new(raw(Some(1e-4)), Path::new("f.yaml")).unwrap();
+        assert_eq!(net.precision_mm, 100.0);
+        let mut fine = raw(Some(2e-3));
+        fine.unit = Unit::Mm;
+        for c in &mut fine.curves {
+            for p in &mut c.points {
+                *p *= 1000.0;
+                *p += DVec3::new(0.1234567, 0.0, 0.0);
+            }
+        }
+        let net = Network::new(fine, Path::new("f.yaml")).unwrap();
+        assert_eq!(net.precision_mm, 2e-3);
+        let e = Network::new(raw(Some(-1.0)), Path::new("f.yaml")).unwrap_err();
+        assert!(e.to_string().contains("precision"), "{e}");
+        assert!(e.to_string().contains("f.yaml"), "{e}");
+        assert!(Network::new(raw(Some(f64::NAN)), Path::new("f.yaml")).is_err());
+    }
 }

@@ -13,6 +13,7 @@ mod check_cli;
 mod cli_errors;
 mod closed_forms;
 mod exports;
+mod film_truth;
 mod flat;
 mod invariance;
 mod layers;

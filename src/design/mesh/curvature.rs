@@ -120,11 +120,18 @@ pub fn vertex_curvatures(mesh: &TriMesh, topo: &Topology) -> Vec<Curvature> {
 /// Per-vertex fitted jets of `mesh`, which must be `topo.mesh()`; in vertex
 /// order, the same for any number of threads.
 pub fn vertex_jets(mesh: &TriMesh, topo: &Topology) -> Vec<VertexJet> {
+    vertex_jets_over(mesh, topo, MIN_POINTS)
+}
+
+/// As [`vertex_jets`], each neighbourhood grown to at least `min_points`
+/// vertices (up to [`MAX_RINGS`] rings): more averaging of noisy vertices
+/// (a form-found film's) at the price of a wider fit.
+pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> Vec<VertexJet> {
     debug_assert_eq!(mesh.positions_mm.len(), topo.vertex_count());
     let normals = topo.vertex_normals();
     let fits: Vec<(VertexJet, f64)> = (0..mesh.positions_mm.len() as u32)
         .into_par_iter()
-        .map(|v| fit_vertex(mesh, topo, normals[v as usize], v))
+        .map(|v| fit_vertex(mesh, topo, normals[v as usize], v, min_points))
         .collect();
     // Rounding to a step q: uniform noise of standard deviation q/√12.
     let noise_mm = coordinate_step_mm(mesh) / 12f64.sqrt();
@@ -173,13 +180,19 @@ fn grow(topo: &Topology, hood: &mut Vec<u32>, frontier: &mut usize) -> bool {
 
 /// The vertex's jet (its `sigma_per_mm` not yet set) and the gain from the
 /// residual (mm) to the curvature's standard error (1/mm).
-fn fit_vertex(mesh: &TriMesh, topo: &Topology, n0: DVec3, v: u32) -> (VertexJet, f64) {
+fn fit_vertex(
+    mesh: &TriMesh,
+    topo: &Topology,
+    n0: DVec3,
+    v: u32,
+    min_points: usize,
+) -> (VertexJet, f64) {
     let p = &mesh.positions_mm;
     let p0 = p[v as usize];
     let mut hood = vec![v];
     let mut frontier = 0;
     let mut rings = 0;
-    while hood.len() < MIN_POINTS && rings < MAX_RINGS && grow(topo, &mut hood, &mut frontier) {
+    while hood.len() < min_points && rings < MAX_RINGS && grow(topo, &mut hood, &mut frontier) {
         rings += 1;
     }
     let n0 = if n0 == DVec3::ZERO { DVec3::Z } else { n0 };

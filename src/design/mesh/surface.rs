@@ -121,13 +121,25 @@ impl MeshSurface {
     /// in uv, as the chart module guarantees) and per-vertex curvatures
     /// (normals on the side of the counter-clockwise triangles).
     pub fn new(mesh: &TriMesh, uv: Vec<DVec2>, curvatures: &[Curvature]) -> MeshSurface {
+        MeshSurface::with_patch_neighbours(mesh, uv, curvatures, PATCH_MIN_NEIGHBOURS)
+    }
+
+    /// As [`MeshSurface::new`], every patch fitted to at least
+    /// `patch_neighbours` vertices besides its own (more averaging of noisy
+    /// vertices, a form-found film's).
+    pub fn with_patch_neighbours(
+        mesh: &TriMesh,
+        uv: Vec<DVec2>,
+        curvatures: &[Curvature],
+        patch_neighbours: usize,
+    ) -> MeshSurface {
         let normals: Vec<DVec3> = curvatures.iter().map(|c| c.normal).collect();
         let shape = curvatures
             .iter()
             .map(|c| outer(c.d1, c.d1) * c.k1 + outer(c.d2, c.d2) * c.k2)
             .collect();
         let grid = UvGrid::new(&uv, &mesh.triangles);
-        let patches = fit_patches(mesh, &uv);
+        let patches = fit_patches(mesh, &uv, patch_neighbours);
         let supports = SupportGrid::new(&patches);
         MeshSurface {
             positions_mm: mesh.positions_mm.clone(),
@@ -346,16 +358,16 @@ const PATCH_UNKNOWNS: usize = 9;
 /// A patch's neighbourhood grows ring by ring until it holds at least this
 /// many vertices besides its own (the 2-ring inside a mesh, 3 rings at the
 /// rim), so the cubic is fitted with some redundancy.
-const PATCH_MIN_NEIGHBOURS: usize = 15;
+pub const PATCH_MIN_NEIGHBOURS: usize = 15;
 
 /// The neighbourhood grows by at most this many rings.
-const PATCH_MAX_RINGS: usize = 4;
+const PATCH_MAX_RINGS: usize = 6;
 
 /// Fit every vertex's cubic chart patch to the vertices of its rings (two,
 /// more at the rim until [`PATCH_MIN_NEIGHBOURS`]), by least squares through
 /// the vertex itself, weighted (1 − ½ r²/ρ²) (ρ the neighbourhood's chart
 /// radius), on Δ scaled by ρ.
-fn fit_patches(mesh: &TriMesh, uv: &[DVec2]) -> Vec<Patch> {
+fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch> {
     let nv = mesh.positions_mm.len();
     let mut ring: Vec<Vec<u32>> = vec![Vec::new(); nv];
     for t in &mesh.triangles {
@@ -381,7 +393,7 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2]) -> Vec<Patch> {
             let mut seen = vec![i as u32];
             let mut frontier = vec![i as u32];
             for depth in 0..PATCH_MAX_RINGS {
-                if depth >= 2 && seen.len() > PATCH_MIN_NEIGHBOURS {
+                if depth >= 2 && seen.len() > min_neighbours {
                     break;
                 }
                 let mut next = Vec::new();
