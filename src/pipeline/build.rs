@@ -109,14 +109,23 @@ impl BuildReport {
 }
 
 /// The files every build writes besides the sheets.
-pub const FIXED_FILES: [&str; 4] = ["plan.json", "takeoff.csv", "takeoff.json", "assembly.pdf"];
-
-/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
-const KIT: [&str; 5] = [
+pub const FIXED_FILES: [&str; 6] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
     "assembly.pdf",
+    "model.glb",
+    "view.html",
+];
+
+/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
+const KIT: [&str; 7] = [
+    "plan.json",
+    "takeoff.csv",
+    "takeoff.json",
+    "assembly.pdf",
+    "model.glb",
+    "view.html",
     crate::formats::out::manifest::SHEETS,
 ];
 
@@ -190,6 +199,8 @@ pub fn build(
         let (problem, state) = session.flat()?;
         plan::add_flat(&mut the_plan, problem, state);
     }
+    // The shape in space for the 3D model, while the analysis is there.
+    session.add_shape(&mut the_plan)?;
     session.kit()?;
     session.release_analysis();
     clock.lap("parts");
@@ -237,6 +248,12 @@ pub fn build(
         takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
+    let [glb, html] = super::commands::model_files(&the_plan, &out.join("model.glb"))?;
+    staging.write("model.glb", &glb)?;
+    staging.write("view.html", &html)?;
+    drop((glb, html));
+    // The shape served the model only.
+    the_plan.shape = None;
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
     let sheet_count = drawer.len();
     progress.set_length(sheet_count as u64);

@@ -9,7 +9,7 @@ use crate::design::DesignReport;
 use crate::error::{Error, Result};
 use crate::formats::out::write_atomic;
 use crate::formats::read;
-use crate::formats::write::{flat_svg, plan_json};
+use crate::formats::write::{flat_svg, gltf, plan_json, view as view_html};
 use crate::network::RawNetwork;
 use crate::plan::Plan;
 use std::path::{Path, PathBuf};
@@ -173,6 +173,47 @@ pub fn flat(inputs: Inputs, out: &Path) -> Result<Done> {
         session,
         plan: Some(plan),
         written: vec![plan_path(out), out.join("flat.svg")],
+    })
+}
+
+/// The files of the 3D model: the GLB and the page that shows it.
+pub const MODEL_FILES: [&str; 2] = ["model.glb", "view.html"];
+
+/// The model of a plan with its shape: `model.glb` and `view.html`'s
+/// bytes, in [`MODEL_FILES`]' order.
+pub fn model_files(plan: &Plan, glb_path: &Path) -> Result<[Vec<u8>; 2]> {
+    let glb = gltf::to_glb(plan).map_err(|e| Error::output(glb_path, e))?;
+    let title = match &plan.profile {
+        Some(p) => format!("{} — {}", plan.network.name, p.name),
+        None => plan.network.name.clone(),
+    };
+    let html = view_html::to_html(&title, &glb).into_bytes();
+    Ok([glb, html])
+}
+
+/// `lamella view`: the 3D model of the erected grid with its parts'
+/// slots and hardware and the check's utilisation (and, when `flat`, the
+/// flat state as a morph target); `DIR/model.glb` and `DIR/view.html`.
+pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
+    let real = check_outputs(&[Output::Dir(out, &MODEL_FILES)], &inputs.files())?;
+    let mut session = Session::open(inputs)?;
+    if flat {
+        session.flat()?;
+    }
+    session.check(true)?;
+    session.kit()?;
+    let mut plan = session.plan(flat)?;
+    session.add_shape(&mut plan)?;
+    let files = model_files(&plan, &out.join(MODEL_FILES[0]))?;
+    let mut written = Vec::new();
+    for (name, bytes) in MODEL_FILES.iter().zip(&files) {
+        write_atomic(&real[0].join(name), bytes)?;
+        written.push(out.join(name));
+    }
+    Ok(Done {
+        session,
+        plan: Some(plan),
+        written,
     })
 }
 

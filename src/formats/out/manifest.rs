@@ -32,12 +32,14 @@ const HEADER: &str = "# lamella manifest 2: bytes, CRC-32, path";
 pub const SHEETS: &str = "sheets";
 
 /// The files lamella writes at the top of an output folder.
-pub const TOP_FILES: [&str; 5] = [
+pub const TOP_FILES: [&str; 7] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
     "assembly.pdf",
     "flat.svg",
+    "model.glb",
+    "view.html",
 ];
 
 /// Whether lamella writes files named `rel` (`/`-separated, inside DIR):
@@ -162,6 +164,8 @@ pub fn replaceable(dir: &Path, rel: &str, manifest: &Manifest) -> bool {
     let says_so = regular_in(dir, rel).is_some_and(|(path, _)| match rel {
         "plan.json" => head(&path, 256).is_some_and(|h| is_plan_head(&h)),
         "flat.svg" => head(&path, 1024).is_some_and(|h| is_flat_svg_head(&h)),
+        "model.glb" => head(&path, 256).is_some_and(|h| is_model_head(&h)),
+        "view.html" => head(&path, 256).is_some_and(|h| is_view_head(&h)),
         _ => false,
     });
     says_so || vouched(dir, rel, manifest)
@@ -261,6 +265,20 @@ fn is_flat_svg_head(text: &str) -> bool {
                 && l.contains(" — flat assembly layout (")
                 && l.ends_with("), mm</title>")
         })
+}
+
+/// Whether a GLB begins as lamella's model does: the magic `glTF`, and
+/// the JSON chunk's asset first, generator `lamella …`.
+fn is_model_head(text: &str) -> bool {
+    text.starts_with("glTF") && text.contains("\"generator\":\"lamella ")
+}
+
+/// Whether an HTML page begins as lamella's view does: the doctype, then
+/// the marker comment.
+fn is_view_head(text: &str) -> bool {
+    let mut lines = text.lines();
+    lines.next() == Some("<!DOCTYPE html>")
+        && lines.next() == Some("<!-- lamella view: a 3D model of a grid -->")
 }
 
 /// A file's identity while it is unchanged: device, inode, size and the
