@@ -366,14 +366,17 @@ fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
 pub fn view(done: &Done) -> ExitCode {
     let s = &done.session;
     warn(&s.warnings());
+    warn(&done.notes);
     let Some(plan) = &done.plan else {
         return ExitCode::from(1);
     };
     let strips = plan.strips.len();
-    let detail = if lamella::formats::write::gltf::full_detail(plan) {
+    let detail = if !lamella::formats::write::gltf::full_detail(plan) {
+        "ribbons (a big grid: no slots, washers or studs)"
+    } else if plan.parts.is_some() {
         "solids with slots and hardware"
     } else {
-        "ribbons (a big grid: no slots, washers or studs)"
+        "solids (no parts: no slots or hardware)"
     };
     let flat = if plan.flat.is_some() {
         ", the flat state as a morph target"

@@ -24,6 +24,9 @@ pub struct Done {
     pub plan: Option<Plan>,
     /// The files written.
     pub written: Vec<PathBuf>,
+    /// What the command left out and why, one line each (printed as
+    /// warnings).
+    pub notes: Vec<String>,
 }
 
 /// `DIR/plan.json`.
@@ -53,6 +56,7 @@ pub fn nodes(inputs: Inputs, out: &Path) -> Result<Done> {
         session,
         plan: Some(plan),
         written: vec![plan_path(out)],
+        notes: Vec::new(),
     })
 }
 
@@ -75,6 +79,7 @@ pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> 
         session,
         plan: None,
         written: Vec::new(),
+        notes: Vec::new(),
     };
     if let Some((real, shown)) = target {
         let mut plan = done.session.plan(false)?;
@@ -141,6 +146,7 @@ pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
         session,
         plan: Some(plan),
         written,
+        notes: Vec::new(),
     })
 }
 
@@ -173,6 +179,7 @@ pub fn flat(inputs: Inputs, out: &Path) -> Result<Done> {
         session,
         plan: Some(plan),
         written: vec![plan_path(out), out.join("flat.svg")],
+        notes: Vec::new(),
     })
 }
 
@@ -201,7 +208,12 @@ pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
         session.flat()?;
     }
     session.check(true)?;
-    session.kit()?;
+    // The slots and the hardware come from the parts; a grid the profile
+    // cannot make is still shown, without them.
+    let mut notes = Vec::new();
+    if let Err(e) = session.kit() {
+        notes.push(format!("no slots or hardware in the model: {e}"));
+    }
     let mut plan = session.plan(flat)?;
     session.add_shape(&mut plan)?;
     let files = model_files(&plan, &out.join(MODEL_FILES[0]))?;
@@ -214,6 +226,7 @@ pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
         session,
         plan: Some(plan),
         written,
+        notes,
     })
 }
 

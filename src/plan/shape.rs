@@ -243,26 +243,42 @@ fn add_flat_frames(plan: &mut Plan) {
             continue;
         }
         let dir = |i: usize| (knots[i + 1].1 - knots[i].1).normalize_or(DVec2::X);
+        let last = knots.len() - 2;
+        // The floor position at station s (the nodes joined by straight
+        // pieces, continued straight past the ends) and its piece.
+        let base_at = |s: f64| {
+            let i = knots
+                .partition_point(|k| k.0 <= s)
+                .saturating_sub(1)
+                .min(last);
+            let (s0, p0) = knots[i];
+            let (s1, p1) = knots[i + 1];
+            let p = if s < s0 {
+                p0 + dir(i) * (s - s0)
+            } else if s > s1 {
+                p1 + dir(i) * (s - s1)
+            } else {
+                let t = if s1 > s0 { (s - s0) / (s1 - s0) } else { 0.0 };
+                p0.lerp(p1, t)
+            };
+            (p, i, s0, s1)
+        };
+        // A node off the flat problem (on an edge) lies where its lamellas
+        // are continued to it.
+        for n in &lam.nodes {
+            if let Some(sn) = shape.nodes.get_mut(n.node) {
+                if at.get(n.node).copied().flatten().is_none() && sn.flat_mm.is_none() {
+                    let p = base_at(n.station_mm).0;
+                    sn.flat_mm = Some([p.x, p.y, z_floor]);
+                }
+            }
+        }
         let frames = line
             .frames
             .iter()
             .map(|f| {
                 let s = f.station_mm;
-                let last = knots.len() - 2;
-                let i = knots
-                    .partition_point(|k| k.0 <= s)
-                    .saturating_sub(1)
-                    .min(last);
-                let (s0, p0) = knots[i];
-                let (s1, p1) = knots[i + 1];
-                let base = if s < s0 {
-                    p0 + dir(i) * (s - s0)
-                } else if s > s1 {
-                    p1 + dir(i) * (s - s1)
-                } else {
-                    let t = if s1 > s0 { (s - s0) / (s1 - s0) } else { 0.0 };
-                    p0.lerp(p1, t)
-                };
+                let (base, i, s0, s1) = base_at(s);
                 // At a node the direction halves the turn.
                 let mut t2 = dir(i);
                 if (s - s1).abs() < 1e-6 && i < last {

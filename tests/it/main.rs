@@ -19,6 +19,7 @@ mod layers;
 mod mesh;
 mod mesh_trace;
 mod minimal;
+mod model;
 mod nest;
 mod nest_stock;
 mod nodes;
