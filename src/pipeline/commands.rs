@@ -210,9 +210,13 @@ pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
     session.check(true)?;
     // The slots and the hardware come from the parts; a grid the profile
     // cannot make is still shown, without them.
+    // A big grid's model has neither (its level of detail): no parts.
     let mut notes = Vec::new();
-    if let Err(e) = session.kit() {
-        notes.push(format!("no slots or hardware in the model: {e}"));
+    let nodes = session.analysis()?.topology.nodes.len();
+    if nodes <= crate::plan::ShapeOptions::BIG_NODES {
+        if let Err(e) = session.kit() {
+            notes.push(format!("no slots or hardware in the model: {e}"));
+        }
     }
     let mut plan = session.plan(flat)?;
     session.add_shape(&mut plan)?;
