@@ -53,7 +53,7 @@ fn measure(path: &Path) {
         ..Default::default()
     })
     .expect("open");
-    session.check(false).expect("check");
+    session.check(true).expect("check");
     let mut plan = session.plan(false).expect("plan");
     let t1 = Instant::now();
     session.add_shape(&mut plan).expect("shape");

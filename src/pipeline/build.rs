@@ -95,9 +95,10 @@ pub struct BuildReport {
     pub assembly_pages: usize,
     /// Time per stage, in order (for the benchmark; not written
     /// anywhere): `read`, `analyse`, `parts`, `nest`, `plan`, `write`
-    /// (the takeoff, then plan.json, the sheets and assembly.pdf side by
-    /// side: their own wall times follow as `write: plan.json`, `write:
-    /// sheets` and `write: assembly.pdf`), `commit`.
+    /// (the takeoff, then plan.json, the sheets, assembly.pdf and the 3D
+    /// model side by side: their own wall times follow as `write:
+    /// plan.json`, `write: sheets`, `write: assembly.pdf` and `write:
+    /// model.glb and view.html`), `commit`.
     pub stages: Vec<StageTime>,
 }
 
@@ -248,12 +249,6 @@ pub fn build(
         takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
-    let [glb, html] = super::commands::model_files(&the_plan, &out.join("model.glb"))?;
-    staging.write("model.glb", &glb)?;
-    staging.write("view.html", &html)?;
-    drop((glb, html));
-    // The shape served the model only.
-    the_plan.shape = None;
     let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
     let sheet_count = drawer.len();
     progress.set_length(sheet_count as u64);
@@ -341,7 +336,18 @@ pub fn build(
                                 .collect::<Result<Vec<_>>>()
                         })
                     },
-                    || timed(|| assembly::sections_with(&assembly_input, Some(strip_pages))),
+                    || {
+                        let sections =
+                            timed(|| assembly::sections_with(&assembly_input, Some(strip_pages)));
+                        // The 3D model and its page beside the sheets.
+                        let model = timed(|| {
+                            let glb_path = out.join("model.glb");
+                            let [glb, html] = super::commands::model_files(&the_plan, &glb_path)?;
+                            staging.write("model.glb", &glb)?;
+                            staging.write("view.html", &html)
+                        });
+                        (sections, model)
+                    },
                 )
             },
         )
@@ -349,6 +355,8 @@ pub fn build(
     plan_written.0?;
     let nested = sheets_written.0?;
     let t = std::time::Instant::now();
+    let (sections, model) = sections;
+    model.0?;
     let (sections, sections_s) = (sections.0?, sections.1);
     let mut assembly_pages = 0;
     staging.write_with("assembly.pdf", |w| {
@@ -361,6 +369,7 @@ pub fn build(
     clock.part("write: sheets", sheets_written.1);
     // The sections apart from the sheets as nested, then the document.
     clock.part("write: assembly.pdf", pdf_s);
+    clock.part("write: model.glb and view.html", model.1);
     drop(drawer);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {

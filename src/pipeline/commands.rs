@@ -208,18 +208,20 @@ pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
         session.flat()?;
     }
     session.check(true)?;
-    // The slots and the hardware come from the parts; a grid the profile
-    // cannot make is still shown, without them.
-    // A big grid's model has neither (its level of detail): no parts.
-    let mut notes = Vec::new();
-    let nodes = session.analysis()?.topology.nodes.len();
-    if nodes <= crate::plan::ShapeOptions::BIG_NODES {
-        if let Err(e) = session.kit() {
-            notes.push(format!("no slots or hardware in the model: {e}"));
-        }
-    }
+    // The shape while the check's lamella lines are there (the parts take
+    // them).
     let mut plan = session.plan(flat)?;
     session.add_shape(&mut plan)?;
+    // The slots and the hardware come from the parts; a grid the profile
+    // cannot make is still shown, without them; a big grid's model has
+    // neither (its level of detail): no parts.
+    let mut notes = Vec::new();
+    if plan.nodes.len() <= crate::plan::ShapeOptions::BIG_NODES {
+        match session.kit() {
+            Ok(kit) => crate::plan::add_parts(&mut plan, kit),
+            Err(e) => notes.push(format!("no slots or hardware in the model: {e}")),
+        }
+    }
     let files = model_files(&plan, &out.join(MODEL_FILES[0]))?;
     let mut written = Vec::new();
     for (name, bytes) in MODEL_FILES.iter().zip(&files) {

@@ -338,7 +338,7 @@ impl Session {
             return Err(not_run(&self.inputs, "the analysis"));
         };
         let opts = crate::plan::ShapeOptions::for_nodes(an.topology.nodes.len());
-        crate::plan::add_shape(plan, an, self.profile.as_ref(), opts);
+        crate::plan::add_shape(plan, an, self.profile.as_ref(), self.lines.as_ref(), opts);
         Ok(())
     }
 

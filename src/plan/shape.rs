@@ -7,7 +7,7 @@
 //! them. World frame, mm (the network's; z up).
 
 use super::{Plan, PlanShape, ShapeFrame, ShapeLine, ShapeNode, ShapeStud, ShapeWasher};
-use crate::analysis::lines::LamellaLine;
+use crate::analysis::lines::{LamellaLine, NetworkLines};
 use crate::analysis::Analysis;
 use crate::network::Family;
 use crate::profile::{JointSystem, LamellaOffset, Profile};
@@ -71,8 +71,17 @@ fn stations(length_mm: f64, nodes: &[f64], step: f64) -> Vec<f64> {
 /// Add the shape of an analysed network to its plan (strips in plan
 /// order): the profile's lamellas (the centre line without one), edge
 /// strips on their curves; then the flat layout's frames when the plan
-/// holds the flat state ([`super::add_flat`] first).
-pub fn add_shape(plan: &mut Plan, an: &Analysis, profile: Option<&Profile>, opts: ShapeOptions) {
+/// holds the flat state ([`super::add_flat`] first). The lamella lines
+/// the check integrated serve where given (`lines`; they are the
+/// profile's), else each strip's are integrated again.
+pub fn add_shape(
+    plan: &mut Plan,
+    an: &Analysis,
+    profile: Option<&Profile>,
+    lines: Option<&NetworkLines>,
+    opts: ShapeOptions,
+) {
+    let kept = lines;
     let step = opts.max_step_mm.max(1.0);
     let lines: Vec<Vec<ShapeLine>> = an
         .strips
@@ -100,23 +109,37 @@ pub fn add_shape(plan: &mut Plan, an: &Analysis, profile: Option<&Profile>, opts
                     flat: None,
                 }];
             }
-            let offsets = match profile {
-                Some(p) => p.lamella_offsets(s.family),
-                None => vec![LamellaOffset::CENTRE],
+            let on_lines: Vec<(LamellaOffset, Vec<f64>)> = match kept.and_then(|k| k.get(i)) {
+                Some(sl) => sl
+                    .lines
+                    .iter()
+                    .map(|l| l.offset)
+                    .zip(sl.stations(s, smooth, &curve_st))
+                    .collect(),
+                None => {
+                    let offsets = match profile {
+                        Some(p) => p.lamella_offsets(s.family),
+                        None => vec![LamellaOffset::CENTRE],
+                    };
+                    LamellaLine::with_stations_many(s, smooth, &offsets, &curve_st)
+                        .into_iter()
+                        .map(|(l, st)| (l.offset, st))
+                        .collect()
+                }
             };
-            LamellaLine::with_stations_many(s, smooth, &offsets, &curve_st)
+            on_lines
                 .into_iter()
-                .map(|(line, line_st)| ShapeLine {
+                .map(|(offset, line_st)| ShapeLine {
                     strip: i,
-                    lamella: line.offset.number,
+                    lamella: offset.number,
                     frames: frames
                         .iter()
                         .zip(line_st)
                         .map(|(f, st)| ShapeFrame {
                             station_mm: st,
                             point_mm: arr(f.point_world_mm
-                                + f.y * line.offset.dy_mm
-                                + f.z * line.offset.dz_mm),
+                                + f.y * offset.dy_mm
+                                + f.z * offset.dz_mm),
                             tangent: arr(f.x),
                             normal: arr(f.z),
                             across: arr(f.y),
