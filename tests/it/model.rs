@@ -296,6 +296,46 @@ fn samples() -> Vec<String> {
     v
 }
 
+#[test]
+fn every_sample_model_holds_its_plans_nodes() {
+    let dir = scratch("samples");
+    for sample in samples() {
+        let out = dir.join(&sample);
+        let net = format!("samples/{sample}.yaml");
+        let o = out.to_str().expect("path");
+        let (code, stdout, stderr) = lamella(&["nodes", &net, "--out", o]);
+        assert_eq!(code, Some(0), "{sample}: {stdout}{stderr}");
+        let args = [
+            "view",
+            &net,
+            "--profile",
+            "profiles/steel-1.5.yaml",
+            "--out",
+            o,
+        ];
+        let (code, stdout, stderr) = lamella(&args);
+        assert_eq!(code, Some(0), "{sample}: {stdout}{stderr}");
+        let plan = plan_json(&out);
+        let glb = read_glb(&out.join("model.glb"));
+        let prim = glb.primitive(glb.child("nodes"));
+        let points = glb.vec3(&prim["attributes"]["POSITION"]);
+        let nodes = plan["nodes"].as_array().expect("nodes");
+        assert_eq!(points.len(), nodes.len(), "{sample}");
+        for (p, n) in points.iter().zip(nodes) {
+            let (got, want) = (glb.to_network_mm(*p), xyz(&n["position_mm"]));
+            let off = (0..3).map(|k| (got[k] - want[k]).abs()).fold(0.0, f64::max);
+            assert!(off <= 1e-3, "{sample} node {}: {off} mm", n["id"]);
+        }
+        let strips = plan["strips"].as_array().expect("strips").len();
+        let named = glb
+            .children()
+            .iter()
+            .filter(|n| n["extras"]["id"].is_string())
+            .count();
+        assert_eq!(named, strips, "{sample}");
+    }
+}
+
 /// The validator's runner, where node and the npm package are installed
 /// (`npm ci --prefix tests/tools/gltf`); CI installs them and sets
 /// LAMELLA_REQUIRE_GLTF_VALIDATOR so a missing one fails.

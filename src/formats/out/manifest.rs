@@ -353,6 +353,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_model_and_a_view_are_known_by_their_first_bytes() {
+        assert!(is_model_head(
+            "glTF\u{2}\0\0\0xxxxyyyyJSON{\"asset\":{\"generator\":\"lamella 0.1.0\""
+        ));
+        assert!(!is_model_head(
+            "glTF....{\"asset\":{\"generator\":\"Blender\""
+        ));
+        assert!(!is_model_head("{\"generator\":\"lamella 0.1.0\""));
+        assert!(is_view_head(
+            "<!DOCTYPE html>\n<!-- lamella view: a 3D model of a grid -->\n<html>"
+        ));
+        assert!(!is_view_head("<!DOCTYPE html>\n<html>"));
+    }
+
+    #[test]
     fn only_the_names_lamella_writes() {
         for ok in [
             "plan.json",
@@ -360,6 +375,8 @@ mod tests {
             "takeoff.json",
             "assembly.pdf",
             "flat.svg",
+            "model.glb",
+            "view.html",
             "sheets/sheet-001.dxf",
             "sheets/sheet-1234.svg",
         ] {
