@@ -93,6 +93,8 @@ fn measure(path: &Path) {
         ("svg", ".svg"),
         ("pdf", ".pdf"),
         ("takeoff", "takeoff."),
+        ("model.glb", "model.glb"),
+        ("view.html", "view.html"),
     ];
     let by_kind: Vec<String> = kinds
         .iter()

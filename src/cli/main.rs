@@ -29,8 +29,9 @@ struct Cli {
 enum Command {
     /// The whole kit in one command: nodes, elastic check, parts, nest, then
     /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet,
-    /// DIR/takeoff.csv, DIR/takeoff.json and DIR/assembly.pdf (the assembly
-    /// sheets). Output is staged beside DIR and
+    /// DIR/takeoff.csv, DIR/takeoff.json, DIR/assembly.pdf (the assembly
+    /// sheets) and the 3D model DIR/model.glb with its page DIR/view.html
+    /// (with --slots-from-flat, the flat state as a morph target). Output is staged beside DIR and
     /// moved into place only when complete. Exit status 3 (nothing written)
     /// when a strip is overstressed, unless --allow-overstress.
     Build {
@@ -73,6 +74,25 @@ enum Command {
         /// Directory for plan.json and flat.svg (created if missing).
         #[arg(long)]
         out: PathBuf,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
+    /// The 3D model of the erected grid: DIR/model.glb (binary glTF: every
+    /// lamella a solid on its own offset line with its slots, edge strips,
+    /// washers and studs, node markers, coloured by the elastic check's
+    /// utilisation) and DIR/view.html (a self-contained page that shows
+    /// it: orbit, pan, zoom, pick a strip, toggle families). `build` writes
+    /// both too.
+    View {
+        #[command(flatten)]
+        stage: StageArgs,
+        /// Directory for model.glb and view.html (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        /// Also solve the flat state (see `lamella flat`) and put it in
+        /// the model as a morph target (a slider in view.html).
+        #[arg(long)]
+        flat: bool,
         #[command(flatten)]
         read: ReadArgs,
     },
@@ -281,6 +301,16 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
         Command::Flat { stage, out, read } => Ok(report::flat(&commands::flat(
             stage.inputs(&read, false),
             &out,
+        )?)),
+        Command::View {
+            stage,
+            out,
+            flat,
+            read,
+        } => Ok(report::view(&commands::view(
+            stage.inputs(&read, false),
+            &out,
+            flat,
         )?)),
         Command::Nodes { network, out, read } => Ok(report::nodes(&commands::nodes(
             inputs(network, None, &read, false),

@@ -84,7 +84,7 @@ pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
         None => println!("elastic check: no strips"),
     }
     println!(
-        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, assembly.pdf, sheets/)",
+        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, assembly.pdf, model.glb, view.html, sheets/)",
         r.files.len(),
         r.out.display()
     );
@@ -362,6 +362,38 @@ fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
 }
 
 /// `lamella flat`: the flat state's figures and its verdict.
+/// `lamella view`: what the model holds and where it went.
+pub fn view(done: &Done) -> ExitCode {
+    let s = &done.session;
+    warn(&s.warnings());
+    warn(&done.notes);
+    let Some(plan) = &done.plan else {
+        return ExitCode::from(1);
+    };
+    let strips = plan.strips.len();
+    let detail = if !lamella::formats::write::gltf::full_detail(plan) {
+        "ribbons (a big grid: no slots, washers or studs)"
+    } else if plan.parts.is_some() {
+        "solids with slots and hardware"
+    } else {
+        "solids (no parts: no slots or hardware)"
+    };
+    let flat = if plan.flat.is_some() {
+        ", the flat state as a morph target"
+    } else {
+        ""
+    };
+    println!(
+        "{}: {strips} strips, {} nodes as {detail}{flat}",
+        plan.network.name,
+        plan.nodes.len()
+    );
+    for f in &done.written {
+        println!("wrote {}", f.display());
+    }
+    ExitCode::SUCCESS
+}
+
 pub fn flat(done: &Done) -> ExitCode {
     let s = &done.session;
     warn(&s.warnings());

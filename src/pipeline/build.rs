@@ -95,9 +95,10 @@ pub struct BuildReport {
     pub assembly_pages: usize,
     /// Time per stage, in order (for the benchmark; not written
     /// anywhere): `read`, `analyse`, `parts`, `nest`, `plan`, `write`
-    /// (the takeoff, then plan.json, the sheets and assembly.pdf side by
-    /// side: their own wall times follow as `write: plan.json`, `write:
-    /// sheets` and `write: assembly.pdf`), `commit`.
+    /// (the takeoff, then plan.json, the sheets, assembly.pdf and the 3D
+    /// model side by side: their own wall times follow as `write:
+    /// plan.json`, `write: sheets`, `write: assembly.pdf` and `write:
+    /// model.glb and view.html`), `commit`.
     pub stages: Vec<StageTime>,
 }
 
@@ -109,14 +110,23 @@ impl BuildReport {
 }
 
 /// The files every build writes besides the sheets.
-pub const FIXED_FILES: [&str; 4] = ["plan.json", "takeoff.csv", "takeoff.json", "assembly.pdf"];
-
-/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
-const KIT: [&str; 5] = [
+pub const FIXED_FILES: [&str; 6] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
     "assembly.pdf",
+    "model.glb",
+    "view.html",
+];
+
+/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
+const KIT: [&str; 7] = [
+    "plan.json",
+    "takeoff.csv",
+    "takeoff.json",
+    "assembly.pdf",
+    "model.glb",
+    "view.html",
     crate::formats::out::manifest::SHEETS,
 ];
 
@@ -190,6 +200,8 @@ pub fn build(
         let (problem, state) = session.flat()?;
         plan::add_flat(&mut the_plan, problem, state);
     }
+    // The shape in space for the 3D model, while the analysis is there.
+    session.add_shape(&mut the_plan)?;
     session.kit()?;
     session.release_analysis();
     clock.lap("parts");
@@ -324,7 +336,18 @@ pub fn build(
                                 .collect::<Result<Vec<_>>>()
                         })
                     },
-                    || timed(|| assembly::sections_with(&assembly_input, Some(strip_pages))),
+                    || {
+                        let sections =
+                            timed(|| assembly::sections_with(&assembly_input, Some(strip_pages)));
+                        // The 3D model and its page beside the sheets.
+                        let model = timed(|| {
+                            let glb_path = out.join("model.glb");
+                            let [glb, html] = super::commands::model_files(&the_plan, &glb_path)?;
+                            staging.write("model.glb", &glb)?;
+                            staging.write("view.html", &html)
+                        });
+                        (sections, model)
+                    },
                 )
             },
         )
@@ -332,6 +355,8 @@ pub fn build(
     plan_written.0?;
     let nested = sheets_written.0?;
     let t = std::time::Instant::now();
+    let (sections, model) = sections;
+    model.0?;
     let (sections, sections_s) = (sections.0?, sections.1);
     let mut assembly_pages = 0;
     staging.write_with("assembly.pdf", |w| {
@@ -344,6 +369,7 @@ pub fn build(
     clock.part("write: sheets", sheets_written.1);
     // The sections apart from the sheets as nested, then the document.
     clock.part("write: assembly.pdf", pdf_s);
+    clock.part("write: model.glb and view.html", model.1);
     drop(drawer);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {

@@ -9,7 +9,7 @@ use crate::design::DesignReport;
 use crate::error::{Error, Result};
 use crate::formats::out::write_atomic;
 use crate::formats::read;
-use crate::formats::write::{flat_svg, plan_json};
+use crate::formats::write::{flat_svg, gltf, plan_json, view as view_html};
 use crate::network::RawNetwork;
 use crate::plan::Plan;
 use std::path::{Path, PathBuf};
@@ -24,6 +24,9 @@ pub struct Done {
     pub plan: Option<Plan>,
     /// The files written.
     pub written: Vec<PathBuf>,
+    /// What the command left out and why, one line each (printed as
+    /// warnings).
+    pub notes: Vec<String>,
 }
 
 /// `DIR/plan.json`.
@@ -53,6 +56,7 @@ pub fn nodes(inputs: Inputs, out: &Path) -> Result<Done> {
         session,
         plan: Some(plan),
         written: vec![plan_path(out)],
+        notes: Vec::new(),
     })
 }
 
@@ -75,6 +79,7 @@ pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> 
         session,
         plan: None,
         written: Vec::new(),
+        notes: Vec::new(),
     };
     if let Some((real, shown)) = target {
         let mut plan = done.session.plan(false)?;
@@ -141,6 +146,7 @@ pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
         session,
         plan: Some(plan),
         written,
+        notes: Vec::new(),
     })
 }
 
@@ -173,6 +179,60 @@ pub fn flat(inputs: Inputs, out: &Path) -> Result<Done> {
         session,
         plan: Some(plan),
         written: vec![plan_path(out), out.join("flat.svg")],
+        notes: Vec::new(),
+    })
+}
+
+/// The files of the 3D model: the GLB and the page that shows it.
+pub const MODEL_FILES: [&str; 2] = ["model.glb", "view.html"];
+
+/// The model of a plan with its shape: `model.glb` and `view.html`'s
+/// bytes, in [`MODEL_FILES`]' order.
+pub fn model_files(plan: &Plan, glb_path: &Path) -> Result<[Vec<u8>; 2]> {
+    let glb = gltf::to_glb(plan).map_err(|e| Error::output(glb_path, e))?;
+    let title = match &plan.profile {
+        Some(p) => format!("{} — {}", plan.network.name, p.name),
+        None => plan.network.name.clone(),
+    };
+    let html = view_html::to_html(&title, &glb).into_bytes();
+    Ok([glb, html])
+}
+
+/// `lamella view`: the 3D model of the erected grid with its parts'
+/// slots and hardware and the check's utilisation (and, when `flat`, the
+/// flat state as a morph target); `DIR/model.glb` and `DIR/view.html`.
+pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
+    let real = check_outputs(&[Output::Dir(out, &MODEL_FILES)], &inputs.files())?;
+    let mut session = Session::open(inputs)?;
+    if flat {
+        session.flat()?;
+    }
+    session.check(true)?;
+    // The shape while the check's lamella lines are there (the parts take
+    // them).
+    let mut plan = session.plan(flat)?;
+    session.add_shape(&mut plan)?;
+    // The slots and the hardware come from the parts; a grid the profile
+    // cannot make is still shown, without them; a big grid's model has
+    // neither (its level of detail): no parts.
+    let mut notes = Vec::new();
+    if plan.nodes.len() <= crate::plan::ShapeOptions::BIG_NODES {
+        match session.kit() {
+            Ok(kit) => crate::plan::add_parts(&mut plan, kit),
+            Err(e) => notes.push(format!("no slots or hardware in the model: {e}")),
+        }
+    }
+    let files = model_files(&plan, &out.join(MODEL_FILES[0]))?;
+    let mut written = Vec::new();
+    for (name, bytes) in MODEL_FILES.iter().zip(&files) {
+        write_atomic(&real[0].join(name), bytes)?;
+        written.push(out.join(name));
+    }
+    Ok(Done {
+        session,
+        plan: Some(plan),
+        written,
+        notes,
     })
 }
 

@@ -329,6 +329,19 @@ impl Session {
         Ok(crate::plan::build(&self.network, an, &model))
     }
 
+    /// Add the grid's shape in space to a plan made by this session (for
+    /// the 3D model): the analysis must not have been released. The flat
+    /// layout's frames come too when the plan holds the flat state.
+    pub fn add_shape(&mut self, plan: &mut Plan) -> Result<()> {
+        self.analysis()?;
+        let Some(an) = &self.analysis else {
+            return Err(not_run(&self.inputs, "the analysis"));
+        };
+        let opts = crate::plan::ShapeOptions::for_nodes(an.topology.nodes.len());
+        crate::plan::add_shape(plan, an, self.profile.as_ref(), self.lines.as_ref(), opts);
+        Ok(())
+    }
+
     /// The warnings of the analysis and of the parts, one line each.
     pub fn warnings(&self) -> Vec<String> {
         let mut w: Vec<String> = self

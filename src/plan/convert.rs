@@ -246,6 +246,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         flat: None,
         curves: Vec::new(),
         takeoff: None,
+        shape: None,
     }
 }
 

@@ -9,12 +9,14 @@ use takeoff::Takeoff;
 
 mod convert;
 pub mod model;
+pub mod shape;
 pub mod sparrow;
 pub mod takeoff;
 
 pub use convert::{
     add_curves, add_flat, add_nest, add_parts, add_takeoff, build, plan_parts, round, set_parts,
 };
+pub use shape::{add_shape, ShapeOptions};
 
 /// The schema name written into every plan; later stages add fields, never rename.
 pub const SCHEMA: &str = "lamella-plan/3";
@@ -75,6 +77,93 @@ pub struct Plan {
     /// is written beside it as takeoff.csv and takeoff.json.
     #[serde(skip)]
     pub takeoff: Option<Takeoff>,
+    /// The grid's shape in space, for the 3D model (added by
+    /// [`add_shape`]). Not in plan.json.
+    #[serde(skip)]
+    pub shape: Option<PlanShape>,
+}
+
+/// The grid's shape in space (world frame, mm): every lamella's frames on
+/// its own offset line, the edge strips' on their curves, the strips'
+/// tangents at every node, the section and the hardware's sizes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanShape {
+    /// Lamella height h, along the normal, mm.
+    pub height_mm: f64,
+    /// Lamella thickness t, across, mm.
+    pub thickness_mm: f64,
+    /// The star washers, when the profile has them.
+    pub washer: Option<ShapeWasher>,
+    /// The studs of a two-level joint.
+    pub stud: Option<ShapeStud>,
+    /// Every lamella line (A and B strips, in plan order, lamellas in
+    /// order), and each edge strip's curve (`lamella` 0).
+    pub lines: Vec<ShapeLine>,
+    /// Per plan node (by id): the strips' unit tangents there.
+    pub nodes: Vec<ShapeNode>,
+    /// The largest distance between two frames along a curve, mm.
+    pub step_mm: f64,
+}
+
+/// The star washer's sizes, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeWasher {
+    /// Plate thickness, mm.
+    pub thickness_mm: f64,
+    /// Arm length from the node, mm.
+    pub arm_length_mm: f64,
+    /// Arm width, mm.
+    pub arm_width_mm: f64,
+    /// Washers per node (2: on top and below).
+    pub per_node: u32,
+}
+
+/// A two-level joint's stud, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeStud {
+    /// Square section, mm.
+    pub section_mm: f64,
+    /// Length along the normal, mm.
+    pub length_mm: f64,
+}
+
+/// One lamella line (or an edge strip's curve) as frames by station.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeLine {
+    /// Index of its strip in the plan's `strips`.
+    pub strip: usize,
+    /// Lamella number (0: an edge strip's curve).
+    pub lamella: u32,
+    /// Frames by ascending station (ends, nodes and between).
+    pub frames: Vec<ShapeFrame>,
+    /// The same frames in the flat layout, when the flat state holds the strip.
+    pub flat: Option<Vec<ShapeFrame>>,
+}
+
+/// A point on a line with its unit frame (world, mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeFrame {
+    /// Station on the line's own arc length, mm.
+    pub station_mm: f64,
+    /// The point, mm.
+    pub point_mm: [f64; 3],
+    /// Unit tangent x.
+    pub tangent: [f64; 3],
+    /// Unit surface normal z (the lamella's height).
+    pub normal: [f64; 3],
+    /// Unit y = z × x (the lamella's thickness).
+    pub across: [f64; 3],
+}
+
+/// The two strips' unit tangents at a node (world).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeNode {
+    /// Tangent of the node's `a` strip.
+    pub tangent_a: [f64; 3],
+    /// Tangent of the node's `b` strip.
+    pub tangent_b: [f64; 3],
+    /// Where the node lies in the flat layout (world, mm), when it is in it.
+    pub flat_mm: Option<[f64; 3]>,
 }
 
 /// A curve's points in the world frame, mm (the network's, as read).

@@ -495,7 +495,7 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
         "sheets: 3 (lower bound 3)",
         "elastic check: PASS",
         "node bolt",
-        "wrote 10 files",
+        "wrote 12 files",
     ] {
         assert!(stdout.contains(want), "summary lacks {want:?}:\n{stdout}");
     }

@@ -21,6 +21,7 @@ mod mesh;
 mod mesh_trace;
 mod mesh_truth;
 mod minimal;
+mod model;
 mod nest;
 mod nest_stock;
 mod nodes;

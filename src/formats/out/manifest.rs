@@ -32,12 +32,14 @@ const HEADER: &str = "# lamella manifest 2: bytes, CRC-32, path";
 pub const SHEETS: &str = "sheets";
 
 /// The files lamella writes at the top of an output folder.
-pub const TOP_FILES: [&str; 5] = [
+pub const TOP_FILES: [&str; 7] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
     "assembly.pdf",
     "flat.svg",
+    "model.glb",
+    "view.html",
 ];
 
 /// Whether lamella writes files named `rel` (`/`-separated, inside DIR):
@@ -162,6 +164,8 @@ pub fn replaceable(dir: &Path, rel: &str, manifest: &Manifest) -> bool {
     let says_so = regular_in(dir, rel).is_some_and(|(path, _)| match rel {
         "plan.json" => head(&path, 256).is_some_and(|h| is_plan_head(&h)),
         "flat.svg" => head(&path, 1024).is_some_and(|h| is_flat_svg_head(&h)),
+        "model.glb" => head(&path, 256).is_some_and(|h| is_model_head(&h)),
+        "view.html" => head(&path, 256).is_some_and(|h| is_view_head(&h)),
         _ => false,
     });
     says_so || vouched(dir, rel, manifest)
@@ -263,6 +267,20 @@ fn is_flat_svg_head(text: &str) -> bool {
         })
 }
 
+/// Whether a GLB begins as lamella's model does: the magic `glTF`, and
+/// the JSON chunk's asset first, generator `lamella …`.
+fn is_model_head(text: &str) -> bool {
+    text.starts_with("glTF") && text.contains("\"generator\":\"lamella ")
+}
+
+/// Whether an HTML page begins as lamella's view does: the doctype, then
+/// the marker comment.
+fn is_view_head(text: &str) -> bool {
+    let mut lines = text.lines();
+    lines.next() == Some("<!DOCTYPE html>")
+        && lines.next() == Some("<!-- lamella view: a 3D model of a grid -->")
+}
+
 /// A file's identity while it is unchanged: device, inode, size and the
 /// modification and change times (size and modification time elsewhere).
 type Identity = (u64, u64, u64, i64, i64, i64, i64);
@@ -335,6 +353,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_model_and_a_view_are_known_by_their_first_bytes() {
+        assert!(is_model_head(
+            "glTF\u{2}\0\0\0xxxxyyyyJSON{\"asset\":{\"generator\":\"lamella 0.1.0\""
+        ));
+        assert!(!is_model_head(
+            "glTF....{\"asset\":{\"generator\":\"Blender\""
+        ));
+        assert!(!is_model_head("{\"generator\":\"lamella 0.1.0\""));
+        assert!(is_view_head(
+            "<!DOCTYPE html>\n<!-- lamella view: a 3D model of a grid -->\n<html>"
+        ));
+        assert!(!is_view_head("<!DOCTYPE html>\n<html>"));
+    }
+
+    #[test]
     fn only_the_names_lamella_writes() {
         for ok in [
             "plan.json",
@@ -342,6 +375,8 @@ mod tests {
             "takeoff.json",
             "assembly.pdf",
             "flat.svg",
+            "model.glb",
+            "view.html",
             "sheets/sheet-001.dxf",
             "sheets/sheet-1234.svg",
         ] {
