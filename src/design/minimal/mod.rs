@@ -28,7 +28,7 @@
 //!    of slivers), a tube is lofted between them: both
 //!    resampled to one count, the second aligned to the first (the cyclic
 //!    shift and direction of least total distance), rows every ≈ h₀
-//!    between them, quads split along one diagonal; the chart is an annulus
+//!    between them, quads split along alternating diagonals; the chart is an annulus
 //!    (loop 0 on the inner circle, angle = 2π × arc-length fraction, radii
 //!    so that the mid circle is as long as the loops on average). Otherwise
 //!    a one-line error names the loops that cross, are not nested, or the
