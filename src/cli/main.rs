@@ -48,6 +48,19 @@ enum Command {
         /// Write the kit even when a strip is overstressed.
         #[arg(long)]
         allow_overstress: bool,
+        /// Also write each sheet's outline, on the non-plotting reference
+        /// layer SHEET (off by default: CAM software that cuts every closed
+        /// contour would cut it).
+        #[arg(long)]
+        sheet_outline: bool,
+        /// Put each part's id as screen text into the SVGs (group LABELS;
+        /// off by default: laser software imports text as something to engrave).
+        #[arg(long)]
+        svg_labels: bool,
+        /// Fit cut contours by lines and arcs within this many mm (0: keep
+        /// the polygons; at most a quarter of the profile's part spacing).
+        #[arg(long, value_name = "MM", default_value_t = lamella::formats::write::arcs::DEFAULT_TOLERANCE_MM)]
+        arc_tolerance: f64,
         /// Size each slot from its node's rotation between the flat state
         /// and the erected one (see `lamella flat`) instead of the profile's
         /// blanket rotation tolerance.
@@ -278,6 +291,9 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             out,
             kerf_compensation,
             allow_overstress,
+            sheet_outline,
+            svg_labels,
+            arc_tolerance,
             slots_from_flat,
             paper,
             quiet,
@@ -286,6 +302,9 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             let opts = pipeline::build::BuildOptions {
                 kerf_compensation,
                 allow_overstress,
+                sheet_outline,
+                svg_labels,
+                arc_tolerance_mm: Some(arc_tolerance),
                 paper: lamella::formats::write::assembly::Paper::parse(&paper).unwrap_or_default(),
             };
             let progress = report::progress(quiet);

@@ -13,7 +13,8 @@ use crate::check::CheckReport;
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
 use crate::formats::out::staging::Staging;
-use crate::formats::write::drawing::Drawer;
+use crate::formats::write::arcs::DEFAULT_TOLERANCE_MM;
+use crate::formats::write::drawing::{Drawer, SheetFileOptions};
 use crate::formats::write::{
     assembly, dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file,
 };
@@ -31,6 +32,14 @@ pub struct BuildOptions {
     pub allow_overstress: bool,
     /// Paper of the assembly sheets.
     pub paper: assembly::Paper,
+    /// Write each sheet's outline, on the reference layer `SHEET`.
+    pub sheet_outline: bool,
+    /// Put screen labels (part ids as text) into the SVGs.
+    pub svg_labels: bool,
+    /// Fit cut contours by lines and arcs within this, mm: `None` the
+    /// default ([`crate::formats::write::arcs::DEFAULT_TOLERANCE_MM`]),
+    /// 0 no fitting (plan.json's polygons as they are).
+    pub arc_tolerance_mm: Option<f64>,
 }
 
 /// The time one stage of a build took.
@@ -143,7 +152,13 @@ pub fn build(
     check_outputs(&[Output::Dir(out, &KIT)], &inputs.files())?;
     let mut clock = Clock::start();
     progress.set_message("reading");
+    let profile_path = inputs.profile.clone().unwrap_or_default();
     let mut session = Session::open(inputs)?;
+    let tol_mm = arc_tolerance(
+        opts.arc_tolerance_mm,
+        session.profile()?.cutting.part_spacing_mm,
+        &profile_path,
+    )?;
     clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");
     session.analysis()?;
@@ -249,7 +264,11 @@ pub fn build(
         takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
-    let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
+    let file_opts = SheetFileOptions {
+        sheet_outline: opts.sheet_outline,
+        labels: opts.svg_labels,
+    };
+    let drawer = Drawer::new(&the_plan, kerf, &plan_target)?.arc_tolerance(tol_mm);
     let sheet_count = drawer.len();
     progress.set_length(sheet_count as u64);
     progress.set_position(0);
@@ -266,7 +285,7 @@ pub fn build(
     // With kerf compensation the cutting files are offset; the nested
     // sheets' pages stay nominal, drawn apart.
     let nominal = match kerf {
-        Some(_) => Some(Drawer::new(&the_plan, None, &plan_target)?),
+        Some(_) => Some(Drawer::new(&the_plan, None, &plan_target)?.arc_tolerance(tol_mm)),
         None => None,
     };
     let sheets_meta = the_plan.sheets.as_deref().unwrap_or_default();
@@ -296,12 +315,14 @@ pub fn build(
                                     |(dxf, svg), i| -> Result<assembly::SealedPage> {
                                         let sheet = drawer.sheet(i)?;
                                         let stem = sheet.file_stem();
-                                        dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
-                                            Error::output(
-                                                &out.join(format!("sheets/{stem}.dxf")),
-                                                e,
-                                            )
-                                        })?;
+                                        dxf_out::write_dxf(&sheet, file_opts, dxf).map_err(
+                                            |e| {
+                                                Error::output(
+                                                    &out.join(format!("sheets/{stem}.dxf")),
+                                                    e,
+                                                )
+                                            },
+                                        )?;
                                         staging.write(&format!("sheets/{stem}.dxf"), dxf)?;
                                         let title = format!(
                                             "{} — {}: sheet {} of {} ({}), {} × {} mm",
@@ -313,7 +334,7 @@ pub fn build(
                                             sheet.length_mm,
                                             sheet.width_mm
                                         );
-                                        svg_out::write_svg(&sheet, &title, svg);
+                                        svg_out::write_svg(&sheet, &title, file_opts, svg);
                                         staging.write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
                                             Some(d) => assembly::nested::page(
@@ -463,4 +484,27 @@ fn process_cpu_s() -> Option<f64> {
     let utime: f64 = f.next()?.parse().ok()?;
     let stime: f64 = f.next()?.parse().ok()?;
     Some((utime + stime) / 100.0)
+}
+
+/// The arc fit's tolerance, mm (`None`: no fit): at most a quarter of the
+/// profile's part spacing, so two fitted outlines the nest kept `spacing`
+/// apart stay at least `spacing − 2·tol` ≥ half of it apart.
+fn arc_tolerance(asked_mm: Option<f64>, spacing_mm: f64, profile: &Path) -> Result<Option<f64>> {
+    let tol = asked_mm.unwrap_or(DEFAULT_TOLERANCE_MM);
+    let field = || crate::error::Location::Field("cutting.part_spacing_mm".into());
+    if !tol.is_finite() || tol < 0.0 {
+        return Err(Error::input(
+            profile,
+            field(),
+            format!("--arc-tolerance {tol}: a tolerance is a length ≥ 0 mm (0: no arcs)"),
+        ));
+    }
+    if tol > 0.25 * spacing_mm {
+        return Err(Error::input(profile, field(), format!(
+            "--arc-tolerance {tol}: more than a quarter of the profile's part spacing ({spacing_mm} mm) \
+             would let fitted outlines come closer than the nest keeps them"
+        ),
+        ));
+    }
+    Ok((tol > 0.0).then_some(tol))
 }
