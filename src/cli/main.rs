@@ -28,7 +28,9 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// The whole kit in one command: nodes, elastic check, parts, nest, then
-    /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet,
+    /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet
+    /// (in cut order: engraving, inner contours, outlines), DIR/parts/ID.dxf
+    /// and .svg per distinct part with DIR/parts/parts.csv,
     /// DIR/takeoff.csv, DIR/takeoff.json, DIR/assembly.pdf (the assembly
     /// sheets) and the 3D model DIR/model.glb with its page DIR/view.html
     /// (with --slots-from-flat, the flat state as a morph target). Output is staged beside DIR and
@@ -115,14 +117,17 @@ enum Command {
         /// The network file (.yaml, .yml, .json, .obj, .dxf).
         network: PathBuf,
         /// Output directory (created if missing); plan.json is written there.
-        #[arg(long, default_value = "out")]
+        #[arg(long)]
         out: PathBuf,
         #[command(flatten)]
         read: ReadArgs,
     },
-    /// Trace a network on an analytic surface from a spec (surface, scale,
-    /// placement, seed, spacing, clip, sampling) and write it as a network
-    /// file (YAML, with normals).
+    /// Trace a network from a spec (surface, scale, placement, seed,
+    /// spacing, clip, sampling) and write it as a network file (YAML, with
+    /// normals). Surfaces: the analytic enneper, catenoid, helicoid, scherk,
+    /// schwarz_d and hypar; mesh (a triangle mesh file: OBJ, PLY or STL);
+    /// minimal (the soap film form-found on boundaries_mm). Nets: asymptotic
+    /// (the strips) or principal.
     Trace {
         /// The trace spec (YAML).
         spec: PathBuf,
@@ -172,7 +177,9 @@ enum Command {
         read: ReadArgs,
     },
     /// Turn every A/B strip into flat parts for a profile: lamellas with
-    /// swept slots or node holes, shear blocks, splice plates; write
+    /// swept slots or node holes, shear blocks, star washers, studs
+    /// (two-level grids), splice plates, and edge strips (the boundary
+    /// bands, unrolled); write
     /// DIR/plan.json with everything `check` writes plus `parts`, and print
     /// a parts summary.
     Parts {

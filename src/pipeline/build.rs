@@ -1,7 +1,8 @@
 //! `lamella build`: every stage from a network and a profile to the files a
 //! workshop needs — nodes, the elastic check, parts, nest, then
 //! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
-//! `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
+//! `DIR/parts/ID.dxf` and `.svg` per distinct part with
+//! `DIR/parts/parts.csv`, `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
 //! `DIR/assembly.pdf` — staged beside DIR and moved
 //! into place only once complete ([`crate::formats::out::staging`]).
 //!
@@ -14,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
 use crate::formats::out::staging::Staging;
 use crate::formats::write::arcs::DEFAULT_TOLERANCE_MM;
-use crate::formats::write::drawing::{Drawer, SheetFileOptions};
+use crate::formats::write::drawing::{part_file_stem, Drawer, SheetFileOptions};
 use crate::formats::write::{
     assembly, dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file,
 };
@@ -128,8 +129,8 @@ pub const FIXED_FILES: [&str; 6] = [
     "view.html",
 ];
 
-/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
-const KIT: [&str; 7] = [
+/// What a build writes in DIR: [`FIXED_FILES`], the sheets' and the parts' folders.
+const KIT: [&str; 8] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
@@ -137,6 +138,7 @@ const KIT: [&str; 7] = [
     "model.glb",
     "view.html",
     crate::formats::out::manifest::SHEETS,
+    crate::formats::out::manifest::PARTS,
 ];
 
 /// Run every stage and write the kit into `out`. Returns the report; when
@@ -391,11 +393,53 @@ pub fn build(
     // The sections apart from the sheets as nested, then the document.
     clock.part("write: assembly.pdf", pdf_s);
     clock.part("write: model.glb and view.html", model.1);
+    // One DXF and SVG per distinct part, at the origin, and parts.csv.
+    let parts_clock = std::time::Instant::now();
+    let plan_parts = the_plan.parts.as_deref().unwrap_or_default();
+    let stems: Vec<String> = plan_parts.iter().map(|p| part_file_stem(&p.id)).collect();
+    let mut seen = std::collections::BTreeSet::new();
+    if let Some(twice) = stems.iter().find(|s| !seen.insert(s.as_str())) {
+        return Err(Error::output(
+            &out.join("parts"),
+            format!("two parts would share the file parts/{twice}.dxf: their ids differ only in characters a file name cannot hold"),
+        ));
+    }
+    write_pool.install(|| {
+        (0..drawer.part_count())
+            .into_par_iter()
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(dxf, svg), i| -> Result<()> {
+                    let part = drawer.part(i)?;
+                    let stem = &stems[i];
+                    let target = format!("parts/{stem}.dxf");
+                    dxf_out::write_dxf(&part, SheetFileOptions::default(), dxf)
+                        .map_err(|e| Error::output(&out.join(&target), e))?;
+                    staging.write(&target, dxf)?;
+                    let title = format!(
+                        "{network_name} — {profile_name}: part {}, {} × {} mm",
+                        part.id, part.length_mm, part.width_mm
+                    );
+                    svg_out::write_svg(&part, &title, SheetFileOptions::default(), svg);
+                    staging.write(&format!("parts/{stem}.svg"), svg)
+                },
+            )
+            .collect::<Result<Vec<()>>>()
+    })?;
+    let csv = takeoff_file::parts_csv(plan_parts, &takeoff, part_file_stem)
+        .map_err(|e| Error::output(&out.join("parts/parts.csv"), e))?;
+    staging.write("parts/parts.csv", &csv)?;
+    clock.part("write: parts", parts_clock.elapsed().as_secs_f64());
     drop(drawer);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
+    }
+    files.push("parts/parts.csv".to_string());
+    for stem in &stems {
+        files.push(format!("parts/{stem}.dxf"));
+        files.push(format!("parts/{stem}.svg"));
     }
     progress.set_message("moving into place");
     staging.commit()?;

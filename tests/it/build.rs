@@ -576,7 +576,7 @@ fn dxf_matches_plan(out: &Path) -> usize {
     c.checked
 }
 
-/// ezdxf's audit of every DXF: no errors. Runs where ezdxf is installed;
+/// ezdxf's audit of every DXF, the sheets' and the parts': no errors. Runs where ezdxf is installed;
 /// CI installs it and sets LAMELLA_REQUIRE_EZDXF so a missing ezdxf fails.
 fn ezdxf_audit(out: &Path) {
     let have = Command::new("python3")
@@ -591,8 +591,9 @@ fn ezdxf_audit(out: &Path) {
         eprintln!("ezdxf not installed: DXF audit skipped (CI runs it)");
         return;
     }
-    let mut files: Vec<PathBuf> = std::fs::read_dir(out.join("sheets"))
-        .expect("sheets")
+    let mut files: Vec<PathBuf> = ["sheets", "parts"]
+        .iter()
+        .flat_map(|d| std::fs::read_dir(out.join(d)).expect("folder"))
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|e| e == "dxf"))
@@ -716,7 +717,7 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
         "sheets: 3 (lower bound 3)",
         "elastic check: PASS",
         "node bolt",
-        "wrote 12 files",
+        "wrote 214 files",
     ] {
         assert!(stdout.contains(want), "summary lacks {want:?}:\n{stdout}");
     }
@@ -737,12 +738,14 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
     assert!(snapshot(&out) == snapshot(&again), "rebuild differs");
 }
 
-/// Every sample × profile that builds (the rest are refused as
-/// overstressed, exit 3): every DXF passes ezdxf's audit without an error
+/// Every sample × profile that builds (the rest, the README's refused
+/// combinations, are refused as overstressed, exit 3): every DXF passes ezdxf's audit without an error
 /// or a fix, reads back with the dxf crate and holds to plan.json in
 /// cutting order (see [`dxf_matches_plan_within`]).
 #[test]
 fn every_shipped_build_passes_both_readers() {
+    let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
+    let refused = crate::readme::refused(&readme);
     let mut built = 0;
     let mut samples: Vec<PathBuf> = std::fs::read_dir(root().join("samples"))
         .expect("samples")
@@ -768,7 +771,13 @@ fn every_shipped_build_passes_both_readers() {
         ] {
             let out = scratch(&format!("all-{name}-{profile}")).join("kit");
             let o = build(&name, profile, &out, &["--quiet"]);
-            if o.status.code() == Some(3) {
+            let said = refused.iter().any(|r| r.0 == name && r.1 == profile);
+            assert_eq!(
+                o.status.code() == Some(3),
+                said,
+                "{name} with {profile}: refused or not as the README says"
+            );
+            if said {
                 continue;
             }
             ok(&o);
@@ -1256,4 +1265,122 @@ fn takeoff_prices_each_sheet_size() {
     }
     let total = plan["nesting"]["total_cost"].as_f64().expect("total");
     assert!((t["totals"]["stock_cost"].as_f64().expect("cost") - total).abs() < 1e-9);
+}
+
+/// `parts/`: one DXF and SVG per distinct part and `parts.csv`, whose
+/// quantities are plan.json's counts and add up to every placement of
+/// every sheet; each part's file, moved by a placement of that part,
+/// is that placement's cut contours on the sheet exactly (vertices and
+/// bulges), its round holes, and its engraving to the 1 µm grid.
+#[test]
+fn per_part_files_are_the_nested_parts() {
+    let out = scratch("parts-files").join("kit");
+    ok(&build("enneper-4m", "steel-1.5", &out, &["--quiet"]));
+    let plan = json(&out.join("plan.json"));
+    let parts = plan["parts"].as_array().expect("parts");
+    let sheets = plan["sheets"].as_array().expect("sheets");
+    let placed_total: usize = sheets
+        .iter()
+        .map(|s| s["placements"].as_array().expect("p").len())
+        .sum();
+    let mut rd = csv::Reader::from_path(out.join("parts/parts.csv")).expect("parts.csv");
+    let header: Vec<String> = rd
+        .headers()
+        .expect("header")
+        .iter()
+        .map(String::from)
+        .collect();
+    assert_eq!(
+        header,
+        [
+            "part",
+            "kind",
+            "material",
+            "thickness_mm",
+            "quantity",
+            "length_mm",
+            "width_mm",
+            "area_mm2",
+            "file"
+        ]
+    );
+    let rows: Vec<csv::StringRecord> = rd.records().map(|r| r.expect("row")).collect();
+    assert_eq!(rows.len(), parts.len());
+    let mut sum = 0;
+    for (row, part) in rows.iter().zip(parts) {
+        assert_eq!(&row[0], part["id"].as_str().expect("id"));
+        assert_eq!(&row[1], part["kind"].as_str().expect("kind"));
+        assert_eq!(&row[2], "S355 hot-rolled strip steel");
+        let t: f64 = row[3].parse().expect("t");
+        let want_t = match &row[1] {
+            "shear_block" => 10.0,
+            "washer" => 3.0,
+            _ => 1.5,
+        };
+        assert_eq!(t, want_t, "{}", &row[0]);
+        let q: u64 = row[4].parse().expect("q");
+        assert_eq!(Some(q), part["count"].as_u64());
+        sum += q as usize;
+        assert!(out.join("parts").join(&row[8]).is_file());
+        assert!(out
+            .join("parts")
+            .join(row[8].replace(".dxf", ".svg"))
+            .is_file());
+    }
+    assert_eq!(sum, placed_total, "quantities add up to the kit");
+    // Each part's file against its first placement.
+    let mut done = std::collections::BTreeSet::new();
+    for (i, sheet) in sheets.iter().enumerate() {
+        let (_, sheet_ents) = read_dxf(&out.join(format!("sheets/sheet-{:03}.dxf", i + 1)));
+        for pl in sheet["placements"].as_array().expect("placements") {
+            let id = pl["part"].as_str().expect("part");
+            if !done.insert(id.to_string()) {
+                continue;
+            }
+            let rot = pl["rotation_deg"].as_u64().expect("rot");
+            let (tx, ty) = (
+                pl["x_mm"].as_f64().expect("x"),
+                pl["y_mm"].as_f64().expect("y"),
+            );
+            let row = rows.iter().find(|r| &r[0] == id).expect("row");
+            let (_, ents) = read_dxf(&out.join("parts").join(&row[8]));
+            assert!(!ents.is_empty());
+            for e in &ents {
+                match e {
+                    Ent::Circle { c, r, .. } => {
+                        let want = placed(*c, rot, tx, ty);
+                        assert!(
+                            sheet_ents
+                                .iter()
+                                .any(|s| matches!(s, Ent::Circle { c: sc, r: sr, .. }
+                                if close_to(&[*sc], &[want], 1e-6) && (sr - r).abs() < 1e-9)),
+                            "{id}: circle"
+                        );
+                    }
+                    Ent::Poly {
+                        layer, pts, bulges, ..
+                    } => {
+                        let want: Vec<[f64; 2]> =
+                            pts.iter().map(|p| placed(*p, rot, tx, ty)).collect();
+                        let tol = if layer == "ENGRAVE" { 1.5e-3 } else { 1e-6 };
+                        let found = sheet_ents.iter().any(|s| match s {
+                            Ent::Poly {
+                                layer: sl,
+                                pts: sp,
+                                bulges: sb,
+                                ..
+                            } => {
+                                sl == layer
+                                    && close_to(sp, &want, tol)
+                                    && sb.iter().zip(bulges).all(|(a, b)| (a - b).abs() < 1e-9)
+                            }
+                            _ => false,
+                        });
+                        assert!(found, "{id}: a {layer} polyline not on sheet {}", i + 1);
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(done.len(), parts.len());
 }

@@ -230,6 +230,21 @@ impl SheetDrawing {
     }
 }
 
+/// A part's file stem in `parts/`: its id, every character but ASCII
+/// letters, digits, `-`, `_` and `.` as `_` (and a leading `.` too).
+pub fn part_file_stem(id: &str) -> String {
+    id.chars()
+        .enumerate()
+        .map(|(i, c)| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' || (c == '.' && i > 0) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
 /// Part-local (x, y) turned by a quarter-turn multiple counter-clockwise
 /// about the origin, then moved by (tx, ty): the placement's map, exact.
 pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2] {
@@ -248,6 +263,7 @@ pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2]
 #[derive(Debug)]
 pub struct Drawer<'a> {
     sheets: &'a [PlanSheet],
+    parts: &'a [PlanPart],
     by_id: HashMap<&'a str, &'a PlanPart>,
     font: Font<'a>,
     half_kerf_mm: Option<f64>,
@@ -272,6 +288,7 @@ impl<'a> Drawer<'a> {
         };
         Ok(Drawer {
             sheets,
+            parts,
             by_id: parts.iter().map(|p| (p.id.as_str(), p)).collect(),
             font: Font::new(plan.engraving_font.as_ref()),
             half_kerf_mm: kerf_compensation_mm.map(|k| 0.5 * k),
@@ -301,6 +318,43 @@ impl<'a> Drawer<'a> {
     /// The drawing of sheet `i` (0-based).
     pub fn sheet(&self, i: usize) -> Result<SheetDrawing> {
         self.draw(i, true)
+    }
+
+    /// How many distinct parts.
+    pub fn part_count(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// Distinct part `i` (plan.json's order) alone, in its own frame at
+    /// the origin, unturned, with its engraving, on a "sheet" of its
+    /// extent: its per-part cutting file. Its shapes are the nested
+    /// copies' exactly, moved by their placements (the fit is made in the
+    /// part's frame).
+    pub fn part(&self, i: usize) -> Result<SheetDrawing> {
+        let part = &self.parts[i];
+        let at = PlanPlacement {
+            part: part.id.clone(),
+            copy: 0,
+            x_mm: 0.0,
+            y_mm: 0.0,
+            rotation_deg: 0,
+        };
+        let placed = part_on_sheet(
+            part,
+            &at,
+            self.half_kerf_mm,
+            self.arc_tolerance_mm,
+            &self.font,
+            true,
+        )
+        .map_err(|what| Error::output(self.plan_path, format!("part {}: {what}", part.id)))?;
+        Ok(SheetDrawing {
+            id: part.id.clone(),
+            number: i + 1,
+            length_mm: part.length_mm,
+            width_mm: part.height_mm,
+            parts: vec![placed],
+        })
     }
 
     /// The drawing of sheet `i` (0-based) without the engraving: the cuts.
@@ -470,7 +524,8 @@ fn part_on_sheet(
     for hole in &part.holes {
         shapes.push(contour(
             Layer::CutInner,
-            hole.iter().map(map).collect(),
+            hole.clone(),
+            &map,
             half_kerf_mm,
             tol_mm,
         )?);
@@ -490,7 +545,13 @@ fn part_on_sheet(
             bbox_mm[3].max(p[1]),
         ];
     }
-    shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm, tol_mm)?);
+    shapes.push(contour(
+        Layer::CutOuter,
+        part.outline.clone(),
+        &map,
+        half_kerf_mm,
+        tol_mm,
+    )?);
     for e in part.engraving.iter().filter(|_| engraving) {
         let mut points_um: Vec<[i64; 2]> = Vec::new();
         let mut ends: Vec<usize> = Vec::new();
@@ -629,12 +690,13 @@ pub(crate) fn within(dx: f64, dy: f64, r_mm: f64) -> bool {
     dx * dx + dy * dy <= r_mm * r_mm
 }
 
-/// A closed cut contour, offset outward (outline, counter-clockwise) or
+/// A closed cut contour (part frame, placed by `map`), offset outward (outline, counter-clockwise) or
 /// inward into its hole (holes, clockwise) by half the kerf when asked: both
 /// are to the right of the direction of travel.
 fn contour(
     layer: Layer,
     points: Vec<[f64; 2]>,
+    map: &dyn Fn(&[f64; 2]) -> [f64; 2],
     half_kerf_mm: Option<f64>,
     tol_mm: Option<f64>,
 ) -> std::result::Result<Shape, String> {
@@ -645,10 +707,22 @@ fn contour(
             layer.name()
         ));
     }
-    let fitted = match tol_mm {
+    // Fitted in the part's frame, then placed (a quarter turn keeps every
+    // bulge): every copy, and the part's own file, gets the same fit.
+    let fitted: Vec<Vertex> = match tol_mm {
         Some(tol) if tol > 0.0 => super::arcs::fit_closed(&points, tol),
         _ => straight(&points),
-    };
+    }
+    .into_iter()
+    .map(|v| {
+        let [x_mm, y_mm] = map(&[v.x_mm, v.y_mm]);
+        Vertex {
+            x_mm,
+            y_mm,
+            bulge: v.bulge,
+        }
+    })
+    .collect();
     // Fitted contours keep no segment under the fit's shortest.
     let shortest_mm = match tol_mm {
         Some(tol) if tol > 0.0 => super::arcs::MIN_SEGMENT_MM,
