@@ -28,7 +28,9 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// The whole kit in one command: nodes, elastic check, parts, nest, then
-    /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet,
+    /// DIR/plan.json, DIR/sheets/sheet-NNN.dxf and .svg per stock sheet
+    /// (in cut order: engraving, inner contours, outlines), DIR/parts/ID.dxf
+    /// and .svg per distinct part with DIR/parts/parts.csv,
     /// DIR/takeoff.csv, DIR/takeoff.json, DIR/assembly.pdf (the assembly
     /// sheets) and the 3D model DIR/model.glb with its page DIR/view.html
     /// (with --slots-from-flat, the flat state as a morph target). Output is staged beside DIR and
@@ -48,6 +50,19 @@ enum Command {
         /// Write the kit even when a strip is overstressed.
         #[arg(long)]
         allow_overstress: bool,
+        /// Also write each sheet's outline, on the non-plotting reference
+        /// layer SHEET (off by default: CAM software that cuts every closed
+        /// contour would cut it).
+        #[arg(long)]
+        sheet_outline: bool,
+        /// Put each part's id as screen text into the SVGs (group LABELS;
+        /// off by default: laser software imports text as something to engrave).
+        #[arg(long)]
+        svg_labels: bool,
+        /// Fit cut contours by lines and arcs within this many mm (0: keep
+        /// the polygons; at most a quarter of the profile's part spacing).
+        #[arg(long, value_name = "MM", default_value_t = lamella::formats::write::arcs::DEFAULT_TOLERANCE_MM)]
+        arc_tolerance: f64,
         /// Size each slot from its node's rotation between the flat state
         /// and the erected one (see `lamella flat`) instead of the profile's
         /// blanket rotation tolerance.
@@ -102,14 +117,17 @@ enum Command {
         /// The network file (.yaml, .yml, .json, .obj, .dxf).
         network: PathBuf,
         /// Output directory (created if missing); plan.json is written there.
-        #[arg(long, default_value = "out")]
+        #[arg(long)]
         out: PathBuf,
         #[command(flatten)]
         read: ReadArgs,
     },
-    /// Trace a network on an analytic surface from a spec (surface, scale,
-    /// placement, seed, spacing, clip, sampling) and write it as a network
-    /// file (YAML, with normals).
+    /// Trace a network from a spec (surface, scale, placement, seed,
+    /// spacing, clip, sampling) and write it as a network file (YAML, with
+    /// normals). Surfaces: the analytic enneper, catenoid, helicoid, scherk,
+    /// schwarz_d and hypar; mesh (a triangle mesh file: OBJ, PLY or STL);
+    /// minimal (the soap film form-found on boundaries_mm). Nets: asymptotic
+    /// (the strips) or principal.
     Trace {
         /// The trace spec (YAML).
         spec: PathBuf,
@@ -159,7 +177,9 @@ enum Command {
         read: ReadArgs,
     },
     /// Turn every A/B strip into flat parts for a profile: lamellas with
-    /// swept slots or node holes, shear blocks, splice plates; write
+    /// swept slots or node holes, shear blocks, star washers, studs
+    /// (two-level grids), splice plates, and edge strips (the boundary
+    /// bands, unrolled); write
     /// DIR/plan.json with everything `check` writes plus `parts`, and print
     /// a parts summary.
     Parts {
@@ -278,6 +298,9 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             out,
             kerf_compensation,
             allow_overstress,
+            sheet_outline,
+            svg_labels,
+            arc_tolerance,
             slots_from_flat,
             paper,
             quiet,
@@ -286,6 +309,9 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             let opts = pipeline::build::BuildOptions {
                 kerf_compensation,
                 allow_overstress,
+                sheet_outline,
+                svg_labels,
+                arc_tolerance_mm: Some(arc_tolerance),
                 paper: lamella::formats::write::assembly::Paper::parse(&paper).unwrap_or_default(),
             };
             let progress = report::progress(quiet);

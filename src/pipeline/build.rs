@@ -1,7 +1,8 @@
 //! `lamella build`: every stage from a network and a profile to the files a
 //! workshop needs — nodes, the elastic check, parts, nest, then
 //! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
-//! `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
+//! `DIR/parts/ID.dxf` and `.svg` per distinct part with
+//! `DIR/parts/parts.csv`, `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
 //! `DIR/assembly.pdf` — staged beside DIR and moved
 //! into place only once complete ([`crate::formats::out::staging`]).
 //!
@@ -13,7 +14,8 @@ use crate::check::CheckReport;
 use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
 use crate::formats::out::staging::Staging;
-use crate::formats::write::drawing::Drawer;
+use crate::formats::write::arcs::DEFAULT_TOLERANCE_MM;
+use crate::formats::write::drawing::{part_file_stem, Drawer, SheetFileOptions};
 use crate::formats::write::{
     assembly, dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file,
 };
@@ -31,6 +33,14 @@ pub struct BuildOptions {
     pub allow_overstress: bool,
     /// Paper of the assembly sheets.
     pub paper: assembly::Paper,
+    /// Write each sheet's outline, on the reference layer `SHEET`.
+    pub sheet_outline: bool,
+    /// Put screen labels (part ids as text) into the SVGs.
+    pub svg_labels: bool,
+    /// Fit cut contours by lines and arcs within this, mm: `None` the
+    /// default ([`crate::formats::write::arcs::DEFAULT_TOLERANCE_MM`]),
+    /// 0 no fitting (plan.json's polygons as they are).
+    pub arc_tolerance_mm: Option<f64>,
 }
 
 /// The time one stage of a build took.
@@ -119,8 +129,8 @@ pub const FIXED_FILES: [&str; 6] = [
     "view.html",
 ];
 
-/// What a build writes in DIR: [`FIXED_FILES`] and the sheets' folder.
-const KIT: [&str; 7] = [
+/// What a build writes in DIR: [`FIXED_FILES`], the sheets' and the parts' folders.
+const KIT: [&str; 8] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
@@ -128,6 +138,7 @@ const KIT: [&str; 7] = [
     "model.glb",
     "view.html",
     crate::formats::out::manifest::SHEETS,
+    crate::formats::out::manifest::PARTS,
 ];
 
 /// Run every stage and write the kit into `out`. Returns the report; when
@@ -143,7 +154,13 @@ pub fn build(
     check_outputs(&[Output::Dir(out, &KIT)], &inputs.files())?;
     let mut clock = Clock::start();
     progress.set_message("reading");
+    let profile_path = inputs.profile.clone().unwrap_or_default();
     let mut session = Session::open(inputs)?;
+    let tol_mm = arc_tolerance(
+        opts.arc_tolerance_mm,
+        session.profile()?.cutting.part_spacing_mm,
+        &profile_path,
+    )?;
     clock.lap("read");
     progress.set_message("finding nodes, frames and curvatures");
     session.analysis()?;
@@ -249,7 +266,11 @@ pub fn build(
         takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
-    let drawer = Drawer::new(&the_plan, kerf, &plan_target)?;
+    let file_opts = SheetFileOptions {
+        sheet_outline: opts.sheet_outline,
+        labels: opts.svg_labels,
+    };
+    let drawer = Drawer::new(&the_plan, kerf, &plan_target)?.arc_tolerance(tol_mm);
     let sheet_count = drawer.len();
     progress.set_length(sheet_count as u64);
     progress.set_position(0);
@@ -266,7 +287,7 @@ pub fn build(
     // With kerf compensation the cutting files are offset; the nested
     // sheets' pages stay nominal, drawn apart.
     let nominal = match kerf {
-        Some(_) => Some(Drawer::new(&the_plan, None, &plan_target)?),
+        Some(_) => Some(Drawer::new(&the_plan, None, &plan_target)?.arc_tolerance(tol_mm)),
         None => None,
     };
     let sheets_meta = the_plan.sheets.as_deref().unwrap_or_default();
@@ -296,12 +317,14 @@ pub fn build(
                                     |(dxf, svg), i| -> Result<assembly::SealedPage> {
                                         let sheet = drawer.sheet(i)?;
                                         let stem = sheet.file_stem();
-                                        dxf_out::write_dxf(&sheet, dxf).map_err(|e| {
-                                            Error::output(
-                                                &out.join(format!("sheets/{stem}.dxf")),
-                                                e,
-                                            )
-                                        })?;
+                                        dxf_out::write_dxf(&sheet, file_opts, dxf).map_err(
+                                            |e| {
+                                                Error::output(
+                                                    &out.join(format!("sheets/{stem}.dxf")),
+                                                    e,
+                                                )
+                                            },
+                                        )?;
                                         staging.write(&format!("sheets/{stem}.dxf"), dxf)?;
                                         let title = format!(
                                             "{} — {}: sheet {} of {} ({}), {} × {} mm",
@@ -313,7 +336,7 @@ pub fn build(
                                             sheet.length_mm,
                                             sheet.width_mm
                                         );
-                                        svg_out::write_svg(&sheet, &title, svg);
+                                        svg_out::write_svg(&sheet, &title, file_opts, svg);
                                         staging.write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
                                             Some(d) => assembly::nested::page(
@@ -370,11 +393,53 @@ pub fn build(
     // The sections apart from the sheets as nested, then the document.
     clock.part("write: assembly.pdf", pdf_s);
     clock.part("write: model.glb and view.html", model.1);
+    // One DXF and SVG per distinct part, at the origin, and parts.csv.
+    let parts_clock = std::time::Instant::now();
+    let plan_parts = the_plan.parts.as_deref().unwrap_or_default();
+    let stems: Vec<String> = plan_parts.iter().map(|p| part_file_stem(&p.id)).collect();
+    let mut seen = std::collections::BTreeSet::new();
+    if let Some(twice) = stems.iter().find(|s| !seen.insert(s.as_str())) {
+        return Err(Error::output(
+            &out.join("parts"),
+            format!("two parts would share the file parts/{twice}.dxf: their ids differ only in characters a file name cannot hold"),
+        ));
+    }
+    write_pool.install(|| {
+        (0..drawer.part_count())
+            .into_par_iter()
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(dxf, svg), i| -> Result<()> {
+                    let part = drawer.part(i)?;
+                    let stem = &stems[i];
+                    let target = format!("parts/{stem}.dxf");
+                    dxf_out::write_dxf(&part, SheetFileOptions::default(), dxf)
+                        .map_err(|e| Error::output(&out.join(&target), e))?;
+                    staging.write(&target, dxf)?;
+                    let title = format!(
+                        "{network_name} — {profile_name}: part {}, {} × {} mm",
+                        part.id, part.length_mm, part.width_mm
+                    );
+                    svg_out::write_svg(&part, &title, SheetFileOptions::default(), svg);
+                    staging.write(&format!("parts/{stem}.svg"), svg)
+                },
+            )
+            .collect::<Result<Vec<()>>>()
+    })?;
+    let csv = takeoff_file::parts_csv(plan_parts, &takeoff, part_file_stem)
+        .map_err(|e| Error::output(&out.join("parts/parts.csv"), e))?;
+    staging.write("parts/parts.csv", &csv)?;
+    clock.part("write: parts", parts_clock.elapsed().as_secs_f64());
     drop(drawer);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
     for i in 1..=sheet_count {
         files.push(format!("sheets/sheet-{i:03}.dxf"));
         files.push(format!("sheets/sheet-{i:03}.svg"));
+    }
+    files.push("parts/parts.csv".to_string());
+    for stem in &stems {
+        files.push(format!("parts/{stem}.dxf"));
+        files.push(format!("parts/{stem}.svg"));
     }
     progress.set_message("moving into place");
     staging.commit()?;
@@ -463,4 +528,27 @@ fn process_cpu_s() -> Option<f64> {
     let utime: f64 = f.next()?.parse().ok()?;
     let stime: f64 = f.next()?.parse().ok()?;
     Some((utime + stime) / 100.0)
+}
+
+/// The arc fit's tolerance, mm (`None`: no fit): at most a quarter of the
+/// profile's part spacing, so two fitted outlines the nest kept `spacing`
+/// apart stay at least `spacing − 2·tol` ≥ half of it apart.
+fn arc_tolerance(asked_mm: Option<f64>, spacing_mm: f64, profile: &Path) -> Result<Option<f64>> {
+    let tol = asked_mm.unwrap_or(DEFAULT_TOLERANCE_MM);
+    let field = || crate::error::Location::Field("cutting.part_spacing_mm".into());
+    if !tol.is_finite() || tol < 0.0 {
+        return Err(Error::input(
+            profile,
+            field(),
+            format!("--arc-tolerance {tol}: a tolerance is a length ≥ 0 mm (0: no arcs)"),
+        ));
+    }
+    if tol > 0.25 * spacing_mm {
+        return Err(Error::input(profile, field(), format!(
+            "--arc-tolerance {tol}: more than a quarter of the profile's part spacing ({spacing_mm} mm) \
+             would let fitted outlines come closer than the nest keeps them"
+        ),
+        ));
+    }
+    Ok((tol > 0.0).then_some(tol))
 }

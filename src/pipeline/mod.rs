@@ -405,14 +405,14 @@ pub fn check_outputs(outputs: &[Output], inputs: &[(&str, &Path)]) -> Result<Vec
                 for name in names {
                     refuse_inputs(&dir.join(name), inputs)?;
                 }
-                if names.contains(&out::manifest::SHEETS) {
-                    let sheets = dir.join(out::manifest::SHEETS);
+                for folder in out::manifest::FOLDERS.iter().filter(|f| names.contains(f)) {
+                    let sheets = dir.join(folder);
                     if std::fs::symlink_metadata(&sheets).is_ok_and(|m| m.is_dir()) {
                         for e in std::fs::read_dir(&sheets)
                             .map_err(|e| Error::io(&sheets, e))?
                             .flatten()
                         {
-                            let rel = format!("sheets/{}", e.file_name().to_string_lossy());
+                            let rel = format!("{folder}/{}", e.file_name().to_string_lossy());
                             if out::manifest::is_lamella_name(&rel) {
                                 refuse_inputs(&e.path(), inputs)?;
                             }
@@ -460,7 +460,7 @@ pub fn check_outputs(outputs: &[Output], inputs: &[(&str, &Path)]) -> Result<Vec
                     }
                     for name in names {
                         let n = d.join(name);
-                        let inside = *name == out::manifest::SHEETS && f.starts_with(&n);
+                        let inside = out::manifest::FOLDERS.contains(name) && f.starts_with(&n);
                         if f == n || inside || read::same_file(&real[i], &real[j].join(name)) {
                             return clash(dir.join(name));
                         }

@@ -496,3 +496,37 @@ fn an_output_that_is_an_input_is_refused() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `nodes` without `--out` is a usage error (clap's exit 2), not a
+/// silent `out/`; the help texts name every part kind and every kind of
+/// surface a trace takes.
+#[test]
+fn nodes_needs_out_and_help_names_every_kind() {
+    let (code, _, stderr) = crate::support::lamella(&["nodes", "samples/hypar-small.yaml"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("--out"), "{stderr}");
+    let (_, parts, _) = crate::support::lamella(&["parts", "--help"]);
+    for kind in [
+        "lamellas",
+        "shear blocks",
+        "star washers",
+        "studs",
+        "splice plates",
+        "edge strips",
+    ] {
+        assert!(parts.contains(kind), "parts --help lacks {kind}:\n{parts}");
+    }
+    let (_, trace, _) = crate::support::lamella(&["trace", "--help"]);
+    for kind in [
+        "enneper",
+        "catenoid",
+        "helicoid",
+        "scherk",
+        "schwarz_d",
+        "hypar",
+        "mesh",
+        "minimal",
+    ] {
+        assert!(trace.contains(kind), "trace --help lacks {kind}:\n{trace}");
+    }
+}

@@ -29,6 +29,7 @@ mod offset;
 mod output_safety;
 mod parts;
 mod readers;
+mod readme;
 mod robustness;
 mod trace;
 mod traced_accuracy;

@@ -31,6 +31,13 @@ const HEADER: &str = "# lamella manifest 2: bytes, CRC-32, path";
 /// The folder the cutting sheets go to.
 pub const SHEETS: &str = "sheets";
 
+/// The folder the per-part cutting files go to.
+pub const PARTS: &str = "parts";
+
+/// The folders of a kit: lamella's files in them are replaced, other
+/// files kept, like at the top.
+pub const FOLDERS: [&str; 2] = [SHEETS, PARTS];
+
 /// The files lamella writes at the top of an output folder.
 pub const TOP_FILES: [&str; 7] = [
     "plan.json",
@@ -43,11 +50,27 @@ pub const TOP_FILES: [&str; 7] = [
 ];
 
 /// Whether lamella writes files named `rel` (`/`-separated, inside DIR):
-/// one of [`TOP_FILES`] or `sheets/sheet-NNN.dxf|svg` (three digits or
-/// more). Nothing else in DIR is ever lamella's to replace or remove.
+/// one of [`TOP_FILES`], `sheets/sheet-NNN.dxf|svg` (three digits or
+/// more), `parts/parts.csv` or `parts/ID.dxf|svg` (an id of letters,
+/// digits, `-`, `_` and `.`). Nothing else in DIR is ever lamella's to
+/// replace or remove.
 pub fn is_lamella_name(rel: &str) -> bool {
     if TOP_FILES.contains(&rel) {
         return true;
+    }
+    if let Some(file) = rel.strip_prefix("parts/") {
+        // `parts.csv`, and a part's DXF and SVG: its id, with any
+        // character but letters, digits, `-`, `_` and `.` as `_`.
+        let stem = file
+            .strip_suffix(".dxf")
+            .or_else(|| file.strip_suffix(".svg"));
+        return file == "parts.csv"
+            || stem.is_some_and(|s| {
+                !s.is_empty()
+                    && !s.starts_with('.')
+                    && s.bytes()
+                        .all(|b| b.is_ascii_alphanumeric() || matches!(b, b'-' | b'_' | b'.'))
+            });
     }
     let Some(file) = rel.strip_prefix("sheets/") else {
         return false;
@@ -185,7 +208,7 @@ pub fn check_names(dir: &Path, names: &[&str]) -> Result<()> {
         let Ok(meta) = std::fs::symlink_metadata(&p) else {
             continue;
         };
-        if *name == SHEETS {
+        if FOLDERS.contains(name) {
             if !meta.is_dir() {
                 return Err(in_the_way(&p, &meta));
             }

@@ -46,7 +46,7 @@
 //!   by then) stops that command, naming the folder.
 //! * A kill, not a power cut: nothing is flushed to the disk.
 
-use super::manifest::{self, Entry, Manifest, MANIFEST, SHEETS};
+use super::manifest::{self, Entry, Manifest, FOLDERS, MANIFEST};
 use crate::error::{Error, Result};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -341,7 +341,11 @@ fn is_current_dir(dir: &Path) -> bool {
 /// the new kit has.
 fn carried(dir: &Path, files: &Manifest) -> Result<Vec<PathBuf>> {
     let old = manifest::read(dir)?;
-    let has_sheets = files.keys().any(|k| k.starts_with("sheets/"));
+    let has = |folder: &str| {
+        files
+            .keys()
+            .any(|k| k.strip_prefix(folder).is_some_and(|r| r.starts_with('/')))
+    };
     let mut carry = Vec::new();
     // Lamella's when it is at a name the new kit has and may be written
     // over, or the old manifest vouches for it; an error when it is in the
@@ -371,15 +375,15 @@ fn carried(dir: &Path, files: &Manifest) -> Result<Vec<PathBuf>> {
             }
             continue;
         }
-        if name == SHEETS {
+        if let Some(folder) = FOLDERS.iter().find(|f| **f == name) {
             if meta.is_dir() {
-                for (sub, m) in entries(&dir.join(SHEETS))? {
-                    classify(Path::new(SHEETS).join(sub), &m)?;
+                for (sub, m) in entries(&dir.join(folder))? {
+                    classify(Path::new(folder).join(sub), &m)?;
                 }
                 continue;
             }
-            if has_sheets {
-                return Err(manifest::in_the_way(&dir.join(SHEETS), &meta));
+            if has(folder) {
+                return Err(manifest::in_the_way(&dir.join(folder), &meta));
             }
         }
         classify(PathBuf::from(name), &meta)?;
@@ -446,25 +450,27 @@ fn drain(from: &Path, dir: &Path, new_names: &BTreeSet<String>, hook: fn()) -> R
         hook();
         rename(&from.join(&rel), &to)
     };
-    let sheets = from.join(SHEETS);
-    if std::fs::symlink_metadata(&sheets).is_ok_and(|m| m.is_dir()) {
-        for (name, _) in entries(&sheets)? {
-            let rel = Path::new(SHEETS).join(name);
-            if removable(&rel) {
-                hook();
-                remove_file(&from.join(&rel))?;
-            } else {
-                put_back(rel)?;
+    for folder in FOLDERS {
+        let sheets = from.join(folder);
+        if std::fs::symlink_metadata(&sheets).is_ok_and(|m| m.is_dir()) {
+            for (name, _) in entries(&sheets)? {
+                let rel = Path::new(folder).join(name);
+                if removable(&rel) {
+                    hook();
+                    remove_file(&from.join(&rel))?;
+                } else {
+                    put_back(rel)?;
+                }
             }
-        }
-        if entries(&sheets)?.is_empty() {
-            hook();
-            std::fs::remove_dir(&sheets).map_err(|e| Error::io(&sheets, e))?;
+            if entries(&sheets)?.is_empty() {
+                hook();
+                std::fs::remove_dir(&sheets).map_err(|e| Error::io(&sheets, e))?;
+            }
         }
     }
     for (name, meta) in entries(from)? {
         let rel = PathBuf::from(&name);
-        if name == MANIFEST || (name == SHEETS && meta.is_dir()) {
+        if name == MANIFEST || (FOLDERS.iter().any(|f| name == *f) && meta.is_dir()) {
             continue;
         }
         if name == MARKER || removable(&rel) {

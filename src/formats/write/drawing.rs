@@ -11,13 +11,19 @@
 //! rounded to [`ENGRAVE_DECIMALS`] decimals (1 µm, far below any engraving
 //! tool's resolution; the cuts keep every decimal of plan.json).
 //!
-//! Per part, in cutting order: inner contours (the round holes, its `hole`
-//! features, as circles in feature order, then the other inner contours as
-//! closed polylines), then the outer contour, then the engraving (open
-//! polylines). Consecutive points closer than [`MERGE_MM`] are merged so no
-//! segment has zero length. With kerf compensation, outer contours are
-//! offset out and inner contours in by half the kerf (cavalier_contours,
-//! round joins: convex corners become arcs, written as bulges).
+//! Per part: inner contours (the round holes, its `hole` features, as
+//! circles in feature order, then the other inner contours as closed
+//! polylines), the outer contour, the engraving (open polylines). The
+//! parts of a sheet are in travel order ([`travel_order`]: rows along the
+//! sheet's length, alternating direction), and the files write a sheet in
+//! cutting order ([`cut_order`]): all engraving, then all inner contours,
+//! then all outlines, so a part is marked before anything is cut and cut
+//! free only once its inner contours are done. Consecutive points closer
+//! than [`MERGE_MM`] are merged so no segment has zero length; cut
+//! contours are fitted by lines and arcs within the drawer's tolerance
+//! ([`super::arcs`]). With kerf compensation, outer contours are offset
+//! out and inner contours in by half the kerf (cavalier_contours, round
+//! joins: convex corners become arcs, written as bulges).
 
 use crate::error::{Error, Result};
 use crate::plan::{
@@ -47,7 +53,8 @@ pub fn engrave_mm(units: i64) -> f64 {
 /// The operation a shape belongs to: a DXF layer, an SVG group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Layer {
-    /// The stock sheet's outline: not cut.
+    /// The stock sheet's outline: reference only, not cut (written only
+    /// when asked, on a non-plotting layer).
     Sheet,
     /// Holes and other inner contours: cut first.
     CutInner,
@@ -58,12 +65,13 @@ pub enum Layer {
 }
 
 impl Layer {
-    /// Every layer, in drawing order.
+    /// Every layer, in cutting order after the reference layer `SHEET`:
+    /// engraving, inner contours, outlines.
     pub const ALL: [Layer; 4] = [
         Layer::Sheet,
+        Layer::Engrave,
         Layer::CutInner,
         Layer::CutOuter,
-        Layer::Engrave,
     ];
 
     /// The DXF layer name and SVG group id.
@@ -98,18 +106,18 @@ impl Layer {
     }
 }
 
-/// A polyline vertex, sheet frame, mm; `bulge` = tan(¼ of the arc's
-/// included angle) of the segment to the next vertex (0: straight,
-/// positive: counter-clockwise), as DXF's LWPOLYLINE stores it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Vertex {
-    /// x along the sheet's length, mm.
-    pub x_mm: f64,
-    /// y across the sheet's width, mm.
-    pub y_mm: f64,
-    /// Bulge of the segment that starts here.
-    pub bulge: f64,
+/// What a cutting file holds beyond the cuts and the engraving.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SheetFileOptions {
+    /// The stock sheet's outline, on the reference layer `SHEET` (off by
+    /// default: CAM software that cuts every closed contour would cut it).
+    pub sheet_outline: bool,
+    /// The SVG's screen labels (each part's id as text over it; off by
+    /// default: laser software imports text as something to engrave).
+    pub labels: bool,
 }
+
+pub use super::arcs::Vertex;
 
 /// One contour or mark.
 #[derive(Debug, Clone, PartialEq)]
@@ -192,7 +200,7 @@ pub struct SheetDrawing {
     pub length_mm: f64,
     /// Along the sheet's y, mm.
     pub width_mm: f64,
-    /// Placed parts, in the nest's order.
+    /// Placed parts, in travel order ([`travel_order`]).
     pub parts: Vec<PartOnSheet>,
 }
 
@@ -222,6 +230,21 @@ impl SheetDrawing {
     }
 }
 
+/// A part's file stem in `parts/`: its id, every character but ASCII
+/// letters, digits, `-`, `_` and `.` as `_` (and a leading `.` too).
+pub fn part_file_stem(id: &str) -> String {
+    id.chars()
+        .enumerate()
+        .map(|(i, c)| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' || (c == '.' && i > 0) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
 /// Part-local (x, y) turned by a quarter-turn multiple counter-clockwise
 /// about the origin, then moved by (tx, ty): the placement's map, exact.
 pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2] {
@@ -240,9 +263,11 @@ pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2]
 #[derive(Debug)]
 pub struct Drawer<'a> {
     sheets: &'a [PlanSheet],
+    parts: &'a [PlanPart],
     by_id: HashMap<&'a str, &'a PlanPart>,
     font: Font<'a>,
     half_kerf_mm: Option<f64>,
+    arc_tolerance_mm: Option<f64>,
     plan_path: &'a Path,
 }
 
@@ -263,11 +288,21 @@ impl<'a> Drawer<'a> {
         };
         Ok(Drawer {
             sheets,
+            parts,
             by_id: parts.iter().map(|p| (p.id.as_str(), p)).collect(),
             font: Font::new(plan.engraving_font.as_ref()),
             half_kerf_mm: kerf_compensation_mm.map(|k| 0.5 * k),
+            arc_tolerance_mm: Some(super::arcs::DEFAULT_TOLERANCE_MM),
             plan_path,
         })
+    }
+
+    /// Fit cut contours by lines and arcs within `tol_mm` (the default:
+    /// [`super::arcs::DEFAULT_TOLERANCE_MM`]), or keep plan.json's
+    /// polygons (`None`).
+    pub fn arc_tolerance(mut self, tol_mm: Option<f64>) -> Drawer<'a> {
+        self.arc_tolerance_mm = tol_mm;
+        self
     }
 
     /// How many sheets.
@@ -283,6 +318,43 @@ impl<'a> Drawer<'a> {
     /// The drawing of sheet `i` (0-based).
     pub fn sheet(&self, i: usize) -> Result<SheetDrawing> {
         self.draw(i, true)
+    }
+
+    /// How many distinct parts.
+    pub fn part_count(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// Distinct part `i` (plan.json's order) alone, in its own frame at
+    /// the origin, unturned, with its engraving, on a "sheet" of its
+    /// extent: its per-part cutting file. Its shapes are the nested
+    /// copies' exactly, moved by their placements (the fit is made in the
+    /// part's frame).
+    pub fn part(&self, i: usize) -> Result<SheetDrawing> {
+        let part = &self.parts[i];
+        let at = PlanPlacement {
+            part: part.id.clone(),
+            copy: 0,
+            x_mm: 0.0,
+            y_mm: 0.0,
+            rotation_deg: 0,
+        };
+        let placed = part_on_sheet(
+            part,
+            &at,
+            self.half_kerf_mm,
+            self.arc_tolerance_mm,
+            &self.font,
+            true,
+        )
+        .map_err(|what| Error::output(self.plan_path, format!("part {}: {what}", part.id)))?;
+        Ok(SheetDrawing {
+            id: part.id.clone(),
+            number: i + 1,
+            length_mm: part.length_mm,
+            width_mm: part.height_mm,
+            parts: vec![placed],
+        })
     }
 
     /// The drawing of sheet `i` (0-based) without the engraving: the cuts.
@@ -305,7 +377,15 @@ impl<'a> Drawer<'a> {
                         ),
                     )
                 })?;
-                part_on_sheet(part, pl, self.half_kerf_mm, &self.font, engraving).map_err(|what| {
+                part_on_sheet(
+                    part,
+                    pl,
+                    self.half_kerf_mm,
+                    self.arc_tolerance_mm,
+                    &self.font,
+                    engraving,
+                )
+                .map_err(|what| {
                     Error::output(
                         self.plan_path,
                         format!("sheet {}: part {} copy {}: {what}", s.id, pl.part, pl.copy),
@@ -313,6 +393,7 @@ impl<'a> Drawer<'a> {
                 })
             })
             .collect::<Result<Vec<_>>>()?;
+        let placed = travel_order(placed);
         Ok(SheetDrawing {
             id: s.id.clone(),
             number: i + 1,
@@ -409,6 +490,7 @@ fn part_on_sheet(
     part: &PlanPart,
     pl: &PlanPlacement,
     half_kerf_mm: Option<f64>,
+    tol_mm: Option<f64>,
     font: &Font,
     engraving: bool,
 ) -> std::result::Result<PartOnSheet, String> {
@@ -442,8 +524,10 @@ fn part_on_sheet(
     for hole in &part.holes {
         shapes.push(contour(
             Layer::CutInner,
-            hole.iter().map(map).collect(),
+            hole.clone(),
+            &map,
             half_kerf_mm,
+            tol_mm,
         )?);
     }
     let outline: Vec<[f64; 2]> = part.outline.iter().map(map).collect();
@@ -461,7 +545,13 @@ fn part_on_sheet(
             bbox_mm[3].max(p[1]),
         ];
     }
-    shapes.push(contour(Layer::CutOuter, outline, half_kerf_mm)?);
+    shapes.push(contour(
+        Layer::CutOuter,
+        part.outline.clone(),
+        &map,
+        half_kerf_mm,
+        tol_mm,
+    )?);
     for e in part.engraving.iter().filter(|_| engraving) {
         let mut points_um: Vec<[i64; 2]> = Vec::new();
         let mut ends: Vec<usize> = Vec::new();
@@ -499,6 +589,99 @@ fn part_on_sheet(
     })
 }
 
+/// Parts in travel order: of three orders, the one whose path from box
+/// middle to box middle is shortest (the first on a tie): the nest's
+/// own; rows (each row the parts whose box middle lies within the box of
+/// its lowest-middled part, as lamellas share a lane) from y = 0 up, each
+/// along x, alternating direction, so the head snakes along the lanes;
+/// and nearest next from the sheet's origin.
+pub fn travel_order(parts: Vec<PartOnSheet>) -> Vec<PartOnSheet> {
+    let n = parts.len();
+    let mid = |p: &PartOnSheet| {
+        [
+            0.5 * (p.bbox_mm[0] + p.bbox_mm[2]),
+            0.5 * (p.bbox_mm[1] + p.bbox_mm[3]),
+        ]
+    };
+    let mids: Vec<[f64; 2]> = parts.iter().map(mid).collect();
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let path =
+        |order: &[usize]| -> f64 { order.windows(2).map(|w| dist(mids[w[0]], mids[w[1]])).sum() };
+    let tie = |a: usize, b: usize| {
+        parts[a]
+            .part
+            .cmp(&parts[b].part)
+            .then(parts[a].copy.cmp(&parts[b].copy))
+    };
+    // Rows along the lanes.
+    let mut by_y: Vec<usize> = (0..n).collect();
+    by_y.sort_by(|&a, &b| {
+        mids[a][1]
+            .total_cmp(&mids[b][1])
+            .then(mids[a][0].total_cmp(&mids[b][0]))
+            .then(tie(a, b))
+    });
+    let mut rows = Vec::with_capacity(n);
+    let mut k = 0;
+    let mut forward = true;
+    while k < n {
+        let top = parts[by_y[k]].bbox_mm[3];
+        let mut end = k + 1;
+        while end < n && mids[by_y[end]][1] <= top {
+            end += 1;
+        }
+        let mut row = by_y[k..end].to_vec();
+        row.sort_by(|&a, &b| {
+            let o = mids[a][0].total_cmp(&mids[b][0]);
+            if forward { o } else { o.reverse() }.then(tie(a, b))
+        });
+        rows.extend(row);
+        forward = !forward;
+        k = end;
+    }
+    // Nearest next, from the origin.
+    let mut left: Vec<usize> = (0..n).collect();
+    let mut nearest = Vec::with_capacity(n);
+    let mut at = [0.0, 0.0];
+    while !left.is_empty() {
+        let (i, _) = left
+            .iter()
+            .enumerate()
+            .min_by(|x, y| {
+                dist(at, mids[*x.1])
+                    .total_cmp(&dist(at, mids[*y.1]))
+                    .then(tie(*x.1, *y.1))
+            })
+            .unwrap_or((0, &0));
+        let p = left.swap_remove(i);
+        at = mids[p];
+        nearest.push(p);
+    }
+    let nest: Vec<usize> = (0..n).collect();
+    let mut best = nest;
+    for order in [rows, nearest] {
+        if path(&order) < path(&best) {
+            best = order;
+        }
+    }
+    let mut slots: Vec<Option<PartOnSheet>> = parts.into_iter().map(Some).collect();
+    best.into_iter().filter_map(|i| slots[i].take()).collect()
+}
+
+/// A sheet's shapes in cutting order: every part's engraving, then every
+/// part's inner contours, then every part's outline, parts in travel order
+/// each time (the sheet's outline is not among them).
+pub fn cut_order(sheet: &SheetDrawing) -> impl Iterator<Item = &Shape> {
+    [Layer::Engrave, Layer::CutInner, Layer::CutOuter]
+        .into_iter()
+        .flat_map(move |layer| {
+            sheet
+                .parts
+                .iter()
+                .flat_map(move |p| p.shapes.iter().filter(move |s| s.layer() == layer))
+        })
+}
+
 /// Whether the vector (dx, dy) is at most `r_mm` long: compared squared
 /// (`hypot` is a slow library call, and sheet coordinates are far from
 /// overflowing a square). Differs from `hypot(dx, dy) <= r` only within an
@@ -507,13 +690,15 @@ pub(crate) fn within(dx: f64, dy: f64, r_mm: f64) -> bool {
     dx * dx + dy * dy <= r_mm * r_mm
 }
 
-/// A closed cut contour, offset outward (outline, counter-clockwise) or
+/// A closed cut contour (part frame, placed by `map`), offset outward (outline, counter-clockwise) or
 /// inward into its hole (holes, clockwise) by half the kerf when asked: both
 /// are to the right of the direction of travel.
 fn contour(
     layer: Layer,
     points: Vec<[f64; 2]>,
+    map: &dyn Fn(&[f64; 2]) -> [f64; 2],
     half_kerf_mm: Option<f64>,
+    tol_mm: Option<f64>,
 ) -> std::result::Result<Shape, String> {
     let points = merged(points, true);
     if points.len() < 3 {
@@ -522,9 +707,30 @@ fn contour(
             layer.name()
         ));
     }
+    // Fitted in the part's frame, then placed (a quarter turn keeps every
+    // bulge): every copy, and the part's own file, gets the same fit.
+    let fitted: Vec<Vertex> = match tol_mm {
+        Some(tol) if tol > 0.0 => super::arcs::fit_closed(&points, tol),
+        _ => straight(&points),
+    }
+    .into_iter()
+    .map(|v| {
+        let [x_mm, y_mm] = map(&[v.x_mm, v.y_mm]);
+        Vertex {
+            x_mm,
+            y_mm,
+            bulge: v.bulge,
+        }
+    })
+    .collect();
+    // Fitted contours keep no segment under the fit's shortest.
+    let shortest_mm = match tol_mm {
+        Some(tol) if tol > 0.0 => super::arcs::MIN_SEGMENT_MM,
+        _ => MERGE_MM,
+    };
     let vertices = match half_kerf_mm {
-        None | Some(0.0) => straight(&points),
-        Some(d) => offset_right(&points, d).ok_or_else(|| {
+        None | Some(0.0) => fitted,
+        Some(d) => offset_right(&fitted, d, shortest_mm).ok_or_else(|| {
             format!(
                 "its {} contour does not survive kerf compensation by {:.3} mm",
                 layer.name(),
@@ -569,10 +775,10 @@ fn merged(points: Vec<[f64; 2]>, closed: bool) -> Vec<[f64; 2]> {
 
 /// The closed polyline offset by `d_mm` to the right of its direction
 /// (round joins), or `None` when it vanishes or splits.
-fn offset_right(points: &[[f64; 2]], d_mm: f64) -> Option<Vec<Vertex>> {
+fn offset_right(points: &[Vertex], d_mm: f64, shortest_mm: f64) -> Option<Vec<Vertex>> {
     let mut pl: Polyline<f64> = Polyline::with_capacity(points.len(), true);
     for p in points {
-        pl.add(p[0], p[1], 0.0);
+        pl.add(p.x_mm, p.y_mm, p.bulge);
     }
     let mut out = pl.parallel_offset(-d_mm);
     if out.len() != 1 {
@@ -587,9 +793,10 @@ fn offset_right(points: &[[f64; 2]], d_mm: f64) -> Option<Vec<Vertex>> {
             bulge: q.bulge,
         })
         .collect();
-    // A vertex on the next one starts a zero-length segment: drop it (the
-    // segment into it keeps its bulge and now ends on the same point).
-    let close = |a: &Vertex, b: &Vertex| within(a.x_mm - b.x_mm, a.y_mm - b.y_mm, MERGE_MM);
+    // A vertex on the next one (within `shortest_mm`) starts a segment too
+    // short to cut: drop it (the segment into it keeps its bulge and now
+    // ends on the next vertex, moved by less than `shortest_mm`).
+    let close = |a: &Vertex, b: &Vertex| within(a.x_mm - b.x_mm, a.y_mm - b.y_mm, shortest_mm);
     let mut i = 0;
     while v.len() > 2 && i < v.len() {
         let j = (i + 1) % v.len();
@@ -629,7 +836,7 @@ mod tests {
     #[test]
     fn outer_offset_rounds_convex_corners() {
         let rect = [[0.0, 0.0], [100.0, 0.0], [100.0, 20.0], [0.0, 20.0]];
-        let v = offset_right(&rect, 1.0).expect("offset");
+        let v = offset_right(&straight(&rect), 1.0, MERGE_MM).expect("offset");
         assert_eq!(v.len(), 8);
         let quarter = (std::f64::consts::PI / 8.0).tan();
         let arcs = v
@@ -642,7 +849,7 @@ mod tests {
         assert!((area - expected).abs() < 1e-9, "{area} vs {expected}");
         // A clockwise hole shrinks: its area (negative) loses the ring.
         let hole: Vec<[f64; 2]> = rect.iter().rev().copied().collect();
-        let h = offset_right(&hole, 1.0).expect("offset");
+        let h = offset_right(&straight(&hole), 1.0, MERGE_MM).expect("offset");
         assert!((bulge_area(&h) + 98.0 * 18.0).abs() < 1e-9);
     }
 

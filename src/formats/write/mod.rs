@@ -1,5 +1,6 @@
 //! Writers: each formats a finished plan (and nothing else) as bytes.
 
+pub mod arcs;
 pub mod assembly;
 pub mod drawing;
 pub mod dxf;

@@ -1,14 +1,19 @@
 //! A sheet drawing as SVG: `width`/`height` in mm with a matching `viewBox`
 //! (one user unit = 1 mm), the sheet's y up (SVG's y = width − y), one group
 //! per operation with its colour (the DXF layer's), hairline strokes
-//! ([`STROKE_MM`]), no fills; the same geometry as the DXF (bulges as
-//! elliptical arcs, round holes as circles). A last group, `LABELS`, holds
-//! each part's id as screen text over the part, a third of its short side high (not to be cut: the engraved
-//! labels are in `ENGRAVE`). Written by hand with fixed decimals, so equal
-//! sheets give equal bytes.
+//! ([`STROKE_MM`]), no fills; the same geometry as the DXF in the same
+//! cutting order (groups `ENGRAVE`, `CUT-INNER`, `CUT-OUTER`, parts in
+//! travel order in each; bulges as circular `A` arcs, round holes as
+//! circles). Only when asked: a first group `SHEET` with the sheet's
+//! outline (reference, not cut) and a last group, `LABELS`, with each
+//! part's id as screen text over the part, a third of its short side high
+//! (laser software would import it as text to engrave: the engraved labels
+//! are in `ENGRAVE`). Written by hand with fixed decimals, so equal sheets
+//! give equal bytes.
 
 use super::drawing::{
-    engrave_mm, engrave_units, strokes, Layer, Shape, SheetDrawing, Vertex, ENGRAVE_DECIMALS,
+    engrave_mm, engrave_units, strokes, Layer, Shape, SheetDrawing, SheetFileOptions, Vertex,
+    ENGRAVE_DECIMALS,
 };
 use std::io::Write;
 
@@ -22,16 +27,16 @@ const DECIMALS: u32 = 4;
 const LABEL_MAX_MM: f64 = 40.0;
 
 /// The SVG text of one sheet; `title` names the project and sheet.
-pub fn to_svg(sheet: &SheetDrawing, title: &str) -> String {
+pub fn to_svg(sheet: &SheetDrawing, title: &str, opts: SheetFileOptions) -> String {
     let mut s = Vec::new();
-    write_svg(sheet, title, &mut s);
+    write_svg(sheet, title, opts, &mut s);
     // Written from `str`s and ASCII only.
     String::from_utf8(s).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
 /// The SVG text of one sheet into `s` (cleared first; a buffer used again
 /// for the next sheet keeps its memory).
-pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut Vec<u8>) {
+pub fn write_svg(sheet: &SheetDrawing, title: &str, opts: SheetFileOptions, s: &mut Vec<u8>) {
     let (l, w) = (sheet.length_mm, sheet.width_mm);
     let bytes: usize = sheet
         .parts
@@ -56,6 +61,9 @@ pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut Vec<u8>) {
     );
     let _ = writeln!(s, "<title>{}</title>", escape(title));
     for layer in Layer::ALL {
+        if layer == Layer::Sheet && !opts.sheet_outline {
+            continue;
+        }
         let _ = writeln!(
             s,
             r#"<g id="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round">"#,
@@ -77,6 +85,15 @@ pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut Vec<u8>) {
         }
         let _ = writeln!(s, "</g>");
     }
+    if opts.labels {
+        labels(sheet, s);
+    }
+    let _ = writeln!(s, "</svg>");
+}
+
+/// The `LABELS` group: each part's id over it.
+fn labels(sheet: &SheetDrawing, s: &mut Vec<u8>) {
+    let w = sheet.width_mm;
     let _ = writeln!(
         s,
         r##"<g id="LABELS" fill="#808080" fill-opacity="0.6" stroke="none" font-family="sans-serif" text-anchor="middle">"##
@@ -100,7 +117,6 @@ pub fn write_svg(sheet: &SheetDrawing, title: &str, s: &mut Vec<u8>) {
         );
     }
     let _ = writeln!(s, "</g>");
-    let _ = writeln!(s, "</svg>");
 }
 
 fn shape_layer(sh: &Shape) -> Layer {

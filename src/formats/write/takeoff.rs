@@ -93,3 +93,61 @@ pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
     }
     w.into_inner().map_err(|e| e.to_string())
 }
+
+/// One row of `parts/parts.csv`.
+#[derive(Serialize)]
+struct PartRow<'a> {
+    part: &'a str,
+    kind: &'a str,
+    material: &'a str,
+    thickness_mm: Option<f64>,
+    quantity: u32,
+    length_mm: f64,
+    width_mm: f64,
+    area_mm2: f64,
+    file: String,
+}
+
+/// `parts/parts.csv`: one row per distinct part of `parts` (plan.json's
+/// order): id, kind, material and thickness (the takeoff's line of its
+/// kind, where there is one), quantity, size (the part frame's extent),
+/// net area (outline less inner contours and round holes, mm², 2
+/// decimals) and its DXF in `parts/` (`file_stem` gives the stem).
+pub fn parts_csv(
+    parts: &[crate::plan::PlanPart],
+    t: &Takeoff,
+    file_stem: impl Fn(&str) -> String,
+) -> std::result::Result<Vec<u8>, String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let shoelace = |p: &[[f64; 2]]| {
+        let n = p.len();
+        0.5 * (0..n)
+            .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])
+            .sum::<f64>()
+    };
+    for p in parts {
+        let kind = p.kind.as_ref();
+        let line = t.parts.iter().find(|l| l.kind == kind);
+        let round_holes: f64 = p
+            .features
+            .iter()
+            .filter(|f| f.kind == crate::plan::PlanFeatureKind::Hole)
+            .map(|f| std::f64::consts::PI * (0.5 * f.width_mm).powi(2))
+            .sum();
+        let inner: f64 = p.holes.iter().map(|h| shoelace(h).abs()).sum();
+        let area = shoelace(&p.outline).abs() - inner - round_holes;
+        w.serialize(PartRow {
+            part: &p.id,
+            kind,
+            material: line.map(|l| l.material.as_str()).unwrap_or(""),
+            thickness_mm: line.map(|l| l.thickness_mm),
+            quantity: p.count,
+            length_mm: p.length_mm,
+            width_mm: p.height_mm,
+            area_mm2: round(area, 2),
+            file: format!("{}.dxf", file_stem(&p.id)),
+        })
+        .map_err(|e| e.to_string())?;
+    }
+    w.into_inner().map_err(|e| e.to_string())
+}

@@ -7,6 +7,7 @@
 use super::canvas::{self, Align, BLACK, GREY};
 use super::{fixed, standard_scale, Frame, Page, SealedPage};
 use crate::error::Result;
+use crate::formats::write::arcs::flatten;
 use crate::formats::write::drawing::{within, Drawer, Layer, Shape, SheetDrawing};
 use crate::plan::{Plan, PlanSheet};
 use rayon::prelude::*;
@@ -82,8 +83,9 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
                     });
                     c.width(if *layer == Layer::CutOuter { 0.15 } else { 0.1 });
                     let mut pts: Vec<[f64; 2]> = Vec::with_capacity(vertices.len());
-                    for v in vertices {
-                        let p = map(v.x_mm, v.y_mm);
+                    // Arcs as chords within 0.05 mm on paper.
+                    for q in flatten(vertices, *closed, 0.05 / s) {
+                        let p = map(q[0], q[1]);
                         if pts
                             .last()
                             .is_none_or(|q: &[f64; 2]| !within(p[0] - q[0], p[1] - q[1], 0.1))
