@@ -165,11 +165,16 @@ fn monomials(x: f64, y: f64, out: &mut [f64]) {
 }
 
 /// The vertices within `rings` rings of `v` (v first), in breadth-first order.
-fn grow(topo: &Topology, hood: &mut Vec<u32>, frontier: &mut usize) -> bool {
+fn grow(
+    topo: &Topology,
+    hood: &mut Vec<u32>,
+    seen: &mut std::collections::HashSet<u32>,
+    frontier: &mut usize,
+) -> bool {
     let start = hood.len();
     for i in *frontier..start {
         for &w in topo.neighbours(hood[i]) {
-            if !hood.contains(&w) {
+            if seen.insert(w) {
                 hood.push(w);
             }
         }
@@ -190,9 +195,13 @@ fn fit_vertex(
     let p = &mesh.positions_mm;
     let p0 = p[v as usize];
     let mut hood = vec![v];
+    let mut seen = std::collections::HashSet::from([v]);
     let mut frontier = 0;
     let mut rings = 0;
-    while hood.len() < min_points && rings < MAX_RINGS && grow(topo, &mut hood, &mut frontier) {
+    while hood.len() < min_points
+        && rings < MAX_RINGS
+        && grow(topo, &mut hood, &mut seen, &mut frontier)
+    {
         rings += 1;
     }
     let n0 = if n0 == DVec3::ZERO { DVec3::Z } else { n0 };
@@ -220,7 +229,7 @@ fn fit_vertex(
         }
         // A rank-deficient cubic may recover with one ring more; only a
         // mesh too small for a cubic falls back to lower degrees.
-        if rings < MAX_RINGS && grow(topo, &mut hood, &mut frontier) {
+        if rings < MAX_RINGS && grow(topo, &mut hood, &mut seen, &mut frontier) {
             rings += 1;
             continue;
         }

@@ -391,6 +391,7 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
                 .max(1e-9);
             let radius = SUPPORT_EDGES * longest;
             let mut seen = vec![i as u32];
+            let mut visited = std::collections::HashSet::from([i as u32]);
             let mut frontier = vec![i as u32];
             for depth in 0..PATCH_MAX_RINGS {
                 if depth >= 2 && seen.len() > min_neighbours {
@@ -399,7 +400,7 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
                 let mut next = Vec::new();
                 for &v in &frontier {
                     for &w in &ring[v as usize] {
-                        if !seen.contains(&w) {
+                        if visited.insert(w) {
                             seen.push(w);
                             next.push(w);
                         }
