@@ -351,6 +351,20 @@ impl Session {
             .collect();
         if let Some(kit) = &self.kit {
             w.extend(kit.warnings.iter().cloned());
+            // Parts and nests of a network the check fails are made (to see
+            // what the kit would be), but they are not a kit to cut.
+            if let Some(check) = self.check.as_ref().filter(|c| !c.passes()) {
+                let (over, bowed, all) = (check.overstressed(), check.bowed(), check.strips.len());
+                w.push(if over > 0 {
+                    format!(
+                        "the check fails ({over} of {all} strips overstressed; see `lamella check`): these parts do not bend into place elastically, and `lamella build` refuses them without --allow-overstress"
+                    )
+                } else {
+                    format!(
+                        "the check fails ({bowed} of {all} strips bowed; see `lamella check`): those strips cannot be cut straight"
+                    )
+                });
+            }
         }
         w
     }

@@ -480,3 +480,58 @@ fn shipped_asymptotic_samples_still_pass_with_their_sagitta_reported() {
         assert!(sagitta < 0.1, "{sample}: {pass}");
     }
 }
+
+/// `nest` (and `parts`) make and nest the parts of a network the check
+/// fails, but say so: one warning with the check's own count of
+/// overstressed strips; a network that passes gets no such warning.
+#[test]
+fn nest_of_an_overstressed_network_says_the_check_fails() {
+    let sample = root().join("samples/film-oculus.yaml");
+    let veneer = root().join("profiles/beech-veneer.yaml");
+    let dir = scratch("nest-overstressed");
+    let (code, out, _) = lamella(&[
+        "check".as_ref(),
+        sample.as_os_str(),
+        "--profile".as_ref(),
+        veneer.as_os_str(),
+        "--out".as_ref(),
+        dir.join("check").as_os_str(),
+    ]);
+    assert_eq!(code, Some(3), "{out}");
+    // "FAIL: 2 of 45 strips overstressed; …"
+    let fail = out
+        .lines()
+        .find(|l| l.starts_with("FAIL:") && l.contains("overstressed"))
+        .expect("the check's FAIL line");
+    let counted = fail
+        .trim_start_matches("FAIL: ")
+        .split(" strips overstressed")
+        .next()
+        .unwrap()
+        .to_string();
+    for command in ["nest", "parts"] {
+        let (code, out, err) = lamella(&[
+            command.as_ref(),
+            sample.as_os_str(),
+            "--profile".as_ref(),
+            veneer.as_os_str(),
+            "--out".as_ref(),
+            dir.join(command).as_os_str(),
+        ]);
+        assert_eq!(code, Some(0), "{out}{err}");
+        let warning = format!("warning: the check fails ({counted} strips overstressed;");
+        assert_eq!(err.matches(&warning).count(), 1, "{command}: {err}");
+        assert!(err.contains("--allow-overstress"), "{err}");
+    }
+    let enneper = root().join("samples/enneper-4m.yaml");
+    let (code, _, err) = lamella(&[
+        "nest".as_ref(),
+        enneper.as_os_str(),
+        "--profile".as_ref(),
+        veneer.as_os_str(),
+        "--out".as_ref(),
+        dir.join("passing").as_os_str(),
+    ]);
+    assert_eq!(code, Some(0));
+    assert!(!err.contains("the check fails"), "{err}");
+}
