@@ -11,3 +11,58 @@ pub struct TriMesh {
     /// Triangles as vertex indices, counter-clockwise seen from the normals' side.
     pub triangles: Vec<[u32; 3]>,
 }
+
+/// Which vertices a walk over a mesh has visited, cleared in O(1): a stamp
+/// per vertex and the current walk's number (for growing neighbourhoods
+/// vertex after vertex without a set per walk).
+#[derive(Debug, Clone)]
+pub struct VisitMarks {
+    stamp: Vec<u32>,
+    walk: u32,
+}
+
+impl VisitMarks {
+    /// Marks for `n` vertices, none visited.
+    pub fn new(n: usize) -> VisitMarks {
+        VisitMarks {
+            stamp: vec![0; n],
+            walk: 1,
+        }
+    }
+    /// Forget every visit.
+    pub fn clear(&mut self) {
+        if self.walk == u32::MAX {
+            self.stamp.fill(0);
+            self.walk = 0;
+        }
+        self.walk += 1;
+    }
+    /// Visit `v`: true when it had not been visited since the last clear.
+    pub fn insert(&mut self, v: u32) -> bool {
+        let s = &mut self.stamp[v as usize];
+        let fresh = *s != self.walk;
+        *s = self.walk;
+        fresh
+    }
+}
+
+#[cfg(test)]
+mod visit_tests {
+    use super::VisitMarks;
+
+    #[test]
+    fn marks_forget_their_visits_on_clear() {
+        let mut m = VisitMarks::new(4);
+        assert!(m.insert(2));
+        assert!(!m.insert(2));
+        assert!(m.insert(3));
+        m.clear();
+        assert!(m.insert(2) && m.insert(3));
+        // Past the last walk number the stamps start over.
+        m.walk = u32::MAX;
+        assert!(m.insert(1));
+        m.clear();
+        assert_eq!(m.walk, 1);
+        assert!(m.insert(1) && !m.insert(1));
+    }
+}

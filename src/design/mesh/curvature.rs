@@ -131,7 +131,10 @@ pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> V
     let normals = topo.vertex_normals();
     let fits: Vec<(VertexJet, f64)> = (0..mesh.positions_mm.len() as u32)
         .into_par_iter()
-        .map(|v| fit_vertex(mesh, topo, normals[v as usize], v, min_points))
+        .map_init(
+            || crate::geom::mesh::VisitMarks::new(mesh.positions_mm.len()),
+            |marks, v| fit_vertex(mesh, topo, normals[v as usize], v, min_points, marks),
+        )
         .collect();
     // Rounding to a step q: uniform noise of standard deviation q/√12.
     let noise_mm = coordinate_step_mm(mesh) / 12f64.sqrt();
@@ -168,7 +171,7 @@ fn monomials(x: f64, y: f64, out: &mut [f64]) {
 fn grow(
     topo: &Topology,
     hood: &mut Vec<u32>,
-    seen: &mut std::collections::HashSet<u32>,
+    seen: &mut crate::geom::mesh::VisitMarks,
     frontier: &mut usize,
 ) -> bool {
     let start = hood.len();
@@ -191,16 +194,17 @@ fn fit_vertex(
     n0: DVec3,
     v: u32,
     min_points: usize,
+    marks: &mut crate::geom::mesh::VisitMarks,
 ) -> (VertexJet, f64) {
     let p = &mesh.positions_mm;
     let p0 = p[v as usize];
     let mut hood = vec![v];
-    let mut seen = std::collections::HashSet::from([v]);
+    marks.clear();
+    marks.insert(v);
+    let seen = marks;
     let mut frontier = 0;
     let mut rings = 0;
-    while hood.len() < min_points
-        && rings < MAX_RINGS
-        && grow(topo, &mut hood, &mut seen, &mut frontier)
+    while hood.len() < min_points && rings < MAX_RINGS && grow(topo, &mut hood, seen, &mut frontier)
     {
         rings += 1;
     }
@@ -229,7 +233,7 @@ fn fit_vertex(
         }
         // A rank-deficient cubic may recover with one ring more; only a
         // mesh too small for a cubic falls back to lower degrees.
-        if rings < MAX_RINGS && grow(topo, &mut hood, &mut seen, &mut frontier) {
+        if rings < MAX_RINGS && grow(topo, &mut hood, seen, &mut frontier) {
             rings += 1;
             continue;
         }

@@ -381,6 +381,7 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
         r.sort_unstable();
         r.dedup();
     }
+    let mut visited = crate::geom::mesh::VisitMarks::new(nv);
     (0..nv)
         .map(|i| {
             let q0 = uv[i];
@@ -391,7 +392,8 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
                 .max(1e-9);
             let radius = SUPPORT_EDGES * longest;
             let mut seen = vec![i as u32];
-            let mut visited = std::collections::HashSet::from([i as u32]);
+            visited.clear();
+            visited.insert(i as u32);
             let mut frontier = vec![i as u32];
             for depth in 0..PATCH_MAX_RINGS {
                 if depth >= 2 && seen.len() > min_neighbours {
