@@ -531,7 +531,8 @@ fn two_level_timber_kit_with_studs() {
             .and_then(|h| h["count"].as_u64())
             .unwrap_or(0)
     };
-    // One stud per A×B node, two fasteners per stud; no node bolts.
+    // One stud per A×B node (a part, not hardware), two stud bolts per
+    // stud, each with its nut and two plain washers; no node bolts.
     let plan = json(&out.join("plan.json"));
     let studs = plan["parts"]
         .as_array()
@@ -540,9 +541,20 @@ fn two_level_timber_kit_with_studs() {
         .find(|p| p["kind"] == "stud")
         .and_then(|p| p["count"].as_u64())
         .expect("studs");
-    assert_eq!(count("stud"), studs);
-    assert_eq!(count("stud fastener"), 2 * studs);
+    assert_eq!(count("stud"), 0);
+    assert_eq!(count("stud bolt"), 2 * studs);
     assert_eq!(count("node bolt"), 0);
+    let line = |item: &str| hw.iter().find(|h| h["item"] == item).expect(item);
+    // 4 + 20 + 4 mm grip, 2 × 0.8 washers, nut 3.2, 2 × 0.7 pitches: 34.2 → 35.
+    assert_eq!(line("stud bolt")["designation"], "M4 × 35 ISO 4017");
+    let m4 = |item: &str| {
+        hw.iter()
+            .filter(|h| h["item"] == item && h["diameter_mm"] == 4.0)
+            .map(|h| h["count"].as_u64().expect("n"))
+            .sum::<u64>()
+    };
+    assert_eq!(m4("nut"), 2 * studs);
+    assert_eq!(m4("plain washer"), 4 * studs);
 }
 
 /// The takeoff against the plan it came with, summed independently.
@@ -617,7 +629,7 @@ fn takeoff_sums_the_plan() {
     assert_eq!(csv.lines().filter(|l| l.starts_with("section,")).count(), 1);
     assert!(csv
         .lines()
-        .any(|l| l.starts_with("hardware,node bolt,M8 ISO 4017 8.8")));
+        .any(|l| l.starts_with("hardware,node bolt,M8 × 70 ISO 4017 8.8")));
 }
 
 /// With --kerf-compensation every vertex of an outer contour lies half the
