@@ -333,6 +333,38 @@ mod tests {
         assert!(hw.iter().all(|h| h.torque_nm.is_none()));
     }
 
+    /// `hardware.bolt_class` quoted or as a number; a class without a
+    /// torque table is a one-line error naming the field; without one, no
+    /// class in the designations and no torque.
+    #[test]
+    fn the_bolt_class_is_read_and_checked() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
+        let text = std::fs::read_to_string(&path).expect("profile");
+        assert!(text.contains("bolt_class: \"8.8\""));
+        let p = profile_file::parse(&text.replace("\"8.8\"", "10.9"), &path).expect("10.9");
+        assert_eq!(p.hardware.bolt_class.as_deref(), Some("10.9"));
+        let counts = Counts {
+            grid_nodes: 1,
+            ..Counts::default()
+        };
+        let hw = hardware(&p, counts).expect("hardware");
+        assert_eq!(hw[0].designation, "M8 × 70 ISO 4017 10.9");
+        assert_eq!(hw[0].torque_nm, Some(36.0));
+        assert_eq!(hw[1].designation, "M8 ISO 4032 10");
+        let e = profile_file::parse(&text.replace("\"8.8\"", "\"5.6\""), &path)
+            .expect_err("5.6")
+            .to_string();
+        assert!(
+            e.contains("hardware.bolt_class") && e.contains("5.6"),
+            "{e}"
+        );
+        let none = text.replace("hardware:\n  bolt_class: \"8.8\"", "hardware: {}");
+        let p = profile_file::parse(&none, &path).expect("no class");
+        let hw = hardware(&p, counts).expect("hardware");
+        assert_eq!(hw[0].designation, "M8 × 70 ISO 4017");
+        assert_eq!(hw[0].torque_nm, None);
+    }
+
     /// A grip past the thread's longest bolt, and a diameter that is no
     /// thread: one line each, naming the joint.
     #[test]
