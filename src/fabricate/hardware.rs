@@ -365,6 +365,29 @@ mod tests {
         assert_eq!(hw[0].torque_nm, None);
     }
 
+    /// Grips just below and just above a series value: an M8 node bolt
+    /// needs its grip + nut 6.8 + two pitches 2.5 = grip + 9.3 mm, so a
+    /// grip of 60.7 mm (lamella 54.7 + star washers 6) takes 70 mm and
+    /// 60.71 mm takes 80; an M5 shear-block bolt needs grip + 8.3 (washers
+    /// 2, nut 4.7, pitches 1.6): a 16.7 mm grip takes 25 mm, 16.71 takes 30.
+    #[test]
+    fn grips_either_side_of_a_series_length() {
+        let length = |h: f64, gap: f64| {
+            let mut p = load("profiles/steel-1.5.yaml");
+            p.section.height_mm = h;
+            p.section.gap_mm = gap;
+            let counts = Counts {
+                grid_nodes: 1,
+                shear_blocks: 1,
+                ..Counts::default()
+            };
+            let hw = hardware(&p, counts).expect("hardware");
+            (hw[0].length_mm, hw[1].length_mm)
+        };
+        assert_eq!(length(54.7, 13.7), (Some(70.0), Some(25.0)));
+        assert_eq!(length(54.71, 13.71), (Some(80.0), Some(30.0)));
+    }
+
     /// A grip past the thread's longest bolt, and a diameter that is no
     /// thread: one line each, naming the joint.
     #[test]
