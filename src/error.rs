@@ -140,6 +140,15 @@ impl Error {
             what: one_line(&what.into()),
         }
     }
+    /// A fabrication error at a kind of joint (its bolts: `splice bolt`).
+    pub fn fabrication_joint(profile: &Path, joint: &str, what: impl Into<String>) -> Self {
+        Error::Fabrication {
+            profile: profile.to_path_buf(),
+            at: format!("joint {joint}"),
+            node: None,
+            what: one_line(&what.into()),
+        }
+    }
     /// An output at `path` that cannot be made or written; `what` is collapsed to one line.
     pub fn output(path: &Path, what: impl Into<String>) -> Self {
         Error::Output {

@@ -69,7 +69,7 @@ pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
     if let (Some(cost), Some(cur)) = (t.totals.stock_cost, &t.currency) {
         println!("stock cost: {cost:.2} {cur}");
     }
-    for h in t.hardware.iter().filter(|h| !h.made) {
+    for h in &t.hardware {
         println!("  {:<17} {:>8}  {}", h.item, h.count, h.designation);
     }
     match &r.governing {

@@ -1,37 +1,75 @@
-//! What the workshop buys rather than cuts, and the cut parts it fits to:
-//! node bolts and nuts, star washers, shear-block bolts, splice bolts,
-//! studs and their fasteners, counted from the kit (docs/fabrication.md,
-//! "Joints"). Grip lengths follow the joint stacks:
+//! What the workshop buys rather than cuts: every bolt with its nut and
+//! plain washers, counted from the kit (docs/fabrication.md, "Joints"),
+//! each bolt's length chosen from the standard series for its clamped
+//! stack ([`super::fasteners`]: ISO 4017 bolts, ISO 4032 nuts, ISO 7089
+//! washers, the tables and their sources). Star washers and studs are cut
+//! by lamella: they are parts, not hardware.
+//!
+//! The grips follow the joint stacks:
 //!
 //! * node bolt (along the surface normal, through the gap square between
 //!   the four lamellas): lamella height h + the star washers on it,
-//!   `per_node` × washer thickness;
+//!   `per_node` × washer thickness. The star washers are the washers under
+//!   head and nut: no plain washer (a node bolt without star washers gets
+//!   one under its head and one under its nut).
 //! * shear-block bolt (across a doubled strip): lamella, block (as thick
 //!   as the gap), lamella: 2t + gap;
 //! * splice bolt (through a lamella and its plate): 2t;
-//! * stud fastener (across one level's doubled strip and the stud): 2t + gap.
+//! * stud bolt (across one level's doubled strip and the stud, two per
+//!   stud): 2t + gap.
+//!
+//! Every bolt but the node bolt bears on thin sheet or plywood through a
+//! clearance hole, so it has a plain washer under its head and one under
+//! its nut (EN 1995-1-1 asks for them under both in timber; on 1.5 mm steel
+//! they spread the bearing around the oversized hole). Its length is the
+//! shortest of the series ≥ grip + washers + nut + two pitches; a joint
+//! that needs a longer bolt than its thread comes in is an error naming
+//! the joint, as is a diameter that is no thread of the table.
 
+use super::fasteners::{self, Thread};
+use crate::error::{Error, Result};
 use crate::profile::Profile;
 
-/// One line of hardware.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Hardware {
-    /// What it is: `node bolt`, `node nut`, `star washer`, `shear-block
-    /// bolt`, `splice bolt`, `stud`, `stud fastener`.
-    pub item: &'static str,
-    /// Size and standard (`M8 ISO 4017 8.8`, `M5`, `10 × 10 × 120 mm`).
-    pub designation: String,
-    /// Clamped thickness for bolts, mm.
-    pub grip_mm: Option<f64>,
-    /// How many.
-    pub count: u64,
-    /// Whether lamella cuts it (star washers, studs: see the parts) rather
-    /// than a supplier delivering it.
-    pub made: bool,
+/// What a hardware line is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HardwareKind {
+    /// A hexagon head bolt, ISO 4017.
+    Bolt,
+    /// A hexagon nut, ISO 4032.
+    Nut,
+    /// A plain washer, ISO 7089.
+    Washer,
 }
 
-/// What the kit counts: grid nodes, shear blocks, splice plates, washers
-/// and studs (pieces).
+/// One line of bought hardware.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hardware {
+    /// What it is: `node bolt`, `shear-block bolt`, `splice bolt`, `stud
+    /// bolt` (one line per joint), `nut`, `plain washer` (one line per size).
+    pub item: String,
+    /// Bolt, nut or washer.
+    pub kind: HardwareKind,
+    /// As ordered: `M8 × 70 ISO 4017 8.8`, `M8 ISO 4032 8`, `M5 ISO 7089 200 HV`.
+    pub designation: String,
+    /// The standard: `ISO 4017`, `ISO 4032`, `ISO 7089`.
+    pub standard: &'static str,
+    /// Thread (nominal) diameter, mm.
+    pub diameter_mm: f64,
+    /// Bolts: nominal length, mm.
+    pub length_mm: Option<f64>,
+    /// Bolts: clamped thickness (the joint's parts, without plain washers), mm.
+    pub grip_mm: Option<f64>,
+    /// Bolts: the length the stack needs (grip + plain washers + nut + two
+    /// pitches), mm.
+    pub needed_mm: Option<f64>,
+    /// How many.
+    pub count: u64,
+    /// Bolts: tightening torque, N·m, when the profile gives a property class.
+    pub torque_nm: Option<f64>,
+}
+
+/// What the kit counts: grid nodes, shear blocks, splice plates and studs
+/// (pieces).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Counts {
     /// A×B nodes of the grid.
@@ -40,106 +78,163 @@ pub struct Counts {
     pub shear_blocks: u64,
     /// Splice plates (one per lamella per splice).
     pub splice_plates: u64,
-    /// Star washers.
-    pub washers: u64,
     /// Studs.
     pub studs: u64,
 }
 
-/// The hardware list of a kit for `profile`, in a fixed order; items with
-/// a zero count are left out.
-pub fn hardware(profile: &Profile, n: Counts) -> Vec<Hardware> {
+/// One kind of bolted joint: its bolt, grip, plain washers and count.
+struct Joint {
+    item: &'static str,
+    diameter_mm: f64,
+    grip_mm: f64,
+    plain_washers: u64,
+    count: u64,
+}
+
+/// The hardware list of a kit for `profile`: the bolts by joint (node,
+/// shear block, splice, stud), then the nuts and the plain washers by
+/// size, ascending; lines with a zero count are left out.
+pub fn hardware(profile: &Profile, n: Counts) -> Result<Vec<Hardware>> {
     let (t, h, gap) = (
         profile.section.thickness_mm,
         profile.section.height_mm,
         profile.section.gap_mm,
     );
-    let mut out = Vec::new();
-    let mut push = |item, designation: String, grip_mm, count: u64, made| {
-        if count > 0 {
-            out.push(Hardware {
-                item,
-                designation,
-                grip_mm,
-                count,
-                made,
-            });
-        }
-    };
+    let mut joints = Vec::new();
     if let Some(b) = &profile.node_bolt {
-        let washers = profile
-            .washer
-            .as_ref()
-            .map_or(0.0, |w| f64::from(w.per_node) * w.thickness_mm);
-        push(
-            "node bolt",
-            b.designation.clone(),
-            Some(h + washers),
-            n.grid_nodes,
-            false,
-        );
-        push(
-            "node nut",
-            format!("M{}", fmt_mm(b.diameter_mm)),
-            None,
-            n.grid_nodes,
-            false,
-        );
-    }
-    if let Some(w) = &profile.washer {
-        push(
-            "star washer",
-            format!(
-                "{} mm, arms {} mm",
-                fmt_mm(w.thickness_mm),
-                fmt_mm(w.arm_length_mm)
-            ),
-            None,
-            n.washers,
-            true,
-        );
+        let (stars, plain) = match &profile.washer {
+            Some(w) => (f64::from(w.per_node) * w.thickness_mm, 0),
+            None => (0.0, 2),
+        };
+        joints.push(Joint {
+            item: "node bolt",
+            diameter_mm: b.diameter_mm,
+            grip_mm: h + stars,
+            plain_washers: plain,
+            count: n.grid_nodes,
+        });
     }
     if let Some(b) = &profile.shear_block {
-        push(
-            "shear-block bolt",
-            format!("M{}", fmt_mm(b.bolt_diameter_mm)),
-            Some(2.0 * t + gap),
-            n.shear_blocks,
-            false,
-        );
+        joints.push(Joint {
+            item: "shear-block bolt",
+            diameter_mm: b.bolt_diameter_mm,
+            grip_mm: 2.0 * t + gap,
+            plain_washers: 2,
+            count: n.shear_blocks,
+        });
     }
     if let Some(s) = &profile.splice {
-        push(
-            "splice bolt",
-            format!("M{}", fmt_mm(s.bolt_diameter_mm)),
-            Some(2.0 * t),
-            n.splice_plates * 2 * u64::from(s.bolts_per_side.max(1)),
-            false,
-        );
+        joints.push(Joint {
+            item: "splice bolt",
+            diameter_mm: s.bolt_diameter_mm,
+            grip_mm: 2.0 * t,
+            plain_washers: 2,
+            count: n.splice_plates * 2 * u64::from(s.bolts_per_side.max(1)),
+        });
     }
     if let Some(s) = &profile.stud {
-        push(
-            "stud",
-            format!("{0} × {0} × {1} mm", fmt_mm(gap), fmt_mm(s.length_mm)),
-            None,
-            n.studs,
-            true,
-        );
-        push(
-            "stud fastener",
-            format!("ø{} mm", fmt_mm(s.fastener_diameter_mm)),
-            Some(2.0 * t + gap),
-            2 * n.studs,
-            false,
-        );
+        joints.push(Joint {
+            item: "stud bolt",
+            diameter_mm: s.fastener_diameter_mm,
+            grip_mm: 2.0 * t + gap,
+            plain_washers: 2,
+            count: 2 * n.studs,
+        });
     }
-    out
-}
-
-/// A length without trailing zeros: 8, 1.5.
-fn fmt_mm(x: f64) -> String {
-    let s = format!("{x:.3}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
+    let class = profile.hardware.bolt_class.as_deref();
+    let mut bolts = Vec::new();
+    // Nuts and plain washers by thread, in table order.
+    let mut nuts = vec![0u64; fasteners::THREADS.len()];
+    let mut washers = vec![0u64; fasteners::THREADS.len()];
+    for j in joints.iter().filter(|j| j.count > 0) {
+        let fail = |what: String| Error::fabrication_joint(&profile.source, j.item, what);
+        let Some(k) = fasteners::thread_index(j.diameter_mm) else {
+            return Err(fail(format!(
+                "a {} mm bolt is no metric coarse thread the takeoff knows ({})",
+                fasteners::trim(j.diameter_mm),
+                fasteners::thread_names()
+            )));
+        };
+        let th: &Thread = &fasteners::THREADS[k];
+        let washer_mm = j.plain_washers as f64 * th.washer_mm;
+        let needed = j.grip_mm + washer_mm + th.nut_mm + 2.0 * th.pitch_mm;
+        let Some(length) = fasteners::bolt_length_mm(th, needed) else {
+            return Err(fail(format!(
+                "an {} bolt needs {} mm (grip {} + {} washers {} + nut {} + 2 pitches {}), longer than ISO 4017's longest {} ({} mm)",
+                fasteners::name(th.diameter_mm),
+                fasteners::trim(needed),
+                fasteners::trim(j.grip_mm),
+                j.plain_washers,
+                fasteners::trim(washer_mm),
+                fasteners::trim(th.nut_mm),
+                fasteners::trim(2.0 * th.pitch_mm),
+                fasteners::name(th.diameter_mm),
+                fasteners::trim(th.lengths_mm.1),
+            )));
+        };
+        let m = fasteners::name(th.diameter_mm);
+        bolts.push(Hardware {
+            item: j.item.into(),
+            kind: HardwareKind::Bolt,
+            designation: match class {
+                Some(c) => format!("{m} × {} ISO 4017 {c}", fasteners::trim(length)),
+                None => format!("{m} × {} ISO 4017", fasteners::trim(length)),
+            },
+            standard: "ISO 4017",
+            diameter_mm: th.diameter_mm,
+            length_mm: Some(length),
+            grip_mm: Some(j.grip_mm),
+            needed_mm: Some(needed),
+            count: j.count,
+            torque_nm: class.and_then(|c| fasteners::torque_nm(th, c)),
+        });
+        nuts[k] += j.count;
+        washers[k] += j.plain_washers * j.count;
+    }
+    let mut out = bolts;
+    for (k, th) in fasteners::THREADS.iter().enumerate() {
+        if nuts[k] == 0 {
+            continue;
+        }
+        let m = fasteners::name(th.diameter_mm);
+        out.push(Hardware {
+            item: "nut".into(),
+            kind: HardwareKind::Nut,
+            designation: match class.and_then(fasteners::nut_class) {
+                Some(c) => format!("{m} ISO 4032 {c}"),
+                None => format!("{m} ISO 4032"),
+            },
+            standard: "ISO 4032",
+            diameter_mm: th.diameter_mm,
+            length_mm: None,
+            grip_mm: None,
+            needed_mm: None,
+            count: nuts[k],
+            torque_nm: None,
+        });
+    }
+    for (k, th) in fasteners::THREADS.iter().enumerate() {
+        if washers[k] == 0 {
+            continue;
+        }
+        let m = fasteners::name(th.diameter_mm);
+        out.push(Hardware {
+            item: "plain washer".into(),
+            kind: HardwareKind::Washer,
+            designation: match class.and_then(fasteners::washer_grade) {
+                Some(g) => format!("{m} ISO 7089 {g}"),
+                None => format!("{m} ISO 7089"),
+            },
+            standard: "ISO 7089",
+            diameter_mm: th.diameter_mm,
+            length_mm: None,
+            grip_mm: None,
+            needed_mm: None,
+            count: washers[k],
+            torque_nm: None,
+        });
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -147,34 +242,179 @@ mod tests {
     use super::*;
     use crate::formats::read::profile_file;
 
-    /// The steel prototype: M8 node bolts through 50 mm lamellas and two
-    /// 3 mm star washers (grip 56 mm), M5 shear-block bolts through
-    /// 1.5 + 10 + 1.5 mm, M6 splice bolts 2 per side through 1.5 + 1.5 mm.
+    fn load(name: &str) -> Profile {
+        profile_file::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(name))
+            .expect("profile")
+    }
+
+    /// The steel prototype, by hand: M8 node bolts through 50 mm lamellas
+    /// and two 3 mm star washers: grip 56, with nut 6.8 and two pitches
+    /// 2.5 needs 65.3, so 70. M5 shear-block bolts through 1.5, 10 and
+    /// 1.5: grip 13, with washers 2, nut 4.7 and pitches 1.6 needs 21.3,
+    /// so 25. M6 splice bolts through 1.5 and 1.5: grip 3, with washers
+    /// 3.2, nut 5.2 and pitches 2 needs 13.4, so 16; 2 per side of each
+    /// plate. Class 8.8 from the profile: 25, 5.9 and 10 N·m (VDI 2230).
     #[test]
     fn steel_profile_hardware_by_hand() {
-        let p = profile_file::load(std::path::Path::new(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/profiles/steel-1.5.yaml"
-        )))
-        .expect("profile");
+        let p = load("profiles/steel-1.5.yaml");
         let hw = hardware(
             &p,
             Counts {
                 grid_nodes: 10,
                 shear_blocks: 7,
                 splice_plates: 3,
-                washers: 20,
                 studs: 0,
             },
+        )
+        .expect("hardware");
+        let lines: Vec<(&str, &str, u64, Option<f64>)> = hw
+            .iter()
+            .map(|h| {
+                (
+                    h.item.as_str(),
+                    h.designation.as_str(),
+                    h.count,
+                    h.torque_nm,
+                )
+            })
+            .collect();
+        assert_eq!(
+            lines,
+            vec![
+                ("node bolt", "M8 × 70 ISO 4017 8.8", 10, Some(25.0)),
+                ("shear-block bolt", "M5 × 25 ISO 4017 8.8", 7, Some(5.9)),
+                ("splice bolt", "M6 × 16 ISO 4017 8.8", 12, Some(10.0)),
+                ("nut", "M5 ISO 4032 8", 7, None),
+                ("nut", "M6 ISO 4032 8", 12, None),
+                ("nut", "M8 ISO 4032 8", 10, None),
+                ("plain washer", "M5 ISO 7089 200 HV", 14, None),
+                ("plain washer", "M6 ISO 7089 200 HV", 24, None),
+            ]
         );
-        let find = |item: &str| hw.iter().find(|h| h.item == item).expect(item);
-        assert_eq!(find("node bolt").count, 10);
-        assert_eq!(find("node bolt").grip_mm, Some(56.0));
-        assert_eq!(find("node nut").designation, "M8");
-        assert_eq!(find("shear-block bolt").grip_mm, Some(13.0));
-        assert_eq!(find("splice bolt").count, 12);
-        assert_eq!(find("splice bolt").designation, "M6");
-        assert_eq!(find("star washer").count, 20);
-        assert!(hw.iter().all(|h| h.item != "stud"));
+        assert_eq!(hw[0].grip_mm, Some(56.0));
+        assert_eq!(hw[1].grip_mm, Some(13.0));
+        assert!((hw[2].needed_mm.expect("needed") - 13.4).abs() < 1e-9);
+    }
+
+    /// The timber prototype, no class: M5 shear-block bolts through 4, 20
+    /// and 4: grip 28, with washers 2, nut 4.7 and pitches 1.6 needs 36.3,
+    /// so 40; M4 stud bolts: grip 28, with washers 1.6, nut 3.2 and
+    /// pitches 1.4 needs 34.2, so 35; M5 splice bolts: grip 8, needs 16.3,
+    /// so 20. No torque.
+    #[test]
+    fn timber_profile_hardware_by_hand() {
+        let p = load("profiles/poplar-ply-4.yaml");
+        let hw = hardware(
+            &p,
+            Counts {
+                grid_nodes: 4,
+                shear_blocks: 2,
+                splice_plates: 1,
+                studs: 4,
+            },
+        )
+        .expect("hardware");
+        let lines: Vec<(&str, &str, u64)> = hw
+            .iter()
+            .map(|h| (h.item.as_str(), h.designation.as_str(), h.count))
+            .collect();
+        assert_eq!(
+            lines,
+            vec![
+                ("shear-block bolt", "M5 × 40 ISO 4017", 2),
+                ("splice bolt", "M5 × 20 ISO 4017", 6),
+                ("stud bolt", "M4 × 35 ISO 4017", 8),
+                ("nut", "M4 ISO 4032", 8),
+                ("nut", "M5 ISO 4032", 8),
+                ("plain washer", "M4 ISO 7089", 16),
+                ("plain washer", "M5 ISO 7089", 16),
+            ]
+        );
+        assert!(hw.iter().all(|h| h.torque_nm.is_none()));
+    }
+
+    /// `hardware.bolt_class` quoted or as a number; a class without a
+    /// torque table is a one-line error naming the field; without one, no
+    /// class in the designations and no torque.
+    #[test]
+    fn the_bolt_class_is_read_and_checked() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/steel-1.5.yaml");
+        let text = std::fs::read_to_string(&path).expect("profile");
+        assert!(text.contains("bolt_class: \"8.8\""));
+        let p = profile_file::parse(&text.replace("\"8.8\"", "10.9"), &path).expect("10.9");
+        assert_eq!(p.hardware.bolt_class.as_deref(), Some("10.9"));
+        let counts = Counts {
+            grid_nodes: 1,
+            ..Counts::default()
+        };
+        let hw = hardware(&p, counts).expect("hardware");
+        assert_eq!(hw[0].designation, "M8 × 70 ISO 4017 10.9");
+        assert_eq!(hw[0].torque_nm, Some(36.0));
+        assert_eq!(hw[1].designation, "M8 ISO 4032 10");
+        let e = profile_file::parse(&text.replace("\"8.8\"", "\"5.6\""), &path)
+            .expect_err("5.6")
+            .to_string();
+        assert!(
+            e.contains("hardware.bolt_class") && e.contains("5.6"),
+            "{e}"
+        );
+        let none = text.replace("hardware:\n  bolt_class: \"8.8\"", "hardware: {}");
+        let p = profile_file::parse(&none, &path).expect("no class");
+        let hw = hardware(&p, counts).expect("hardware");
+        assert_eq!(hw[0].designation, "M8 × 70 ISO 4017");
+        assert_eq!(hw[0].torque_nm, None);
+    }
+
+    /// Grips just below and just above a series value: an M8 node bolt
+    /// needs its grip + nut 6.8 + two pitches 2.5 = grip + 9.3 mm, so a
+    /// grip of 60.7 mm (lamella 54.7 + star washers 6) takes 70 mm and
+    /// 60.71 mm takes 80; an M5 shear-block bolt needs grip + 8.3 (washers
+    /// 2, nut 4.7, pitches 1.6): a 16.7 mm grip takes 25 mm, 16.71 takes 30.
+    #[test]
+    fn grips_either_side_of_a_series_length() {
+        let length = |h: f64, gap: f64| {
+            let mut p = load("profiles/steel-1.5.yaml");
+            p.section.height_mm = h;
+            p.section.gap_mm = gap;
+            let counts = Counts {
+                grid_nodes: 1,
+                shear_blocks: 1,
+                ..Counts::default()
+            };
+            let hw = hardware(&p, counts).expect("hardware");
+            (hw[0].length_mm, hw[1].length_mm)
+        };
+        assert_eq!(length(54.7, 13.7), (Some(70.0), Some(25.0)));
+        assert_eq!(length(54.71, 13.71), (Some(80.0), Some(30.0)));
+    }
+
+    /// A grip past the thread's longest bolt, and a diameter that is no
+    /// thread: one line each, naming the joint.
+    #[test]
+    fn a_bolt_beyond_the_series_names_its_joint() {
+        let mut p = load("profiles/steel-1.5.yaml");
+        p.section.gap_mm = 40.0;
+        let counts = Counts {
+            shear_blocks: 1,
+            ..Counts::default()
+        };
+        let e = hardware(&p, counts).expect_err("too long").to_string();
+        assert!(
+            e.contains("joint shear-block bolt:") && e.contains("50 mm") && !e.contains('\n'),
+            "{e}"
+        );
+        let mut p = load("profiles/steel-1.5.yaml");
+        if let Some(s) = p.splice.as_mut() {
+            s.bolt_diameter_mm = 7.0;
+        }
+        let counts = Counts {
+            splice_plates: 1,
+            ..Counts::default()
+        };
+        let e = hardware(&p, counts).expect_err("no thread").to_string();
+        assert!(
+            e.contains("joint splice bolt:") && e.contains("7 mm"),
+            "{e}"
+        );
     }
 }

@@ -1036,6 +1036,7 @@ mod tests {
             shear_block: None,
             stud: None,
             splice,
+            hardware: Default::default(),
             stock: RawStock {
                 kind: StockKind::Sheet,
                 length_mm: Some(stock_length_mm),

@@ -10,6 +10,7 @@
 pub mod blocks;
 pub mod edge_strip;
 pub mod engrave;
+pub mod fasteners;
 pub mod font;
 pub mod hardware;
 pub mod invariants;
@@ -54,7 +55,7 @@ pub struct KitSummary {
     pub mass_kg: f64,
     /// Bars of stud stock to saw the studs from (two-level grids).
     pub stud_bars: u32,
-    /// Bolts, nuts, washers and studs, counted.
+    /// Bolts, nuts and plain washers, counted (bought).
     pub hardware: Vec<hardware::Hardware>,
 }
 
@@ -166,10 +167,9 @@ pub fn fabricate(
             grid_nodes: grid.len() as u64,
             shear_blocks: blocks as u64,
             splice_plates: plates as u64,
-            washers: pieces(PartKind::Washer),
             studs: pieces(PartKind::Stud),
         },
-    );
+    )?;
     Ok(Kit {
         parts,
         summary,

@@ -529,6 +529,7 @@ fn add_kit_summary(plan: &mut Plan, kit: &crate::fabricate::Kit) {
             .collect(),
         lamella_length_mm: round(kit.summary.lamella_length_mm, MM),
         mass_kg: round(kit.summary.mass_kg, 3),
+        hardware: super::takeoff::hardware_lines(kit),
     });
 }
 

@@ -505,6 +505,11 @@ pub struct PlanKitSummary {
     pub lamella_length_mm: f64,
     /// Mass of everything cut or sawn, kg.
     pub mass_kg: f64,
+    /// The bought hardware: bolts by joint (size, standard length, grip,
+    /// torque where the profile gives a class), nuts and plain washers by
+    /// size; the takeoff's hardware lines.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hardware: Vec<takeoff::HardwareLine>,
 }
 
 /// How many parts of one kind.

@@ -1,6 +1,7 @@
-//! The material takeoff: per part kind, count, length, area and mass; the
-//! stock sheets (and stud bars) with utilisation and cost; the hardware;
-//! totals. Plain data in ([`Kit`], [`Nest`], [`Profile`]), plain data out
+//! The material takeoff: per part kind, count, length, area and mass (the
+//! made parts); the stock sheets (and stud bars) with utilisation and
+//! cost; the bought hardware (bolts with their standard lengths, nuts,
+//! plain washers; see `fabricate::hardware`); totals per section. Plain data in ([`Kit`], [`Nest`], [`Profile`]), plain data out
 //! ([`Takeoff`]), which `formats::write::takeoff` writes as JSON and CSV.
 //! Numbers are rounded to fixed decimals so equal kits give equal bytes.
 
@@ -9,7 +10,7 @@ use crate::fabricate::{net_area_mm2, part_mass_kg, Kit};
 use crate::nest::Nest;
 use crate::plan::round;
 use crate::profile::{Profile, StockKind};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The whole takeoff.
 #[derive(Debug, Clone, Default, Serialize, PartialEq)]
@@ -24,7 +25,8 @@ pub struct Takeoff {
     pub parts: Vec<PartLine>,
     /// One line per stock size (and the stud bars).
     pub stock: Vec<StockLine>,
-    /// Bolts, nuts, washers, studs.
+    /// What is bought rather than cut: bolts by joint, nuts and plain
+    /// washers by size (star washers and studs are parts).
     pub hardware: Vec<HardwareLine>,
     /// Sums.
     pub totals: Totals,
@@ -66,26 +68,62 @@ pub struct StockLine {
     pub cost: Option<f64>,
 }
 
-/// One hardware line.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+/// One line of bought hardware (also plan.json's
+/// `parts_summary.hardware`).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct HardwareLine {
-    /// `node bolt`, `shear-block bolt`, …
+    /// `node bolt`, `shear-block bolt`, `splice bolt`, `stud bolt`, `nut`,
+    /// `plain washer`.
     pub item: String,
-    /// Size and standard.
+    /// As ordered: `M8 × 70 ISO 4017 8.8`, `M8 ISO 4032 8`, `M5 ISO 7089 200 HV`.
     pub designation: String,
-    /// Clamped thickness for bolts, mm.
+    /// `ISO 4017`, `ISO 4032` or `ISO 7089`.
+    pub standard: String,
+    /// Thread diameter, mm.
+    pub diameter_mm: f64,
+    /// Bolts: nominal length, mm (from the standard series).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_mm: Option<f64>,
+    /// Bolts: clamped thickness of the joint's parts, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub grip_mm: Option<f64>,
+    /// Bolts: grip + plain washers + nut + two thread pitches, mm: the
+    /// shortest length the bolt may have.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub needed_mm: Option<f64>,
     /// How many.
     pub count: u64,
-    /// Cut or sawn by the workshop (also in `parts`) rather than bought.
-    pub made: bool,
+    /// Bolts: tightening torque, N·m, when the profile gives the property class.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque_nm: Option<f64>,
+}
+
+/// The kit's bought hardware as lines, rounded.
+pub fn hardware_lines(kit: &Kit) -> Vec<HardwareLine> {
+    kit.summary
+        .hardware
+        .iter()
+        .map(|h| HardwareLine {
+            item: h.item.clone(),
+            designation: h.designation.clone(),
+            standard: h.standard.into(),
+            diameter_mm: round(h.diameter_mm, 3),
+            length_mm: h.length_mm.map(|g| round(g, 3)),
+            grip_mm: h.grip_mm.map(|g| round(g, 3)),
+            needed_mm: h.needed_mm.map(|g| round(g, 3)),
+            count: h.count,
+            torque_nm: h.torque_nm.map(|g| round(g, 2)),
+        })
+        .collect()
 }
 
 /// Sums over the takeoff.
 #[derive(Debug, Clone, Default, Serialize, PartialEq)]
 pub struct Totals {
-    /// Pieces to cut or saw.
+    /// Pieces to cut or saw (made).
     pub pieces: u64,
+    /// Sum of every made piece's length (its extent along x), m.
+    pub parts_length_m: f64,
     /// Total lamella length, m.
     pub lamella_length_m: f64,
     /// Mass of every part, kg.
@@ -94,6 +132,10 @@ pub struct Totals {
     pub sheets: u64,
     /// Cost of the stock, where priced.
     pub stock_cost: Option<f64>,
+    /// Pieces of stock: sheets (or coil pieces) and bars.
+    pub stock_pieces: u64,
+    /// Pieces of bought hardware: bolts, nuts and plain washers.
+    pub hardware_pieces: u64,
 }
 
 /// The takeoff of a kit and its nest.
@@ -204,18 +246,7 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
             cost: None,
         });
     }
-    let hardware = kit
-        .summary
-        .hardware
-        .iter()
-        .map(|h| HardwareLine {
-            item: h.item.into(),
-            designation: h.designation.clone(),
-            grip_mm: h.grip_mm.map(|g| round(g, 3)),
-            count: h.count,
-            made: h.made,
-        })
-        .collect();
+    let hardware = hardware_lines(kit);
     let sheets = nest.sheets.len() as u64;
     let stock_cost = stock
         .iter()
@@ -228,6 +259,7 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
         currency: stock_cost.and(profile.stock.currency.clone()),
         totals: Totals {
             pieces: parts.iter().map(|l| l.count).sum(),
+            parts_length_m: round(parts.iter().map(|l| l.length_mm).sum::<f64>() / 1000.0, 3),
             lamella_length_m: round(
                 parts
                     .iter()
@@ -240,6 +272,8 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
             mass_kg: round(parts.iter().map(|l| l.mass_kg).sum(), 3),
             sheets,
             stock_cost,
+            stock_pieces: stock.iter().map(|s| s.count).sum(),
+            hardware_pieces: hardware.iter().map(|h| h.count).sum(),
         },
         parts,
         stock,

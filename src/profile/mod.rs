@@ -47,6 +47,8 @@ pub struct ProfileOf<S> {
     pub stud: Option<Stud>,
     /// Splice plates for strips longer than the stock, if any.
     pub splice: Option<Splice>,
+    /// What the bought bolts are (property class); every field optional.
+    pub hardware: Fasteners,
     /// What parts are cut from.
     pub stock: S,
     /// Cutting allowances and allowed rotations (quarter turns).
@@ -182,6 +184,19 @@ pub struct Stud {
     /// Bar stock the studs are cut from, mm.
     pub bar_length_mm: f64,
 }
+
+/// The bought bolts' grade (`hardware:` in a profile file; optional, as
+/// is every field of it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Fasteners {
+    /// Property class of every bolt (ISO 898-1): `8.8` or `10.9`; nuts and
+    /// washers follow it, and the takeoff gives a tightening torque. None:
+    /// no class, no torque.
+    pub bolt_class: Option<String>,
+}
+
+/// The bolt property classes the takeoff knows a tightening torque for.
+pub const BOLT_CLASSES: [&str; 2] = ["8.8", "10.9"];
 
 /// Plates joining strips longer than the stock.
 #[derive(Debug, Clone, PartialEq)]
@@ -452,6 +467,7 @@ impl Profile {
             shear_block: raw.shear_block,
             stud: raw.stud,
             splice: raw.splice,
+            hardware: raw.hardware,
             stock: Stock::from(raw.stock),
             cutting: raw.cutting,
             check: raw.check,

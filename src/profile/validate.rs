@@ -33,6 +33,17 @@ pub fn profile(raw: &RawProfile) -> Check {
     if let Some(s) = &raw.splice {
         splice(s)?;
     }
+    if let Some(c) = &raw.hardware.bolt_class {
+        if !super::BOLT_CLASSES.contains(&c.as_str()) {
+            return fail(
+                "hardware.bolt_class",
+                format!(
+                    "`{c}` is no property class this lamella has tightening torques for: write {}, or leave it out",
+                    super::BOLT_CLASSES.join(" or ")
+                ),
+            );
+        }
+    }
     stock(&raw.stock, raw.section.height_mm)?;
     cutting(&raw.cutting, raw.material.grain)?;
     if let Some(m) = raw.check.max_sagitta_mm {

@@ -322,6 +322,7 @@ fn a_plan_without_parts_is_an_error() {
             mass_kg: 0.0,
             sheets: 0,
             stock_cost: None,
+            ..Default::default()
         },
     });
     let e = lamella::formats::write::assembly::assembly_pdf(

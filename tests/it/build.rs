@@ -901,7 +901,8 @@ fn two_level_timber_kit_with_studs() {
             .and_then(|h| h["count"].as_u64())
             .unwrap_or(0)
     };
-    // One stud per A×B node, two fasteners per stud; no node bolts.
+    // One stud per A×B node (a part, not hardware), two stud bolts per
+    // stud, each with its nut and two plain washers; no node bolts.
     let plan = json(&out.join("plan.json"));
     let studs = plan["parts"]
         .as_array()
@@ -910,9 +911,20 @@ fn two_level_timber_kit_with_studs() {
         .find(|p| p["kind"] == "stud")
         .and_then(|p| p["count"].as_u64())
         .expect("studs");
-    assert_eq!(count("stud"), studs);
-    assert_eq!(count("stud fastener"), 2 * studs);
+    assert_eq!(count("stud"), 0);
+    assert_eq!(count("stud bolt"), 2 * studs);
     assert_eq!(count("node bolt"), 0);
+    let line = |item: &str| hw.iter().find(|h| h["item"] == item).expect(item);
+    // 4 + 20 + 4 mm grip, 2 × 0.8 washers, nut 3.2, 2 × 0.7 pitches: 34.2 → 35.
+    assert_eq!(line("stud bolt")["designation"], "M4 × 35 ISO 4017");
+    let m4 = |item: &str| {
+        hw.iter()
+            .filter(|h| h["item"] == item && h["diameter_mm"] == 4.0)
+            .map(|h| h["count"].as_u64().expect("n"))
+            .sum::<u64>()
+    };
+    assert_eq!(m4("nut"), 2 * studs);
+    assert_eq!(m4("plain washer"), 4 * studs);
 }
 
 /// The takeoff against the plan it came with, summed independently.
@@ -987,7 +999,143 @@ fn takeoff_sums_the_plan() {
     assert_eq!(csv.lines().filter(|l| l.starts_with("section,")).count(), 1);
     assert!(csv
         .lines()
-        .any(|l| l.starts_with("hardware,node bolt,M8 ISO 4017 8.8")));
+        .any(|l| l.starts_with("hardware,node bolt,M8 × 70 ISO 4017 8.8")));
+}
+
+/// The steel Enneper kit's bought hardware re-derived by hand from its
+/// plan.json: bolts per joint from the nodes, the lamellas' slots and
+/// holes; lengths from the stacks and the ISO 4017 series; one ISO 4032
+/// nut per bolt; two ISO 7089 washers per shear-block and splice bolt
+/// (the node bolts bear on the star washers); VDI 2230 torques for 8.8.
+#[test]
+fn takeoff_hardware_by_hand() {
+    let out = scratch("hardware").join("kit");
+    ok(&build("enneper-4m", "steel-1.5", &out, &[]));
+    let plan = json(&out.join("plan.json"));
+    let family: BTreeMap<&str, &str> = plan["strips"]
+        .as_array()
+        .expect("strips")
+        .iter()
+        .map(|s| {
+            (
+                s["id"].as_str().expect("id"),
+                s["family"].as_str().expect("f"),
+            )
+        })
+        .collect();
+    let grid_nodes = plan["nodes"]
+        .as_array()
+        .expect("nodes")
+        .iter()
+        .filter(|n| {
+            let f = |k: &str| family.get(n[k].as_str().unwrap_or("")).copied();
+            (f("a"), f("b")) == (Some("A"), Some("B"))
+        })
+        .count() as u64;
+    // Pieces of lamella features: a slot per lamella of both strips at a
+    // node (4 per node, doubled strips); a shear-block bolt passes two
+    // lamellas, a splice bolt one lamella and its plate.
+    let mut lamella = BTreeMap::<String, u64>::new();
+    for p in plan["parts"].as_array().expect("parts") {
+        if p["kind"] != "lamella" {
+            continue;
+        }
+        let n = p["count"].as_u64().expect("n");
+        for f in p["features"].as_array().expect("f") {
+            let key = f["hole_use"]
+                .as_str()
+                .unwrap_or(f["kind"].as_str().expect("k"));
+            *lamella.entry(key.to_string()).or_default() += n;
+        }
+    }
+    assert_eq!(lamella["slot"], 4 * grid_nodes);
+    let shear_bolts = lamella["shear_block"] / 2;
+    let splice_bolts = lamella["splice"];
+    assert!(grid_nodes > 100 && shear_bolts > 0 && splice_bolts > 0);
+    // The stacks, mm: lamellas 1.5, gap 10, height 50, star washers 3.
+    // Node M8: 50 + 2 × 3 = 56 grip, nut 6.8, 2 × 1.25 pitch: 65.3 → 70.
+    // Shear block M5: 1.5 + 10 + 1.5 = 13, washers 2 × 1, nut 4.7, 2 ×
+    // 0.8: 21.3 → 25. Splice M6: 1.5 + 1.5 = 3, washers 2 × 1.6, nut 5.2,
+    // 2 × 1: 13.4 → 16.
+    let want: Vec<(&str, &str, u64, &str)> = vec![
+        ("node bolt", "M8 × 70 ISO 4017 8.8", grid_nodes, "25.0"),
+        (
+            "shear-block bolt",
+            "M5 × 25 ISO 4017 8.8",
+            shear_bolts,
+            "5.9",
+        ),
+        ("splice bolt", "M6 × 16 ISO 4017 8.8", splice_bolts, "10.0"),
+        ("nut", "M5 ISO 4032 8", shear_bolts, ""),
+        ("nut", "M6 ISO 4032 8", splice_bolts, ""),
+        ("nut", "M8 ISO 4032 8", grid_nodes, ""),
+        ("plain washer", "M5 ISO 7089 200 HV", 2 * shear_bolts, ""),
+        ("plain washer", "M6 ISO 7089 200 HV", 2 * splice_bolts, ""),
+    ];
+    let csv = std::fs::read_to_string(out.join("takeoff.csv")).expect("csv");
+    let mut rows = csv::Reader::from_reader(csv.as_bytes());
+    let header = rows.headers().expect("header").clone();
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let (item, designation, count, source, torque) = (
+        col("item"),
+        col("designation"),
+        col("count"),
+        col("source"),
+        col("torque_nm"),
+    );
+    let records: Vec<csv::StringRecord> = rows.records().map(|r| r.expect("row")).collect();
+    let got: Vec<(String, String, u64, String)> = records
+        .iter()
+        .filter(|r| &r[0] == "hardware")
+        .map(|r| {
+            assert_eq!(&r[source], "bought");
+            (
+                r[item].to_string(),
+                r[designation].to_string(),
+                r[count].parse().expect("count"),
+                r[torque].to_string(),
+            )
+        })
+        .collect();
+    let want: Vec<(String, String, u64, String)> = want
+        .into_iter()
+        .map(|(a, b, c, d)| (a.into(), b.into(), c, d.into()))
+        .collect();
+    assert_eq!(got, want);
+    // Star washers are made (a part line), never bought.
+    assert!(records
+        .iter()
+        .any(|r| &r[0] == "part" && &r[item] == "washer" && &r[source] == "made"));
+    assert!(!csv.contains("star washer"));
+    // One total per section; the hardware total is the sum of its lines.
+    let total = |what: &str| -> u64 {
+        records
+            .iter()
+            .find(|r| &r[0] == "total" && &r[item] == what)
+            .map(|r| r[count].parse().expect("n"))
+            .expect(what)
+    };
+    let bought: u64 = want.iter().map(|w| w.2).sum();
+    assert_eq!(total("bought hardware"), bought);
+    assert_eq!(
+        total("stock"),
+        plan["sheets"].as_array().expect("sheets").len() as u64
+    );
+    // plan.json carries the same lines.
+    let in_plan: Vec<(String, String, u64)> = plan["parts_summary"]["hardware"]
+        .as_array()
+        .expect("hardware")
+        .iter()
+        .map(|h| {
+            (
+                h["item"].as_str().expect("i").to_string(),
+                h["designation"].as_str().expect("d").to_string(),
+                h["count"].as_u64().expect("n"),
+            )
+        })
+        .collect();
+    let got3: Vec<(String, String, u64)> = got.into_iter().map(|(a, b, c, _)| (a, b, c)).collect();
+    assert_eq!(in_plan, got3);
 }
 
 /// With --kerf-compensation every vertex of an outer contour lies half the

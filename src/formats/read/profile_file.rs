@@ -43,6 +43,9 @@ pub struct ProfileFile {
     pub stud: Option<Stud>,
     /// Splice plates where a strip is longer than the stock, or none.
     pub splice: Option<Splice>,
+    /// The bought bolts' property class; optional.
+    #[serde(default, skip_serializing_if = "Fasteners::is_empty")]
+    pub hardware: Fasteners,
     /// What the strips are cut from.
     pub stock: Stock,
     /// Cutting allowances and allowed part rotations.
@@ -189,6 +192,44 @@ pub struct Splice {
     pub bolts_per_side: u32,
     /// Bolt diameter, mm.
     pub bolt_diameter_mm: f64,
+}
+
+/// `hardware:` what the bought bolts are; every field optional.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Fasteners {
+    /// Property class of every bolt (ISO 898-1), `8.8` or `10.9` (quoted or
+    /// not); the takeoff gives nuts and washers to match and a tightening
+    /// torque per bolt.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "class_text"
+    )]
+    pub bolt_class: Option<String>,
+}
+
+impl Fasteners {
+    /// No field given (the section is then not written).
+    pub fn is_empty(&self) -> bool {
+        self.bolt_class.is_none()
+    }
+}
+
+/// A property class as text, written quoted (`"8.8"`) or as a number (`8.8`).
+fn class_text<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<String>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Class {
+        Text(String),
+        Number(f64),
+    }
+    Ok(Some(match Class::deserialize(d)? {
+        Class::Text(s) => s,
+        Class::Number(x) => format!("{x}"),
+    }))
 }
 
 /// `stock:` the material the parts are cut from, in one of three forms:
@@ -424,6 +465,7 @@ impl From<ProfileFile> for RawProfile {
             shear_block: f.shear_block.map(Into::into),
             stud: f.stud.map(Into::into),
             splice: f.splice.map(Into::into),
+            hardware: f.hardware.into(),
             stock: f.stock.into(),
             cutting: f.cutting.into(),
             check: f.check.into(),
@@ -551,6 +593,7 @@ same_fields!(
     }
 );
 same_fields!(CheckLimits = CheckLimits { max_sagitta_mm });
+same_fields!(Fasteners = Fasteners { bolt_class });
 same_fields!(
     Cutting = Cutting {
         kerf_mm,
@@ -609,6 +652,7 @@ impl From<&Profile> for ProfileFile {
             shear_block: p.shear_block.as_ref().map(Into::into),
             stud: p.stud.as_ref().map(Into::into),
             splice: p.splice.as_ref().map(Into::into),
+            hardware: (&p.hardware).into(),
             stock: (&p.stock).into(),
             cutting: (&p.cutting).into(),
             check: (&p.check).into(),

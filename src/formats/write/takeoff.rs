@@ -1,5 +1,7 @@
 //! The takeoff as JSON for tools and as CSV for spreadsheets (one header
-//! row, units in the column names, one `section` column).
+//! row, units in the column names, one `section` column, a `source`
+//! column: `made` for parts cut from stock, `bought` for stock and
+//! hardware).
 
 use crate::plan::round;
 use crate::plan::takeoff::Takeoff;
@@ -30,10 +32,13 @@ struct Row<'a> {
     unit_price: Option<f64>,
     cost: Option<f64>,
     currency: &'a str,
+    source: &'a str,
+    torque_nm: Option<f64>,
 }
 
 /// The takeoff as CSV: one header row, then parts, stock, hardware and a
-/// total row.
+/// total row per section (made parts: pieces, length, area, mass; bought
+/// hardware: pieces; stock: pieces and cost).
 pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let cur = t.currency.as_deref().unwrap_or("");
@@ -49,6 +54,7 @@ pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
             length_mm: Some(p.length_mm),
             area_m2: Some(p.area_m2),
             mass_kg: Some(p.mass_kg),
+            source: "made",
             ..Default::default()
         });
     }
@@ -61,6 +67,7 @@ pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
             unit_price: s.unit_price,
             cost: s.cost,
             currency: if s.cost.is_some() { cur } else { "" },
+            source: "bought",
             ..Default::default()
         });
     }
@@ -71,21 +78,36 @@ pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
             designation: &h.designation,
             count: Some(h.count),
             grip_mm: h.grip_mm,
+            source: "bought",
+            torque_nm: h.torque_nm,
             ..Default::default()
         });
     }
+    let tt = &t.totals;
     rows.push(Row {
         section: "total",
-        item: "all parts",
-        count: Some(t.totals.pieces),
-        length_mm: Some(round(t.totals.lamella_length_m * 1000.0, 1)),
-        mass_kg: Some(t.totals.mass_kg),
-        cost: t.totals.stock_cost,
-        currency: if t.totals.stock_cost.is_some() {
-            cur
-        } else {
-            ""
-        },
+        item: "made parts",
+        count: Some(tt.pieces),
+        length_mm: Some(round(tt.parts_length_m * 1000.0, 1)),
+        area_m2: Some(round(t.parts.iter().map(|p| p.area_m2).sum(), 4)),
+        mass_kg: Some(tt.mass_kg),
+        source: "made",
+        ..Default::default()
+    });
+    rows.push(Row {
+        section: "total",
+        item: "bought hardware",
+        count: Some(tt.hardware_pieces),
+        source: "bought",
+        ..Default::default()
+    });
+    rows.push(Row {
+        section: "total",
+        item: "stock",
+        count: Some(tt.stock_pieces),
+        cost: tt.stock_cost,
+        currency: if tt.stock_cost.is_some() { cur } else { "" },
+        source: "bought",
         ..Default::default()
     });
     for r in rows {

@@ -451,11 +451,11 @@ pub fn takeoff_page(t: &Takeoff, frame: &Frame) -> Page {
         .collect();
     top = small_table(c, frame, top, "Stock", &stock_cols, &rows);
     let hw_cols: [Column; 5] = [
-        ("hardware", 40.0, Align::Left),
+        ("hardware (bought)", 40.0, Align::Left),
         ("designation", 60.0, Align::Left),
         ("grip mm", 18.0, Align::Right),
         ("count", 18.0, Align::Right),
-        ("source", 24.0, Align::Left),
+        ("torque N·m", 24.0, Align::Right),
     ];
     let rows: Vec<Row> = t
         .hardware
@@ -467,7 +467,7 @@ pub fn takeoff_page(t: &Takeoff, frame: &Frame) -> Page {
                     h.designation.clone(),
                     h.grip_mm.map(|g| fixed(g, 1)).unwrap_or_default(),
                     h.count.to_string(),
-                    if h.made { "made (parts)" } else { "bought" }.into(),
+                    h.torque_nm.map(|m| fixed(m, 1)).unwrap_or_default(),
                 ],
                 None,
             )
@@ -477,7 +477,8 @@ pub fn takeoff_page(t: &Takeoff, frame: &Frame) -> Page {
     let tt = &t.totals;
     let cur = t.currency.clone().unwrap_or_default();
     let lines = [
-        format!("pieces to cut or saw: {}", tt.pieces),
+        format!("pieces to cut or saw (made): {}", tt.pieces),
+        format!("hardware to buy: {} pieces", tt.hardware_pieces),
         format!("lamella length: {} m", fixed(tt.lamella_length_m, 1)),
         format!("mass: {} kg", fixed(tt.mass_kg, 1)),
         format!("stock sheets: {}", tt.sheets),
