@@ -193,8 +193,8 @@ pub fn prepare(
             mesh.positions_mm.len()
         ),
     );
-    let precision_mm = mesh_precision_mm(&mesh, &curvatures);
     let cell_mm = median_edge_mm(&mesh);
+    let precision_mm = mesh_precision_mm(&mesh, cell_mm, &curvatures);
     let surface = if film {
         MeshSurface::with_patch_neighbours(&mesh, uv, &curvatures, FILM_PATCH_NEIGHBOURS)
     } else {
@@ -236,7 +236,7 @@ pub fn prepare(
 
 /// The precision of curves traced on a mesh, mm, before they are traced:
 /// the larger of the coordinates' rounding step and h⁴·κ³, with h the
-/// median edge length and κ the 95th percentile of the vertices' largest
+/// median edge length ([`median_edge_mm`], `cell_mm`) and κ the 95th percentile of the vertices' largest
 /// |principal curvature|. The design raises it to twice the traced curves'
 /// own roughness at the mesh's scale where that is larger
 /// ([`crate::geom::curve::roughness_mm`] over ±2 cells).
@@ -254,20 +254,23 @@ pub fn prepare(
 /// strip's smallest bending radius within 5 % and largest twist within 1 %
 /// of the closed form's; 40 mm cells (rounding noise in the tensors) and
 /// 100 mm cells (smoothing bias on strongly twisting curves) reach 7–11 %.
-pub fn mesh_precision_mm(mesh: &TriMesh, curvatures: &[crate::geom::surface::Curvature]) -> f64 {
+pub fn mesh_precision_mm(
+    mesh: &TriMesh,
+    cell_mm: f64,
+    curvatures: &[crate::geom::surface::Curvature],
+) -> f64 {
     let step = crate::design::mesh::curvature::coordinate_step_mm(mesh);
     let mut kappa: Vec<f64> = curvatures
         .iter()
         .map(|c| c.k1.abs().max(c.k2.abs()))
         .filter(|k| k.is_finite())
         .collect();
-    let h = median_edge_mm(mesh);
-    if h == 0.0 || kappa.is_empty() {
+    if cell_mm == 0.0 || kappa.is_empty() {
         return step;
     }
     let i95 = (kappa.len() * 95 / 100).min(kappa.len() - 1);
     let k95 = *kappa.select_nth_unstable_by(i95, f64::total_cmp).1;
-    step.max(h.powi(4) * k95.powi(3))
+    step.max(cell_mm.powi(4) * k95.powi(3))
 }
 
 /// The median edge length of a mesh, mm (0 for none).

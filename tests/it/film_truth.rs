@@ -58,6 +58,21 @@ fn worst_crossing_deg(net: &Network, an: &Analysis) -> (f64, usize) {
     (worst, count)
 }
 
+/// Every A×B crossing within 0.5° of 90° (when `claims.crossings`).
+fn crossings_within_half_a_degree(
+    what: &str,
+    net: &Network,
+    an: &Analysis,
+    claims: Claims,
+    failures: &mut Vec<String>,
+) {
+    let (worst, nodes) = worst_crossing_deg(net, an);
+    eprintln!("{what}: {nodes} crossings, worst {worst:.3}° from 90°");
+    if claims.crossings && worst > 0.5 {
+        failures.push(format!("{what}: a crossing {worst:.2}° from 90°"));
+    }
+}
+
 /// Per A/B strip of a traced film: (id, smallest bending radius mm, largest
 /// twist rad/mm, length mm) as lamella measures them and as the closed form
 /// gives them for the same stretch of the same line; the failures.
@@ -162,11 +177,7 @@ fn ring_film(dir: &Path, r_mm: f64, h_mm: f64, claims: Claims) -> Vec<String> {
     let (net, an) = trace(dir, &spec);
     let what = format!("rings {r_mm} mm ±{h_mm} mm (c = {c:.1} mm)");
     let mut failures = Vec::new();
-    let (worst, nodes) = worst_crossing_deg(&net, &an);
-    eprintln!("{what}: {nodes} crossings, worst {worst:.3}° from 90°");
-    if claims.crossings && worst > 0.5 {
-        failures.push(format!("{what}: a crossing {worst:.2}° from 90°"));
-    }
+    crossings_within_half_a_degree(&what, &net, &an, claims, &mut failures);
     let mut strips = Vec::new();
     for s in an.lamella_strips() {
         let curve = net.curves.iter().find(|c| c.id == s.id).unwrap();
@@ -247,27 +258,14 @@ fn enneper_film(tag: &str, claims: Claims) -> Vec<String> {
     let (net, an) = trace(&dir, &spec);
     let what = "Enneper r = 0.8";
     let mut failures = Vec::new();
-    let (worst, nodes) = worst_crossing_deg(&net, &an);
-    eprintln!("{what}: {nodes} crossings, worst {worst:.3}° from 90°");
-    if claims.crossings && worst > 0.5 {
-        failures.push(format!("{what}: a crossing {worst:.2}° from 90°"));
-    }
+    crossings_within_half_a_degree(what, &net, &an, claims, &mut failures);
     let mut strips = Vec::new();
     for s in an.lamella_strips() {
         let curve = net.curves.iter().find(|c| c.id == s.id).unwrap();
         let pts = &curve.points_world_mm;
         let uvs: Vec<DVec2> = pts.iter().map(|p| invert(&surface, *p)).collect();
         // The family: the diagonal coordinate that varies least along it.
-        let spread = |f: &dyn Fn(DVec2) -> f64| {
-            let (lo, hi) = uvs
-                .iter()
-                .map(|q| f(*q))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                    (a.min(x), b.max(x))
-                });
-            hi - lo
-        };
-        let along_p = spread(&|q| q.x + q.y) < spread(&|q| q.x - q.y);
+        let along_p = keeps_u_plus_v(&uvs);
         type Coordinate = fn(DVec2) -> f64;
         let (fixed, moving): (Coordinate, Coordinate) = if along_p {
             (|q| q.x + q.y, |q| q.x - q.y)

@@ -52,16 +52,7 @@ fn enneper_mesh_error(n: usize) -> (f64, usize) {
         let uvs: Vec<DVec2> = c.points.iter().map(|p| invert(&surface, *p)).collect();
         let start = uvs[0];
         // The family: the diagonal coordinate that varies least along it.
-        let spread = |f: &dyn Fn(DVec2) -> f64| {
-            let (lo, hi) = uvs
-                .iter()
-                .map(|q| f(*q))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                    (a.min(x), b.max(x))
-                });
-            hi - lo
-        };
-        let along_p = spread(&|q| q.x + q.y) < spread(&|q| q.x - q.y);
+        let along_p = keeps_u_plus_v(&uvs);
         for (q, pt) in uvs.iter().zip(&c.points) {
             let exact = diagonal_closed_form(start, *q, along_p);
             let e = pt.distance(surface.point(exact));

@@ -271,3 +271,19 @@ pub fn invert(surface: &dyn lamella::design::surface::Surface, p: DVec3) -> DVec
     }
     q
 }
+
+/// Whether a line of Enneper's or the catenoid's asymptotic net, given by
+/// its parameters, keeps u + v (rather than u − v) the more nearly
+/// constant: which of the two diagonal families it belongs to.
+pub fn keeps_u_plus_v(uvs: &[DVec2]) -> bool {
+    let spread = |f: &dyn Fn(DVec2) -> f64| {
+        let (lo, hi) = uvs
+            .iter()
+            .map(|q| f(*q))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+        hi - lo
+    };
+    spread(&|q| q.x + q.y) < spread(&|q| q.x - q.y)
+}
