@@ -11,9 +11,10 @@
 //! bounding boxes, in an allowed rotation, onto a skyline of each sheet's
 //! free space (the lane tails first), first sheet with room, else a new
 //! sheet; star washers go first in [`lattice`] blocks, each where it wastes
-//! least (`skyline.rs`). Then [`outline::place_bands`] places the edge bands
-//! again by their true outlines (stacked in each other's bows, into the
-//! lamella sheets' free width), and [`outline::eliminate`] empties sheets
+//! least (`skyline.rs`). Then `raster.rs` places the edge bands again by
+//! their true outlines on occupancy rasters (the most bowed first, stacked
+//! in each other's bows and under them, into the lamella sheets' lane
+//! tails), and [`outline::eliminate`] empties sheets
 //! holding no lamella into the free space of the others by the parts' true
 //! outlines, where all of a sheet's parts find a place; with several sizes,
 //! on each first-choice candidate before the cheapest is chosen.
@@ -53,6 +54,7 @@ mod lanes;
 pub mod lattice;
 mod model;
 pub mod outline;
+mod raster;
 mod sizes;
 mod skyline;
 mod stock;
@@ -83,7 +85,7 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
             gap_mm: ctx.gap,
             rotations_deg: &ctx.rotations,
         };
-        outline::place_bands(setting, sheets);
+        raster::place_bands(setting, sheets);
         outline::eliminate(setting, sheets);
     };
     let (mut sheets, lanes_used) = if coil && st.sizes[0].length_mm.is_none() {

@@ -1,13 +1,7 @@
-//! Parts by their true outlines: the edge-band pass
-//! ([`place_bands`]) and the sheet-elimination pass ([`eliminate`]) after
-//! the lane and skyline nest, the true-shape distance `check_nest` uses,
-//! and [`grown_outline`] (a part's outline grown by half the gap, which the
-//! sparrow instance exports too).
-//!
-//! Edge bands are taken off the sheets and placed again, longest first, on
-//! the first sheet where the search (rows first: the lowest y, then the
-//! lowest x, slid to contact) finds a place, so bowed bands stack in each
-//! other's bows.
+//! Parts by their true outlines: the sheet-elimination pass
+//! ([`eliminate`]) after the lane, skyline and edge-band nests, the
+//! true-shape distance `check_nest` uses, and [`grown_outline`] (a part's
+//! outline grown by half the gap, which the sparrow instance exports too).
 //!
 //! For each sheet holding no lamella, fewest-filled first, every one of its
 //! parts is moved into the free space of the other sheets by its outline:
@@ -59,9 +53,6 @@ pub const MAX_TARGETS: usize = 8;
 const PROBES: usize = 16;
 /// Collision queries of one pass at most (a deterministic bound on its time).
 pub const MAX_QUERIES: u64 = 1_000_000;
-/// Collision queries of the edge-band pass at most; past it, the bands
-/// left each take a sheet of their own.
-pub const MAX_BAND_QUERIES: u64 = 1_500_000;
 
 /// What induces a hazard on a sheet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -316,20 +307,11 @@ impl<'a> Pass<'a> {
         })
     }
 
-    /// The bottom-left free place of a part on `b`: (x, y, rotation index).
-    /// `rows_first`: the lowest y first, then the lowest x (edge bands,
-    /// stacked across the sheet); else the lowest x first.
-    fn find(
-        &self,
-        b: &Board,
-        shapes: &[Shape],
-        s: &SheetNest,
-        rows_first: bool,
-    ) -> Option<(f64, f64, usize)> {
+    /// The bottom-left free place of a part on `b` (the lowest x, then the
+    /// lowest y): (x, y, rotation index).
+    fn find(&self, b: &Board, shapes: &[Shape], s: &SheetNest) -> Option<(f64, f64, usize)> {
         let m = self.margin;
         let (lu, wu) = (s.length_mm - 2.0 * m, s.width_mm - 2.0 * m);
-        // Lexicographic order of places: (major, minor).
-        let key = |x: f64, y: f64| if rows_first { (y, x) } else { (x, y) };
         let mut best: Option<(f64, f64, usize)> = None;
         for (r, shape) in shapes.iter().enumerate() {
             let (w, h) = (shape.bbox.2 - shape.bbox.0, shape.bbox.3 - shape.bbox.1);
@@ -349,23 +331,14 @@ impl<'a> Pass<'a> {
                     (m + i as f64 * step).min(hi)
                 }
             };
-            let (n_major, n_minor) = if rows_first { (ny, nx) } else { (nx, ny) };
             let mut found = None;
-            'scan: for i in 0..=n_major {
-                let major = if rows_first {
-                    at(i, ny, y_max)
-                } else {
-                    at(i, nx, x_max)
-                };
-                if best.is_some_and(|bb| major > key(bb.0, bb.1).0 + 1e-9) {
+            'scan: for i in 0..=nx {
+                let x = at(i, nx, x_max);
+                if best.is_some_and(|bb| x > bb.0 + 1e-9) {
                     break;
                 }
-                for j in 0..=n_minor {
-                    let (x, y) = if rows_first {
-                        (at(j, nx, x_max), major)
-                    } else {
-                        (major, at(j, ny, y_max))
-                    };
+                for j in 0..=ny {
+                    let y = at(j, ny, y_max);
                     if self.free_at(b, shape, x, y) {
                         found = Some((x, y));
                         break 'scan;
@@ -394,8 +367,7 @@ impl<'a> Pass<'a> {
                     }
                 }
             }
-            let (k, kb) = (key(x, y), best.map(|bb| key(bb.0, bb.1)));
-            if kb.is_none_or(|kb| k.0 < kb.0 - 1e-9 || (k.0 <= kb.0 + 1e-9 && k.1 < kb.1 - 1e-9)) {
+            if best.is_none_or(|bb| x < bb.0 - 1e-9 || (x <= bb.0 + 1e-9 && y < bb.1 - 1e-9)) {
                 best = Some((x, y, r));
             }
         }
@@ -523,187 +495,6 @@ pub fn eliminate(setting: Setting, sheets: &mut Vec<SheetNest>) -> usize {
     dropped
 }
 
-/// Part `i` placed on `b` with its turned outline's box lower-left corner
-/// at (x, y): the placement, registered on the board.
-fn put_on(
-    pass: &Pass,
-    b: &mut Board,
-    i: usize,
-    copy: u32,
-    sh: &Shape,
-    x: f64,
-    y: f64,
-) -> Option<Placement> {
-    let p = &pass.kit.parts[i];
-    let new = Placement {
-        part: i,
-        copy,
-        x_mm: x - sh.bbox.0,
-        y_mm: y - sh.bbox.1,
-        rotation_deg: sh.rot,
-    };
-    let n = b.placed.len();
-    pass.register(&mut b.engine, n, p, &new)?;
-    let o = placed_outline(p, &new);
-    let bb = bounds(&o);
-    b.placed.push((o, bb));
-    b.free -= pass.areas[i];
-    Some(new)
-}
-
-/// The edge-band pass: every edge band (`PartKind::EdgeStrip`) taken off
-/// the sheets and placed again by its true outline, longest first, on the
-/// first sheet where [`Pass::find`] gives it a place (the sheets as they
-/// are, then the sheets it left empty, in order), so bowed bands nest into
-/// each other's bows and into the lamella sheets' free space; a band the
-/// search finds no place for goes back to its old place where
-/// [`Pass::confirm`] allows. Sheets left without a part are dropped. Where
-/// a band finds no place (or a jagua-rs polygon cannot be made) the sheets
-/// stay as they were. Past
-/// [`MAX_BAND_QUERIES`] each band left goes alone onto a sheet left empty,
-/// in its lower-left corner. Returns how many sheets were dropped.
-pub fn place_bands(setting: Setting, sheets: &mut Vec<SheetNest>) -> usize {
-    let Setting {
-        kit,
-        margin_mm: margin,
-        ..
-    } = setting;
-    let is_band = |pl: &Placement| kit.parts[pl.part].kind == PartKind::EdgeStrip;
-    // Each band with the sheet it was on.
-    let mut bands: Vec<(usize, Placement)> = sheets
-        .iter()
-        .enumerate()
-        .flat_map(|(k, s)| {
-            s.placements
-                .iter()
-                .filter(|pl| is_band(pl))
-                .map(move |&pl| (k, pl))
-        })
-        .collect();
-    if bands.is_empty() {
-        return 0;
-    }
-    let pass = Pass::new(setting, MAX_BAND_QUERIES);
-    // Longest first (the outline's longer box side), ties by index.
-    let len = |pl: &Placement| {
-        let (x0, y0, x1, y1) = bounds(&kit.parts[pl.part].outline_part_mm);
-        (x1 - x0).max(y1 - y0)
-    };
-    bands.sort_by(|(_, a), (_, b)| {
-        len(b)
-            .total_cmp(&len(a))
-            .then(a.part.cmp(&b.part))
-            .then(a.copy.cmp(&b.copy))
-    });
-    let mut work: Vec<SheetNest> = Vec::with_capacity(sheets.len());
-    // Where each sheet went: its index in `work`, if there.
-    let mut at_work: Vec<Option<usize>> = vec![None; sheets.len()];
-    let mut spare: Vec<(usize, SheetNest)> = Vec::new();
-    for (k, s) in sheets.iter().enumerate() {
-        let mut s = s.clone();
-        s.placements.retain(|pl| !is_band(pl));
-        if s.placements.is_empty() {
-            spare.push((k, s));
-        } else {
-            at_work[k] = Some(work.len());
-            work.push(s);
-        }
-    }
-    let Some(mut boards) = work
-        .iter()
-        .map(|s| pass.board(s))
-        .collect::<Option<Vec<Board>>>()
-    else {
-        return 0;
-    };
-    // (part, sheet) where a copy of the part found no place: the later
-    // copies will not either (the sheet only fills up).
-    let mut failed: std::collections::HashSet<(usize, usize)> = Default::default();
-    for (home, pl) in bands {
-        let Some(shapes) = pass.shapes_of(pl.part) else {
-            return 0;
-        };
-        let area = pass.areas[pl.part];
-        let mut done = false;
-        for t in 0..work.len() {
-            if boards[t].free < area || failed.contains(&(pl.part, t)) {
-                continue;
-            }
-            if let Some((x, y, r)) = pass.find(&boards[t], &shapes, &work[t], true) {
-                let Some(new) = put_on(&pass, &mut boards[t], pl.part, pl.copy, &shapes[r], x, y)
-                else {
-                    return 0;
-                };
-                work[t].placements.push(new);
-                done = true;
-                break;
-            }
-            failed.insert((pl.part, t));
-        }
-        if done {
-            continue;
-        }
-        // Back where the bounding-box nest had it, if that is still free.
-        if let (Some(t), Some(r)) = (
-            at_work[home],
-            shapes.iter().position(|sh| sh.rot == pl.rotation_deg),
-        ) {
-            let sh = &shapes[r];
-            let (x, y) = (pl.x_mm + sh.bbox.0, pl.y_mm + sh.bbox.1);
-            // (Its neighbours there may be just the gap away, closer than
-            // the engine's polygons allow: the f64 test alone.)
-            if pass.confirm(&boards[t], sh, x, y) {
-                let Some(new) = put_on(&pass, &mut boards[t], pl.part, pl.copy, sh, x, y) else {
-                    return 0;
-                };
-                work[t].placements.push(new);
-                continue;
-            }
-        }
-        // A sheet it left empty: the first that holds it.
-        for k in 0..spare.len() {
-            let s = &spare[k].1;
-            let Some(mut b) = pass.board(s) else {
-                return 0;
-            };
-            let at = if pass.exhausted() {
-                corner(&shapes, s, margin)
-            } else {
-                pass.find(&b, &shapes, s, true)
-            };
-            let Some((x, y, r)) = at else {
-                continue;
-            };
-            let Some(new) = put_on(&pass, &mut b, pl.part, pl.copy, &shapes[r], x, y) else {
-                return 0;
-            };
-            let (orig, mut s) = spare.remove(k);
-            s.placements.push(new);
-            at_work[orig] = Some(work.len());
-            work.push(s);
-            boards.push(b);
-            done = true;
-            break;
-        }
-        if !done {
-            return 0;
-        }
-    }
-    let dropped = sheets.len() - work.len();
-    *sheets = work;
-    dropped
-}
-
-/// The lower-left corner of an empty sheet `s` for the first of `shapes`
-/// whose box fits its usable area: (x, y, rotation index).
-fn corner(shapes: &[Shape], s: &SheetNest, m: f64) -> Option<(f64, f64, usize)> {
-    let (lu, wu) = (s.length_mm - 2.0 * m, s.width_mm - 2.0 * m);
-    shapes
-        .iter()
-        .position(|sh| sh.bbox.2 - sh.bbox.0 <= lu + 1e-9 && sh.bbox.3 - sh.bbox.1 <= wu + 1e-9)
-        .map(|r| (m, m, r))
-}
-
 /// Places for every part of sheet `k` on the other sheets' boards (which
 /// then hold them): (sheet, placement); `None` (the boards as they were)
 /// where some part finds none.
@@ -786,7 +577,7 @@ fn try_empty(
             if b.free < area {
                 continue;
             }
-            let Some((x, y, r)) = pass.find(b, &shapes, &sheets[t], false) else {
+            let Some((x, y, r)) = pass.find(b, &shapes, &sheets[t]) else {
                 continue;
             };
             let sh = &shapes[r];
