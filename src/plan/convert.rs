@@ -504,6 +504,7 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
                 edge: f.edge.map(|e| match e {
                     SlotEdge::Top => PlanSlotEdge::Top,
                     SlotEdge::Bottom => PlanSlotEdge::Bottom,
+                    SlotEdge::End => PlanSlotEdge::End,
                 }),
                 angle_range_deg: f
                     .angle_range_deg
