@@ -220,8 +220,7 @@ pub fn strip_parts(
             (s - r, s + r)
         })
         .collect();
-    let all_zones: Vec<(f64, f64)> = zones.iter().chain(&end_zones).copied().collect();
-    let cuts = splice_cuts(profile, strip, &all_zones, stretch).map_err(fail)?;
+    let cuts = splice_cuts(profile, strip, (&zones, &end_zones), stretch).map_err(fail)?;
     let blocks = block_stations(
         profile,
         strip,
@@ -472,11 +471,12 @@ fn stretch(strip: &StripGeometry, offsets: &[LamellaOffset]) -> f64 {
 /// stretch, so (stock − margins)/stretch bounds every piece on every
 /// lamella line. The stock is the longest usable length of any size (a
 /// lamella needs only one size it fits); a coil cut to any length never
-/// splices.
+/// splices. Cuts come from the stretches between node `zones`; a cut
+/// whose plate would reach into an end slot (`end_zones`) is dropped.
 fn splice_cuts(
     profile: &Profile,
     strip: &StripGeometry,
-    zones: &[(f64, f64)],
+    (zones, end_zones): (&[Zone], &[Zone]),
     stretch: f64,
 ) -> std::result::Result<Vec<f64>, Refusal> {
     let allowance = profile.section.end_allowance_mm;
@@ -496,7 +496,10 @@ fn splice_cuts(
             ));
         };
         let need = 0.5 * sp.plate_length_mm + profile.joint.slot_clearance_mm;
-        let candidates = cut_candidates(zones, strip.length_mm, need);
+        // The candidates between the node zones, less those whose plate
+        // would reach into an end slot.
+        let mut candidates = cut_candidates(zones, strip.length_mm, need);
+        candidates.retain(|&c| end_zones.iter().all(|z| c <= z.0 - need || c >= z.1 + need));
         place_cuts(&candidates, strip.length_mm, allowance, usable).map_err(|at| {
             (
                 None,

@@ -797,8 +797,9 @@ pub struct PlanNode {
     pub gap_mm: f64,
     /// What joins the two curves, as the node schedule names it: the
     /// star washer's part id (`W90`), `ST` (a stud), `slots`, `bolt`, or
-    /// `edge` for a node on an edge strip; empty before the parts are
-    /// made. Not in plan.json.
+    /// for a node on an edge strip `edge bolt` (its band has the edge
+    /// bolt's hole there) or `edge slot`; empty before the parts are made.
+    /// Not in plan.json.
     #[serde(skip)]
     pub joint: String,
 }
