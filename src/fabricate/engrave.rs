@@ -292,6 +292,17 @@ fn engrave_other(p: &mut Part, c: f64) -> Option<String> {
             anchors.push(Point::new(x0 + fx * (x1 - x0), y0 + fy * (y1 - y0)));
         }
     }
+    // Then, for narrow parts (a small plate's strip between its holes and
+    // its edge), every twentieth of the height.
+    for k in 1..20 {
+        let fy = f64::from(k) / 20.0;
+        if [0.5, 0.25, 0.75, 0.1, 0.9].contains(&fy) {
+            continue;
+        }
+        for fx in [0.5, 0.25, 0.75, 0.1, 0.9] {
+            anchors.push(Point::new(x0 + fx * (x1 - x0), y0 + fy * (y1 - y0)));
+        }
+    }
     for a in anchors {
         if let Some(l) = placer.text(&p.id, a, &size) {
             p.engraving = vec![l.engraving];

@@ -324,9 +324,9 @@ fn edge_what(plan: &Plan, edge: &str) -> String {
         .flat_map(|p| &p.features)
         .any(|f| f.hole_use == Some(crate::plan::PlanHoleUse::EdgeNode));
     let plates = mine(plan, edge, "splice_plate").count();
-    let mut what = String::from("into end slots");
+    let mut what = String::from("end slots");
     if bolted {
-        what.push_str(", bolt at nodes");
+        what.push_str(", bolts");
     }
     match plates {
         0 => {}
