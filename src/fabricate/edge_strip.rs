@@ -23,11 +23,14 @@
 //! from start to end, the +y edge back; the ends are square to the centre
 //! line. Collinear vertices are dropped (a straight band is 4 vertices).
 //!
-//! Holes: one at every node of the edge (where an A or B strip ends on it),
-//! on the centre line at the node's station, of diameter node bolt + hole
-//! clearance when the profile has a node bolt, else the stud fastener, else
-//! [`DEFAULT_EDGE_HOLE_MM`]. Nodes closer than [`SHARED_HOLE_MM`] along the
-//! edge share one hole (each keeps its feature).
+//! Holes: where the edge joint is bolted ([`crate::profile::EdgeJointKind`],
+//! docs/fabrication.md "Edge joints"), one at every node of the edge (where
+//! an A or B strip ends on it), on the centre line at the node's station, of
+//! diameter edge bolt + hole clearance; none where the lamellas' end slots
+//! alone hold the band. Nodes closer than [`SHARED_HOLE_MM`] along the edge
+//! share one hole (each keeps its feature). A band split into pieces has a
+//! splice plate at every cut (the band itself over the plate's length) and
+//! the splice's bolt holes on the centre line in the plate and both pieces.
 //!
 //! Part frame: the band is turned so that the chord from the start of its
 //! centre line (station −allowance) to its end runs along +x, then shifted
@@ -40,6 +43,7 @@
 use crate::analysis::strip::Curvatures;
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
+use crate::fabricate::lamella::BOLT_HOLE_CLEARANCE_MM;
 use crate::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind, ARC_TOLERANCE_MM};
 use crate::geom::plane::{bounds, segments_intersect, Arithmetic};
 use crate::network::Family;
@@ -49,9 +53,6 @@ use std::path::Path;
 
 /// Longest integration step along the centre line, mm.
 pub const EDGE_STEP_MM: f64 = 5.0;
-
-/// Hole diameter where the profile has neither node bolt nor stud, mm.
-pub const DEFAULT_EDGE_HOLE_MM: f64 = 5.0;
 
 /// Nodes closer than this along an edge share one hole, mm.
 pub const SHARED_HOLE_MM: f64 = 0.1;
@@ -68,6 +69,8 @@ pub struct EdgeNode {
     pub crossing: String,
     /// Station of the node on the edge curve, mm.
     pub station_mm: f64,
+    /// Acute angle between the strip and the edge there, degrees.
+    pub angle_deg: f64,
 }
 
 /// An edge curve as the unroller needs it: plain data from its strip.
@@ -107,6 +110,11 @@ pub fn edge_curves(analysis: &Analysis) -> Vec<EdgeCurve> {
                         .get(cn.crossing)
                         .map_or_else(String::new, |c| c.id.clone()),
                     station_mm: cn.station_mm,
+                    angle_deg: analysis
+                        .topology
+                        .nodes
+                        .get(cn.node)
+                        .map_or(90.0, |n| n.angle_deg),
                 })
                 .collect(),
         })
@@ -222,14 +230,40 @@ pub fn unroll_centre_line(
     out
 }
 
-/// The hole diameter at an edge's nodes: node bolt + hole clearance, else
-/// the stud fastener, else [`DEFAULT_EDGE_HOLE_MM`].
-pub fn edge_hole_diameter_mm(profile: &Profile) -> f64 {
-    match (&profile.node_bolt, &profile.stud) {
-        (Some(b), _) => b.diameter_mm + b.hole_clearance_mm,
-        (None, Some(s)) => s.fastener_diameter_mm,
-        (None, None) => DEFAULT_EDGE_HOLE_MM,
-    }
+/// The hole diameter at an edge's nodes where the edge joint is bolted
+/// ([`Profile::edge_bolt_mm`]): the edge bolt + its hole clearance; none
+/// for an end slot alone.
+pub fn edge_hole_diameter_mm(profile: &Profile) -> Option<f64> {
+    profile
+        .edge_bolt_mm()
+        .map(|d| d + profile.edge_bolt_clearance_mm())
+}
+
+/// The diameter of a band splice's bolt holes, mm (the profile's splice
+/// bolt + [`BOLT_HOLE_CLEARANCE_MM`]), where the profile has splices.
+pub fn band_splice_hole_mm(profile: &Profile) -> Option<f64> {
+    profile
+        .splice
+        .as_ref()
+        .map(|sp| sp.bolt_diameter_mm + BOLT_HOLE_CLEARANCE_MM)
+}
+
+/// The stations of a splice's bolt holes about a cut at `cut_mm`:
+/// `bolts_per_side` pairs evenly over the plate, as on lamellas.
+pub fn splice_hole_stations_mm(profile: &Profile, cut_mm: f64) -> Vec<f64> {
+    let Some(sp) = &profile.splice else {
+        return Vec::new();
+    };
+    let n = sp.bolts_per_side.max(1) as usize;
+    let half = 0.5 * sp.plate_length_mm;
+    let mut out: Vec<f64> = (0..n)
+        .flat_map(|j| {
+            let d = half * (j as f64 + 0.5) / n as f64;
+            [cut_mm - d, cut_mm + d]
+        })
+        .collect();
+    out.sort_by(f64::total_cmp);
+    out
 }
 
 /// The flat band of one edge (see the module doc).
@@ -244,21 +278,25 @@ pub fn edge_strip(profile: &Profile, edge: &EdgeCurve) -> Result<Part> {
     edge_piece(
         profile,
         edge,
-        -allowance,
-        edge.length_mm + allowance,
+        (-allowance, edge.length_mm + allowance),
         edge_strip_id(&edge.id),
+        PartKind::EdgeStrip,
+        &[],
     )
 }
 
 /// The flat band of the piece of one edge between two stations (the ends
 /// of the edge extended straight by the end allowance), with the holes of
-/// the nodes inside it.
+/// the nodes inside it (a band piece, when bolted) and the splice holes at
+/// `splice_mm` (stations inside it): a band piece (`kind` edge strip) or a
+/// band splice plate (`kind` splice plate, no node holes).
 fn edge_piece(
     profile: &Profile,
     edge: &EdgeCurve,
-    from_mm: f64,
-    to_mm: f64,
+    (from_mm, to_mm): (f64, f64),
     id: String,
+    kind: PartKind,
+    splice_mm: &[f64],
 ) -> Result<Part> {
     let fail = |node: Option<usize>, what: String| {
         Error::fabrication(&profile.source, &edge.id, node, what)
@@ -281,11 +319,11 @@ fn edge_piece(
             ),
         ));
     }
-    let diameter = edge_hole_diameter_mm(profile);
-    if let Some(n) = edge.nodes.first().filter(|_| diameter >= h) {
+    let diameter = edge_hole_diameter_mm(profile).filter(|_| kind == PartKind::EdgeStrip);
+    if let (Some(n), Some(d)) = (edge.nodes.first(), diameter.filter(|&d| d >= h)) {
         return Err(fail(
             Some(n.id),
-            format!("the {diameter} mm hole does not fit the {h} mm band height"),
+            format!("the {d} mm hole does not fit the {h} mm band height"),
         ));
     }
     // Steps: EDGE_STEP_MM, shorter where a chord of the inner edge would
@@ -299,9 +337,18 @@ fn edge_piece(
     let nodes: Vec<&EdgeNode> = edge
         .nodes
         .iter()
-        .filter(|n| n.station_mm > from_mm && n.station_mm < to_mm)
+        .filter(|n| diameter.is_some() && n.station_mm > from_mm && n.station_mm < to_mm)
         .collect();
-    let stations: Vec<f64> = nodes.iter().map(|n| n.station_mm).collect();
+    let splice_mm: Vec<f64> = splice_mm
+        .iter()
+        .copied()
+        .filter(|&s| s > from_mm && s < to_mm)
+        .collect();
+    let stations: Vec<f64> = nodes
+        .iter()
+        .map(|n| n.station_mm)
+        .chain(splice_mm.iter().copied())
+        .collect();
     let line = unroll_centre_line(&edge.samples, length, from_mm, to_mm, &stations, step);
     // Turn the chord onto +x.
     let (first, last) = (line[0].point, line[line.len() - 1].point);
@@ -341,31 +388,45 @@ fn edge_piece(
             .min(line.len() - 1);
         place(line[i].point) + shift
     };
+    let hole = |s: f64, d: f64, usage: HoleUse, node: Option<&EdgeNode>| Feature {
+        kind: FeatureKind::Hole,
+        hole_use: Some(usage),
+        node: node.map(|n| n.id),
+        crossing: node.map(|n| n.crossing.clone()),
+        center_part_mm: centre_at(s),
+        width_mm: d,
+        depth_mm: 0.0,
+        edge: None,
+        angle_range_deg: None,
+        station_mm: Some(s),
+    };
     let mut features: Vec<Feature> = nodes
         .iter()
-        .map(|n| Feature {
-            kind: FeatureKind::Hole,
-            hole_use: Some(HoleUse::EdgeNode),
-            node: Some(n.id),
-            crossing: Some(n.crossing.clone()),
-            center_part_mm: centre_at(n.station_mm),
-            width_mm: diameter,
-            depth_mm: 0.0,
-            edge: None,
-            angle_range_deg: None,
-            station_mm: Some(n.station_mm),
+        .map(|n| {
+            hole(
+                n.station_mm,
+                diameter.unwrap_or_default(),
+                HoleUse::EdgeNode,
+                Some(n),
+            )
         })
         .collect();
+    let splice_d = band_splice_hole_mm(profile).unwrap_or_default();
+    features.extend(
+        splice_mm
+            .iter()
+            .map(|&s| hole(s, splice_d, HoleUse::Splice, None)),
+    );
     features.sort_by(|a, b| {
         a.center_part_mm
             .x
             .total_cmp(&b.center_part_mm.x)
             .then(a.center_part_mm.y.total_cmp(&b.center_part_mm.y))
     });
-    holes_apart(&profile.source, &edge.id, &features, diameter)?;
+    holes_apart(&profile.source, &edge.id, &features)?;
     Ok(Part {
         id,
-        kind: PartKind::EdgeStrip,
+        kind,
         strip: Some(edge.id.clone()),
         lamella: None,
         count: 1,
@@ -381,16 +442,17 @@ fn edge_piece(
 
 /// Features closer than [`SHARED_HOLE_MM`] share one hole; holes that
 /// overlap otherwise are an error.
-fn holes_apart(profile: &Path, edge: &str, features: &[Feature], diameter: f64) -> Result<()> {
-    let mut centres: Vec<(Point, usize)> = Vec::new();
+fn holes_apart(profile: &Path, edge: &str, features: &[Feature]) -> Result<()> {
+    let mut centres: Vec<(Point, usize, f64)> = Vec::new();
     for f in features {
         let node = f.node.unwrap_or_default();
+        let diameter = f.width_mm;
         match centres
             .iter()
-            .find(|(c, _)| c.distance(f.center_part_mm) < diameter)
+            .find(|(c, _, d)| c.distance(f.center_part_mm) < 0.5 * (diameter + d))
         {
-            Some((c, _)) if c.distance(f.center_part_mm) < SHARED_HOLE_MM => {}
-            Some((_, other)) => {
+            Some((c, _, _)) if c.distance(f.center_part_mm) < SHARED_HOLE_MM => {}
+            Some((_, other, _)) => {
                 return Err(Error::fabrication(
                     profile,
                     edge,
@@ -398,7 +460,7 @@ fn holes_apart(profile: &Path, edge: &str, features: &[Feature], diameter: f64) 
                     format!("its {diameter} mm hole overlaps the hole of node {other}"),
                 ))
             }
-            None => centres.push((f.center_part_mm, node)),
+            None => centres.push((f.center_part_mm, node, diameter)),
         }
     }
     Ok(())
@@ -478,24 +540,59 @@ fn segments_touch((a, b): (Point, Point), (c, d): (Point, Point), adjacent: bool
 /// The most pieces an edge is split into before giving up.
 const MAX_EDGE_PIECES: usize = 500;
 
+/// How far a band cut keeps from an edge node along the band, mm: the
+/// splice plate's half length (when the profile has splices) plus the
+/// crossing strip's footprint on the band (its width, per_strip × t + gap,
+/// over sin φ, and the band's height × |cot φ| as the strip crosses it
+/// obliquely) and the slot clearance; without a splice, the node hole's
+/// diameter (or the footprint alone when the band has no holes).
+pub fn band_cut_keep_mm(profile: &Profile, node: &EdgeNode) -> f64 {
+    let l = &profile.section;
+    let (sin, cos) = node.angle_deg.to_radians().sin_cos();
+    let sin = sin.max(1e-3);
+    let strip_w = f64::from(l.per_strip) * l.thickness_mm + l.gap_mm;
+    let footprint =
+        0.5 * strip_w / sin + 0.5 * l.height_mm * cos.abs() / sin + profile.joint.slot_clearance_mm;
+    match &profile.splice {
+        Some(sp) => 0.5 * sp.plate_length_mm + footprint,
+        None => edge_hole_diameter_mm(profile).map_or(footprint, |d| d.max(footprint)),
+    }
+}
+
+/// Part id of the splice plate at the `k`-th cut (1-based) of an edge's
+/// band: `SP-<edge id>.<k>` (it joins pieces k and k + 1).
+pub fn band_splice_id(edge_id: &str, k: usize) -> String {
+    format!("SP-{edge_id}.{k}")
+}
+
 /// The edge strips of an analysis, in strip order: each edge as one band,
 /// or, where that band fits no stock size's usable area in an allowed
-/// rotation (too long, or too bowed), split into the fewest pieces of equal
-/// length that do, each cut at least a hole diameter from every hole
-/// (`E-edge00.1`, `E-edge00.2`, …; end allowances only at the edge's ends).
+/// rotation (too long, or too bowed), or bows more than the profile's
+/// `edge_joint.max_band_bow_mm`, split into the fewest pieces of about
+/// equal length that do (`E-edge00.1`, `E-edge00.2`, …; end allowances only
+/// at the edge's ends). Every cut keeps [`band_cut_keep_mm`] from every
+/// edge node; where the profile has splices each cut has a splice plate
+/// (`SP-edge00.1`, the band itself between cut ± half the plate length,
+/// so it lies on both pieces exactly) with the splice's bolt holes on the
+/// centre line, at the same stations as in the two pieces.
 pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> {
     let c = &profile.cutting;
-    // Some size must hold the band (the nest picks which).
+    let h = profile.section.height_mm;
+    // Some size must hold the band (the nest picks which), and it bows no
+    // more than the profile allows.
     let fits = |p: &Part| {
         profile.stock.holds(
             p.length_mm,
             p.height_mm,
             c.edge_margin_mm,
             &c.allowed_rotations_deg,
-        )
+        ) && profile
+            .edge_joint
+            .max_band_bow_mm
+            .is_none_or(|b| p.height_mm - h <= b + 1e-9)
     };
     let allowance = profile.section.end_allowance_mm;
-    let diameter = edge_hole_diameter_mm(profile);
+    let plate_mm = profile.splice.as_ref().map(|sp| sp.plate_length_mm);
     let mut out = Vec::new();
     for e in edge_curves(analysis) {
         // A whole band that folds or overlaps itself may still be cut into
@@ -510,51 +607,61 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
             _ => {}
         }
         let (start, end) = (-allowance, e.length_mm + allowance);
+        // Where a cut may go: the band less every node's keep and, with a
+        // plate, half a plate at either end.
+        let end_keep = plate_mm.map_or(0.0, |l| 0.5 * l) + 1.0;
+        let mut busy: Vec<(f64, f64)> = e
+            .nodes
+            .iter()
+            .map(|n| {
+                let k = band_cut_keep_mm(profile, n);
+                (n.station_mm - k, n.station_mm + k)
+            })
+            .collect();
+        busy.push((f64::NEG_INFINITY, start + end_keep));
+        busy.push((end - end_keep, f64::INFINITY));
+        busy.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut free: Vec<(f64, f64)> = Vec::new();
+        let mut from = f64::NEG_INFINITY;
+        for &(lo, hi) in &busy {
+            if lo > from {
+                free.push((from, lo));
+            }
+            from = from.max(hi);
+        }
+        // The free point nearest `x`.
+        let snap = |x: f64| -> Option<f64> {
+            free.iter()
+                .map(|&(lo, hi)| x.clamp(lo, hi))
+                .min_by(|a, b| (a - x).abs().total_cmp(&(b - x).abs()))
+        };
         let mut done = false;
         for n in 2..=MAX_EDGE_PIECES {
-            // Even cuts, each moved off any hole it would cut (to the middle
-            // between the neighbouring holes).
-            let mut cuts: Vec<f64> = (1..n)
-                .map(|k| start + (end - start) * k as f64 / n as f64)
+            // Even cuts, each moved to the nearest place it may go.
+            let cuts: Option<Vec<f64>> = (1..n)
+                .map(|k| snap(start + (end - start) * k as f64 / n as f64))
                 .collect();
-            for c in cuts.iter_mut() {
-                if let Some(h) = e
-                    .nodes
-                    .iter()
-                    .find(|h| (h.station_mm - *c).abs() < diameter)
-                {
-                    let before = e
-                        .nodes
-                        .iter()
-                        .map(|x| x.station_mm)
-                        .filter(|&s| s < h.station_mm)
-                        .fold(start, f64::max);
-                    let after = e
-                        .nodes
-                        .iter()
-                        .map(|x| x.station_mm)
-                        .filter(|&s| s > h.station_mm)
-                        .fold(end, f64::min);
-                    *c = if *c < h.station_mm {
-                        0.5 * (before + h.station_mm)
-                    } else {
-                        0.5 * (h.station_mm + after)
-                    };
-                }
-            }
-            // Every cut at least a hole diameter from every hole.
-            if cuts
-                .iter()
-                .any(|c| e.nodes.iter().any(|h| (h.station_mm - c).abs() < diameter))
-            {
+            let Some(mut cuts) = cuts else {
+                break;
+            };
+            cuts.dedup_by(|a, b| (*a - *b).abs() < 1.0);
+            if cuts.is_empty() {
                 continue;
             }
             let mut bounds = vec![start];
-            bounds.extend(cuts);
+            bounds.extend(cuts.iter().copied());
             bounds.push(end);
-            if bounds.windows(2).any(|w| w[1] - w[0] < diameter) {
+            let shortest = plate_mm.unwrap_or(0.0).max(1.0);
+            if bounds.windows(2).any(|w| w[1] - w[0] < shortest) {
                 continue;
             }
+            let splice_mm: Vec<f64> = if plate_mm.is_some() {
+                cuts.iter()
+                    .flat_map(|&cut| splice_hole_stations_mm(profile, cut))
+                    .collect()
+            } else {
+                Vec::new()
+            };
             let pieces = bounds
                 .windows(2)
                 .enumerate()
@@ -562,9 +669,10 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
                     edge_piece(
                         profile,
                         &e,
-                        w[0],
-                        w[1],
+                        (w[0], w[1]),
                         format!("{}.{}", edge_strip_id(&e.id), k + 1),
+                        PartKind::EdgeStrip,
+                        &splice_mm,
                     )
                 })
                 .collect::<Result<Vec<Part>>>();
@@ -572,11 +680,30 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
             let Ok(pieces) = pieces else {
                 continue;
             };
-            if pieces.iter().all(fits) {
-                out.extend(pieces);
-                done = true;
-                break;
+            if !pieces.iter().all(fits) {
+                continue;
             }
+            let plates = match plate_mm {
+                Some(l) => cuts
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &cut)| {
+                        edge_piece(
+                            profile,
+                            &e,
+                            (cut - 0.5 * l, cut + 0.5 * l),
+                            band_splice_id(&e.id, k + 1),
+                            PartKind::SplicePlate,
+                            &splice_hole_stations_mm(profile, cut),
+                        )
+                    })
+                    .collect::<Result<Vec<Part>>>()?,
+                None => Vec::new(),
+            };
+            out.extend(pieces);
+            out.extend(plates);
+            done = true;
+            break;
         }
         if !done {
             return Err(Error::fabrication(
@@ -585,9 +712,13 @@ pub fn edge_strips(profile: &Profile, analysis: &Analysis) -> Result<Vec<Part>> 
                 None,
                 format!(
                     "the edge band does not fit the usable area of any stock size (the longest \
-                     usable {:.0} mm, the widest {:.0} mm) even in {MAX_EDGE_PIECES} pieces",
+                     usable {:.0} mm, the widest {:.0} mm{}) in pieces spliced clear of its nodes",
                     profile.stock.longest_usable_mm(c.edge_margin_mm, 0.0),
-                    profile.stock.widest_usable_mm(c.edge_margin_mm)
+                    profile.stock.widest_usable_mm(c.edge_margin_mm),
+                    profile
+                        .edge_joint
+                        .max_band_bow_mm
+                        .map_or_else(String::new, |b| format!(", a bow of at most {b} mm"))
                 ),
             ));
         }
@@ -635,6 +766,7 @@ mod tests {
                     id: 100 + i,
                     crossing: format!("A{i:02}"),
                     station_mm: s,
+                    angle_deg: 90.0,
                 })
                 .collect(),
         }
@@ -819,15 +951,23 @@ mod tests {
     #[test]
     fn hole_diameter_follows_the_profile() {
         let mut p = steel();
-        assert_eq!(edge_hole_diameter_mm(&p), 9.0);
+        // The node bolt M8 + 1 mm, in the 10 mm gap of the doubled strip.
+        assert_eq!(edge_hole_diameter_mm(&p), Some(9.0));
+        p.edge_joint.bolt_diameter_mm = Some(6.0);
+        assert_eq!(edge_hole_diameter_mm(&p), Some(7.0));
+        // An M10 hole (11 mm) does not fit the 10 mm gap: an end slot alone.
+        p.edge_joint.bolt_diameter_mm = Some(10.0);
+        assert_eq!(edge_hole_diameter_mm(&p), None);
+        p.edge_joint.bolt_diameter_mm = None;
         p.node_bolt = None;
-        assert_eq!(edge_hole_diameter_mm(&p), DEFAULT_EDGE_HOLE_MM);
+        assert_eq!(edge_hole_diameter_mm(&p), None);
         let poplar = profile_file::load(Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/profiles/poplar-ply-4.yaml"
         )))
         .expect("poplar");
-        assert_eq!(edge_hole_diameter_mm(&poplar), 4.0);
+        // No node bolt, no edge bolt: the poplar lamellas' end slots alone.
+        assert_eq!(edge_hole_diameter_mm(&poplar), None);
     }
 
     #[test]

@@ -79,13 +79,13 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
     let slots: Vec<_> = p
         .features
         .iter()
-        .filter(|f| f.kind == FeatureKind::Slot)
+        .filter(|f| f.kind == FeatureKind::Slot && f.edge != Some(SlotEdge::End))
         .collect();
     let depth = slots.iter().map(|f| f.depth_mm).fold(0.0, f64::max);
     let (band_lo, band_hi) = match slots.first().and_then(|f| f.edge) {
         Some(SlotEdge::Top) => (c, h - depth - c),
         Some(SlotEdge::Bottom) => (depth + c, h - c),
-        None => (c, h - c),
+        Some(SlotEdge::End) | None => (c, h - c),
     };
     let band = band_hi - band_lo;
     let mut missing = Vec::new();
@@ -105,6 +105,23 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         .map(|f| (f.center_part_mm.x, f.center_part_mm.y, 0.5 * f.width_mm))
         .collect();
     holes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // End slots (an edge strip runs through them): x from, x to, y from, y to.
+    let end_slots: Vec<(f64, f64, f64, f64)> = p
+        .features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Slot && f.edge == Some(SlotEdge::End))
+        .map(|f| {
+            let (y0, y1) = (
+                f.center_part_mm.y - 0.5 * f.width_mm,
+                f.center_part_mm.y + 0.5 * f.width_mm,
+            );
+            if f.center_part_mm.x < 0.5 * len {
+                (0.0, f.depth_mm, y0, y1)
+            } else {
+                (len - f.depth_mm, len, y0, y1)
+            }
+        })
+        .collect();
     let widest_hole = holes.iter().map(|h| 2.0 * (h.2 + c)).fold(0.0, f64::max);
     // Placed labels (with their clearance), kept sorted by start; the ends
     // of the part as two more blocked intervals.
@@ -123,6 +140,11 @@ fn engrave_lamella(p: &mut Part, c: f64) -> Vec<String> {
         }
         b.push((f64::NEG_INFINITY, c));
         b.push((len - c, f64::INFINITY));
+        for &(xa, xb, ya, yb) in &end_slots {
+            if yb + c > y0 && ya - c < y0 + th {
+                b.push((xa - c, xb + c));
+            }
+        }
         let first = holes.partition_point(|h| h.0 < lo - widest_hole);
         for &(hx, hy, r) in &holes[first..] {
             if hx - r - c > hi {
@@ -266,6 +288,17 @@ fn engrave_other(p: &mut Part, c: f64) -> Option<String> {
     // Anchors: the centre line of the extent first, then a grid.
     let mut anchors = Vec::new();
     for fy in [0.5, 0.25, 0.75, 0.1, 0.9] {
+        for fx in [0.5, 0.25, 0.75, 0.1, 0.9] {
+            anchors.push(Point::new(x0 + fx * (x1 - x0), y0 + fy * (y1 - y0)));
+        }
+    }
+    // Then, for narrow parts (a small plate's strip between its holes and
+    // its edge), every twentieth of the height.
+    for k in 1..20 {
+        let fy = f64::from(k) / 20.0;
+        if [0.5, 0.25, 0.75, 0.1, 0.9].contains(&fy) {
+            continue;
+        }
         for fx in [0.5, 0.25, 0.75, 0.1, 0.9] {
             anchors.push(Point::new(x0 + fx * (x1 - x0), y0 + fy * (y1 - y0)));
         }

@@ -80,6 +80,11 @@ pub struct Counts {
     pub splice_plates: u64,
     /// Studs.
     pub studs: u64,
+    /// Edge nodes with a bolt (a lamella strip ending on a bolted edge
+    /// strip).
+    pub edge_nodes: u64,
+    /// Splice plates joining edge band pieces.
+    pub band_splice_plates: u64,
 }
 
 /// One kind of bolted joint: its bolt, grip, plain washers and count.
@@ -130,6 +135,28 @@ pub fn hardware(profile: &Profile, n: Counts) -> Result<Vec<Hardware>> {
             grip_mm: 2.0 * t,
             plain_washers: 2,
             count: n.splice_plates * 2 * u64::from(s.bolts_per_side.max(1)),
+        });
+    }
+    if let Some(d) = profile.edge_bolt_mm() {
+        // Along the normal from the top to the bottom of the stack: the
+        // lamella's height (lifted by the level offset in two levels) and
+        // the band through its end slot, wherever it lies beyond.
+        let (dz, half_t) = (profile.joint.level_offset_mm.abs(), 0.5 * t);
+        joints.push(Joint {
+            item: "edge bolt",
+            diameter_mm: d,
+            grip_mm: (dz + 0.5 * h).max(half_t) - (dz - 0.5 * h).min(-half_t),
+            plain_washers: 2,
+            count: n.edge_nodes,
+        });
+    }
+    if let Some(s) = &profile.splice {
+        joints.push(Joint {
+            item: "band splice bolt",
+            diameter_mm: s.bolt_diameter_mm,
+            grip_mm: 2.0 * t,
+            plain_washers: 2,
+            count: n.band_splice_plates * 2 * u64::from(s.bolts_per_side.max(1)),
         });
     }
     if let Some(s) = &profile.stud {
@@ -264,6 +291,7 @@ mod tests {
                 shear_blocks: 7,
                 splice_plates: 3,
                 studs: 0,
+                ..Counts::default()
             },
         )
         .expect("hardware");
@@ -311,6 +339,7 @@ mod tests {
                 shear_blocks: 2,
                 splice_plates: 1,
                 studs: 4,
+                ..Counts::default()
             },
         )
         .expect("hardware");

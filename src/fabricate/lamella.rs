@@ -98,11 +98,58 @@ struct HoleSizes {
     splice_mm: Option<f64>,
 }
 
+/// Where the strip ends on an edge strip: the band runs through an end
+/// slot of each lamella there (docs/fabrication.md, "Edge joints").
+#[derive(Debug, Clone)]
+struct EdgeEnd<'a> {
+    /// Index into the strip's node list.
+    k: usize,
+    /// Node id (plan.json).
+    node_id: usize,
+    /// The edge's id.
+    edge_id: &'a str,
+    /// Acute angle between the strip and the edge, degrees.
+    angle_deg: f64,
+}
+
+/// The end slots' common sizes, mm.
+#[derive(Debug, Clone, Copy)]
+struct EndSlotSize {
+    /// The band's height (its width across the edge curve).
+    band_mm: f64,
+    /// The opening across the lamella: band thickness + twice the slot
+    /// clearance.
+    opening_mm: f64,
+    /// Slot clearance.
+    clearance_mm: f64,
+}
+
+impl EndSlotSize {
+    /// How far an end slot reaches from the node's station inward along a
+    /// lamella line `dy_mm` off the strip's curve, crossing the band at
+    /// `angle_deg`: the band's half height over sin φ, the offset line's
+    /// shift |dy|·cot φ, and the clearance.
+    fn reach_mm(&self, angle_deg: f64, dy_mm: f64) -> f64 {
+        let (sin, cos) = angle_deg.to_radians().sin_cos();
+        let sin = sin.max(1e-3);
+        0.5 * self.band_mm / sin + dy_mm.abs() * cos.abs() / sin + self.clearance_mm
+    }
+}
+
+/// A stretch of the centre line something takes, [lo, hi] mm.
+type Zone = (f64, f64);
+
 /// What is decided once for a strip, before its lamellas are made.
 #[derive(Debug, Clone)]
 struct Layout<'a> {
     /// The A×B crossings.
     crossings: Vec<Crossing<'a>>,
+    /// Where the strip ends on edge strips.
+    edge_ends: Vec<EdgeEnd<'a>>,
+    /// The end slots' sizes.
+    end_slot: EndSlotSize,
+    /// The lamella's end allowance, mm.
+    allowance_mm: f64,
     /// The slots at them.
     slots: Slots,
     /// The round holes' sizes.
@@ -156,12 +203,39 @@ pub fn strip_parts(
     let node_hole_mm = node_hole_mm(profile);
     let zones = node_zones(profile, strip, &crossings, &slots, node_hole_mm);
     let stretch = stretch(strip, &offsets);
-    let cuts = splice_cuts(profile, strip, &zones, stretch).map_err(fail)?;
-    let blocks =
-        block_stations(profile, strip, &crossings, &zones, &cuts, stretch).map_err(fail)?;
+    let edge_ends = edge_ends(net, an, i);
+    let end_slot = EndSlotSize {
+        band_mm: profile.section.height_mm,
+        opening_mm: profile.section.thickness_mm + 2.0 * profile.joint.slot_clearance_mm,
+        clearance_mm: profile.joint.slot_clearance_mm,
+    };
+    // The end slots' zones on the centre line (for the widest offset),
+    // kept clear by splice cuts and shear blocks like the node zones.
+    let dy_max = offsets.iter().map(|o| o.dy_mm.abs()).fold(0.0, f64::max);
+    let end_zones: Vec<(f64, f64)> = edge_ends
+        .iter()
+        .map(|e| {
+            let s = strip.nodes[e.k].station_mm;
+            let r = end_slot.reach_mm(e.angle_deg, dy_max) * stretch;
+            (s - r, s + r)
+        })
+        .collect();
+    let cuts = splice_cuts(profile, strip, (&zones, &end_zones), stretch).map_err(fail)?;
+    let blocks = block_stations(
+        profile,
+        strip,
+        &crossings,
+        (&zones, &end_zones),
+        &cuts,
+        stretch,
+    )
+    .map_err(fail)?;
     let splice_holes = splice_hole_stations(profile, &cuts).map_err(fail)?;
     let layout = Layout {
         crossings,
+        edge_ends,
+        end_slot,
+        allowance_mm: profile.section.end_allowance_mm,
         slots,
         holes: HoleSizes {
             node_mm: node_hole_mm,
@@ -216,6 +290,23 @@ fn crossings<'a>(
         })
     }));
     crossings
+}
+
+/// The strip's nodes on edge strips, with the crossing angle.
+fn edge_ends<'a>(net: &'a Network, an: &Analysis, i: usize) -> Vec<EdgeEnd<'a>> {
+    let topo = &an.topology;
+    an.strips[i]
+        .nodes
+        .iter()
+        .enumerate()
+        .filter(|(_, cn)| net.curves[cn.crossing].family == Family::Edge)
+        .map(|(k, cn)| EdgeEnd {
+            k,
+            node_id: topo.nodes[cn.node].id,
+            edge_id: &net.curves[cn.crossing].id,
+            angle_deg: topo.nodes[cn.node].angle_deg,
+        })
+        .collect()
 }
 
 /// Every crossing's joint turns, from the flat state to the erected one,
@@ -380,11 +471,12 @@ fn stretch(strip: &StripGeometry, offsets: &[LamellaOffset]) -> f64 {
 /// stretch, so (stock − margins)/stretch bounds every piece on every
 /// lamella line. The stock is the longest usable length of any size (a
 /// lamella needs only one size it fits); a coil cut to any length never
-/// splices.
+/// splices. Cuts come from the stretches between node `zones`; a cut
+/// whose plate would reach into an end slot (`end_zones`) is dropped.
 fn splice_cuts(
     profile: &Profile,
     strip: &StripGeometry,
-    zones: &[(f64, f64)],
+    (zones, end_zones): (&[Zone], &[Zone]),
     stretch: f64,
 ) -> std::result::Result<Vec<f64>, Refusal> {
     let allowance = profile.section.end_allowance_mm;
@@ -404,7 +496,10 @@ fn splice_cuts(
             ));
         };
         let need = 0.5 * sp.plate_length_mm + profile.joint.slot_clearance_mm;
-        let candidates = cut_candidates(zones, strip.length_mm, need);
+        // The candidates between the node zones, less those whose plate
+        // would reach into an end slot.
+        let mut candidates = cut_candidates(zones, strip.length_mm, need);
+        candidates.retain(|&c| end_zones.iter().all(|z| c <= z.0 - need || c >= z.1 + need));
         place_cuts(&candidates, strip.length_mm, allowance, usable).map_err(|at| {
             (
                 None,
@@ -541,7 +636,7 @@ fn block_stations(
     profile: &Profile,
     strip: &StripGeometry,
     crossings: &[Crossing],
-    zones: &[(f64, f64)],
+    (zones, end_zones): (&[Zone], &[Zone]),
     cuts: &[f64],
     stretch: f64,
 ) -> std::result::Result<Vec<f64>, Refusal> {
@@ -552,7 +647,18 @@ fn block_stations(
     let spacing = blocks::max_spacing_mm(b.max_spacing_mm, b.slenderness_limit, t) / stretch;
     let half = 0.5 * b.length_mm + b.clearance_mm;
     // (station, zone lo, zone hi, node id) of every support.
-    let mut supports: Vec<(f64, f64, f64, Option<usize>)> = vec![(0.0, 0.0, 0.0, None)];
+    // The line's ends, each as wide as an end slot there.
+    let start_hi = end_zones
+        .iter()
+        .filter(|z| z.0 + z.1 < strip.length_mm)
+        .map(|z| z.1)
+        .fold(0.0, f64::max);
+    let end_lo = end_zones
+        .iter()
+        .filter(|z| z.0 + z.1 >= strip.length_mm)
+        .map(|z| z.0)
+        .fold(strip.length_mm, f64::min);
+    let mut supports: Vec<(f64, f64, f64, Option<usize>)> = vec![(0.0, 0.0, start_hi, None)];
     for (ci, c) in crossings.iter().enumerate() {
         let s = strip.nodes[c.k].station_mm;
         supports.push((s, zones[ci].0, zones[ci].1, Some(c.node_id)));
@@ -564,7 +670,7 @@ fn block_stations(
         }
     }
     supports.sort_by(|x, y| x.0.total_cmp(&y.0));
-    supports.push((strip.length_mm, strip.length_mm, strip.length_mm, None));
+    supports.push((strip.length_mm, end_lo, strip.length_mm, None));
     let needed: f64 = supports
         .windows(2)
         .map(|w| ((w[1].0 - w[0].0) / spacing).ceil() - 1.0)
@@ -783,7 +889,47 @@ fn lamella_features(
             hole(s, d, HoleUse::Splice, None, None);
         }
     }
+    features.extend(end_slots(line, layout, h));
     features
+}
+
+/// The end slots of a lamella `line` at the strip's edge nodes: centred on
+/// the node's station and on the band's height in the lamella (the
+/// surface, y = h/2 − dz), `opening` across, reaching from the nearer end
+/// of the lamella (with its allowance) to past the band's far edge. None
+/// where the band clears the lamella's height.
+fn end_slots(line: &LamellaLine, layout: &Layout, h: f64) -> Vec<Feature> {
+    let size = layout.end_slot;
+    let y = 0.5 * h - line.offset.dz_mm;
+    let half = 0.5 * size.opening_mm;
+    if y + half <= 0.0 || y - half >= h {
+        return Vec::new();
+    }
+    layout
+        .edge_ends
+        .iter()
+        .map(|e| {
+            let s = line.nodes[e.k].station_mm;
+            let reach = size.reach_mm(e.angle_deg, line.offset.dy_mm);
+            let depth = if s < 0.5 * line.length_mm {
+                s + layout.allowance_mm + reach
+            } else {
+                line.length_mm + layout.allowance_mm - (s - reach)
+            };
+            Feature {
+                kind: FeatureKind::Slot,
+                hole_use: None,
+                node: Some(e.node_id),
+                crossing: Some(e.edge_id.to_string()),
+                center_part_mm: Point::new(s, y),
+                width_mm: size.opening_mm,
+                depth_mm: depth,
+                edge: Some(SlotEdge::End),
+                angle_range_deg: None,
+                station_mm: Some(s),
+            }
+        })
+        .collect()
 }
 
 /// A lamella `line_length_mm` long on its own line, plus `allowance_mm` at
@@ -840,11 +986,71 @@ fn cut_into_pieces(
         .collect()
 }
 
+/// Where a slot from the top or bottom edge runs into an end slot (x
+/// within `min_web`, and the heights overlapping), the two cuts would cut
+/// off the corner between them: the end slot takes the slot in and becomes
+/// a rebate from that edge over both (its reach to the slot's far side,
+/// its height from the slot's root or its own far side, whichever is
+/// farther, to the edge), repeated until no other slot runs into it.
+fn merge_end_slots(features: &mut [Feature], length_mm: f64, h: f64, min_web: f64) {
+    let notches: Vec<(f64, f64, f64, f64, SlotEdge)> = features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Slot && f.edge != Some(SlotEdge::End))
+        .filter_map(|f| {
+            let (x0, x1) = (
+                f.center_part_mm.x - 0.5 * f.width_mm,
+                f.center_part_mm.x + 0.5 * f.width_mm,
+            );
+            match f.edge {
+                Some(SlotEdge::Top) => Some((x0, x1, h - f.depth_mm, h, SlotEdge::Top)),
+                Some(SlotEdge::Bottom) => Some((x0, x1, 0.0, f.depth_mm, SlotEdge::Bottom)),
+                _ => None,
+            }
+        })
+        .collect();
+    for e in features
+        .iter_mut()
+        .filter(|f| f.kind == FeatureKind::Slot && f.edge == Some(SlotEdge::End))
+    {
+        let at_start = e.center_part_mm.x < 0.5 * length_mm;
+        loop {
+            let (y0, y1) = (
+                e.center_part_mm.y - 0.5 * e.width_mm,
+                e.center_part_mm.y + 0.5 * e.width_mm,
+            );
+            let reach = if at_start {
+                e.depth_mm
+            } else {
+                length_mm - e.depth_mm
+            };
+            let hit = notches.iter().find(|n| {
+                let into = if at_start {
+                    n.0 < reach + min_web && n.1 > reach
+                } else {
+                    n.1 > reach - min_web && n.0 < reach
+                };
+                into && n.2 < y1 && n.3 > y0
+            });
+            let Some(&(x0, x1, n0, n1, edge)) = hit else {
+                break;
+            };
+            let (y0, y1) = if edge == SlotEdge::Top {
+                (y0.min(n0), h)
+            } else {
+                (0.0, y1.max(n1))
+            };
+            e.depth_mm = if at_start { x1 } else { length_mm - x0 };
+            e.center_part_mm.y = 0.5 * (y0 + y1);
+            e.width_mm = y1 - y0;
+        }
+    }
+}
+
 /// One lamella piece: the rectangle length × h with its slots notched from
-/// their edges (its round holes are its `hole` features alone); features
-/// sorted by x. Err (node,
-/// what) when a slot runs past an end or two slots leave less than 1 mm
-/// of material between them.
+/// their edges and its end slots from its ends (its round holes are its
+/// `hole` features alone); features sorted by x. Err (node, what) when a
+/// slot runs past an end or into an end slot, or two slots leave less than
+/// 1 mm of material between them.
 fn lamella_part(
     id: String,
     strip: &str,
@@ -858,17 +1064,60 @@ fn lamella_part(
     // Minimum material between two notches on one edge, mm (a laser keeps
     // a 1 mm web whole; thinner ones burn through).
     let min_web = 1.0;
+    merge_end_slots(&mut features, length_mm, h, min_web);
+    // The notches from an edge, less those an end slot took in.
+    let taken_in = |f: &Feature| {
+        features.iter().any(|e| {
+            e.edge == Some(SlotEdge::End)
+                && if e.center_part_mm.x < 0.5 * length_mm {
+                    f.center_part_mm.x + 0.5 * f.width_mm <= e.depth_mm
+                } else {
+                    f.center_part_mm.x - 0.5 * f.width_mm >= length_mm - e.depth_mm
+                }
+        })
+    };
     let notches = |edge: SlotEdge| {
-        features
-            .iter()
-            .filter(move |f| f.kind == FeatureKind::Slot && f.edge == Some(edge))
+        features.iter().filter(move |f| {
+            f.kind == FeatureKind::Slot
+                && f.edge == Some(edge)
+                && (edge == SlotEdge::End || !taken_in(f))
+        })
     };
     let slots = features
         .iter()
         .filter(|f| f.kind == FeatureKind::Slot && f.edge.is_some())
         .count();
-    let mut outline = Vec::with_capacity(5 + 4 * slots);
-    outline.push(Point::new(0.0, 0.0));
+    // End slots: (x of the closed end, y0, y1) at the start and the end.
+    let end_slot = |at_start: bool| {
+        notches(SlotEdge::End)
+            .find(|f| (f.center_part_mm.x < 0.5 * length_mm) == at_start)
+            .map(|f| {
+                let x = if at_start {
+                    f.depth_mm
+                } else {
+                    length_mm - f.depth_mm
+                };
+                let (y0, y1) = (
+                    f.center_part_mm.y - 0.5 * f.width_mm,
+                    f.center_part_mm.y + 0.5 * f.width_mm,
+                );
+                (x, y0, y1, f.node)
+            })
+    };
+    let (start, end) = (end_slot(true), end_slot(false));
+    for (x, _, _, node) in start.iter().chain(&end) {
+        if *x <= 0.0 || *x >= length_mm || start.zip(end).is_some_and(|(a, b)| a.0 >= b.0) {
+            return Err((
+                *node,
+                format!("lamella {id}: its {length_mm:.1} mm are too short for its end slots"),
+            ));
+        }
+    }
+    let mut outline = Vec::with_capacity(13 + 4 * slots);
+    match start {
+        Some((x, y0, _, _)) if y0 <= 0.0 => outline.push(Point::new(x, 0.0)),
+        _ => outline.push(Point::new(0.0, 0.0)),
+    }
     for edge in [SlotEdge::Bottom, SlotEdge::Top] {
         let mut last_end = 0.0;
         for f in notches(edge) {
@@ -895,6 +1144,31 @@ fn lamella_part(
                     ),
                 ));
             }
+            // Into an end slot's reach and height.
+            let (y0, y1) = if edge == SlotEdge::Top {
+                (h - f.depth_mm, h)
+            } else {
+                (0.0, f.depth_mm)
+            };
+            let into = |e: Option<(f64, f64, f64, Option<usize>)>, at_start: bool| {
+                e.is_some_and(|(x, e0, e1, _)| {
+                    let reach = if at_start {
+                        x0 < x + min_web
+                    } else {
+                        x1 > x - min_web
+                    };
+                    reach && y0 < e1 && y1 > e0
+                })
+            };
+            if into(start, true) || into(end, false) {
+                return Err((
+                    f.node,
+                    format!(
+                        "lamella {id}: a {:.2} mm slot at {:.1} mm runs into the end slot of an edge strip",
+                        f.width_mm, f.center_part_mm.x
+                    ),
+                ));
+            }
             last_end = x1;
         }
     }
@@ -910,8 +1184,29 @@ fn lamella_part(
             Point::new(x1, 0.0),
         ]);
     }
-    outline.push(Point::new(length_mm, 0.0));
-    outline.push(Point::new(length_mm, h));
+    match end {
+        Some((x, y0, y1, _)) => {
+            if y0 > 0.0 {
+                outline.extend([
+                    Point::new(length_mm, 0.0),
+                    Point::new(length_mm, y0),
+                    Point::new(x, y0),
+                ]);
+            } else {
+                outline.push(Point::new(x, 0.0));
+            }
+            if y1 < h {
+                outline.extend([
+                    Point::new(x, y1),
+                    Point::new(length_mm, y1),
+                    Point::new(length_mm, h),
+                ]);
+            } else {
+                outline.push(Point::new(x, h));
+            }
+        }
+        None => outline.extend([Point::new(length_mm, 0.0), Point::new(length_mm, h)]),
+    }
     for f in notches(SlotEdge::Top).rev() {
         let (x0, x1) = (
             f.center_part_mm.x - 0.5 * f.width_mm,
@@ -924,7 +1219,19 @@ fn lamella_part(
             Point::new(x0, h),
         ]);
     }
-    outline.push(Point::new(0.0, h));
+    match start {
+        Some((x, y0, y1, _)) => {
+            if y1 < h {
+                outline.extend([Point::new(0.0, h), Point::new(0.0, y1), Point::new(x, y1)]);
+            } else {
+                outline.push(Point::new(x, h));
+            }
+            if y0 > 0.0 {
+                outline.extend([Point::new(x, y0), Point::new(0.0, y0)]);
+            }
+        }
+        None => outline.push(Point::new(0.0, h)),
+    }
     Ok(Part {
         id,
         kind: PartKind::Lamella,
@@ -1055,6 +1362,7 @@ mod tests {
                 allowed_rotations_deg: vec![0, 180],
             },
             check: Default::default(),
+            edge_joint: Default::default(),
         })
         .expect("a valid profile")
     }

@@ -141,7 +141,13 @@ pub fn fabricate(
     let stud_cut = stud::studs(profile, grid.len())?;
     let stud_bars = stud_cut.as_ref().map_or(0, |s| s.bars);
     parts.extend(stud_cut.map(|s| s.part));
-    parts.extend(edge_strip::edge_strips(profile, an)?);
+    let edges = edge_strip::edge_curves(an);
+    let bands = edge_strip::edge_strips(profile, an)?;
+    let band_plates = bands
+        .iter()
+        .filter(|p| p.kind == PartKind::SplicePlate)
+        .count();
+    parts.extend(bands);
     let clearance = profile.cutting.kerf_mm + profile.cutting.part_spacing_mm;
     let warnings = engrave::engrave_all(&mut parts, clearance);
     for p in &parts {
@@ -168,6 +174,12 @@ pub fn fabricate(
             shear_blocks: blocks as u64,
             splice_plates: plates as u64,
             studs: pieces(PartKind::Stud),
+            edge_nodes: if profile.edge_bolt_mm().is_some() {
+                edges.iter().map(|e| e.nodes.len() as u64).sum()
+            } else {
+                0
+            },
+            band_splice_plates: band_plates as u64,
         },
     )?;
     Ok(Kit {

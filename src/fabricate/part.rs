@@ -41,13 +41,17 @@ impl PartKind {
     }
 }
 
-/// Which long edge of a lamella a slot opens to.
+/// Which edge of a lamella a slot opens to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SlotEdge {
     /// The edge on the surface normal's side (family A's slots).
     Top,
     /// The other edge (family B's slots).
     Bottom,
+    /// An end of the lamella (the nearer to the slot's centre): the end
+    /// slot an edge strip runs through. Its `width_mm` is its opening
+    /// across y, its `depth_mm` its reach along x from that end.
+    End,
 }
 
 impl SlotEdge {
@@ -56,6 +60,7 @@ impl SlotEdge {
         match self {
             SlotEdge::Top => "top",
             SlotEdge::Bottom => "bottom",
+            SlotEdge::End => "end",
         }
     }
 }

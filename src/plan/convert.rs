@@ -393,6 +393,15 @@ fn add_joints(plan: &mut Plan) {
         .iter()
         .map(|s| (s.id.as_str(), s.family.as_str()))
         .collect();
+    // Edge nodes with a hole in their band: bolted; the others slotted.
+    let bolted: std::collections::HashSet<usize> = plan
+        .parts
+        .iter()
+        .flatten()
+        .flat_map(|q| &q.features)
+        .filter(|f| f.hole_use == Some(PlanHoleUse::EdgeNode))
+        .filter_map(|f| f.node)
+        .collect();
     let joints: Vec<String> = plan
         .nodes
         .iter()
@@ -400,7 +409,11 @@ fn add_joints(plan: &mut Plan) {
             let grid =
                 family.get(n.a.as_str()) == Some(&"A") && family.get(n.b.as_str()) == Some(&"B");
             if !grid {
-                "edge".to_string()
+                if bolted.contains(&n.id) {
+                    "edge bolt".to_string()
+                } else {
+                    "edge slot".to_string()
+                }
             } else if washers {
                 washer_id(angle_class_deg(n.angle_deg))
             } else if studs {
@@ -504,6 +517,7 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
                 edge: f.edge.map(|e| match e {
                     SlotEdge::Top => PlanSlotEdge::Top,
                     SlotEdge::Bottom => PlanSlotEdge::Bottom,
+                    SlotEdge::End => PlanSlotEdge::End,
                 }),
                 angle_range_deg: f
                     .angle_range_deg

@@ -468,6 +468,9 @@ pub enum PlanSlotEdge {
     Top,
     /// `bottom`.
     Bottom,
+    /// `end`: an end slot, open to the nearer end of the lamella (its
+    /// width across y, its depth along x from that end).
+    End,
 }
 
 /// A slot or hole of a part.
@@ -488,7 +491,7 @@ pub struct PlanFeature {
     pub width_mm: f64,
     /// Slot depth from its edge, mm (0 for holes).
     pub depth_mm: f64,
-    /// `top` or `bottom` for slots.
+    /// `top`, `bottom` or `end` for slots.
     pub edge: Option<PlanSlotEdge>,
     /// Crossing angles a slot was swept over, degrees.
     pub angle_range_deg: Option<[f64; 2]>,
@@ -794,8 +797,9 @@ pub struct PlanNode {
     pub gap_mm: f64,
     /// What joins the two curves, as the node schedule names it: the
     /// star washer's part id (`W90`), `ST` (a stud), `slots`, `bolt`, or
-    /// `edge` for a node on an edge strip; empty before the parts are
-    /// made. Not in plan.json.
+    /// for a node on an edge strip `edge bolt` (its band has the edge
+    /// bolt's hole there) or `edge slot`; empty before the parts are made.
+    /// Not in plan.json.
     #[serde(skip)]
     pub joint: String,
 }

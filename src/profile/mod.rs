@@ -55,6 +55,9 @@ pub struct ProfileOf<S> {
     pub cutting: Cutting,
     /// Limits of the elastic check beyond the stresses.
     pub check: CheckLimits,
+    /// How lamellas meet the edge strips and how bands are split
+    /// (`edge_joint:`; every field optional).
+    pub edge_joint: EdgeJoint,
 }
 
 /// A profile as a reader found it, before any check: every section as
@@ -233,6 +236,34 @@ pub struct CheckLimits {
     /// normal-curvature residual kn bends the line off its chord
     /// (docs/geometry.md, "Sagitta"). None: [`DEFAULT_MAX_SAGITTA_MM`].
     pub max_sagitta_mm: Option<f64>,
+}
+
+/// How a lamella that ends on an edge strip is joined to it
+/// (docs/fabrication.md, "Edge joints").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeJointKind {
+    /// The band runs through the end slot of every lamella ending on it, and
+    /// a bolt along the surface normal passes through the gap of the
+    /// doubled strip and the band's hole at the node.
+    Bolt,
+    /// The end slot alone (glued or pinned on site): no hole, no bolt.
+    Slot,
+}
+
+/// `edge_joint:` in a profile file; every field optional, with the
+/// defaults [`Profile::edge_joint_kind`] and [`Profile::edge_bolt_mm`]
+/// give.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EdgeJoint {
+    /// Bolt or slot; None: a bolt where the strip is doubled and its gap
+    /// takes the bolt, else a slot.
+    pub kind: Option<EdgeJointKind>,
+    /// The edge bolt's diameter, mm; None: the node bolt's.
+    pub bolt_diameter_mm: Option<f64>,
+    /// Largest bow of an edge band piece (its box across the chord less
+    /// the band height), mm: a band that bows more is split. None: bands
+    /// are split only where they fit no stock size.
+    pub max_band_bow_mm: Option<f64>,
 }
 
 /// The form of the stock.
@@ -471,7 +502,46 @@ impl Profile {
             stock: Stock::from(raw.stock),
             cutting: raw.cutting,
             check: raw.check,
+            edge_joint: raw.edge_joint,
         })
+    }
+
+    /// The edge joint's bolt diameter, mm (`edge_joint.bolt_diameter_mm`,
+    /// else the node bolt's), if there is one.
+    pub fn edge_bolt_diameter_mm(&self) -> Option<f64> {
+        self.edge_joint
+            .bolt_diameter_mm
+            .or(self.node_bolt.as_ref().map(|b| b.diameter_mm))
+    }
+
+    /// Hole clearance of the edge bolt, mm: the node bolt's, else 1 mm
+    /// (EN 1090-2 normal round holes, M12 and smaller).
+    pub fn edge_bolt_clearance_mm(&self) -> f64 {
+        self.node_bolt.as_ref().map_or(1.0, |b| b.hole_clearance_mm)
+    }
+
+    /// How lamellas are joined to the edge strips: `edge_joint.kind`, else
+    /// a bolt where the strip is doubled and the bolt's hole fits its gap,
+    /// else a slot.
+    pub fn edge_joint_kind(&self) -> EdgeJointKind {
+        self.edge_joint
+            .kind
+            .unwrap_or_else(|| match self.edge_bolt_diameter_mm() {
+                Some(d)
+                    if self.section.per_strip == 2
+                        && d + self.edge_bolt_clearance_mm() <= self.section.gap_mm =>
+                {
+                    EdgeJointKind::Bolt
+                }
+                _ => EdgeJointKind::Slot,
+            })
+    }
+
+    /// The edge bolt's diameter where the joint is bolted, mm.
+    pub fn edge_bolt_mm(&self) -> Option<f64> {
+        (self.edge_joint_kind() == EdgeJointKind::Bolt)
+            .then(|| self.edge_bolt_diameter_mm())
+            .flatten()
     }
 
     /// Largest sagitta a lamella's unrolled line may have, mm

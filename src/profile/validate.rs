@@ -49,6 +49,41 @@ pub fn profile(raw: &RawProfile) -> Check {
     if let Some(m) = raw.check.max_sagitta_mm {
         positive("check.max_sagitta_mm", m)?;
     }
+    edge_joint(raw)?;
+    Ok(())
+}
+
+/// `edge_joint:` positive sizes; a bolted joint has a bolt (its own or
+/// the node bolt) and a doubled strip whose gap takes its hole.
+fn edge_joint(raw: &RawProfile) -> Check {
+    let e = &raw.edge_joint;
+    if let Some(d) = e.bolt_diameter_mm {
+        positive("edge_joint.bolt_diameter_mm", d)?;
+    }
+    if let Some(b) = e.max_band_bow_mm {
+        positive("edge_joint.max_band_bow_mm", b)?;
+    }
+    if e.kind == Some(super::EdgeJointKind::Bolt) {
+        let clearance = raw.node_bolt.as_ref().map_or(1.0, |b| b.hole_clearance_mm);
+        let Some(d) = e
+            .bolt_diameter_mm
+            .or(raw.node_bolt.as_ref().map(|b| b.diameter_mm))
+        else {
+            return fail(
+                "edge_joint.kind",
+                "a bolted edge joint needs edge_joint.bolt_diameter_mm (or a node_bolt)",
+            );
+        };
+        if raw.section.per_strip != 2 || d + clearance > raw.section.gap_mm {
+            return fail(
+                "edge_joint.kind",
+                format!(
+                    "the edge bolt runs in the gap of a doubled strip: a {} mm hole needs lamella.per_strip 2 and a gap of at least that (write kind: slot)",
+                    d + clearance
+                ),
+            );
+        }
+    }
     Ok(())
 }
 

@@ -717,7 +717,7 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
         "sheets: 3 (lower bound 3)",
         "elastic check: PASS",
         "node bolt",
-        "wrote 211 files",
+        "wrote 219 files",
     ] {
         assert!(stdout.contains(want), "summary lacks {want:?}:\n{stdout}");
     }
@@ -1032,6 +1032,19 @@ fn takeoff_hardware_by_hand() {
             (f("a"), f("b")) == (Some("A"), Some("B"))
         })
         .count() as u64;
+    // Where an A or B strip ends on an edge strip: one edge bolt each.
+    let edge_nodes = plan["nodes"]
+        .as_array()
+        .expect("nodes")
+        .iter()
+        .filter(|n| {
+            let f = |k: &str| family.get(n[k].as_str().unwrap_or("")).copied();
+            matches!(
+                (f("a"), f("b")),
+                (Some("A" | "B"), Some("edge")) | (Some("edge"), Some("A" | "B"))
+            )
+        })
+        .count() as u64;
     // Pieces of lamella features: a slot per lamella of both strips at a
     // node (4 per node, doubled strips); a shear-block bolt passes two
     // lamellas, a splice bolt one lamella and its plate.
@@ -1042,13 +1055,29 @@ fn takeoff_hardware_by_hand() {
         }
         let n = p["count"].as_u64().expect("n");
         for f in p["features"].as_array().expect("f") {
-            let key = f["hole_use"]
-                .as_str()
-                .unwrap_or(f["kind"].as_str().expect("k"));
+            let key = if f["edge"] == "end" {
+                "end slot"
+            } else {
+                f["hole_use"]
+                    .as_str()
+                    .unwrap_or(f["kind"].as_str().expect("k"))
+            };
             *lamella.entry(key.to_string()).or_default() += n;
         }
     }
     assert_eq!(lamella["slot"], 4 * grid_nodes);
+    // Both lamellas of a strip have their end slot at an edge node.
+    assert_eq!(lamella["end slot"], 2 * edge_nodes);
+    // A band splice bolt passes one band piece and its plate.
+    let band_splice_bolts: u64 = plan["parts"]
+        .as_array()
+        .expect("parts")
+        .iter()
+        .filter(|p| p["kind"] == "edge_strip")
+        .flat_map(|p| p["features"].as_array().expect("f"))
+        .filter(|f| f["hole_use"] == "splice")
+        .count() as u64;
+    assert!(edge_nodes == 44 && band_splice_bolts == 16);
     let shear_bolts = lamella["shear_block"] / 2;
     let splice_bolts = lamella["splice"];
     assert!(grid_nodes > 100 && shear_bolts > 0 && splice_bolts > 0);
@@ -1066,11 +1095,26 @@ fn takeoff_hardware_by_hand() {
             "5.9",
         ),
         ("splice bolt", "M6 × 16 ISO 4017 8.8", splice_bolts, "10.0"),
+        // Edge M8: 50 (the lamella height) + washers 2 × 1.6 + nut 6.8 +
+        // 2 × 1.25 = 62.5 → 65. Band splice M6: as the splice bolt.
+        ("edge bolt", "M8 × 65 ISO 4017 8.8", edge_nodes, "25.0"),
+        (
+            "band splice bolt",
+            "M6 × 16 ISO 4017 8.8",
+            band_splice_bolts,
+            "10.0",
+        ),
         ("nut", "M5 ISO 4032 8", shear_bolts, ""),
-        ("nut", "M6 ISO 4032 8", splice_bolts, ""),
-        ("nut", "M8 ISO 4032 8", grid_nodes, ""),
+        ("nut", "M6 ISO 4032 8", splice_bolts + band_splice_bolts, ""),
+        ("nut", "M8 ISO 4032 8", grid_nodes + edge_nodes, ""),
         ("plain washer", "M5 ISO 7089 200 HV", 2 * shear_bolts, ""),
-        ("plain washer", "M6 ISO 7089 200 HV", 2 * splice_bolts, ""),
+        (
+            "plain washer",
+            "M6 ISO 7089 200 HV",
+            2 * (splice_bolts + band_splice_bolts),
+            "",
+        ),
+        ("plain washer", "M8 ISO 7089 200 HV", 2 * edge_nodes, ""),
     ];
     let csv = std::fs::read_to_string(out.join("takeoff.csv")).expect("csv");
     let mut rows = csv::Reader::from_reader(csv.as_bytes());

@@ -12,6 +12,7 @@ mod check;
 mod check_cli;
 mod cli_errors;
 mod closed_forms;
+mod edge_joints;
 mod exports;
 mod film_truth;
 mod flat;

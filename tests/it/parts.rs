@@ -7,7 +7,7 @@
 
 use crate::support::{self, analysed_sample, lamella_command, root, scratch};
 use lamella::analysis::lines::LamellaLine;
-use lamella::fabricate::part::{FeatureKind, HoleUse, Part, PartKind};
+use lamella::fabricate::part::{Feature, FeatureKind, HoleUse, Part, PartKind, SlotEdge};
 use lamella::fabricate::{fabricate, Kit};
 use lamella::formats::read::{read_network, ReadOptions};
 use lamella::profile::Profile;
@@ -15,6 +15,12 @@ use lamella::{analyze, Analysis, AnalysisOptions, Family, Network};
 use std::collections::HashMap;
 use std::path::Path;
 use std::process::Output;
+
+/// A slot from a long edge where two strips cross (not an end slot an edge
+/// strip runs through).
+fn halving(f: &Feature) -> bool {
+    f.kind == FeatureKind::Slot && f.edge != Some(SlotEdge::End)
+}
 
 fn load(sample: &str, profile: &str) -> (Network, Analysis, Profile) {
     let net = read_network(
@@ -119,7 +125,7 @@ fn check_slots(sample: &str, profile: &str) -> usize {
             .collect();
         let start = part.station_start_mm.unwrap();
         let mut by_node: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
-        for f in part.features.iter().filter(|f| f.kind == FeatureKind::Slot) {
+        for f in part.features.iter().filter(|f| halving(f)) {
             let id = f.node.unwrap();
             let x0 = f.center_part_mm.x - f.width_mm / 2.0 + start;
             let x1 = f.center_part_mm.x + f.width_mm / 2.0 + start;
@@ -179,7 +185,7 @@ fn doubled_steel_slots_at_90_degrees() {
     let half = s / 15f64.to_radians().tan() + 1.5 * (1.0 + 30f64.to_radians().cos()) / 1.0 + 0.15;
     let widths: Vec<f64> = lamellas(&kit)
         .flat_map(|p| p.features.iter())
-        .filter(|f| f.kind == FeatureKind::Slot)
+        .filter(|f| halving(f))
         .map(|f| f.width_mm)
         .collect();
     assert!(
@@ -199,7 +205,7 @@ fn single_veneer_slots_match_the_closed_form() {
     let th = 10f64.to_radians();
     let want = 0.6 * (1.0 + th.sin()) / th.cos() + 0.1;
     for f in lamellas(&kit).flat_map(|p| p.features.iter()) {
-        if f.kind == FeatureKind::Slot {
+        if halving(f) {
             assert!((f.width_mm - want).abs() < 0.01, "{} vs {want}", f.width_mm);
         }
     }
@@ -223,7 +229,7 @@ fn two_level_node_holes_sit_at_the_nodes() {
     let stations = line_stations(&an, &p);
     let mut holes = 0;
     for part in lamellas(&kit) {
-        assert!(part.features.iter().all(|f| f.kind != FeatureKind::Slot));
+        assert!(part.features.iter().all(|f| !halving(f)));
         let key = (part.strip.clone().unwrap(), part.lamella.unwrap());
         let start = part.station_start_mm.unwrap();
         for f in &part.features {
@@ -316,7 +322,7 @@ fn shear_blocks_keep_both_limits_and_clear_the_nodes() {
                 for &n in &nodes {
                     let need = zone + b.clearance_mm + b.length_mm / 2.0;
                     let slots_near = part.features.iter().any(|f| {
-                        f.kind == FeatureKind::Slot
+                        halving(f)
                             && ((f.center_part_mm.x + start) - h).abs()
                                 < f.width_mm / 2.0 + b.clearance_mm + b.length_mm / 2.0
                     });

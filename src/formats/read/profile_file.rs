@@ -53,6 +53,9 @@ pub struct ProfileFile {
     /// Limits of the elastic check beyond the stresses; optional.
     #[serde(default, skip_serializing_if = "CheckLimits::is_empty")]
     pub check: CheckLimits,
+    /// How lamellas meet the edge strips; optional.
+    #[serde(default, skip_serializing_if = "EdgeJoint::is_empty")]
+    pub edge_joint: EdgeJoint,
 }
 
 /// `material:` the strip material.
@@ -335,6 +338,41 @@ pub struct CheckLimits {
     pub max_sagitta_mm: Option<f64>,
 }
 
+/// `edge_joint:` how lamellas meet the edge strips; every field optional
+/// (docs/fabrication.md, "Edge joints").
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeJoint {
+    /// `bolt` or `slot`; default: a bolt where the strip is doubled and
+    /// its gap takes the bolt, else a slot.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<EdgeJointKind>,
+    /// The edge bolt's diameter, mm; default the node bolt's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bolt_diameter_mm: Option<f64>,
+    /// Largest bow of an edge band piece, mm; default none (bands are
+    /// split only where they fit no stock size).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_band_bow_mm: Option<f64>,
+}
+
+/// `edge_joint.kind`.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum EdgeJointKind {
+    /// A bolt through the band at every edge node.
+    Bolt,
+    /// The lamella's end slot alone.
+    Slot,
+}
+
+impl EdgeJoint {
+    /// No field given (the section is then not written).
+    pub fn is_empty(&self) -> bool {
+        self.kind.is_none() && self.bolt_diameter_mm.is_none() && self.max_band_bow_mm.is_none()
+    }
+}
+
 impl CheckLimits {
     /// No field given (the section is then not written).
     pub fn is_empty(&self) -> bool {
@@ -469,6 +507,7 @@ impl From<ProfileFile> for RawProfile {
             stock: f.stock.into(),
             cutting: f.cutting.into(),
             check: f.check.into(),
+            edge_joint: f.edge_joint.into(),
         }
     }
 }
@@ -593,6 +632,27 @@ same_fields!(
     }
 );
 same_fields!(CheckLimits = CheckLimits { max_sagitta_mm });
+same_variants!(EdgeJointKind { Bolt, Slot });
+
+impl From<EdgeJoint> for profile::EdgeJoint {
+    fn from(e: EdgeJoint) -> profile::EdgeJoint {
+        profile::EdgeJoint {
+            kind: e.kind.map(Into::into),
+            bolt_diameter_mm: e.bolt_diameter_mm,
+            max_band_bow_mm: e.max_band_bow_mm,
+        }
+    }
+}
+
+impl From<&profile::EdgeJoint> for EdgeJoint {
+    fn from(e: &profile::EdgeJoint) -> EdgeJoint {
+        EdgeJoint {
+            kind: e.kind.map(Into::into),
+            bolt_diameter_mm: e.bolt_diameter_mm,
+            max_band_bow_mm: e.max_band_bow_mm,
+        }
+    }
+}
 same_fields!(Fasteners = Fasteners { bolt_class });
 same_fields!(
     Cutting = Cutting {
@@ -656,6 +716,7 @@ impl From<&Profile> for ProfileFile {
             stock: (&p.stock).into(),
             cutting: (&p.cutting).into(),
             check: (&p.check).into(),
+            edge_joint: (&p.edge_joint).into(),
         }
     }
 }

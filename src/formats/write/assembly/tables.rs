@@ -296,7 +296,7 @@ pub fn order_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         push(&mut rows, s, b_what);
     }
     for s in plan.strips.iter().filter(|s| s.family == "edge") {
-        push(&mut rows, s, "edge strip, bolt at its nodes");
+        push(&mut rows, s, &edge_what(plan, &s.id));
     }
     let heading = if two_level {
         "Assembly order: lower level (family A), studs, upper level (family B), edges"
@@ -304,6 +304,36 @@ pub fn order_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         "Assembly order: family A down first (slots up), then family B slotted in, edges last"
     };
     table_pages(frame, "Assembly order", heading, &ORDER_COLUMNS, &rows)
+}
+
+/// What the crew does with an edge strip: slide it into the lamellas' end
+/// slots, bolt it at its nodes where its band has the edge bolts' holes,
+/// and join its pieces with their splice plates.
+fn edge_what(plan: &Plan, edge: &str) -> String {
+    fn mine<'a>(
+        plan: &'a Plan,
+        edge: &'a str,
+        kind: &'a str,
+    ) -> impl Iterator<Item = &'a crate::plan::PlanPart> {
+        plan.parts
+            .iter()
+            .flatten()
+            .filter(move |p| p.kind == kind && p.strip.as_deref() == Some(edge))
+    }
+    let bolted = mine(plan, edge, "edge_strip")
+        .flat_map(|p| &p.features)
+        .any(|f| f.hole_use == Some(crate::plan::PlanHoleUse::EdgeNode));
+    let plates = mine(plan, edge, "splice_plate").count();
+    let mut what = String::from("end slots");
+    if bolted {
+        what.push_str(", bolts");
+    }
+    match plates {
+        0 => {}
+        1 => what.push_str(", 1 splice"),
+        n => what.push_str(&format!(", {n} splices")),
+    }
+    what
 }
 
 /// The elastic check's columns.
@@ -731,7 +761,8 @@ fn legend(c: &mut Canvas, frame: &Frame) {
         "SP        splice plate joining two pieces of a lamella",
         "W87.5     star washer for nodes whose crossing angle rounds to 87.5°",
         "ST        stud joining the two levels of a two-level grid",
-        "E-edge00.1   edge strip edge00, piece 1",
+        "E-edge00.1   edge strip edge00, piece 1 (into the lamellas' end slots)",
+        "SP-edge00.1  splice plate joining pieces 1 and 2 of edge strip edge00",
     ];
     let mut ty = y - 7.0;
     for n in notes {
