@@ -1055,6 +1055,7 @@ mod tests {
                 allowed_rotations_deg: vec![0, 180],
             },
             check: Default::default(),
+            stocks: Vec::new(),
         })
         .expect("a valid profile")
     }

@@ -10,7 +10,10 @@
 //! levels, a gap for doubling); rotations are quarter turns; timber cut
 //! along the grain allows only 0/180°.
 
+pub mod groups;
 pub mod validate;
+
+pub use groups::{Piece, PieceStock, StockForm, StockGroup};
 
 use crate::network::Family;
 use std::path::PathBuf;
@@ -55,6 +58,9 @@ pub struct ProfileOf<S> {
     pub cutting: Cutting,
     /// Limits of the elastic check beyond the stresses.
     pub check: CheckLimits,
+    /// The stocks of the parts that are not lamellas, where the file names
+    /// them (`stocks:`); every other part takes a default ([`groups`]).
+    pub stocks: Vec<PieceStock>,
 }
 
 /// A profile as a reader found it, before any check: every section as
@@ -471,6 +477,7 @@ impl Profile {
             stock: Stock::from(raw.stock),
             cutting: raw.cutting,
             check: raw.check,
+            stocks: raw.stocks,
         })
     }
 
