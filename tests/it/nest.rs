@@ -329,9 +329,7 @@ fn bowed_band(id: &str, r: f64, w: f64, chord: f64) -> lamella::fabricate::part:
 fn two_bowed_bands_share_one_sheet_by_outline() {
     use lamella::fabricate::{Kit, KitSummary};
     use lamella::geom::plane::signed_area_mm2;
-    // Washers on the lamella stock's sheets (no `stocks:` of their own).
-    let mut steel = support::profile("steel-1.5");
-    steel.stocks.clear();
+    let steel = support::profile("steel-1.5");
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];
@@ -610,7 +608,9 @@ fn star_washers_interleave_onto_half_the_sheets_of_their_boxes() {
     use lamella::fabricate::part::{Part, PartKind};
     use lamella::fabricate::washer::star_outline;
     use lamella::fabricate::{Kit, KitSummary};
-    let steel = support::profile("steel-1.5");
+    // Washers on the lamella stock's sheets (no `stocks:` of their own).
+    let mut steel = support::profile("steel-1.5");
+    steel.stocks.clear();
     let g = steel.cutting.kerf_mm + steel.cutting.part_spacing_mm;
     let m = steel.cutting.edge_margin_mm;
     let z = &steel.stock.sizes[0];
