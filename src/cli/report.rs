@@ -56,8 +56,18 @@ pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
     for (kind, distinct, count) in &r.kinds {
         println!("  {:<13} {count:>8} ({distinct} distinct)", kind.as_str());
     }
+    let by_group = if r.sheet_groups.len() > 1 {
+        let list: Vec<String> = r
+            .sheet_groups
+            .iter()
+            .map(|(name, used, _)| format!("{name} {used}"))
+            .collect();
+        format!("; by stock group: {}", list.join(", "))
+    } else {
+        String::new()
+    };
     println!(
-        "sheets: {} (lower bound {}), utilisation {:.1} %",
+        "sheets: {} (lower bound {}), utilisation {:.1} %{by_group}",
         r.sheets_used,
         r.lower_bound_sheets,
         100.0 * r.utilization
@@ -300,11 +310,18 @@ pub fn parts(done: &Done) -> ExitCode {
         k.lamella_length_mm / 1000.0,
         k.mass_kg
     );
-    if k.stud_bars > 0 {
-        println!("studs: {} bars of stud stock", k.stud_bars);
-    }
-    if let Some(n) = s.nested() {
-        println!("nest: {}", nest_line(profile, n));
+    match s.nested() {
+        Some(n) => {
+            for (k, line) in nest_lines(profile, n).into_iter().enumerate() {
+                if k == 0 {
+                    println!("nest: {line}");
+                } else {
+                    println!("{line}");
+                }
+            }
+        }
+        None if k.stud_bars > 0 => println!("studs: {} bars of stud stock", k.stud_bars),
+        None => {}
     }
     if let Some(f) = done.written.first() {
         println!("wrote {}", f.display());
@@ -312,13 +329,64 @@ pub fn parts(done: &Done) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// The nest's line: sheets (or coil length) per stock size, the bounds,
-/// utilisation, cost where priced, time.
-fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
+/// The nest's lines: with one stock group its line; with several, the
+/// sums, then each group's line.
+fn nest_lines(profile: &Profile, n: &lamella::nest::Nest) -> Vec<String> {
+    let groups = profile.stock_groups();
+    let line_of = |g: &lamella::nest::GroupNest| {
+        let stock = groups
+            .iter()
+            .find(|s| s.name == g.name)
+            .map_or(&profile.stock, |s| &s.stock);
+        format!(
+            "{} ({}, {} mm): {}",
+            g.name,
+            g.material,
+            lamella::profile::groups::trim_mm(g.thickness_mm),
+            nest_line(
+                stock,
+                &g.summary,
+                &g.stock_used,
+                n.currency.as_deref(),
+                g.form
+            )
+        )
+    };
+    if n.groups.len() == 1 {
+        return vec![line_of(&n.groups[0])];
+    }
     let ns = &n.summary;
-    let stock = &profile.stock;
+    let mut total = format!(
+        "{} pieces of stock in {} groups (lower bound {}); utilisation {:.1} %",
+        ns.sheets_used,
+        n.groups.len(),
+        ns.lower_bound_sheets,
+        100.0 * ns.utilization
+    );
+    if let Some(cost) = ns.cost {
+        let currency = n.currency.as_deref().unwrap_or("");
+        total += &format!(
+            "; cost {cost:.2} {currency} (lower bound {:.2})",
+            ns.cost_bound.unwrap_or(0.0)
+        );
+    }
+    total += &format!("; {:.3} s", ns.seconds);
+    std::iter::once(total)
+        .chain(n.groups.iter().map(|g| format!("  {}", line_of(g))))
+        .collect()
+}
+
+/// One group's line: sheets (or coil length, or bars) per stock size, the
+/// bounds, utilisation, cost where priced, time.
+fn nest_line(
+    stock: &lamella::profile::Stock,
+    ns: &lamella::nest::NestSummary,
+    stock_used: &[lamella::nest::StockUse],
+    currency: Option<&str>,
+    form: lamella::profile::StockForm,
+) -> String {
     let size = |u: &lamella::nest::StockUse| {
-        if stock.sizes[u.size].name.is_some() {
+        if stock.sizes.get(u.size).is_some_and(|z| z.name.is_some()) {
             u.stock.clone()
         } else {
             format!("{} mm", u.stock)
@@ -334,14 +402,22 @@ fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
             ns.sheets_used,
             bound / 1000.0
         )
+    } else if form == lamella::profile::StockForm::Bar {
+        format!(
+            "{} bars of {} mm (lower bound {})",
+            ns.sheets_used,
+            stock_used
+                .first()
+                .map_or(String::new(), |u| u.stock.clone()),
+            ns.lower_bound_sheets
+        )
     } else {
-        let sizes: Vec<String> = n
-            .stock_used
+        let sizes: Vec<String> = stock_used
             .iter()
             .map(|u| format!("{} of {}", u.sheets, size(u)))
             .collect();
-        let what = if n.stock_used.len() == 1 {
-            format!("{} sheets of {}", ns.sheets_used, size(&n.stock_used[0]))
+        let what = if stock_used.len() == 1 {
+            format!("{} sheets of {}", ns.sheets_used, size(&stock_used[0]))
         } else {
             format!("{} sheets ({})", ns.sheets_used, sizes.join(" + "))
         };
@@ -352,7 +428,7 @@ fn nest_line(profile: &Profile, n: &lamella::nest::Nest) -> String {
     };
     line += &format!("; utilisation {:.1} %", 100.0 * ns.utilization);
     if let Some(cost) = ns.cost {
-        let currency = n.currency.as_deref().unwrap_or("");
+        let currency = currency.unwrap_or("");
         line += &format!(
             "; cost {cost:.2} {currency} (lower bound {:.2})",
             ns.cost_bound.unwrap_or(0.0)

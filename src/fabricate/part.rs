@@ -41,6 +41,22 @@ impl PartKind {
     }
 }
 
+impl PartKind {
+    /// What the stock sees it as: which stock group it is cut from
+    /// ([`crate::profile::Profile::stock_groups`]).
+    pub fn piece(self) -> crate::profile::Piece {
+        use crate::profile::Piece;
+        match self {
+            PartKind::Lamella => Piece::Lamella,
+            PartKind::ShearBlock => Piece::ShearBlock,
+            PartKind::Washer => Piece::Washer,
+            PartKind::Stud => Piece::Stud,
+            PartKind::SplicePlate => Piece::SplicePlate,
+            PartKind::EdgeStrip => Piece::EdgeBand,
+        }
+    }
+}
+
 /// Which edge of a lamella a slot opens to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SlotEdge {

@@ -4,7 +4,7 @@
 
 use super::binpack;
 use super::ctx::Ctx;
-use super::model::{NestSummary, SheetNest, StockUse};
+use super::model::{GroupNest, NestSummary, SheetNest, StockUse};
 use super::stock::Size;
 
 /// The nest's figures and bounds.
@@ -133,4 +133,51 @@ pub(super) fn stock_used(sheets: &[SheetNest]) -> Vec<StockUse> {
         }
     }
     stock_used
+}
+
+/// The whole nest's figures from its groups': counts, bounds, areas and
+/// costs summed (a sum of lower bounds is a lower bound on the sum); the
+/// lanes are the lamella group's (the only one with lamellas); the cost
+/// and its bound only when every group is priced; a coil's length summed
+/// over the coil groups.
+pub(super) fn total(groups: &[GroupNest], t0: std::time::Instant) -> NestSummary {
+    let sum = |f: fn(&NestSummary) -> usize| groups.iter().map(|g| f(&g.summary)).sum::<usize>();
+    let part_area: f64 = groups
+        .iter()
+        .map(|g| g.summary.utilization * g.summary.stock_area_mm2)
+        .sum();
+    let stock_area: f64 = groups.iter().map(|g| g.summary.stock_area_mm2).sum();
+    let all = |f: fn(&NestSummary) -> Option<f64>| {
+        groups.iter().map(|g| f(&g.summary)).sum::<Option<f64>>()
+    };
+    let coils = |f: fn(&NestSummary) -> Option<f64>| {
+        groups
+            .iter()
+            .filter_map(|g| f(&g.summary))
+            .reduce(|a, b| a + b)
+    };
+    NestSummary {
+        sheets_used: sum(|s| s.sheets_used),
+        lower_bound_sheets: sum(|s| s.lower_bound_sheets),
+        area_bound_sheets: sum(|s| s.area_bound_sheets),
+        lane_bound_sheets: sum(|s| s.lane_bound_sheets),
+        lanes_per_sheet: groups
+            .iter()
+            .map(|g| g.summary.lanes_per_sheet)
+            .max()
+            .unwrap_or(0),
+        lanes_used: sum(|s| s.lanes_used),
+        lane_bound_lanes: sum(|s| s.lane_bound_lanes),
+        utilization: if stock_area > 0.0 {
+            part_area / stock_area
+        } else {
+            0.0
+        },
+        stock_area_mm2: stock_area,
+        cost: all(|s| s.cost),
+        cost_bound: all(|s| s.cost_bound),
+        length_used_mm: coils(|s| s.length_used_mm),
+        length_bound_mm: coils(|s| s.length_bound_mm),
+        seconds: t0.elapsed().as_secs_f64(),
+    }
 }

@@ -7,23 +7,41 @@ use crate::geom::plane;
 use crate::profile::Profile;
 use kurbo::Point;
 
-/// Named invariant: every part inside its sheet's margins, in an allowed
-/// rotation, placed exactly its count of times, and no two parts' true
-/// outlines closer than kerf + spacing (polygon-to-polygon distance, where
-/// their bounding boxes come closer than that; boxes apart means the true
-/// shapes are).
+/// Named invariant: every part on a sheet of its own stock group (the
+/// material and thickness the profile cuts it from), inside its sheet's
+/// margins, in an allowed rotation, placed exactly its count of times, and
+/// no two parts' true outlines closer than kerf + spacing (polygon-to-polygon
+/// distance, where their bounding boxes come closer than that; boxes apart
+/// means the true shapes are); the group's cutting on its sheets.
 pub fn check_nest(kit: &Kit, nest: &Nest, profile: &Profile) -> std::result::Result<(), String> {
-    let c = &profile.cutting;
-    let m = c.edge_margin_mm;
-    let g = c.kerf_mm + c.part_spacing_mm;
+    let groups = profile.stock_groups();
     let eps = 1e-6;
     let mut placed: Vec<u32> = vec![0; kit.parts.len()];
     let mut seen: std::collections::HashSet<(usize, u32)> = std::collections::HashSet::new();
-    for s in &nest.sheets {
+    for (sheet_index, s) in nest.sheets.iter().enumerate() {
+        let Some(group) = nest.groups.iter().find(|g| g.sheets.contains(&sheet_index)) else {
+            return Err(format!("{}: in no stock group", s.id));
+        };
+        let c = &group.cutting;
+        let m = c.edge_margin_mm;
+        let g = c.kerf_mm + c.part_spacing_mm;
         let mut boxes: Vec<((f64, f64, f64, f64), usize)> = Vec::with_capacity(s.placements.len());
         let mut outlines: Vec<Option<Vec<Point>>> = vec![None; s.placements.len()];
         for (k, pl) in s.placements.iter().enumerate() {
             let p = &kit.parts[pl.part];
+            let own = &groups[Profile::group_of(&groups, p.kind.piece())];
+            if own.material != group.material || own.thickness_mm != group.thickness_mm {
+                return Err(format!(
+                    "{}: {} is {} mm of {}, on a sheet of the {} group ({} mm of {})",
+                    s.id,
+                    p.id,
+                    own.thickness_mm,
+                    own.material,
+                    group.name,
+                    group.thickness_mm,
+                    group.material
+                ));
+            }
             if !c.allowed_rotations_deg.contains(&pl.rotation_deg) {
                 return Err(format!(
                     "{}: {} turned {}°, not allowed",

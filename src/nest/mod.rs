@@ -32,6 +32,13 @@
 //! largest area and longest lane; a bound on the cost; for a coil a bound
 //! on the length.
 //!
+//! Stock groups: every part is of one material and thickness
+//! ([`Profile::stock_groups`]); each group is nested on its own, onto its
+//! own stock with its own cutting, and its sheets follow the previous
+//! group's (`S01…` run on over the groups). A bar group (studs) is a cut
+//! list: its copies end to end along bars (`bars.rs`). The figures and
+//! bounds are per group, and summed.
+//!
 //! Plain data in (`Kit`, `Profile`), plain data out ([`Nest`]);
 //! deterministic (no threads, ties broken by index). A placement maps
 //! part-local (x, y) to sheet coordinates by rotating about the origin by
@@ -45,6 +52,7 @@
 //! `lanes.rs`, `skyline.rs`, `sizes.rs`, `coil.rs`, `bounds.rs` and
 //! `check.rs` as above; this file is the driver.
 
+mod bars;
 pub mod binpack;
 mod bounds;
 mod check;
@@ -60,16 +68,89 @@ mod skyline;
 mod stock;
 
 pub use check::check_nest;
-pub use model::{placed_bbox, rotate, Nest, NestSummary, Placement, SheetNest, StockUse};
+pub use model::{
+    placed_bbox, rotate, GroupNest, Nest, NestSummary, Placement, SheetNest, StockUse,
+};
 
 use crate::error::Result;
-use crate::fabricate::Kit;
-use crate::profile::Profile;
+use crate::fabricate::{Kit, KitSummary};
+use crate::profile::{Profile, StockForm};
 use bounds::{stock_used, summarize};
 use ctx::Ctx;
 
-/// Nest every part of the kit onto the profile's stock.
+/// Nest every part of the kit, each stock group onto its own stock.
 pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
+    let t0 = std::time::Instant::now();
+    let groups = profile.stock_groups();
+    let group_of: Vec<usize> = kit
+        .parts
+        .iter()
+        .map(|p| Profile::group_of(&groups, p.kind.piece()))
+        .collect();
+    let mut sheets: Vec<SheetNest> = Vec::new();
+    let mut out: Vec<GroupNest> = Vec::new();
+    for (gi, g) in groups.iter().enumerate() {
+        let members: Vec<usize> = (0..kit.parts.len())
+            .filter(|&i| group_of[i] == gi)
+            .collect();
+        if members.is_empty() {
+            continue;
+        }
+        let mut sub_profile = profile.clone();
+        sub_profile.stock = g.stock.clone();
+        sub_profile.cutting = g.cutting.clone();
+        let whole = members.len() == kit.parts.len();
+        let sub_kit;
+        let group_kit = if whole {
+            kit
+        } else {
+            sub_kit = Kit {
+                parts: members.iter().map(|&i| kit.parts[i].clone()).collect(),
+                summary: KitSummary::default(),
+                warnings: Vec::new(),
+            };
+            &sub_kit
+        };
+        let (mut group_sheets, summary, used) = nest_group(group_kit, &sub_profile, g.form)?;
+        let first = sheets.len();
+        for (k, s) in group_sheets.iter_mut().enumerate() {
+            s.id = format!("S{:02}", first + k + 1);
+            for pl in &mut s.placements {
+                pl.part = members[pl.part];
+            }
+        }
+        sheets.extend(group_sheets);
+        out.push(GroupNest {
+            name: g.name.clone(),
+            material: g.material.clone(),
+            thickness_mm: g.thickness_mm,
+            form: g.form,
+            sheets: first..sheets.len(),
+            summary,
+            stock_used: used,
+            cutting: g.cutting.clone(),
+        });
+    }
+    let summary = bounds::total(&out, t0);
+    let stock_used = out.iter().flat_map(|g| g.stock_used.clone()).collect();
+    let nest = Nest {
+        sheets,
+        summary,
+        stock_used,
+        currency: profile.stock.currency.clone(),
+        groups: out,
+    };
+    debug_assert_eq!(check_nest(kit, &nest, profile), Ok(()));
+    Ok(nest)
+}
+
+/// Nest one group's parts (`kit`) onto its stock (`profile`'s, with its
+/// cutting): its sheets `S01…` by size, its figures, its stock used.
+fn nest_group(
+    kit: &Kit,
+    profile: &Profile,
+    form: StockForm,
+) -> Result<(Vec<SheetNest>, NestSummary, Vec<StockUse>)> {
     let t0 = std::time::Instant::now();
     let ctx = Ctx::new(kit, profile)?;
     let st = &profile.stock;
@@ -88,7 +169,9 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
         raster::place_bands(setting, sheets);
         outline::eliminate(setting, sheets);
     };
-    let (mut sheets, lanes_used) = if coil && st.sizes[0].length_mm.is_none() {
+    let (mut sheets, lanes_used) = if form == StockForm::Bar {
+        (ctx.bars()?, 0)
+    } else if coil && st.sizes[0].length_mm.is_none() {
         ctx.coil()?
     } else {
         ctx.sheets(&finish)?
@@ -104,14 +187,30 @@ pub fn nest(kit: &Kit, profile: &Profile) -> Result<Nest> {
             coil::cut_to_length(s, kit, ctx.margin, st);
         }
     }
-    let summary = summarize(&ctx, &sheets, lanes_used, t0);
-    let stock_used = stock_used(&sheets);
-    let nest = Nest {
-        sheets,
-        summary,
-        stock_used,
-        currency: st.currency.clone(),
-    };
-    debug_assert_eq!(check_nest(kit, &nest, profile), Ok(()));
-    Ok(nest)
+    let mut summary = summarize(&ctx, &sheets, lanes_used, t0);
+    if form == StockForm::Bar {
+        // A cut list: the lengths (+ kerf) into the bar's usable length
+        // (+ kerf), as the lanes' bound (Martello–Toth L2).
+        let c = &profile.cutting;
+        let kerf = c.kerf_mm + c.part_spacing_mm;
+        let lengths: Vec<f64> = kit
+            .parts
+            .iter()
+            .flat_map(|p| {
+                let (x0, _, x1, _) = model::bbox(p);
+                std::iter::repeat_n(x1 - x0 + kerf, p.count as usize)
+            })
+            .collect();
+        let cap = ctx.sizes[0].lu + kerf;
+        // Lengths all equal (studs): exactly ⌈n / ⌊cap / length⌋⌉.
+        summary.lane_bound_sheets = match lengths.first() {
+            Some(&l) if lengths.iter().all(|&x| x == l) && l <= cap => {
+                lengths.len().div_ceil((cap / l).floor() as usize)
+            }
+            _ => binpack::lower_bound_l2(&lengths, cap),
+        };
+        summary.lower_bound_sheets = summary.area_bound_sheets.max(summary.lane_bound_sheets);
+    }
+    let used = stock_used(&sheets);
+    Ok((sheets, summary, used))
 }

@@ -4,6 +4,7 @@
 
 use crate::fabricate::part::Part;
 use crate::geom::plane;
+use crate::profile::{Cutting, StockForm};
 use kurbo::Point;
 
 /// One copy of a part on a sheet.
@@ -128,6 +129,42 @@ pub struct Nest {
     pub stock_used: Vec<StockUse>,
     /// Currency of the prices, if the profile names one.
     pub currency: Option<String>,
+    /// The stock groups nested, in the profile's group order (those with
+    /// parts): each one material and thickness, its sheets a run of
+    /// `sheets`.
+    pub groups: Vec<GroupNest>,
+}
+
+/// The nest of one stock group: its parts (one material, one thickness)
+/// on its own stock.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroupNest {
+    /// The group's name (`lamella-1.5`, `washer-3`, …).
+    pub name: String,
+    /// Its material.
+    pub material: String,
+    /// Its thickness (a bar: the section's side), mm.
+    pub thickness_mm: f64,
+    /// Sheets, coil or bars.
+    pub form: StockForm,
+    /// Its sheets: indices into [`Nest::sheets`].
+    pub sheets: std::ops::Range<usize>,
+    /// Its figures and bounds (on its own stock).
+    pub summary: NestSummary,
+    /// Its sheets per stock size (`size` indexes the group's sizes).
+    pub stock_used: Vec<StockUse>,
+    /// The cutting its sheets were nested with.
+    pub cutting: Cutting,
+}
+
+impl Nest {
+    /// The group of sheet `k` (index into [`Nest::groups`]).
+    pub fn group_of_sheet(&self, k: usize) -> usize {
+        self.groups
+            .iter()
+            .position(|g| g.sheets.contains(&k))
+            .unwrap_or(0)
+    }
 }
 
 /// Bounding box (x0, y0, x1, y1) of points ([`plane::bounds`]).

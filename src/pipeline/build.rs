@@ -1,6 +1,6 @@
 //! `lamella build`: every stage from a network and a profile to the files a
 //! workshop needs — nodes, the elastic check, parts, nest, then
-//! `DIR/plan.json`, `DIR/sheets/sheet-NNN.dxf` and `.svg` per stock sheet,
+//! `DIR/plan.json`, `DIR/sheets/GROUP-sheet-NNN.dxf` and `.svg` per stock sheet,
 //! `DIR/parts/ID.dxf` and `.svg` per distinct part with
 //! `DIR/parts/parts.csv`, `DIR/takeoff.csv`, `DIR/takeoff.json` and the assembly sheets
 //! `DIR/assembly.pdf` — staged beside DIR and moved
@@ -89,6 +89,8 @@ pub struct BuildReport {
     pub sheets_used: usize,
     /// The nest's lower bound on sheets.
     pub lower_bound_sheets: usize,
+    /// Per stock group: its name, sheets (bars) used and lower bound.
+    pub sheet_groups: Vec<(String, usize, usize)>,
     /// Part area over used sheet area.
     pub utilization: f64,
     /// Strips overstressed (0 when every strip passes).
@@ -195,6 +197,7 @@ pub fn build(
             },
             sheets_used: 0,
             lower_bound_sheets: 0,
+            sheet_groups: Vec::new(),
             utilization: 0.0,
             overstressed,
             governing,
@@ -254,6 +257,17 @@ pub fn build(
         nest.summary.lower_bound_sheets,
         nest.summary.utilization,
     );
+    let sheet_groups: Vec<(String, usize, usize)> = nest
+        .groups
+        .iter()
+        .map(|g| {
+            (
+                g.name.clone(),
+                g.summary.sheets_used,
+                g.summary.lower_bound_sheets,
+            )
+        })
+        .collect();
     let kerf = opts
         .kerf_compensation
         .then_some(session.profile()?.cutting.kerf_mm);
@@ -326,7 +340,7 @@ pub fn build(
                                             },
                                         )?;
                                         staging.write(&format!("sheets/{stem}.dxf"), dxf)?;
-                                        let title = format!(
+                                        let mut title = format!(
                                             "{} — {}: sheet {} of {} ({}), {} × {} mm",
                                             network_name,
                                             profile_name,
@@ -336,6 +350,9 @@ pub fn build(
                                             sheet.length_mm,
                                             sheet.width_mm
                                         );
+                                        if let Some(note) = &sheet.stock_note {
+                                            title += &format!(", {note}");
+                                        }
                                         svg_out::write_svg(&sheet, &title, file_opts, svg);
                                         staging.write(&format!("sheets/{stem}.svg"), svg)?;
                                         let page = match &nominal {
@@ -432,9 +449,14 @@ pub fn build(
     clock.part("write: parts", parts_clock.elapsed().as_secs_f64());
     drop(drawer);
     let mut files: Vec<String> = FIXED_FILES.iter().map(|s| s.to_string()).collect();
-    for i in 1..=sheet_count {
-        files.push(format!("sheets/sheet-{i:03}.dxf"));
-        files.push(format!("sheets/sheet-{i:03}.svg"));
+    for (i, s) in sheets_meta.iter().enumerate() {
+        let stem = if s.group.is_empty() {
+            format!("sheet-{:03}", i + 1)
+        } else {
+            format!("{}-sheet-{:03}", s.group, i + 1)
+        };
+        files.push(format!("sheets/{stem}.dxf"));
+        files.push(format!("sheets/{stem}.svg"));
     }
     files.push("parts/parts.csv".to_string());
     for stem in &stems {
@@ -454,6 +476,7 @@ pub fn build(
         takeoff,
         sheets_used,
         lower_bound_sheets,
+        sheet_groups,
         utilization,
         overstressed,
         governing,

@@ -252,15 +252,28 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
 
 /// Add a nest to a plan (formatting only).
 pub fn add_nest(plan: &mut Plan, kit: &crate::fabricate::Kit, nest: &crate::nest::Nest) {
+    let stock_use = |u: &crate::nest::StockUse| PlanStockUse {
+        stock: u.stock.clone(),
+        sheets: u.sheets,
+        width_mm: round(u.width_mm, MM),
+        length_mm: round(u.length_mm, MM),
+        price_per_unit: u.price_per_unit.map(money),
+        cost: u.cost.map(money),
+    };
     plan.sheets = Some(
         nest.sheets
             .iter()
-            .map(|s| PlanSheet {
+            .enumerate()
+            .map(|(k, s)| PlanSheet {
                 id: s.id.clone(),
                 width_mm: round(s.width_mm, MM),
                 length_mm: round(s.length_mm, MM),
                 utilization: round(s.utilization(), 6),
                 stock: s.stock.clone(),
+                group: nest.groups[nest.group_of_sheet(k)].name.clone(),
+                material: nest.groups[nest.group_of_sheet(k)].material.clone(),
+                thickness_mm: round(nest.groups[nest.group_of_sheet(k)].thickness_mm, MM),
+                form: nest.groups[nest.group_of_sheet(k)].form.as_str().into(),
                 price_per_unit: s.price_per_unit.map(money),
                 placements: s
                     .placements
@@ -286,23 +299,49 @@ pub fn add_nest(plan: &mut Plan, kit: &crate::fabricate::Kit, nest: &crate::nest
         lanes_used: n.lanes_used,
         lane_bound_lanes: n.lane_bound_lanes,
         utilization: round(n.utilization, 6),
-        stock_used: nest
-            .stock_used
-            .iter()
-            .map(|u| PlanStockUse {
-                stock: u.stock.clone(),
-                sheets: u.sheets,
-                width_mm: round(u.width_mm, MM),
-                length_mm: round(u.length_mm, MM),
-                price_per_unit: u.price_per_unit.map(money),
-                cost: u.cost.map(money),
-            })
-            .collect(),
+        stock_used: nest.stock_used.iter().map(stock_use).collect(),
         total_cost: n.cost.map(money),
         cost_bound: n.cost_bound.map(money),
         currency: nest.currency.clone(),
         coil_length_mm: n.length_used_mm.map(|x| round(x, MM)),
         coil_length_bound_mm: n.length_bound_mm.map(|x| round(x, MM)),
+        groups: nest
+            .groups
+            .iter()
+            .map(|g| {
+                let mut kinds: Vec<&str> = nest.sheets[g.sheets.clone()]
+                    .iter()
+                    .flat_map(|s| s.placements.iter())
+                    .map(|pl| kit.parts[pl.part].kind)
+                    .collect::<std::collections::BTreeSet<_>>()
+                    .into_iter()
+                    .map(|k| k.as_str())
+                    .collect();
+                kinds.dedup();
+                let ids = &nest.sheets[g.sheets.clone()];
+                PlanGroupNesting {
+                    group: g.name.clone(),
+                    material: g.material.clone(),
+                    thickness_mm: round(g.thickness_mm, MM),
+                    form: g.form.as_str().into(),
+                    kinds: kinds.into_iter().map(String::from).collect(),
+                    sheet_ids: ids
+                        .first()
+                        .into_iter()
+                        .chain(ids.last())
+                        .map(|s| s.id.clone())
+                        .collect(),
+                    sheets_used: g.summary.sheets_used,
+                    lower_bound_sheets: g.summary.lower_bound_sheets,
+                    area_bound_sheets: g.summary.area_bound_sheets,
+                    lane_bound_sheets: g.summary.lane_bound_sheets,
+                    utilization: round(g.summary.utilization, 6),
+                    stock_used: g.stock_used.iter().map(stock_use).collect(),
+                    total_cost: g.summary.cost.map(money),
+                    cost_bound: g.summary.cost_bound.map(money),
+                }
+            })
+            .collect(),
     });
 }
 

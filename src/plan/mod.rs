@@ -278,6 +278,19 @@ pub struct PlanSheet {
     pub utilization: f64,
     /// The stock size: its name, else `length × width` (`3000 × 1500`).
     pub stock: String,
+    /// The stock group it belongs to (`lamella-1.5`): every part on it is
+    /// of that group's material and thickness.
+    #[serde(default)]
+    pub group: String,
+    /// The material of the sheet (and of every part on it).
+    #[serde(default)]
+    pub material: String,
+    /// The thickness of the sheet (a bar: its section's side), mm.
+    #[serde(default)]
+    pub thickness_mm: f64,
+    /// `sheet`, `coil` (a piece cut from it) or `bar`.
+    #[serde(default)]
+    pub form: String,
     /// What the sheet costs, if priced (a coil per metre: the length cut).
     pub price_per_unit: Option<f64>,
     /// Every part cut from it: part-local (x, y) turned by `rotation_deg`
@@ -334,6 +347,43 @@ pub struct PlanNesting {
     /// A coil: a lower bound on that length, mm.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coil_length_bound_mm: Option<f64>,
+    /// Per stock group (one material and thickness each): its sheets,
+    /// bounds and cost; the figures above are their sums.
+    #[serde(default)]
+    pub groups: Vec<PlanGroupNesting>,
+}
+
+/// The nest of one stock group.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanGroupNesting {
+    /// The group's name (`lamella-1.5`, `washer-3`, `stud-20x20`).
+    pub group: String,
+    /// Its material.
+    pub material: String,
+    /// Its thickness (a bar: its section's side), mm.
+    pub thickness_mm: f64,
+    /// `sheet`, `coil` or `bar`.
+    pub form: String,
+    /// What its parts are: `lamella`, `edge_strip`, … (plan part kinds).
+    pub kinds: Vec<String>,
+    /// Its sheets' ids, first and last (`S01`, `S03`).
+    pub sheet_ids: Vec<String>,
+    /// Sheets (bars, coil pieces) it uses.
+    pub sheets_used: usize,
+    /// The larger of its area and lane bounds.
+    pub lower_bound_sheets: usize,
+    /// Its area bound.
+    pub area_bound_sheets: usize,
+    /// Its lane bound (lamellas only).
+    pub lane_bound_sheets: usize,
+    /// Part area over the area of its sheets.
+    pub utilization: f64,
+    /// Its sheets per stock size.
+    pub stock_used: Vec<PlanStockUse>,
+    /// Σ of its sheets' prices, when priced.
+    pub total_cost: Option<f64>,
+    /// A lower bound on that cost.
+    pub cost_bound: Option<f64>,
 }
 
 /// The sheets of one stock size in a nest.

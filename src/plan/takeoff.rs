@@ -1,5 +1,6 @@
 //! The material takeoff: per part kind, count, length, area and mass (the
-//! made parts); the stock sheets (and stud bars) with utilisation and
+//! made parts); the stock per group (material and thickness) and size,
+//! sheets and bars, with utilisation and
 //! cost; the bought hardware (bolts with their standard lengths, nuts,
 //! plain washers; see `fabricate::hardware`); totals per section. Plain data in ([`Kit`], [`Nest`], [`Profile`]), plain data out
 //! ([`Takeoff`]), which `formats::write::takeoff` writes as JSON and CSV.
@@ -9,7 +10,7 @@ use crate::fabricate::part::PartKind;
 use crate::fabricate::{net_area_mm2, part_mass_kg, Kit};
 use crate::nest::Nest;
 use crate::plan::round;
-use crate::profile::{Profile, StockKind};
+use crate::profile::{Profile, StockForm};
 use serde::{Deserialize, Serialize};
 
 /// The whole takeoff.
@@ -23,7 +24,7 @@ pub struct Takeoff {
     pub currency: Option<String>,
     /// One line per part kind.
     pub parts: Vec<PartLine>,
-    /// One line per stock size (and the stud bars).
+    /// One line per stock group and size (the stud bars too).
     pub stock: Vec<StockLine>,
     /// What is bought rather than cut: bolts by joint, nuts and plain
     /// washers by size (star washers and studs are parts).
@@ -56,8 +57,14 @@ pub struct PartLine {
 /// Stock of one size.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct StockLine {
-    /// `sheet 3000 × 1500 mm`, `stud bar 10 × 10 × 2000 mm`.
+    /// `sheet 3000 × 1500 × 1.5 mm`, `bar 20 × 20 × 2000 mm`.
     pub item: String,
+    /// The stock group it is bought for (`lamella-1.5`).
+    pub group: String,
+    /// Its material.
+    pub material: String,
+    /// Its thickness (a bar: its section's side), mm.
+    pub thickness_mm: f64,
     /// How many.
     pub count: u64,
     /// Net part area over the stock area (sheets only).
@@ -148,7 +155,7 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
             None => {
                 parts.push(PartLine {
                     kind: p.kind.as_str().into(),
-                    material: profile.material.name.clone(),
+                    material: profile.piece_material(p.kind.piece()),
                     thickness_mm: crate::fabricate::part_thickness_mm(p.kind, profile),
                     distinct: 0,
                     count: 0,
@@ -170,13 +177,10 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
         l.area_m2 = round(l.area_m2, 4);
         l.mass_kg = round(l.mass_kg, 3);
     }
-    // Stock by size, in the nest's order of first use; a coil's pieces are
-    // priced by the length cut, so their unit price is given only when
-    // every piece costs the same.
-    let form = match profile.stock.kind {
-        StockKind::Sheet => "sheet",
-        StockKind::Coil => "coil",
-    };
+    // Stock per group (one material and thickness each), by size in the
+    // nest's order of first use; a coil's pieces are priced by the length
+    // cut, so their unit price is given only when every piece costs the
+    // same. Bars (studs) are the bar group's: listed here once.
     let mut stock: Vec<StockLine> = Vec::new();
     struct Size<'a> {
         label: &'a str,
@@ -185,66 +189,62 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
         stock_area: f64,
         prices: Vec<Option<f64>>,
     }
-    let mut sizes: Vec<Size> = Vec::new();
-    for s in &nest.sheets {
-        let i = match sizes.iter().position(|z| z.label == s.stock) {
-            Some(i) => i,
-            None => {
-                sizes.push(Size {
-                    label: &s.stock,
-                    count: 0,
-                    part_area: 0.0,
-                    stock_area: 0.0,
-                    prices: Vec::new(),
-                });
-                sizes.len() - 1
-            }
-        };
-        let z = &mut sizes[i];
-        z.count += 1;
-        z.part_area += s.part_area_mm2;
-        z.stock_area += s.length_mm * s.width_mm;
-        z.prices.push(s.price_per_unit);
-    }
-    for Size {
-        label,
-        count,
-        part_area,
-        stock_area,
-        prices,
-    } in sizes
-    {
-        let cost = prices
-            .iter()
-            .copied()
-            .collect::<Option<Vec<f64>>>()
-            .map(|p| round(p.iter().sum(), 2));
-        let unit_price = match prices.first() {
-            Some(&Some(p)) if prices.iter().all(|q| *q == Some(p)) => Some(p),
-            _ => None,
-        };
-        stock.push(StockLine {
-            item: format!("{form} {label} mm"),
+    for g in &nest.groups {
+        let mut sizes: Vec<Size> = Vec::new();
+        for s in &nest.sheets[g.sheets.clone()] {
+            let i = match sizes.iter().position(|z| z.label == s.stock) {
+                Some(i) => i,
+                None => {
+                    sizes.push(Size {
+                        label: &s.stock,
+                        count: 0,
+                        part_area: 0.0,
+                        stock_area: 0.0,
+                        prices: Vec::new(),
+                    });
+                    sizes.len() - 1
+                }
+            };
+            let z = &mut sizes[i];
+            z.count += 1;
+            z.part_area += s.part_area_mm2;
+            z.stock_area += s.length_mm * s.width_mm;
+            z.prices.push(s.price_per_unit);
+        }
+        let t = fmt(g.thickness_mm);
+        for Size {
+            label,
             count,
-            utilization: Some(round(part_area / stock_area, 4)),
-            unit_price,
-            cost,
-        });
-    }
-    if let (Some(stud), true) = (&profile.stud, kit.summary.stud_bars > 0) {
-        let g = profile.section.gap_mm;
-        stock.push(StockLine {
-            item: format!(
-                "stud bar {} × {} × {} mm",
-                fmt(g),
-                fmt(g),
-                fmt(stud.bar_length_mm)
-            ),
-            count: u64::from(kit.summary.stud_bars),
-            utilization: None,
-            unit_price: None,
-            cost: None,
-        });
+            part_area,
+            stock_area,
+            prices,
+        } in sizes
+        {
+            let cost = prices
+                .iter()
+                .copied()
+                .collect::<Option<Vec<f64>>>()
+                .map(|p| round(p.iter().sum(), 2));
+            let unit_price = match prices.first() {
+                Some(&Some(p)) if prices.iter().all(|q| *q == Some(p)) => Some(p),
+                _ => None,
+            };
+            let item = match g.form {
+                StockForm::Bar => format!("bar {label} mm"),
+                StockForm::Sheet => format!("sheet {label} × {t} mm"),
+                StockForm::Coil => format!("coil {label} × {t} mm"),
+            };
+            stock.push(StockLine {
+                item,
+                group: g.name.clone(),
+                material: g.material.clone(),
+                thickness_mm: round(g.thickness_mm, 4),
+                count,
+                utilization: Some(round(part_area / stock_area, 4)),
+                unit_price,
+                cost,
+            });
+        }
     }
     let hardware = hardware_lines(kit);
     let sheets = nest.sheets.len() as u64;

@@ -10,7 +10,10 @@
 //! levels, a gap for doubling); rotations are quarter turns; timber cut
 //! along the grain allows only 0/180°.
 
+pub mod groups;
 pub mod validate;
+
+pub use groups::{Piece, PieceStock, StockForm, StockGroup};
 
 use crate::network::Family;
 use std::path::PathBuf;
@@ -58,6 +61,9 @@ pub struct ProfileOf<S> {
     /// How lamellas meet the edge strips and how bands are split
     /// (`edge_joint:`; every field optional).
     pub edge_joint: EdgeJoint,
+    /// The stocks of the parts that are not lamellas, where the file names
+    /// them (`stocks:`); every other part takes a default ([`groups`]).
+    pub stocks: Vec<PieceStock>,
 }
 
 /// A profile as a reader found it, before any check: every section as
@@ -503,6 +509,7 @@ impl Profile {
             cutting: raw.cutting,
             check: raw.check,
             edge_joint: raw.edge_joint,
+            stocks: raw.stocks,
         })
     }
 

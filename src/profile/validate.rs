@@ -50,7 +50,7 @@ pub fn profile(raw: &RawProfile) -> Check {
         positive("check.max_sagitta_mm", m)?;
     }
     edge_joint(raw)?;
-    Ok(())
+    stocks(raw)
 }
 
 /// `edge_joint:` positive sizes; a bolted joint has a bolt (its own or
@@ -553,6 +553,159 @@ fn cutting(c: &Cutting, grain: Grain) -> Check {
             return fail(
                 "cutting.allowed_rotations_deg",
                 format!("{r}° turns a strip across the grain (material.grain: along_strip allows 0 and 180)"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The checks of `stocks:` (each entry's fields under `stocks.<piece>.`),
+/// after every other section passed.
+fn stocks(raw: &RawProfile) -> Check {
+    let fail = |field: String, message: String| Err(FieldError { field, message });
+    for e in &raw.stocks {
+        let at = e.piece.field();
+        let f = |name: &str| format!("{at}.{name}");
+        if !raw.makes(e.piece) {
+            return fail(
+                at.clone(),
+                format!(
+                    "the profile makes no {}s (its `{}:` section is null)",
+                    e.piece.role().replace('-', " "),
+                    e.piece.key()
+                ),
+            );
+        }
+        if let Some(n) = &e.name {
+            let ok = !n.is_empty()
+                && n.len() <= 64
+                && !n.starts_with('.')
+                && n.bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || matches!(b, b'-' | b'_' | b'.'));
+            if !ok {
+                return fail(
+                    f("name"),
+                    format!("`{n}`: a group name is 1 to 64 letters, digits, `-`, `_` or `.` (it names files), not starting with `.`"),
+                );
+            }
+        }
+        if e.material.as_deref().is_some_and(|m| m.trim().is_empty()) {
+            return fail(f("material"), "is blank".into());
+        }
+        for (name, x) in [
+            ("kerf_mm", e.kerf_mm),
+            ("part_spacing_mm", e.part_spacing_mm),
+            ("edge_margin_mm", e.edge_margin_mm),
+            ("price_per_unit", e.price_per_unit),
+        ] {
+            if let Some(x) = x {
+                if !(x.is_finite() && x >= 0.0) {
+                    return fail(f(name), format!("must be a finite number ≥ 0 (got {x})"));
+                }
+            }
+        }
+        if e.currency.as_deref().is_some_and(|c| c.trim().is_empty()) {
+            return fail(f("currency"), "is blank".into());
+        }
+        let currency = e
+            .stock
+            .as_ref()
+            .and_then(|s| s.currency.as_deref())
+            .or(e.currency.as_deref());
+        if let (Some(c), Some(lamella)) = (currency, raw.stock.currency.as_deref()) {
+            if c != lamella {
+                return fail(
+                    f("currency"),
+                    format!("{c}, but the lamella stock prices in {lamella}: give every stock in one currency"),
+                );
+            }
+        }
+        if e.piece == super::Piece::Stud {
+            if e.stock.is_some() {
+                return fail(
+                    at.clone(),
+                    "studs are sawn from bars stud.bar_length_mm long (section gap × gap): give only name, material, price_per_unit, currency, kerf_mm".into(),
+                );
+            }
+        } else if let Some(st) = &e.stock {
+            stock(st, 0.0).map_err(|err| FieldError {
+                field: err.field.replacen("stock", &at, 1),
+                message: err.message.replace("stock.", &format!("{at}.")),
+            })?;
+        } else if e.price_per_unit.is_some()
+            && (raw.stock.kind == StockKind::Coil
+                || raw.stock.sizes.as_ref().is_some_and(|l| l.len() > 1))
+        {
+            return fail(
+                f("price_per_unit"),
+                "prices one sheet, but the lamella stock this group takes has several sizes or is a coil: give the group its sizes with their prices".into(),
+            );
+        }
+        if let Some(r) = &e.allowed_rotations_deg {
+            let c = Cutting {
+                kerf_mm: 0.0,
+                part_spacing_mm: 0.0,
+                edge_margin_mm: 0.0,
+                allowed_rotations_deg: r.clone(),
+            };
+            let grain = if e.material.is_some() {
+                Grain::None
+            } else {
+                raw.material.grain
+            };
+            cutting(&c, grain).map_err(|err| FieldError {
+                field: f("allowed_rotations_deg"),
+                message: err.message,
+            })?;
+        }
+    }
+    // A piece that names its own stock must not share its material and
+    // thickness with an earlier group (it would be nested with it).
+    let mut seen: Vec<(String, f64, super::Piece)> = Vec::new();
+    for piece in super::Piece::ALL.into_iter().filter(|&p| raw.makes(p)) {
+        let key = (raw.piece_material(piece), raw.piece_thickness_mm(piece));
+        let own = piece == super::Piece::Lamella
+            || raw.piece_stock(piece).is_some_and(|e| {
+                e.stock.is_some()
+                    || e.name.is_some()
+                    || e.kerf_mm.is_some()
+                    || e.part_spacing_mm.is_some()
+                    || e.edge_margin_mm.is_some()
+                    || e.allowed_rotations_deg.is_some()
+                    || e.price_per_unit.is_some()
+            });
+        if let Some((_, _, first)) = seen
+            .iter()
+            .find(|(m, t, _)| *m == key.0 && *t == key.1)
+            .filter(|_| piece != super::Piece::Stud)
+        {
+            if own {
+                return fail(
+                    piece.field(),
+                    format!(
+                        "the {}s are {} mm of `{}` like the {}s, so they are cut from that stock: leave this entry out, or name another material",
+                        piece.role().replace('-', " "),
+                        super::groups::trim_mm(key.1),
+                        key.0,
+                        first.role().replace('-', " "),
+                    ),
+                );
+            }
+        } else {
+            seen.push((key.0, key.1, piece));
+        }
+    }
+    // Group names are unique (they name the sheet files).
+    let groups = super::Profile::raw_groups(raw);
+    for (i, g) in groups.iter().enumerate() {
+        if let Some(j) = groups[..i].iter().position(|h| h.name == g.name) {
+            return fail(
+                format!("{}.name", g.pieces[0].field()),
+                format!(
+                    "`{}` already names the {} group: give each group its own name",
+                    g.name,
+                    groups[j].pieces[0].role()
+                ),
             );
         }
     }

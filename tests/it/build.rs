@@ -139,6 +139,12 @@ enum Ent {
     },
 }
 
+/// The file of plan sheet `sheet` (the `i`-th): named by its stock group.
+fn sheet_file(out: &Path, sheet: &Value, i: usize, ext: &str) -> PathBuf {
+    let group = sheet["group"].as_str().expect("group");
+    out.join(format!("sheets/{group}-sheet-{:03}.{ext}", i + 1))
+}
+
 fn read_dxf(path: &Path) -> (dxf::Drawing, Vec<Ent>) {
     let d = dxf::Drawing::load_file(path).expect("DXF reads back");
     let mut ents = Vec::new();
@@ -297,7 +303,7 @@ fn dxf_matches_plan_within(out: &Path, tol_mm: f64) -> SheetCheck {
         ..Default::default()
     };
     for (i, sheet) in sheets.iter().enumerate() {
-        let path = out.join(format!("sheets/sheet-{:03}.dxf", i + 1));
+        let path = sheet_file(out, sheet, i, "dxf");
         let (d, ents) = read_dxf(&path);
         let name = path.display().to_string();
         assert_eq!(d.header.version, dxf::enums::AcadVersion::R2000);
@@ -624,7 +630,7 @@ fn svg_ink_where_parts_are(out: &Path, mm_per_px: f64) {
         .iter()
         .enumerate()
     {
-        let path = out.join(format!("sheets/sheet-{:03}.svg", i + 1));
+        let path = sheet_file(out, sheet, i, "svg");
         let text = std::fs::read_to_string(&path).expect("svg");
         let (l, w) = (
             sheet["length_mm"].as_f64().expect("l"),
@@ -714,10 +720,11 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
     ok(&o);
     let stdout = String::from_utf8_lossy(&o.stdout);
     for want in [
-        "sheets: 3 (lower bound 3)",
+        "sheets: 5 (lower bound 5)",
+        "by stock group: lamella-1.5 3, washer-3 1, shear-block-10 1",
         "elastic check: PASS",
         "node bolt",
-        "wrote 219 files",
+        "wrote 215 files",
     ] {
         assert!(stdout.contains(want), "summary lacks {want:?}:\n{stdout}");
     }
@@ -846,11 +853,11 @@ fn pavilion_bands_are_fitted_by_arcs() {
 fn sheet_outline_and_labels_only_when_asked() {
     let plain = scratch("plain").join("kit");
     ok(&build("hypar-small", "steel-1.5", &plain, &["--quiet"]));
-    let (d, ents) = read_dxf(&plain.join("sheets/sheet-001.dxf"));
+    let (d, ents) = read_dxf(&plain.join("sheets/lamella-1.5-sheet-001.dxf"));
     assert!(ents
         .iter()
         .all(|e| !matches!(e, Ent::Poly { layer, .. } if layer == "SHEET")));
-    let svg = std::fs::read_to_string(plain.join("sheets/sheet-001.svg")).expect("svg");
+    let svg = std::fs::read_to_string(plain.join("sheets/lamella-1.5-sheet-001.svg")).expect("svg");
     assert!(!svg.contains(r#"id="SHEET""#) && !svg.contains("<text"));
     let sheet_layer = d.layers().find(|l| l.name == "SHEET").expect("SHEET layer");
     assert!(!sheet_layer.is_layer_plotted);
@@ -866,7 +873,7 @@ fn sheet_outline_and_labels_only_when_asked() {
         plan["sheets"][0]["length_mm"].as_f64().expect("l"),
         plan["sheets"][0]["width_mm"].as_f64().expect("w"),
     );
-    let (_, ents) = read_dxf(&asked.join("sheets/sheet-001.dxf"));
+    let (_, ents) = read_dxf(&asked.join("sheets/lamella-1.5-sheet-001.dxf"));
     match ents.first() {
         Some(Ent::Poly {
             layer, closed, pts, ..
@@ -881,7 +888,7 @@ fn sheet_outline_and_labels_only_when_asked() {
         }
         _ => panic!("the sheet outline comes first"),
     }
-    let svg = std::fs::read_to_string(asked.join("sheets/sheet-001.svg")).expect("svg");
+    let svg = std::fs::read_to_string(asked.join("sheets/lamella-1.5-sheet-001.svg")).expect("svg");
     assert!(svg.contains(r#"<g id="SHEET""#) && svg.contains(r#"<g id="LABELS""#));
     assert!(svg.contains("<text"));
 }
@@ -989,8 +996,20 @@ fn takeoff_sums_the_plan() {
             "{kind}: {mass}"
         );
     }
-    let sheets = plan["sheets"].as_array().expect("sheets").len() as f64;
-    assert_eq!(t["totals"]["stock_cost"].as_f64(), Some(95.0 * sheets));
+    // Each stock group at its own price (profiles/steel-1.5.yaml): the
+    // 1.5 mm sheets 95, the 3 mm washer sheets 85, the 10 mm plates 70.
+    let cost: f64 = plan["sheets"]
+        .as_array()
+        .expect("sheets")
+        .iter()
+        .map(|s| match s["thickness_mm"].as_f64().expect("t") {
+            1.5 => 95.0,
+            3.0 => 85.0,
+            10.0 => 70.0,
+            t => panic!("a {t} mm sheet"),
+        })
+        .sum();
+    assert_eq!(t["totals"]["stock_cost"].as_f64(), Some(cost));
     let csv = std::fs::read_to_string(out.join("takeoff.csv")).expect("csv");
     let header = csv.lines().next().expect("header");
     assert!(header.starts_with(
@@ -1199,7 +1218,7 @@ fn kerf_compensation_offsets_by_half_the_kerf() {
     let plan = json(&out.join("plan.json"));
     let parts = parts_by_id(&plan);
     let sheet = &plan["sheets"][0];
-    let (_, ents) = read_dxf(&out.join("sheets/sheet-001.dxf"));
+    let (_, ents) = read_dxf(&out.join("sheets/lamella-1.5-sheet-001.dxf"));
     let outers: Vec<&Vec<[f64; 2]>> = ents
         .iter()
         .filter_map(|e| match e {
@@ -1257,13 +1276,19 @@ fn kerf_compensation_offsets_by_half_the_kerf() {
         }
     }
     let steel_hole = 8.0 + 1.0; // M8 with 1 mm clearance
-    let circles: Vec<f64> = ents
-        .iter()
-        .filter_map(|e| match e {
-            Ent::Circle { r, .. } => Some(*r),
-            _ => None,
-        })
-        .collect();
+                                // The node holes are the star washers' (on their own 3 mm sheets).
+    let mut circles: Vec<f64> = Vec::new();
+    for e in std::fs::read_dir(out.join("sheets"))
+        .expect("sheets")
+        .flatten()
+    {
+        if e.path().extension().is_some_and(|x| x == "dxf") {
+            circles.extend(read_dxf(&e.path()).1.iter().filter_map(|e| match e {
+                Ent::Circle { r, .. } => Some(*r),
+                _ => None,
+            }));
+        }
+    }
     assert!(circles
         .iter()
         .any(|r| (r - (0.5 * steel_hole - 0.1)).abs() < 1e-9));
@@ -1384,7 +1409,7 @@ fn killing_the_build_midway_leaves_the_output_as_it_was() {
         .spawn()
         .expect("spawn");
     let staging = dir.join(format!(".kit.lamella-build-{}", child.id()));
-    let staged = staging.join("sheets/sheet-003.svg");
+    let staged = staging.join("sheets/lamella-1.5-sheet-003.svg");
     let t0 = std::time::Instant::now();
     while !staged.exists() {
         assert!(
@@ -1437,7 +1462,11 @@ fn takeoff_prices_each_sheet_size() {
     let mut by_size: BTreeMap<String, (u64, f64)> = BTreeMap::new();
     for s in plan["sheets"].as_array().expect("sheets") {
         let e = by_size
-            .entry(s["stock"].as_str().expect("stock").to_string())
+            .entry(format!(
+                "{} × {}",
+                s["stock"].as_str().expect("stock"),
+                s["thickness_mm"].as_f64().expect("t")
+            ))
             .or_default();
         e.0 += 1;
         e.1 += s["price_per_unit"].as_f64().expect("price");
@@ -1523,7 +1552,7 @@ fn per_part_files_are_the_nested_parts() {
     // Each part's file against its first placement.
     let mut done = std::collections::BTreeSet::new();
     for (i, sheet) in sheets.iter().enumerate() {
-        let (_, sheet_ents) = read_dxf(&out.join(format!("sheets/sheet-{:03}.dxf", i + 1)));
+        let (_, sheet_ents) = read_dxf(&sheet_file(&out, sheet, i, "dxf"));
         for pl in sheet["placements"].as_array().expect("placements") {
             let id = pl["part"].as_str().expect("part");
             if !done.insert(id.to_string()) {

@@ -32,6 +32,7 @@ mod parts;
 mod readers;
 mod readme;
 mod robustness;
+mod stock_groups;
 mod trace;
 mod traced_accuracy;
 mod web_ends;

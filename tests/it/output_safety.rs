@@ -184,29 +184,33 @@ fn a_manifest_vouches_only_for_lamellas_unchanged_files() {
     }
     std::fs::write(out.join(MANIFEST), manifest).expect("write");
     // A sheet the next build does not make, edited by the user.
-    std::fs::write(out.join("sheets/sheet-002.svg"), "my notes on sheet 2").expect("edit");
+    std::fs::write(
+        out.join("sheets/lamella-4-sheet-002.svg"),
+        "my notes on sheet 2",
+    )
+    .expect("edit");
     // A user's file named as lamella names its sheets.
-    std::fs::write(out.join("sheets/sheet-009.dxf"), "mine").expect("write");
+    std::fs::write(out.join("sheets/lamella-0.6-sheet-009.dxf"), "mine").expect("write");
     ok(&build("beech-veneer", &out));
     assert_eq!(std::fs::read(&victim).expect("kept"), b"mine");
     assert_eq!(std::fs::read(&abs_victim).expect("kept"), b"mine");
     assert_eq!(
-        std::fs::read(out.join("sheets/sheet-002.svg")).expect("kept"),
+        std::fs::read(out.join("sheets/lamella-4-sheet-002.svg")).expect("kept"),
         b"my notes on sheet 2"
     );
     assert_eq!(
-        std::fs::read(out.join("sheets/sheet-009.dxf")).expect("kept"),
+        std::fs::read(out.join("sheets/lamella-0.6-sheet-009.dxf")).expect("kept"),
         b"mine"
     );
     assert!(
-        !out.join("sheets/sheet-002.dxf").exists(),
+        !out.join("sheets/lamella-4-sheet-002.dxf").exists(),
         "lamella's own stale sheet is removed"
     );
     // A file the new kit writes, changed since: refused, and kept.
-    std::fs::write(out.join("sheets/sheet-001.dxf"), "edited").expect("edit");
+    std::fs::write(out.join("sheets/lamella-0.6-sheet-001.dxf"), "edited").expect("edit");
     refused(&build("beech-veneer", &out), "not written by lamella");
     assert_eq!(
-        std::fs::read(out.join("sheets/sheet-001.dxf")).expect("kept"),
+        std::fs::read(out.join("sheets/lamella-0.6-sheet-001.dxf")).expect("kept"),
         b"edited"
     );
     assert_eq!(names_in(&dir), ["abs-victim.txt", "kit", "victim.txt"]);

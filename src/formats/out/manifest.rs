@@ -50,8 +50,9 @@ pub const TOP_FILES: [&str; 7] = [
 ];
 
 /// Whether lamella writes files named `rel` (`/`-separated, inside DIR):
-/// one of [`TOP_FILES`], `sheets/sheet-NNN.dxf|svg` (three digits or
-/// more), `parts/parts.csv` or `parts/ID.dxf|svg` (an id of letters,
+/// one of [`TOP_FILES`], `sheets/sheet-NNN.dxf|svg` or
+/// `sheets/GROUP-sheet-NNN.dxf|svg` (three digits or more; a stock group's
+/// name of letters, digits, `-`, `_` and `.`), `parts/parts.csv` or `parts/ID.dxf|svg` (an id of letters,
 /// digits, `-`, `_` and `.`). Nothing else in DIR is ever lamella's to
 /// replace or remove.
 pub fn is_lamella_name(rel: &str) -> bool {
@@ -81,8 +82,20 @@ pub fn is_lamella_name(rel: &str) -> bool {
     else {
         return false;
     };
-    stem.strip_prefix("sheet-")
-        .is_some_and(|n| n.len() >= 3 && n.bytes().all(|b| b.is_ascii_digit()))
+    // `sheet-NNN`, or a stock group's `GROUP-sheet-NNN` (a group name of
+    // letters, digits, `-`, `_` and `.`, not starting with `.`).
+    let Some(at) = stem.rfind("sheet-") else {
+        return false;
+    };
+    let (group, n) = (&stem[..at], &stem[at + "sheet-".len()..]);
+    let group_ok = group.is_empty()
+        || (group.len() > 1
+            && group.ends_with('-')
+            && !group.starts_with('.')
+            && group
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || matches!(b, b'-' | b'_' | b'.')));
+    group_ok && n.len() >= 3 && n.bytes().all(|b| b.is_ascii_digit())
 }
 
 /// What the manifest records of one file.

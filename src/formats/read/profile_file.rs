@@ -56,6 +56,200 @@ pub struct ProfileFile {
     /// How lamellas meet the edge strips; optional.
     #[serde(default, skip_serializing_if = "EdgeJoint::is_empty")]
     pub edge_joint: EdgeJoint,
+    /// What the other parts are cut from, where not the default; optional.
+    #[serde(default, skip_serializing_if = "Stocks::is_empty")]
+    pub stocks: Stocks,
+}
+
+/// `stocks:` the stock of each part that is not a lamella, where it is
+/// not the default ([`crate::profile::groups`]); every entry optional.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Stocks {
+    /// Edge bands.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge: Option<PieceStock>,
+    /// Splice plates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub splice: Option<PieceStock>,
+    /// Star washers.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub washer: Option<PieceStock>,
+    /// Shear blocks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_block: Option<PieceStock>,
+    /// Studs (bars).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stud: Option<PieceStock>,
+}
+
+impl Stocks {
+    /// No entry given (the section is then not written).
+    pub fn is_empty(&self) -> bool {
+        *self == Stocks::default()
+    }
+}
+
+/// `stocks.<piece>:` what one kind of part is cut from: a group name, a
+/// material, sizes in any form `stock:` takes (`kind`, `length_mm`,
+/// `width_mm`, `sizes`, …), a price and the cutting allowances; every
+/// field optional.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PieceStock {
+    /// The group's name (sheet file names); default `ROLE-THICKNESS`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The material, if not the profile's `material.name`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+    /// `sheet` or `coil` (with sizes of its own).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<StockKind>,
+    /// One sheet size: its length; coil: the longest piece, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_mm: Option<f64>,
+    /// One sheet size: its width; coil: its width, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width_mm: Option<f64>,
+    /// Price of one sheet (or bar, or coil piece).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub price_per_unit: Option<f64>,
+    /// Currency of the prices (the lamella stock's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub currency: Option<String>,
+    /// How many sheets there are at most.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_count: Option<u32>,
+    /// Several sheet sizes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sizes: Option<Vec<StockSize>>,
+    /// Coil: price per metre cut.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub price_per_m: Option<f64>,
+    /// Coil: lengths are cut in multiples of this, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_step_mm: Option<f64>,
+    /// Kerf, mm; default `cutting.kerf_mm`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kerf_mm: Option<f64>,
+    /// Part spacing, mm; default `cutting.part_spacing_mm` (bars: 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub part_spacing_mm: Option<f64>,
+    /// Edge margin, mm; default `cutting.edge_margin_mm` (bars: 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_margin_mm: Option<f64>,
+    /// Allowed rotations, degrees; default `cutting.allowed_rotations_deg`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub allowed_rotations_deg: Option<Vec<u32>>,
+}
+
+impl PieceStock {
+    /// The entry as the model keeps it: the sizes as a stock of their
+    /// own where any size field is given (the price and currency then
+    /// with them), else only the price of one default sheet or bar.
+    fn into_model(self, piece: profile::Piece) -> profile::PieceStock {
+        let sized = self.kind.is_some()
+            || self.length_mm.is_some()
+            || self.width_mm.is_some()
+            || self.sizes.is_some()
+            || self.max_count.is_some()
+            || self.price_per_m.is_some()
+            || self.length_step_mm.is_some();
+        let (stock, price_per_unit, currency) = if sized {
+            let st = Stock {
+                kind: self.kind.unwrap_or(StockKind::Sheet),
+                length_mm: self.length_mm,
+                width_mm: self.width_mm,
+                price_per_unit: self.price_per_unit,
+                currency: self.currency,
+                max_count: self.max_count,
+                sizes: self.sizes,
+                price_per_m: self.price_per_m,
+                length_step_mm: self.length_step_mm,
+            };
+            (Some(st.into()), None, None)
+        } else {
+            (None, self.price_per_unit, self.currency)
+        };
+        profile::PieceStock {
+            piece,
+            name: self.name,
+            material: self.material,
+            stock,
+            price_per_unit,
+            currency,
+            kerf_mm: self.kerf_mm,
+            part_spacing_mm: self.part_spacing_mm,
+            edge_margin_mm: self.edge_margin_mm,
+            allowed_rotations_deg: self.allowed_rotations_deg,
+        }
+    }
+
+    /// The model's entry back in the file's form.
+    fn from_model(e: &profile::PieceStock) -> PieceStock {
+        let st: Option<Stock> = e
+            .stock
+            .as_ref()
+            .map(|s| Stock::from(&profile::Stock::from(s.clone())));
+        PieceStock {
+            name: e.name.clone(),
+            material: e.material.clone(),
+            // `sheet` is the default a file may leave out.
+            kind: st
+                .as_ref()
+                .map(|s| s.kind)
+                .filter(|k| *k != StockKind::Sheet),
+            length_mm: st.as_ref().and_then(|s| s.length_mm),
+            width_mm: st.as_ref().and_then(|s| s.width_mm),
+            price_per_unit: st.as_ref().map_or(e.price_per_unit, |s| s.price_per_unit),
+            currency: st
+                .as_ref()
+                .map_or(e.currency.clone(), |s| s.currency.clone()),
+            max_count: st.as_ref().and_then(|s| s.max_count),
+            sizes: st.as_ref().and_then(|s| s.sizes.clone()),
+            price_per_m: st.as_ref().and_then(|s| s.price_per_m),
+            length_step_mm: st.as_ref().and_then(|s| s.length_step_mm),
+            kerf_mm: e.kerf_mm,
+            part_spacing_mm: e.part_spacing_mm,
+            edge_margin_mm: e.edge_margin_mm,
+            allowed_rotations_deg: e.allowed_rotations_deg.clone(),
+        }
+    }
+}
+
+impl Stocks {
+    /// The entries in the model's form, in piece order.
+    fn into_model(self) -> Vec<profile::PieceStock> {
+        use profile::Piece;
+        [
+            (Piece::EdgeBand, self.edge),
+            (Piece::SplicePlate, self.splice),
+            (Piece::Washer, self.washer),
+            (Piece::ShearBlock, self.shear_block),
+            (Piece::Stud, self.stud),
+        ]
+        .into_iter()
+        .filter_map(|(piece, e)| e.map(|e| e.into_model(piece)))
+        .collect()
+    }
+
+    /// The model's entries in the file's form.
+    fn from_model(list: &[profile::PieceStock]) -> Stocks {
+        use profile::Piece;
+        let get = |piece: Piece| {
+            list.iter()
+                .find(|e| e.piece == piece)
+                .map(PieceStock::from_model)
+        };
+        Stocks {
+            edge: get(Piece::EdgeBand),
+            splice: get(Piece::SplicePlate),
+            washer: get(Piece::Washer),
+            shear_block: get(Piece::ShearBlock),
+            stud: get(Piece::Stud),
+        }
+    }
 }
 
 /// `material:` the strip material.
@@ -508,6 +702,7 @@ impl From<ProfileFile> for RawProfile {
             cutting: f.cutting.into(),
             check: f.check.into(),
             edge_joint: f.edge_joint.into(),
+            stocks: f.stocks.into_model(),
         }
     }
 }
@@ -717,6 +912,7 @@ impl From<&Profile> for ProfileFile {
             cutting: (&p.cutting).into(),
             check: (&p.check).into(),
             edge_joint: (&p.edge_joint).into(),
+            stocks: Stocks::from_model(&p.stocks),
         }
     }
 }

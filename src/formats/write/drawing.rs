@@ -202,6 +202,12 @@ pub struct SheetDrawing {
     pub width_mm: f64,
     /// Placed parts, in travel order ([`travel_order`]).
     pub parts: Vec<PartOnSheet>,
+    /// A nested sheet's stock group (`lamella-1.5`; empty for a part's
+    /// own file): its files are named by it.
+    pub group: String,
+    /// A nested sheet's material and thickness, as its DXF header and SVG
+    /// title state them (`S355, 1.5 mm sheet, stock group lamella-1.5`).
+    pub stock_note: Option<String>,
 }
 
 impl SheetDrawing {
@@ -224,9 +230,14 @@ impl SheetDrawing {
         }
     }
 
-    /// The file stem: `sheet-001`.
+    /// The file stem: the stock group, then the sheet's number
+    /// (`lamella-1.5-sheet-001`; `sheet-001` without a group).
     pub fn file_stem(&self) -> String {
-        format!("sheet-{:03}", self.number)
+        if self.group.is_empty() {
+            format!("sheet-{:03}", self.number)
+        } else {
+            format!("{}-sheet-{:03}", self.group, self.number)
+        }
     }
 }
 
@@ -354,6 +365,8 @@ impl<'a> Drawer<'a> {
             length_mm: part.length_mm,
             width_mm: part.height_mm,
             parts: vec![placed],
+            group: String::new(),
+            stock_note: None,
         })
     }
 
@@ -400,6 +413,13 @@ impl<'a> Drawer<'a> {
             length_mm: s.length_mm,
             width_mm: s.width_mm,
             parts: placed,
+            group: s.group.clone(),
+            stock_note: (!s.group.is_empty()).then(|| {
+                format!(
+                    "{}, {} mm {}, stock group {}",
+                    s.material, s.thickness_mm, s.form, s.group
+                )
+            }),
         })
     }
 }

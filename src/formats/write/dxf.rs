@@ -119,6 +119,10 @@ pub fn write_dxf(
         lo,
         hi,
         [sheet.length_mm, sheet.width_mm],
+        sheet
+            .stock_note
+            .as_deref()
+            .map(|n| format!("{} {n}", sheet.id)),
     );
     structure(out, lo, hi);
     section(out, "ENTITIES");
@@ -256,8 +260,17 @@ fn var(s: &mut Vec<u8>, name: &str) {
     g(s, 9, name);
 }
 
-/// The HEADER section.
-fn header(s: &mut Vec<u8>, seed: u64, lo: [f64; 2], hi: [f64; 2], sheet_mm: [f64; 2]) {
+/// The HEADER section; `note` (a nested sheet's id, material and
+/// thickness) as `$PROJECTNAME`, ASCII with anything else as DXF's
+/// `\U+XXXX`.
+fn header(
+    s: &mut Vec<u8>,
+    seed: u64,
+    lo: [f64; 2],
+    hi: [f64; 2],
+    sheet_mm: [f64; 2],
+    note: Option<String>,
+) {
     section(s, "HEADER");
     var(s, "$ACADVER");
     g(s, 1, "AC1015");
@@ -293,6 +306,18 @@ fn header(s: &mut Vec<u8>, seed: u64, lo: [f64; 2], hi: [f64; 2], sheet_mm: [f64
     g(s, 70, "4");
     var(s, "$MEASUREMENT");
     g(s, 70, "1");
+    if let Some(note) = note {
+        let mut text = String::with_capacity(note.len());
+        for c in note.chars() {
+            if c.is_ascii() && !c.is_ascii_control() {
+                text.push(c);
+            } else {
+                text += &format!("\\U+{:04X}", c as u32);
+            }
+        }
+        var(s, "$PROJECTNAME");
+        g(s, 1, &text);
+    }
     endsec(s);
 }
 
@@ -772,6 +797,8 @@ mod tests {
             length_mm: 100.0,
             width_mm: 50.0,
             parts: Vec::new(),
+            group: String::new(),
+            stock_note: None,
         };
         let opts = SheetFileOptions {
             sheet_outline: true,

@@ -62,6 +62,8 @@ pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
         rows.push(Row {
             section: "stock",
             item: &s.item,
+            material: &s.material,
+            thickness_mm: Some(s.thickness_mm),
             count: Some(s.count),
             utilization: s.utilization,
             unit_price: s.unit_price,

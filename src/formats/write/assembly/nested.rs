@@ -43,7 +43,14 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
     let s = 1.0 / f64::from(scale);
     let mut page = Page::new(
         "Sheets as nested",
-        format!("Sheet {} of {}: {}", sheet.number, count, sheet.id),
+        if meta.group.is_empty() {
+            format!("Sheet {} of {}: {}", sheet.number, count, sheet.id)
+        } else {
+            format!(
+                "Sheet {} of {}: {}, {} {} mm ({})",
+                sheet.number, count, sheet.id, meta.material, meta.thickness_mm, meta.group
+            )
+        },
         Some(scale),
     );
     let c = &mut page.canvas;
@@ -55,7 +62,12 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
         Align::Left,
         0.0,
         &format!(
-            "stock sheet {} mm, {} parts, utilisation {} %; file sheets/{}.dxf",
+            "stock {} {} mm, {} parts, utilisation {} %; file sheets/{}.dxf",
+            if meta.form.is_empty() {
+                "sheet"
+            } else {
+                &meta.form
+            },
             meta.stock,
             sheet.parts.len(),
             fixed(100.0 * meta.utilization, 1),
