@@ -508,7 +508,10 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
                 angle_range_deg: f
                     .angle_range_deg
                     .map(|(a, b)| [round(a, DEG), round(b, DEG)]),
-                station_mm: f.station_mm.map(|s| round(s, MM)),
+                station_mm: f
+                    .station_mm
+                    .map(|s| round(s - p.station_start_mm.unwrap_or(0.0), MM)),
+                line_station_mm: f.station_mm.map(|s| round(s, MM)),
             })
             .collect(),
     }

@@ -151,11 +151,17 @@ fn expected_pages(plan: &Value, paper: &str) -> usize {
     let order = r.table(108.0, strips.len() + usize::from(two_level))
         + usize::from(plan.get("flat").is_some());
     let strip_pages = r.strips(plan);
-    let nodes = r.table(106.0, plan["nodes"].as_array().expect("nodes").len());
+    // Per node: its id; per strip its id, and per lamella the piece and
+    // the station on it; the angle and the joint.
+    let lamellas = plan["profile"]["lamellas_per_strip"]
+        .as_f64()
+        .unwrap_or(1.0);
+    let node_w = 12.0 + 2.0 * (14.0 + lamellas * (18.0 + 11.0)) + 14.0 + 16.0;
+    let nodes = r.table(node_w, plan["nodes"].as_array().expect("nodes").len());
     let block_pages = if blocks == 0 {
         0
     } else {
-        r.table(66.0, blocks)
+        r.table(88.0, blocks)
     };
     let takeoff = 1;
     let sheets = plan["sheets"].as_array().expect("sheets").len();
@@ -379,5 +385,221 @@ fn flat_layout_page_when_the_flat_state_is_computed() {
             n["rotation_deg"].as_f64().expect("rot")
         );
         assert!(text.contains(&label), "node label {label} missing");
+    }
+}
+
+/// pypdf's reading of every text run with its place on the page
+/// (`tests/tools/pdf_words.py`), or `None` without pypdf.
+fn read_runs(path: &Path) -> Option<Value> {
+    read_pdf(path)?;
+    let o = Command::new("python3")
+        .arg(root().join("tests/tools/pdf_words.py"))
+        .arg(path)
+        .output()
+        .expect("python3");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Some(serde_json::from_slice(&o.stdout).expect("json"))
+}
+
+/// A printed whole number of millimetres (`1 216`).
+fn printed_mm(s: &str) -> Option<f64> {
+    s.chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .parse()
+        .ok()
+}
+
+/// The text runs of the pages whose title block names `section`.
+fn section_runs<'a>(doc: &'a Value, section: &str) -> Vec<Vec<&'a Value>> {
+    doc["page"]
+        .as_array()
+        .expect("pages")
+        .iter()
+        .map(|p| {
+            p["runs"]
+                .as_array()
+                .expect("runs")
+                .iter()
+                .collect::<Vec<_>>()
+        })
+        .filter(|runs| {
+            runs.iter().any(|r| {
+                r["text"]
+                    .as_str()
+                    .is_some_and(|t| t.starts_with(&format!("{section}  |")))
+            })
+        })
+        .collect()
+}
+
+/// Table rows of a page: runs on one baseline, left to right, cut into
+/// rows after each angle cell (`90.0°`) and the joint cell that follows it.
+fn schedule_rows(runs: &[&Value]) -> Vec<Vec<String>> {
+    let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
+    for r in runs.iter().filter(|r| r["rot_deg"].as_f64() == Some(0.0)) {
+        let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
+        lines.entry(y).or_default().push((
+            r["x_mm"].as_f64().expect("x"),
+            r["text"].as_str().expect("t").to_string(),
+        ));
+    }
+    let mut rows = Vec::new();
+    for (_, mut cells) in lines {
+        cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut row: Vec<String> = Vec::new();
+        let mut after_angle = false;
+        for (_, t) in cells {
+            let angle = t.ends_with('°');
+            row.push(t);
+            if after_angle {
+                rows.push(std::mem::take(&mut row));
+            }
+            after_angle = angle;
+        }
+        if !row.is_empty() {
+            rows.push(row);
+        }
+    }
+    rows
+}
+
+/// One datum: every slot's station, as its strip sheet and the node
+/// schedule print it, is its distance from its piece's cut start end —
+/// the slot's x in the part (plan.json's outline frame, x = 0 at the
+/// start end), not its station on the curve; every shear-block bolt's on
+/// the shear-block page likewise; and plan.json's feature stations are
+/// those distances, with the line's station beside them.
+#[test]
+fn every_station_from_the_pieces_start_end() {
+    let out = scratch("datum");
+    ok(&build_quiet("enneper-4m", "steel-1.5", &out, &[]));
+    let plan: Value =
+        serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("json");
+    // (lamella name, crossing) → slot x; (node, piece) → slot x; piece → block x.
+    let mut slots: Vec<(String, String, usize, String, f64)> = Vec::new();
+    let mut blocks: Vec<(String, f64)> = Vec::new();
+    for p in plan["parts"].as_array().expect("parts") {
+        if p["kind"] != "lamella" {
+            continue;
+        }
+        let id = p["id"].as_str().expect("id").to_string();
+        let name = format!("{}-{}", p["strip"].as_str().expect("strip"), p["lamella"]);
+        let start = p["station_start_mm"].as_f64().expect("start");
+        for f in p["features"].as_array().expect("features") {
+            let x = f["center_mm"][0].as_f64().expect("x");
+            let st = f["station_mm"].as_f64().expect("station");
+            let line = f["line_station_mm"].as_f64().expect("line station");
+            assert!((st - x).abs() < 1e-3, "{id}: station {st} at x {x}");
+            assert!((line - (start + x)).abs() < 2e-3, "{id}: line {line}");
+            if f["kind"] == "slot" {
+                let cross = f["crossing"].as_str().expect("crossing").to_string();
+                let node = f["node"].as_u64().expect("node") as usize;
+                slots.push((name.clone(), cross, node, id.clone(), x));
+            } else if f["hole_use"] == "shear_block" {
+                blocks.push((id.clone(), x));
+            }
+        }
+    }
+    assert!(slots.len() > 200 && !blocks.is_empty());
+    assert!(
+        slots.iter().any(|s| s.3.ends_with(".2")),
+        "the sample has spliced lamellas"
+    );
+    let Some(doc) = read_runs(&out.join("assembly.pdf")) else {
+        return;
+    };
+    // Strip sheets: the upright station under each upright crossing id,
+    // on the row of the lamella named left of it (just below).
+    let mut sheet: HashMap<(String, String), Vec<f64>> = HashMap::new();
+    for runs in section_runs(&doc, "Strip sheets") {
+        let f = |r: &Value, k: &str| r[k].as_f64().expect(k);
+        let names: Vec<&&Value> = runs
+            .iter()
+            .filter(|r| r["bold"] == true && f(r, "size_pt") == 10.0 && f(r, "rot_deg") == 0.0)
+            .collect();
+        let upright: Vec<&&Value> = runs
+            .iter()
+            .filter(|r| (f(r, "rot_deg") - 90.0).abs() < 1e-6)
+            .collect();
+        for st in upright.iter().filter(|r| r["bold"] == false) {
+            let Some(id) = upright.iter().find(|r| {
+                r["bold"] == true
+                    && (f(r, "x_mm") - f(st, "x_mm")).abs() < 0.05
+                    && f(r, "y_mm") > f(st, "y_mm")
+                    && f(r, "y_mm") < f(st, "y_mm") + 20.0
+            }) else {
+                continue;
+            };
+            let row = names
+                .iter()
+                .filter(|n| f(n, "y_mm") <= f(st, "y_mm"))
+                .max_by(|a, b| f(a, "y_mm").total_cmp(&f(b, "y_mm")))
+                .expect("a lamella row");
+            sheet
+                .entry((
+                    row["text"].as_str().expect("t").to_string(),
+                    id["text"].as_str().expect("t").to_string(),
+                ))
+                .or_default()
+                .push(printed_mm(st["text"].as_str().expect("t")).expect("a station"));
+        }
+    }
+    // The node schedule: (node, piece) → the station printed after the piece.
+    let mut schedule: HashMap<(usize, String), f64> = HashMap::new();
+    for runs in section_runs(&doc, "Node schedule") {
+        for row in schedule_rows(&runs) {
+            let Ok(node) = row[0].parse::<usize>() else {
+                continue;
+            };
+            for w in row.windows(2) {
+                if let Some(v) = printed_mm(&w[1]).filter(|_| w[0].contains('.')) {
+                    schedule.insert((node, w[0].clone()), v);
+                }
+            }
+        }
+    }
+    for (name, cross, node, piece, x) in &slots {
+        let printed = sheet
+            .get(&(name.clone(), cross.clone()))
+            .unwrap_or_else(|| panic!("{name} × {cross}: no station on its strip sheet"));
+        assert!(
+            printed.iter().any(|v| (v - x).abs() <= 0.5 + 1e-6),
+            "{piece} × {cross}: strip sheet prints {printed:?}, the slot is at x = {x}"
+        );
+        let v = schedule
+            .get(&(*node, piece.clone()))
+            .unwrap_or_else(|| panic!("node {node}: {piece} not in the schedule"));
+        assert!(
+            (v - x).abs() <= 0.5 + 1e-6,
+            "node {node} on {piece}: schedule {v}, x = {x}"
+        );
+    }
+    // The shear blocks: each bolt's piece and the station printed after it.
+    let mut printed: HashMap<String, Vec<f64>> = HashMap::new();
+    for runs in section_runs(&doc, "Shear blocks") {
+        let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
+        for r in &runs {
+            let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
+            lines.entry(y).or_default().push((
+                r["x_mm"].as_f64().expect("x"),
+                r["text"].as_str().expect("t").to_string(),
+            ));
+        }
+        for (_, mut cells) in lines {
+            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for w in cells.windows(2) {
+                if let Some(v) = printed_mm(&w[1].1).filter(|_| w[0].1.contains('.')) {
+                    printed.entry(w[0].1.clone()).or_default().push(v);
+                }
+            }
+        }
+    }
+    for (piece, x) in &blocks {
+        let v = printed.get(piece).map(Vec::as_slice).unwrap_or_default();
+        assert!(
+            v.iter().any(|v| (v - x).abs() <= 0.5 + 1e-6),
+            "shear block on {piece} at x = {x}: page prints {v:?}"
+        );
     }
 }

@@ -411,7 +411,9 @@ fn cuts_of(plan: &Plan) -> std::collections::HashMap<(&str, u32), Vec<Cut>> {
             continue;
         }
         for f in &p.features {
-            if let (PlanFeatureKind::Slot, Some(st), Some(edge)) = (f.kind, f.station_mm, f.edge) {
+            if let (PlanFeatureKind::Slot, Some(st), Some(edge)) =
+                (f.kind, f.line_station_mm, f.edge)
+            {
                 m.entry((strip.as_str(), lam)).or_default().push(Cut {
                     from_mm: st - f.width_mm / 2.0,
                     to_mm: st + f.width_mm / 2.0,

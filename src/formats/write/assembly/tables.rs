@@ -9,6 +9,7 @@ use super::canvas::{self, Align, Canvas, Rgb3, BLACK, BLUE, GREY, LIGHT, RED};
 use super::{fixed, mm0, AssemblyInput, Frame, Page};
 use crate::plan::takeoff::Takeoff;
 use crate::plan::{Plan, PlanHoleUse, PlanPart};
+use std::collections::HashMap;
 
 /// Height of a table row, mm.
 pub const ROW_MM: f64 = 4.5;
@@ -111,82 +112,132 @@ pub fn table_pages(
         .collect()
 }
 
-/// The node schedule's columns.
-pub const NODE_COLUMNS: [Column; 7] = [
-    ("node", 12.0, Align::Right),
-    ("strip", 14.0, Align::Left),
-    ("station", 18.0, Align::Right),
-    ("strip", 14.0, Align::Left),
-    ("station", 18.0, Align::Right),
-    ("angle", 14.0, Align::Right),
-    ("joint", 16.0, Align::Left),
-];
+/// The node schedule's columns for strips of `lamellas` lamellas (1 or
+/// 2): the node, then for each of its two strips the strip id and, per
+/// lamella, the piece holding the node and the node's station on it.
+pub fn node_columns(lamellas: u32) -> Vec<Column> {
+    let mut cols: Vec<Column> = vec![("node", 12.0, Align::Right)];
+    for _ in 0..2 {
+        cols.push(("strip", 14.0, Align::Left));
+        for n in 1..=lamellas.clamp(1, 2) {
+            cols.push((if n == 1 { "piece" } else { "piece 2" }, 18.0, Align::Left));
+            cols.push(("at", 11.0, Align::Right));
+        }
+    }
+    cols.push(("angle", 14.0, Align::Right));
+    cols.push(("joint", 16.0, Align::Left));
+    cols
+}
 
-/// The node schedule: every node of the plan, in id order.
+/// Lamellas per strip of the plan's parts (1 without a profile).
+fn lamellas_per_strip(plan: &Plan) -> u32 {
+    plan.profile
+        .as_ref()
+        .map_or(1, |p| p.lamellas_per_strip)
+        .clamp(1, 2)
+}
+
+/// Where each node sits on each piece: (node, strip, lamella) → (piece id,
+/// station from the piece's start end, mm). Lamellas and edge strips.
+pub fn node_stations(plan: &Plan) -> HashMap<(usize, &str, u32), (&str, f64)> {
+    let mut at = HashMap::new();
+    for p in plan.parts.iter().flatten() {
+        let Some(strip) = p.strip.as_deref() else {
+            continue;
+        };
+        for f in &p.features {
+            if let (Some(n), Some(st)) = (f.node, f.station_mm) {
+                at.entry((n, strip, p.lamella.unwrap_or(1)))
+                    .or_insert((p.id.as_str(), st));
+            }
+        }
+    }
+    at
+}
+
+/// The node schedule: every node of the plan, in id order, located on
+/// the pieces: for each strip the piece that holds the node and the
+/// station there, from the piece's cut start end.
 pub fn node_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
+    let lamellas = lamellas_per_strip(plan);
+    let at = node_stations(plan);
     let rows: Vec<Row> = plan
         .nodes
         .iter()
         .map(|n| {
-            (
-                vec![
-                    n.id.to_string(),
-                    n.a.clone(),
-                    mm0(n.station_a_mm),
-                    n.b.clone(),
-                    mm0(n.station_b_mm),
-                    format!("{}°", fixed(n.angle_deg, 1)),
-                    n.joint.clone(),
-                ],
-                None,
-            )
+            let mut cells = vec![n.id.to_string()];
+            for strip in [&n.a, &n.b] {
+                cells.push(strip.clone());
+                for l in 1..=lamellas {
+                    // An edge strip's pieces are lamella 1's column.
+                    match at.get(&(n.id, strip.as_str(), l)) {
+                        Some((piece, st)) => {
+                            cells.push((*piece).to_string());
+                            cells.push(mm0(*st));
+                        }
+                        None => {
+                            cells.push("-".into());
+                            cells.push(String::new());
+                        }
+                    }
+                }
+            }
+            cells.push(format!("{}°", fixed(n.angle_deg, 1)));
+            cells.push(n.joint.clone());
+            (cells, None)
         })
         .collect();
     table_pages(
         frame,
         "Node schedule",
         &format!(
-            "Node schedule: {} nodes, stations along each strip's curve from its start, mm",
+            "Node schedule: {} nodes; the piece that holds each and its station, mm from the piece's cut start end (where its engraved arrow starts)",
             plan.nodes.len()
         ),
-        &NODE_COLUMNS,
+        &node_columns(lamellas),
         &rows,
     )
 }
 
 /// The shear-block schedule's columns.
-pub const BLOCK_COLUMNS: [Column; 4] = [
+pub const BLOCK_COLUMNS: [Column; 6] = [
     ("strip", 14.0, Align::Left),
     ("block", 12.0, Align::Right),
-    ("lam. 1", 20.0, Align::Right),
-    ("lam. 2", 20.0, Align::Right),
+    ("lam. 1 piece", 20.0, Align::Left),
+    ("at", 11.0, Align::Right),
+    ("lam. 2 piece", 20.0, Align::Left),
+    ("at", 11.0, Align::Right),
 ];
 
-/// The stations of a strip's shear-block holes on lamella `n`'s line,
-/// ascending.
-fn block_stations(parts: &[&PlanPart], n: u32) -> Vec<f64> {
-    let mut v: Vec<f64> = parts
+/// A strip's shear-block holes on lamella `n`, in order along its line:
+/// the piece and the station from the piece's start end.
+fn block_stations<'a>(parts: &[&'a PlanPart], n: u32) -> Vec<(f64, &'a str, f64)> {
+    let mut v: Vec<(f64, &str, f64)> = parts
         .iter()
         .filter(|p| p.lamella == Some(n))
         .flat_map(|p| {
             p.features
                 .iter()
                 .filter(|f| f.hole_use == Some(PlanHoleUse::ShearBlock))
-                .filter_map(|f| f.station_mm)
+                .filter_map(|f| {
+                    let st = f.station_mm?;
+                    Some((f.line_station_mm.unwrap_or(st), p.id.as_str(), st))
+                })
         })
         .collect();
-    v.sort_by(f64::total_cmp);
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
     v
 }
 
-/// The shear-block schedule: every block by strip, its stations on the
-/// two lamellas' lines. No pages when the kit has no shear blocks.
+/// The shear-block schedule: every block by strip, its bolt on the two
+/// lamellas: the piece and the station from the piece's cut start end.
+/// No pages when the kit has no shear blocks.
 pub fn block_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
     let Some(parts) = &plan.parts else {
         return Vec::new();
     };
     let mut rows: Vec<Row> = Vec::new();
-    let mut by_strip: std::collections::HashMap<&str, Vec<&PlanPart>> = Default::default();
+    let mut by_strip: HashMap<&str, Vec<&PlanPart>> = Default::default();
     for p in parts.iter().filter(|p| p.kind == "lamella") {
         if let Some(s) = &p.strip {
             by_strip.entry(s.as_str()).or_default().push(p);
@@ -197,13 +248,19 @@ pub fn block_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
             continue;
         };
         let (one, two) = (block_stations(ps, 1), block_stations(ps, 2));
-        for (i, st) in one.iter().enumerate() {
+        for (i, (_, piece, st)) in one.iter().enumerate() {
+            let (p2, s2) = two
+                .get(i)
+                .map(|(_, p, x)| ((*p).to_string(), mm0(*x)))
+                .unwrap_or_default();
             rows.push((
                 vec![
                     s.id.clone(),
                     (i + 1).to_string(),
+                    (*piece).to_string(),
                     mm0(*st),
-                    two.get(i).map(|x| mm0(*x)).unwrap_or_default(),
+                    p2,
+                    s2,
                 ],
                 None,
             ));
@@ -216,7 +273,7 @@ pub fn block_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         frame,
         "Shear blocks",
         &format!(
-            "Shear blocks: {} blocks (part SB), bolt stations on each lamella's line, mm",
+            "Shear blocks: {} blocks (part SB); each bolt's piece and station, mm from the piece's cut start end",
             rows.len()
         ),
         &BLOCK_COLUMNS,
@@ -725,7 +782,8 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     let notes = [
         "A05-1.2   part id: strip A05, lamella 1 (of 2), piece 2 (pieces are spliced)",
         "B12       beside a slot or node hole: the strip crossing there",
-        "arrow     from the strip's start toward its end; the tick points to the top edge",
+        "arrow     from the piece's cut start end (x = 0: every station is measured from it);",
+        "          its tick points to the top edge",
         "          (the surface normal side: family A's slots open there, B's opposite)",
         "SB        shear block between the two lamellas of a strip (bolted)",
         "SP        splice plate joining two pieces of a lamella",
