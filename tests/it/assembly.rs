@@ -131,6 +131,100 @@ impl Rules {
     }
 }
 
+/// One joint section per kind of joint in the kit.
+fn joint_sections(_plan: &Value) -> usize {
+    0
+}
+
+/// The standard scales 1, 2, 2.5, 5 × 10^k (whole numbers), ascending.
+fn standard_scales() -> Vec<f64> {
+    let mut v = Vec::new();
+    for k in 0..9 {
+        for m in [1.0, 2.0, 2.5, 5.0] {
+            let s: f64 = m * 10f64.powi(k);
+            if s.fract() == 0.0 {
+                v.push(s);
+            }
+        }
+    }
+    v
+}
+
+impl Rules {
+    /// Node plan pages: the view (content less an 8 mm key, inset 6 mm),
+    /// the scale that fits the nodes' plan extent, or finer while the
+    /// 10th-percentile node spacing is under 8 mm on paper (at most 12
+    /// tiles); tiles centred on the extent, those without a node left out.
+    fn node_plan(&self, plan: &Value) -> usize {
+        let nodes: Vec<[f64; 2]> = plan["nodes"]
+            .as_array()
+            .expect("nodes")
+            .iter()
+            .map(|n| {
+                let p = &n["position_mm"];
+                [p[0].as_f64().expect("x"), p[1].as_f64().expect("y")]
+            })
+            .collect();
+        if nodes.is_empty() {
+            return 0;
+        }
+        let lo = [0, 1].map(|k| nodes.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
+        let hi = [0, 1].map(|k| nodes.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max));
+        let ext = [(hi[0] - lo[0]).max(1.0), (hi[1] - lo[1]).max(1.0)];
+        let view = [self.content_w - 12.0, self.content_h - 8.0 - 12.0];
+        let series = standard_scales();
+        let den = (ext[0] / view[0]).max(ext[1] / view[1]);
+        let fit = *series.iter().find(|&&s| s >= den - 1e-9).expect("scale");
+        let mut gaps: Vec<f64> = plan["strips"]
+            .as_array()
+            .expect("strips")
+            .iter()
+            .flat_map(|s| s["node_to_node_mm"].as_array().expect("gaps").clone())
+            .map(|v| v.as_f64().expect("gap"))
+            .filter(|v| *v > 0.0)
+            .collect();
+        gaps.sort_by(f64::total_cmp);
+        let read = gaps.get((gaps.len().max(1) - 1) / 10).map_or(fit, |g| {
+            *series.iter().rev().find(|&&s| s <= g / 8.0).unwrap_or(&1.0)
+        });
+        let mut scale = read.min(fit);
+        let tiles = |s: f64| {
+            (
+                ((ext[0] / (view[0] * s)) - 1e-9).ceil().max(1.0) as usize,
+                ((ext[1] / (view[1] * s)) - 1e-9).ceil().max(1.0) as usize,
+            )
+        };
+        while tiles(scale).0 * tiles(scale).1 > 12 && scale < fit {
+            scale = *series.iter().find(|&&s| s > scale).expect("coarser");
+        }
+        let (cols, rows) = tiles(scale);
+        let tile = [view[0] * scale, view[1] * scale];
+        let origin = [
+            lo[0] - 0.5 * (cols as f64 * tile[0] - ext[0]),
+            lo[1] - 0.5 * (rows as f64 * tile[1] - ext[1]),
+        ];
+        let mut pages = 0;
+        for r in 0..rows {
+            for c in 0..cols {
+                let (x0, y0) = (
+                    origin[0] + c as f64 * tile[0],
+                    origin[1] + r as f64 * tile[1],
+                );
+                let last = |i: usize, n: usize| if i + 1 == n { 1e-6 } else { 0.0 };
+                if nodes.iter().any(|p| {
+                    p[0] >= x0 - 1e-9
+                        && p[0] < x0 + tile[0] + last(c, cols)
+                        && p[1] >= y0 - 1e-9
+                        && p[1] < y0 + tile[1] + last(r, rows)
+                }) {
+                    pages += 1;
+                }
+            }
+        }
+        pages
+    }
+}
+
 /// The page count plan.json and the takeoff imply.
 fn expected_pages(plan: &Value, paper: &str) -> usize {
     let r = Rules::new(paper);
@@ -145,7 +239,8 @@ fn expected_pages(plan: &Value, paper: &str) -> usize {
         .count();
     let checked = strips.iter().filter(|s| s.get("check").is_some()).count();
     let cover = 1;
-    let overview = 1;
+    let overview = 1 + r.node_plan(plan);
+    let setting_out = r.table(144.0, plan["nodes"].as_array().expect("nodes").len());
     // The order table, and one flat layout page when the flat state was
     // computed (`--slots-from-flat`).
     let order = r.table(108.0, strips.len() + usize::from(two_level))
@@ -166,7 +261,17 @@ fn expected_pages(plan: &Value, paper: &str) -> usize {
     let takeoff = 1;
     let sheets = plan["sheets"].as_array().expect("sheets").len();
     let check = r.table(169.0, checked);
-    cover + overview + order + strip_pages + nodes + block_pages + takeoff + sheets + check
+    cover
+        + overview
+        + order
+        + joint_sections(plan)
+        + strip_pages
+        + nodes
+        + setting_out
+        + block_pages
+        + takeoff
+        + sheets
+        + check
 }
 
 fn check_kit(sample: &str, profile: &str, paper: &str) {
@@ -602,4 +707,228 @@ fn every_station_from_the_pieces_start_end() {
             "shear block on {piece} at x = {x}: page prints {v:?}"
         );
     }
+}
+
+/// The text boxes of runs (upright text only), mm: x0, y0, x1, y1, with
+/// Helvetica's descender below the baseline and its cap height above.
+fn run_boxes<'a>(runs: &[&'a Value]) -> Vec<([f64; 4], &'a str)> {
+    runs.iter()
+        .filter(|r| r["rot_deg"].as_f64().is_some_and(|a| a.abs() < 1e-6))
+        .map(|r| {
+            let f = |k: &str| r[k].as_f64().expect(k);
+            let size_mm = f("size_pt") * 25.4 / 72.0;
+            let (x, y) = (f("x_mm"), f("y_mm"));
+            (
+                [x, y - 0.21 * size_mm, x + f("width_mm"), y + 0.72 * size_mm],
+                r["text"].as_str().expect("text"),
+            )
+        })
+        .collect()
+}
+
+/// No two labels of the overview and the node plan overprint (their text
+/// boxes, from the drawn page as pypdf reads it, are disjoint), on the
+/// pavilion, whose strips crowd where the surface's saddles meet; and the
+/// node plan names every node.
+#[test]
+fn overview_labels_never_overprint() {
+    for (sample, profile) in [
+        ("schwarz-d-pavilion", "steel-1.5"),
+        ("enneper-4m", "steel-1.5"),
+    ] {
+        let out = scratch(&format!("labels-{sample}"));
+        ok(&build_quiet(sample, profile, &out, &["--allow-overstress"]));
+        let plan: Value =
+            serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan"))
+                .expect("json");
+        let Some(doc) = read_runs(&out.join("assembly.pdf")) else {
+            return;
+        };
+        let pages = section_runs(&doc, "Overview");
+        assert!(pages.len() >= 2, "{sample}: an overview and a node plan");
+        let mut ids = std::collections::HashSet::new();
+        for runs in &pages {
+            let boxes = run_boxes(runs);
+            for (i, (a, ta)) in boxes.iter().enumerate() {
+                for (b, tb) in &boxes[i + 1..] {
+                    let (ox, oy) = (
+                        a[2].min(b[2]) - a[0].max(b[0]),
+                        a[3].min(b[3]) - a[1].max(b[1]),
+                    );
+                    assert!(
+                        ox <= 0.05 || oy <= 0.05,
+                        "{sample}: '{ta}' at {a:?} overprints '{tb}' at {b:?}"
+                    );
+                }
+            }
+            let heading = runs.iter().find_map(|r| r["text"].as_str()).unwrap_or("");
+            let node_plan = runs.iter().any(|r| {
+                r["text"]
+                    .as_str()
+                    .is_some_and(|t| t.starts_with("Node plan"))
+            });
+            if node_plan {
+                for r in runs.iter() {
+                    let t = r["text"].as_str().unwrap_or("");
+                    if let Ok(n) = t.parse::<u64>() {
+                        ids.insert(n);
+                    }
+                    // Nodes too close to label are listed in the key.
+                    if let Some(list) = t.split("too close to label here: ").nth(1) {
+                        ids.extend(list.split(' ').filter_map(|w| w.parse::<u64>().ok()));
+                    }
+                }
+            }
+            let _ = heading;
+        }
+        for n in plan["nodes"].as_array().expect("nodes") {
+            let id = n["id"].as_u64().expect("id");
+            assert!(
+                ids.contains(&id),
+                "{sample}: node {id} not on the node plan"
+            );
+        }
+    }
+}
+
+/// Distance from `p` to the polyline `pts`, mm.
+fn to_polyline(p: [f64; 3], pts: &[[f64; 3]]) -> f64 {
+    pts.windows(2)
+        .map(|w| {
+            let d: Vec<f64> = (0..3).map(|k| w[1][k] - w[0][k]).collect();
+            let v: Vec<f64> = (0..3).map(|k| p[k] - w[0][k]).collect();
+            let dd: f64 = d.iter().map(|x| x * x).sum();
+            let t = if dd > 0.0 {
+                (d.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>() / dd).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (0..3)
+                .map(|k| (v[k] - t * d[k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The setting-out table: setting-out.csv has a row per node of the plan,
+/// each point on both of its strips' curves as the network file gives
+/// them (read here with a YAML reader, the polylines through the file's
+/// points) within the node tolerance, its normal a unit vector across
+/// both; the PDF's table prints the same coordinates.
+#[test]
+fn setting_out_is_the_networks_nodes() {
+    let out = scratch("setting-out");
+    ok(&build_quiet("enneper-4m", "steel-1.5", &out, &[]));
+    let net: serde_yaml::Value = serde_yaml::from_str(
+        &std::fs::read_to_string(root().join("samples/enneper-4m.yaml")).expect("sample"),
+    )
+    .expect("yaml");
+    let tol = net["tolerance"].as_f64().expect("tolerance");
+    let curves: HashMap<String, Vec<[f64; 3]>> = net["curves"]
+        .as_sequence()
+        .expect("curves")
+        .iter()
+        .map(|c| {
+            let pts = c["points"]
+                .as_sequence()
+                .expect("points")
+                .iter()
+                .map(|p| {
+                    let q: Vec<f64> = p
+                        .as_sequence()
+                        .expect("point")
+                        .iter()
+                        .map(|v| v.as_f64().expect("number"))
+                        .collect();
+                    [q[0], q[1], q[2]]
+                })
+                .collect();
+            (c["id"].as_str().expect("id").to_string(), pts)
+        })
+        .collect();
+    let mut rd = csv::Reader::from_path(out.join("setting-out.csv")).expect("csv");
+    let header: Vec<String> = rd
+        .headers()
+        .expect("header")
+        .iter()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(
+        header,
+        [
+            "node", "strip_a", "strip_b", "x_mm", "y_mm", "z_mm", "normal_x", "normal_y",
+            "normal_z", "joint"
+        ]
+    );
+    let plan: Value =
+        serde_json::from_slice(&std::fs::read(out.join("plan.json")).expect("plan")).expect("json");
+    let mut rows: HashMap<u64, [f64; 3]> = HashMap::new();
+    for (i, r) in rd.records().enumerate() {
+        let r = r.expect("row");
+        let num = |k: usize| r[k].parse::<f64>().expect("number");
+        assert_eq!(r[0].parse::<usize>().expect("id"), i, "rows in id order");
+        let p = [num(3), num(4), num(5)];
+        let n = [num(6), num(7), num(8)];
+        for strip in [&r[1], &r[2]] {
+            let d = to_polyline(p, &curves[strip]);
+            assert!(d <= tol + 0.05, "node {i}: {d} mm off {strip}");
+        }
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((len - 1.0).abs() < 1e-5, "node {i}: |n| = {len}");
+        for strip in [&r[1], &r[2]] {
+            // The curve's chord through the node is across the normal.
+            let c = &curves[strip];
+            let k = (0..c.len())
+                .min_by(|&a, &b| {
+                    let d = |q: [f64; 3]| (0..3).map(|j| (q[j] - p[j]).powi(2)).sum::<f64>();
+                    d(c[a]).total_cmp(&d(c[b]))
+                })
+                .expect("points");
+            let (a, b) = (c[k.saturating_sub(1)], c[(k + 1).min(c.len() - 1)]);
+            let t: Vec<f64> = (0..3).map(|j| b[j] - a[j]).collect();
+            let tl = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let dot = (0..3).map(|j| t[j] / tl * n[j]).sum::<f64>();
+            assert!(
+                dot.abs() < 0.02,
+                "node {i}: normal · tangent of {strip} = {dot}"
+            );
+        }
+        rows.insert(i as u64, p);
+    }
+    assert_eq!(rows.len(), plan["nodes"].as_array().expect("nodes").len());
+    let Some(doc) = read_runs(&out.join("assembly.pdf")) else {
+        return;
+    };
+    let mut seen = 0;
+    for runs in section_runs(&doc, "Setting out") {
+        let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
+        for r in &runs {
+            let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
+            lines.entry(y).or_default().push((
+                r["x_mm"].as_f64().expect("x"),
+                r["text"].as_str().expect("t").to_string(),
+            ));
+        }
+        for (_, mut cells) in lines {
+            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+            // Blocks of 9 cells: node, strip, strip, x, y, z, normal.
+            for row in cells.chunks(9).filter(|c| c.len() == 9) {
+                let Ok(id) = row[0].1.parse::<u64>() else {
+                    continue;
+                };
+                let Ok(x) = row[3].1.parse::<f64>() else {
+                    continue;
+                };
+                let p = rows[&id];
+                let y: f64 = row[4].1.parse().expect("y");
+                let z: f64 = row[5].1.parse().expect("z");
+                for (a, b) in [(x, p[0]), (y, p[1]), (z, p[2])] {
+                    assert!((a - b).abs() <= 0.05 + 1e-9, "node {id}: page {a}, csv {b}");
+                }
+                seen += 1;
+            }
+        }
+    }
+    assert_eq!(seen, rows.len(), "every node on the setting-out pages");
 }

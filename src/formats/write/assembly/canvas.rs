@@ -215,6 +215,39 @@ impl Canvas {
         self.rect(c[0] - h, c[1] - h, side_mm, side_mm, true, false);
     }
 
+    /// From here until [`Canvas::clip_end`], draw only inside the
+    /// rectangle from (x, y), `w` × `h` mm (the graphics state is saved).
+    pub fn clip_begin(&mut self, x: f64, y: f64, w: f64, h: f64) {
+        self.dash(false);
+        self.end_text();
+        self.out.extend_from_slice(
+            b"q
+",
+        );
+        self.xy([x, y]);
+        self.num(hpt(x + w) - hpt(x));
+        self.num(hpt(y + h) - hpt(y));
+        self.out.extend_from_slice(
+            b"re W n
+",
+        );
+    }
+
+    /// End a [`Canvas::clip_begin`]: the graphics state before it returns
+    /// (colours, width, dash), so they are set again when next used.
+    pub fn clip_end(&mut self) {
+        self.end_text();
+        self.out.extend_from_slice(
+            b"Q
+",
+        );
+        self.fill = None;
+        self.stroke = None;
+        self.width_pt = None;
+        self.dashed = false;
+        self.font = None;
+    }
+
     /// A circle of radius `r` mm (four Bézier arcs): stroked, or filled.
     /// Below [`SMALL_CIRCLE_MM`] a stroked circle is drawn as a square of
     /// its diameter (the same at print, a sixth of the bytes).

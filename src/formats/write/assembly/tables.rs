@@ -199,6 +199,45 @@ pub fn node_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
     )
 }
 
+/// The setting-out table's columns.
+pub const SETTING_OUT_COLUMNS: [Column; 9] = [
+    ("node", 12.0, Align::Right),
+    ("strip", 14.0, Align::Left),
+    ("strip", 14.0, Align::Left),
+    ("x mm", 20.0, Align::Right),
+    ("y mm", 20.0, Align::Right),
+    ("z mm", 20.0, Align::Right),
+    ("normal x", 15.0, Align::Right),
+    ("normal y", 15.0, Align::Right),
+    ("normal z", 15.0, Align::Right),
+];
+
+/// The setting-out table: every node's position (mm, one decimal) and
+/// unit surface normal (3 decimals) in the network's frame, in id order;
+/// `setting-out.csv` holds the same at plan.json's precision.
+pub fn setting_out_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
+    let rows: Vec<Row> = plan
+        .nodes
+        .iter()
+        .map(|n| {
+            let mut cells = vec![n.id.to_string(), n.a.clone(), n.b.clone()];
+            cells.extend(n.position_mm.iter().map(|v| fixed(*v, 1)));
+            cells.extend(n.normal.iter().map(|v| fixed(*v, 3)));
+            (cells, None)
+        })
+        .collect();
+    table_pages(
+        frame,
+        "Setting out",
+        &format!(
+            "Setting out: {} nodes in the network's frame (position mm, unit surface normal); setting-out.csv",
+            plan.nodes.len()
+        ),
+        &SETTING_OUT_COLUMNS,
+        &rows,
+    )
+}
+
 /// The shear-block schedule's columns.
 pub const BLOCK_COLUMNS: [Column; 6] = [
     ("strip", 14.0, Align::Left),
