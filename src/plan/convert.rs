@@ -247,6 +247,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         curves: Vec::new(),
         takeoff: None,
         shape: None,
+        joints: Vec::new(),
     }
 }
 
@@ -442,6 +443,8 @@ pub fn add_takeoff(
         nest,
         profile,
     ));
+    let hardware = super::takeoff::hardware_lines(kit);
+    plan.joints = super::joints::joints(profile, &hardware);
 }
 
 /// One part as plan.json writes it (rounded); its round holes only as

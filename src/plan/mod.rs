@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use takeoff::Takeoff;
 
 mod convert;
+pub mod joints;
 pub mod model;
 pub mod shape;
 pub mod sparrow;
@@ -81,6 +82,10 @@ pub struct Plan {
     /// [`add_shape`]). Not in plan.json.
     #[serde(skip)]
     pub shape: Option<PlanShape>,
+    /// The kit's joints in section, for the assembly sheets (added with
+    /// the takeoff). Not in plan.json.
+    #[serde(skip)]
+    pub joints: Vec<joints::PlanJoint>,
 }
 
 /// The grid's shape in space (world frame, mm): every lamella's frames on

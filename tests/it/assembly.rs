@@ -131,9 +131,16 @@ impl Rules {
     }
 }
 
-/// One joint section per kind of joint in the kit.
-fn joint_sections(_plan: &Value) -> usize {
-    0
+/// The joint sections: one page, when the kit has a bolted joint (a bolt
+/// line in the hardware) or halving slots (an interlocking grid).
+fn joint_sections(plan: &Value) -> usize {
+    let bolts = plan["parts_summary"]["hardware"]
+        .as_array()
+        .is_some_and(|h| {
+            h.iter()
+                .any(|l| l["item"].as_str().is_some_and(|i| i.ends_with("bolt")))
+        });
+    usize::from(bolts || plan["profile"]["joint_system"] == "interlocking")
 }
 
 /// The standard scales 1, 2, 2.5, 5 × 10^k (whole numbers), ascending.
@@ -931,4 +938,46 @@ fn setting_out_is_the_networks_nodes() {
         }
     }
     assert_eq!(seen, rows.len(), "every node on the setting-out pages");
+}
+
+/// The joint sections of the steel kit, by hand from steel-1.5.yaml: the
+/// node bolt clamps two 3 mm star washers and the 50 mm lamella height
+/// (grip 56, M8: + nut 6.8 + two pitches 2.5 = 65.3, so 70 from the ISO
+/// 4017 series); the shear-block bolt 1.5 + 10 + 1.5 (13); the splice
+/// bolt 1.5 + 1.5 (3); and the page says which lamella lies where.
+#[test]
+fn joint_sections_show_each_stack() {
+    let out = scratch("joints");
+    ok(&build_quiet("enneper-4m", "steel-1.5", &out, &[]));
+    let Some(doc) = read_pdf(&out.join("assembly.pdf")) else {
+        return;
+    };
+    let page = doc["page"]
+        .as_array()
+        .expect("pages")
+        .iter()
+        .filter_map(|p| p["text"].as_str())
+        .find(|t| t.contains("Joint sections  |"))
+        .expect("a joint sections page");
+    for want in [
+        "Node joint",
+        "grip 56.0",
+        "L = 70",
+        "M8 × 70",
+        "Shear block",
+        "grip 13.0",
+        "Splice",
+        "grip 3.0",
+        "nut ISO 4032, m = 6.8",
+        "lamella 1 on the right, lamella 2 on the left",
+    ] {
+        assert!(
+            page.contains(want),
+            "no '{want}' on the joint sections:\n{page}"
+        );
+    }
+    assert!(
+        !page.contains("Stud joint"),
+        "no studs in an interlocking kit"
+    );
 }
