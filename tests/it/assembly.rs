@@ -324,6 +324,13 @@ fn check_kit(sample: &str, profile: &str, paper: &str) {
         assert!(texts[i].contains(plan["network"]["name"].as_str().expect("name")));
         assert!(texts[i].contains("scale 1:") || texts[i].contains("not to scale"));
     }
+    // The cover's legend fits the joint system: slots only where there are.
+    let two_level = plan["profile"]["joint_system"] == "two_level";
+    assert_eq!(
+        texts[0].contains("slot"),
+        !two_level,
+        "{sample}: the cover's legend and the joint system"
+    );
     // Every strip id as a word somewhere; A and B strips on a strip sheet.
     let words = |t: &str| -> Vec<String> {
         t.split(|c: char| c.is_whitespace() || c == ',' || c == '(' || c == ')')
@@ -716,29 +723,36 @@ fn every_station_from_the_pieces_start_end() {
     }
 }
 
-/// The text boxes of runs (upright text only), mm: x0, y0, x1, y1, with
-/// Helvetica's descender below the baseline and its cap height above.
+/// The text boxes of runs (level or turned a quarter left), mm: x0, y0,
+/// x1, y1, with Helvetica's descender below the baseline and its cap
+/// height above.
 fn run_boxes<'a>(runs: &[&'a Value]) -> Vec<([f64; 4], &'a str)> {
     runs.iter()
-        .filter(|r| r["rot_deg"].as_f64().is_some_and(|a| a.abs() < 1e-6))
-        .map(|r| {
+        .filter_map(|r| {
             let f = |k: &str| r[k].as_f64().expect(k);
             let size_mm = f("size_pt") * 25.4 / 72.0;
-            let (x, y) = (f("x_mm"), f("y_mm"));
-            (
-                [x, y - 0.21 * size_mm, x + f("width_mm"), y + 0.72 * size_mm],
-                r["text"].as_str().expect("text"),
-            )
+            let (x, y, w) = (f("x_mm"), f("y_mm"), f("width_mm"));
+            let (down, up) = (0.21 * size_mm, 0.72 * size_mm);
+            let rot = f("rot_deg");
+            let b = if rot.abs() < 1e-6 {
+                [x, y - down, x + w, y + up]
+            } else if (rot - 90.0).abs() < 1e-6 {
+                [x - up, y, x + down, y + w]
+            } else {
+                return None;
+            };
+            Some((b, r["text"].as_str().expect("text")))
         })
         .collect()
 }
 
-/// No two labels of the overview and the node plan overprint (their text
-/// boxes, from the drawn page as pypdf reads it, are disjoint), on the
-/// pavilion, whose strips crowd where the surface's saddles meet; and the
+/// No two labels of the overview, the node plan and the nested sheets
+/// overprint (their text boxes, from the drawn page as pypdf reads it, are
+/// disjoint), on the pavilion, whose strips crowd where the surface's
+/// saddles meet, and on enneper, whose star washers interleave; and the
 /// node plan names every node.
 #[test]
-fn overview_labels_never_overprint() {
+fn labels_never_overprint() {
     for (sample, profile) in [
         ("schwarz-d-pavilion", "steel-1.5"),
         ("enneper-4m", "steel-1.5"),
@@ -753,6 +767,23 @@ fn overview_labels_never_overprint() {
         };
         let pages = section_runs(&doc, "Overview");
         assert!(pages.len() >= 2, "{sample}: an overview and a node plan");
+        let nested = section_runs(&doc, "Sheets as nested");
+        assert!(!nested.is_empty());
+        for runs in &nested {
+            let boxes = run_boxes(runs);
+            for (i, (a, ta)) in boxes.iter().enumerate() {
+                for (b, tb) in &boxes[i + 1..] {
+                    let (ox, oy) = (
+                        a[2].min(b[2]) - a[0].max(b[0]),
+                        a[3].min(b[3]) - a[1].max(b[1]),
+                    );
+                    assert!(
+                        ox <= 0.05 || oy <= 0.05,
+                        "{sample}, a nested sheet: '{ta}' at {a:?} overprints '{tb}' at {b:?}"
+                    );
+                }
+            }
+        }
         let mut ids = std::collections::HashSet::new();
         for runs in &pages {
             let boxes = run_boxes(runs);

@@ -23,9 +23,6 @@ pub const RED: Rgb3 = [0.8, 0.0, 0.0];
 /// Blue (engraving, dimensions).
 pub const BLUE: Rgb3 = [0.0, 0.2, 0.75];
 
-/// Radius on paper below which a stroked circle is drawn as a square, mm.
-pub const SMALL_CIRCLE_MM: f64 = 0.5;
-
 /// The resource name of the built-in Helvetica (the page resources of
 /// [`super::pdf`]).
 pub const HELVETICA_RES: &str = "F5";
@@ -249,13 +246,8 @@ impl Canvas {
     }
 
     /// A circle of radius `r` mm (four Bézier arcs): stroked, or filled.
-    /// Below [`SMALL_CIRCLE_MM`] a stroked circle is drawn as a square of
-    /// its diameter (the same at print, a sixth of the bytes).
+    /// Holes are drawn as circles however small.
     pub fn circle(&mut self, c: [f64; 2], r: f64, filled: bool) {
-        if !filled && r < SMALL_CIRCLE_MM {
-            self.rect(c[0] - r, c[1] - r, 2.0 * r, 2.0 * r, false, true);
-            return;
-        }
         const K: f64 = 0.552_284_749_8;
         let k = K * r;
         let [x, y] = c;

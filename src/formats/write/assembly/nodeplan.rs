@@ -344,13 +344,13 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
             for (n, q) in &here {
                 let id = n.id.to_string();
                 let w = canvas::text_width_mm(&id, NODE_PT, false);
-                match labels.place(*q, w + 0.4, cap + 0.6, 0.7) {
+                match labels.place(*q, w + 0.4, cap + 0.8, 0.7) {
                     Some((at, leader)) => {
                         if leader {
-                            let mid = [at[0] + 0.5 * (w + 0.4), at[1] + 0.5 * (cap + 0.6)];
+                            let mid = [at[0] + 0.5 * (w + 0.4), at[1] + 0.5 * (cap + 0.8)];
                             leaders.push((*q, mid));
                         }
-                        texts.push(([at[0] + 0.2, at[1] + 0.3], id));
+                        texts.push(([at[0] + 0.2, at[1] + 0.5], id));
                     }
                     None => listed.push(n.id),
                 }
@@ -371,8 +371,8 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
                 for e in ends.into_iter().filter(|e| in_view(*e)) {
                     let w = canvas::text_width_mm(&curve.id, STRIP_PT, true);
                     let h = canvas::cap_mm(STRIP_PT);
-                    if let Some((at, _)) = labels.place(e, w + 0.4, h + 0.6, 1.2) {
-                        strip_texts.push(([at[0] + 0.2, at[1] + 0.3], curve.id.clone()));
+                    if let Some((at, _)) = labels.place(e, w + 0.4, h + 0.8, 1.2) {
+                        strip_texts.push(([at[0] + 0.2, at[1] + 0.5], curve.id.clone()));
                     }
                 }
             }
@@ -380,11 +380,18 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
             cv.fill([1.0, 1.0, 1.0]);
             for (at, t) in &texts {
                 let w = canvas::text_width_mm(t, NODE_PT, false);
-                cv.rect(at[0] - 0.2, at[1] - 0.3, w + 0.4, cap + 0.6, true, false);
+                cv.rect(at[0] - 0.2, at[1] - 0.5, w + 0.4, cap + 0.8, true, false);
             }
             for (at, t) in &strip_texts {
                 let w = canvas::text_width_mm(t, STRIP_PT, true);
-                cv.rect(at[0] - 0.2, at[1] - 0.3, w + 0.4, canvas::cap_mm(STRIP_PT) + 0.6, true, false);
+                cv.rect(
+                    at[0] - 0.2,
+                    at[1] - 0.5,
+                    w + 0.4,
+                    canvas::cap_mm(STRIP_PT) + 0.8,
+                    true,
+                    false,
+                );
             }
             cv.stroke(GREY);
             cv.width(0.12);

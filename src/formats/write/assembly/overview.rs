@@ -184,14 +184,14 @@ fn thin(pts: Vec<[f64; 2]>, tol_mm: f64) -> Vec<[f64; 2]> {
 fn put(c: &mut Canvas, labels: &mut Labels, id: &str, at: [f64; 2], near: [f64; 2], bold: bool) {
     let w = canvas::text_width_mm(&canvas::winansi(id), LABEL_PT, bold);
     let h = canvas::cap_mm(LABEL_PT);
-    let b = [at[0] - 0.2, at[1] - 0.3, at[0] + w + 0.2, at[1] + h + 0.3];
+    let b = [at[0] - 0.2, at[1] - 0.5, at[0] + w + 0.2, at[1] + h + 0.3];
     let at = if labels.free(&b) {
         labels.hold(b);
         Some(at)
     } else {
         labels
-            .place(near, w + 0.4, h + 0.6, 1.2)
-            .map(|(ll, _)| [ll[0] + 0.2, ll[1] + 0.3])
+            .place(near, w + 0.4, h + 0.8, 1.2)
+            .map(|(ll, _)| [ll[0] + 0.2, ll[1] + 0.5])
     };
     if let Some(at) = at {
         c.text(at, LABEL_PT, bold, Align::Left, 0.0, id);

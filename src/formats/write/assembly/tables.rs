@@ -748,12 +748,23 @@ pub fn cover_page(input: &AssemblyInput, frame: &Frame, first: &[(&str, usize, u
         c.text([x0 + 70.0, y], 9.0, false, Align::Right, 0.0, &pages);
         y -= 4.8;
     }
-    legend(c, frame);
+    legend(c, frame, plan);
     page
 }
 
-/// The legend of the engraved marks, drawn on a sample lamella.
-fn legend(c: &mut Canvas, frame: &Frame) {
+/// The legend of the engraved marks, drawn on a sample lamella of the
+/// kit's joint system (an interlocking lamella with a slot, a two-level
+/// one with its stud holes), naming only the parts the kit has.
+fn legend(c: &mut Canvas, frame: &Frame, plan: &Plan) {
+    let two_level = plan
+        .profile
+        .as_ref()
+        .is_some_and(|p| p.joint_system == "two_level");
+    let has = |kind: &str| {
+        plan.parts_summary
+            .as_ref()
+            .is_some_and(|k| k.kinds.iter().any(|kc| kc.kind == kind && kc.count > 0))
+    };
     let w = 150.0_f64.min(0.45 * frame.width_mm());
     let x = frame.x1_mm - w;
     let mut y = frame.y1_mm - 24.0;
@@ -783,7 +794,13 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     ];
     c.stroke(BLACK);
     c.width(0.3);
-    c.polyline(&outline, true);
+    if two_level {
+        // No slots: a node's stud fastener hole.
+        c.rect(lx, y, lw, lh, false, true);
+        c.circle([slot_x, y + 0.5 * lh], 1.2, false);
+    } else {
+        c.polyline(&outline, true);
+    }
     c.circle([lx + 0.85 * lw, y + 0.5 * lh], 1.2, false);
     c.fill(BLUE);
     c.stroke(BLUE);
@@ -795,7 +812,14 @@ fn legend(c: &mut Canvas, frame: &Frame) {
         0.0,
         "A05-1.2",
     );
-    c.text([slot_x, y + 2.5], 8.0, false, Align::Center, 0.0, "B12");
+    c.text(
+        [slot_x, y + if two_level { 9.5 } else { 2.5 }],
+        8.0,
+        false,
+        Align::Center,
+        0.0,
+        "B12",
+    );
     c.text(
         [lx + 0.85 * lw, y + 2.5],
         8.0,
@@ -818,18 +842,36 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     );
     c.line([ax, ay], [ax, ay + 3.0]);
     c.fill(BLACK);
-    let notes = [
+    let mut notes: Vec<&str> = vec![
         "A05-1.2   part id: strip A05, lamella 1 (of 2), piece 2 (pieces are spliced)",
-        "B12       beside a slot or node hole: the strip crossing there",
+        if two_level {
+            "B12       beside a node hole: the strip crossing there"
+        } else {
+            "B12       beside a slot or node hole: the strip crossing there"
+        },
         "arrow     from the piece's cut start end (x = 0: every station is measured from it);",
         "          its tick points to the top edge",
-        "          (the surface normal side: family A's slots open there, B's opposite)",
-        "SB        shear block between the two lamellas of a strip (bolted)",
-        "SP        splice plate joining two pieces of a lamella",
-        "W87.5     star washer for nodes whose crossing angle rounds to 87.5°",
-        "ST        stud joining the two levels of a two-level grid",
-        "E-edge00.1   edge strip edge00, piece 1",
+        if two_level {
+            "          (the surface normal side)"
+        } else {
+            "          (the surface normal side: family A's slots open there, B's opposite)"
+        },
     ];
+    if has("shear_block") {
+        notes.push("SB        shear block between the two lamellas of a strip (bolted)");
+    }
+    if has("splice_plate") {
+        notes.push("SP        splice plate joining two pieces of a lamella");
+    }
+    if has("washer") {
+        notes.push("W87.5     star washer for nodes whose crossing angle rounds to 87.5°");
+    }
+    if has("stud") {
+        notes.push("ST        stud joining the two levels of a two-level grid");
+    }
+    if has("edge_strip") {
+        notes.push("E-edge00.1   edge strip edge00, piece 1");
+    }
     let mut ty = y - 7.0;
     for n in notes {
         let (k, v) = n.split_at(n.find(' ').unwrap_or(0));
