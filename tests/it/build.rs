@@ -717,7 +717,7 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
         "sheets: 3 (lower bound 3)",
         "elastic check: PASS",
         "node bolt",
-        "wrote 211 files",
+        "wrote 212 files",
     ] {
         assert!(stdout.contains(want), "summary lacks {want:?}:\n{stdout}");
     }

@@ -316,6 +316,17 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
                         _ => BLACK,
                     });
                     cv.width(if edge { 0.4 } else { 0.25 });
+                    // Only the curves that reach into this tile.
+                    let reaches = curve.points_mm.iter().any(|p| {
+                        let q = map(p);
+                        q[0] >= view[0] - 5.0
+                            && q[0] <= view[2] + 5.0
+                            && q[1] >= view[1] - 5.0
+                            && q[1] <= view[3] + 5.0
+                    });
+                    if !reaches {
+                        continue;
+                    }
                     let pts: Vec<[f64; 2]> = curve.points_mm.iter().map(map).collect();
                     cv.polyline(&pts, false);
                 }
