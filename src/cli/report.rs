@@ -94,7 +94,7 @@ pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
         None => println!("elastic check: no strips"),
     }
     println!(
-        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, assembly.pdf, model.glb, view.html, sheets/, parts/)",
+        "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, setting-out.csv, assembly.pdf, model.glb, view.html, sheets/, parts/)",
         r.files.len(),
         r.out.display()
     );

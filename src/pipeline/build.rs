@@ -122,20 +122,22 @@ impl BuildReport {
 }
 
 /// The files every build writes besides the sheets.
-pub const FIXED_FILES: [&str; 6] = [
+pub const FIXED_FILES: [&str; 7] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
+    "setting-out.csv",
     "assembly.pdf",
     "model.glb",
     "view.html",
 ];
 
 /// What a build writes in DIR: [`FIXED_FILES`], the sheets' and the parts' folders.
-const KIT: [&str; 8] = [
+const KIT: [&str; 9] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
+    "setting-out.csv",
     "assembly.pdf",
     "model.glb",
     "view.html",
@@ -280,6 +282,9 @@ pub fn build(
         takeoff_file::to_csv(&takeoff).map_err(|e| Error::output(&out.join("takeoff.csv"), e))?;
     staging.write("takeoff.csv", &csv)?;
     staging.write("takeoff.json", takeoff_file::to_json(&takeoff).as_bytes())?;
+    let setting = crate::formats::write::setting_out::to_csv(&the_plan)
+        .map_err(|e| Error::output(&out.join("setting-out.csv"), e))?;
+    staging.write("setting-out.csv", &setting)?;
     let file_opts = SheetFileOptions {
         sheet_outline: opts.sheet_outline,
         labels: opts.svg_labels,

@@ -247,6 +247,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         curves: Vec::new(),
         takeoff: None,
         shape: None,
+        joints: Vec::new(),
     }
 }
 
@@ -494,6 +495,8 @@ pub fn add_takeoff(
         nest,
         profile,
     ));
+    let hardware = super::takeoff::hardware_lines(kit);
+    plan.joints = super::joints::joints(profile, &hardware);
 }
 
 /// One part as plan.json writes it (rounded); its round holes only as
@@ -561,7 +564,10 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
                 angle_range_deg: f
                     .angle_range_deg
                     .map(|(a, b)| [round(a, DEG), round(b, DEG)]),
-                station_mm: f.station_mm.map(|s| round(s, MM)),
+                station_mm: f
+                    .station_mm
+                    .map(|s| round(s - p.station_start_mm.unwrap_or(0.0), MM)),
+                line_station_mm: f.station_mm.map(|s| round(s, MM)),
             })
             .collect(),
     }

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use takeoff::Takeoff;
 
 mod convert;
+pub mod joints;
 pub mod model;
 pub mod shape;
 pub mod sparrow;
@@ -81,6 +82,10 @@ pub struct Plan {
     /// [`add_shape`]). Not in plan.json.
     #[serde(skip)]
     pub shape: Option<PlanShape>,
+    /// The kit's joints in section, for the assembly sheets (added with
+    /// the takeoff). Not in plan.json.
+    #[serde(skip)]
+    pub joints: Vec<joints::PlanJoint>,
 }
 
 /// The grid's shape in space (world frame, mm): every lamella's frames on
@@ -545,8 +550,16 @@ pub struct PlanFeature {
     pub edge: Option<PlanSlotEdge>,
     /// Crossing angles a slot was swept over, degrees.
     pub angle_range_deg: Option<[f64; 2]>,
-    /// Station on the part's own line, mm, where it has one.
+    /// Where it sits along the piece, measured from the piece's own cut
+    /// start end (x = 0, the end the engraved orientation arrow points
+    /// from), mm: the one zero every station a crew reads is measured from.
+    /// For a lamella it equals the feature's x.
     pub station_mm: Option<f64>,
+    /// The same feature's station on the line the piece was cut along (a
+    /// lamella's own centre line, an edge strip's curve), from that line's
+    /// start, mm: `station_start_mm + station_mm`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line_station_mm: Option<f64>,
 }
 
 /// Counts by kind, lamella length and mass.

@@ -5,7 +5,7 @@
 //! The manifest is an input like any other file in DIR: it vouches for a
 //! file only when the file has a name lamella writes
 //! ([`is_lamella_name`]: `plan.json`, `takeoff.csv`, `takeoff.json`,
-//! `assembly.pdf`, `flat.svg`, `sheets/sheet-NNN.dxf|svg`), is a regular
+//! `setting-out.csv`, `assembly.pdf`, `flat.svg`, `sheets/sheet-NNN.dxf|svg`), is a regular
 //! file reached without a symbolic link, and has the size and CRC-32 the
 //! manifest recorded for it ([`vouched`]): a line naming anything else
 //! (`../victim.txt`, an absolute path), and a file changed since lamella
@@ -39,10 +39,11 @@ pub const PARTS: &str = "parts";
 pub const FOLDERS: [&str; 2] = [SHEETS, PARTS];
 
 /// The files lamella writes at the top of an output folder.
-pub const TOP_FILES: [&str; 7] = [
+pub const TOP_FILES: [&str; 8] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
+    "setting-out.csv",
     "assembly.pdf",
     "flat.svg",
     "model.glb",

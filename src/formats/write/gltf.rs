@@ -415,7 +415,7 @@ fn cuts_of(plan: &Plan) -> std::collections::HashMap<(&str, u32), Vec<Cut>> {
                 PlanFeatureKind::Slot,
                 Some(st),
                 Some(edge @ (PlanSlotEdge::Top | PlanSlotEdge::Bottom)),
-            ) = (f.kind, f.station_mm, f.edge)
+            ) = (f.kind, f.line_station_mm, f.edge)
             {
                 m.entry((strip.as_str(), lam)).or_default().push(Cut {
                     from_mm: st - f.width_mm / 2.0,

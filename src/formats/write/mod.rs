@@ -8,6 +8,7 @@ pub mod finite;
 pub mod flat_svg;
 pub mod gltf;
 pub mod plan_json;
+pub mod setting_out;
 pub mod sparrow;
 pub mod svg;
 pub mod takeoff;

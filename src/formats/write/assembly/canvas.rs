@@ -23,9 +23,6 @@ pub const RED: Rgb3 = [0.8, 0.0, 0.0];
 /// Blue (engraving, dimensions).
 pub const BLUE: Rgb3 = [0.0, 0.2, 0.75];
 
-/// Radius on paper below which a stroked circle is drawn as a square, mm.
-pub const SMALL_CIRCLE_MM: f64 = 0.5;
-
 /// The resource name of the built-in Helvetica (the page resources of
 /// [`super::pdf`]).
 pub const HELVETICA_RES: &str = "F5";
@@ -215,14 +212,42 @@ impl Canvas {
         self.rect(c[0] - h, c[1] - h, side_mm, side_mm, true, false);
     }
 
+    /// From here until [`Canvas::clip_end`], draw only inside the
+    /// rectangle from (x, y), `w` × `h` mm (the graphics state is saved).
+    pub fn clip_begin(&mut self, x: f64, y: f64, w: f64, h: f64) {
+        self.dash(false);
+        self.end_text();
+        self.out.extend_from_slice(
+            b"q
+",
+        );
+        self.xy([x, y]);
+        self.num(hpt(x + w) - hpt(x));
+        self.num(hpt(y + h) - hpt(y));
+        self.out.extend_from_slice(
+            b"re W n
+",
+        );
+    }
+
+    /// End a [`Canvas::clip_begin`]: the graphics state before it returns
+    /// (colours, width, dash), so they are set again when next used.
+    pub fn clip_end(&mut self) {
+        self.end_text();
+        self.out.extend_from_slice(
+            b"Q
+",
+        );
+        self.fill = None;
+        self.stroke = None;
+        self.width_pt = None;
+        self.dashed = false;
+        self.font = None;
+    }
+
     /// A circle of radius `r` mm (four Bézier arcs): stroked, or filled.
-    /// Below [`SMALL_CIRCLE_MM`] a stroked circle is drawn as a square of
-    /// its diameter (the same at print, a sixth of the bytes).
+    /// Holes are drawn as circles however small.
     pub fn circle(&mut self, c: [f64; 2], r: f64, filled: bool) {
-        if !filled && r < SMALL_CIRCLE_MM {
-            self.rect(c[0] - r, c[1] - r, 2.0 * r, 2.0 * r, false, true);
-            return;
-        }
         const K: f64 = 0.552_284_749_8;
         let k = K * r;
         let [x, y] = c;

@@ -10,13 +10,18 @@
 //! * **overview**: plan and two elevations of the erected grid at one
 //!   scale, strips coloured by utilisation (colour bar), labelled at both
 //!   ends, nodes dotted, edge strips in black;
+//!   then the node plan ([`nodeplan`]): every node's id in plan, tiled
+//!   over pages at a standard scale where one page would not keep them
+//!   legible;
 //! * **assembly order**: which strips go down first and in which order
 //!   the rest follow (interlocking: family A slots up, then B slotted in;
 //!   two-level: lower level, studs, upper level; edge strips last);
+//! * **joint sections** ([`joints`]): one section per kind of joint with
+//!   its stack and dimensions;
 //! * **strip sheets** ([`strips`]): every lamella flat at a stated scale,
 //!   broken across rows, a new page for every strip;
-//! * **schedules** ([`tables`]): nodes, shear blocks, parts, stock and
-//!   hardware;
+//! * **schedules** ([`tables`]): nodes, the setting-out table (every
+//!   node's position and normal), shear blocks, parts, stock and hardware;
 //! * **sheets as nested** ([`nested`]): one stock sheet per page;
 //! * **elastic check**: A and B strips by utilisation, governing first.
 //!
@@ -26,7 +31,9 @@
 //! the epoch and the trailer's `/ID` is derived from the document's content.
 
 pub mod canvas;
+pub mod joints;
 pub mod nested;
+pub mod nodeplan;
 pub mod overview;
 pub mod pdf;
 pub mod strips;
@@ -196,12 +203,14 @@ impl Page {
 }
 
 /// The section names, in the document's order.
-pub const SECTIONS: [&str; 9] = [
+pub const SECTIONS: [&str; 11] = [
     "Cover",
     "Overview",
     "Assembly order",
+    "Joint sections",
     "Strip sheets",
     "Node schedule",
+    "Setting out",
     "Shear blocks",
     "Parts, stock and hardware",
     "Sheets as nested",
@@ -230,8 +239,10 @@ pub fn assembly_pdf_counted(input: &AssemblyInput) -> Result<(Vec<u8>, usize)> {
 pub struct Sections {
     overview: Vec<SealedPage>,
     order: Vec<SealedPage>,
+    joints: Vec<SealedPage>,
     strips: Vec<SealedPage>,
     nodes: Vec<SealedPage>,
+    setting_out: Vec<SealedPage>,
     blocks: Vec<SealedPage>,
     takeoff: SealedPage,
     check: Vec<SealedPage>,
@@ -244,8 +255,10 @@ impl Sections {
         vec![
             self.overview,
             self.order,
+            self.joints,
             self.strips,
             self.nodes,
+            self.setting_out,
             self.blocks,
             vec![self.takeoff],
             nested,
@@ -282,11 +295,17 @@ pub fn sections_with(
     let seal =
         |pages: Vec<Page>| -> Vec<SealedPage> { pages.into_par_iter().map(Page::seal).collect() };
     // The heavy sections in parallel; each is deterministic on its own.
-    let ((overview, order), (strips, (nodes, blocks, takeoff, check))) = rayon::join(
+    let ((overview, order, joints), (strips, (nodes, blocks, takeoff, check))) = rayon::join(
         || {
             let mut order = tables::order_pages(plan, &frame);
             order.extend(overview::flat_page(plan, &frame));
-            (seal(overview::pages(input, &frame)), seal(order))
+            let mut overview = overview::pages(input, &frame);
+            overview.extend(nodeplan::pages(plan, &frame));
+            (
+                seal(overview),
+                seal(order),
+                seal(joints::pages(plan, &frame)),
+            )
         },
         || {
             rayon::join(
@@ -302,11 +321,14 @@ pub fn sections_with(
             )
         },
     );
+    let setting_out = seal(tables::setting_out_pages(plan, &frame));
     Ok(Sections {
         overview,
         order,
+        joints,
         strips,
         nodes,
+        setting_out,
         blocks,
         takeoff,
         check,

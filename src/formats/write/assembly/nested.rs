@@ -1,10 +1,13 @@
 //! Sheets as nested: one stock sheet per page, drawn by
 //! [`crate::formats::write::drawing::Drawer`] (the cutting files' own geometry,
 //! nominal) at the largest standard scale at which the sheet fits, every
-//! placed part outlined and labelled with its id. Engraving is left out
+//! placed part outlined and labelled with its id where the label
+//! overprints no other (else beside it; parts left without room are
+//! counted under the sheet). Engraving is left out
 //! (too fine at these scales); outlines are thinned to 0.1 mm on paper.
 
 use super::canvas::{self, Align, BLACK, GREY};
+use super::nodeplan::Labels;
 use super::{fixed, standard_scale, Frame, Page, SealedPage};
 use crate::error::Result;
 use crate::formats::write::arcs::flatten;
@@ -124,24 +127,48 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
             }
         }
     }
-    // Labels: as large as fits the part's box, 4 to 8 pt.
+    // Labels: as large as fits the part's box, 4 to 8 pt, where they
+    // overprint no other label (else beside, else counted in the list).
     c.fill([0.1, 0.1, 0.5]);
+    let mut labels = Labels::new(None);
+    let mut unlabelled: std::collections::BTreeMap<&str, usize> = Default::default();
     for part in &sheet.parts {
         let [x0, y0, x1, y1] = part.bbox_mm;
         let (bw, bh) = ((x1 - x0) * s, (y1 - y0) * s);
         let text = canvas::winansi(&part.part);
         let w1 = canvas::text_width_mm(&text, 1.0, false);
-        let size = (0.85 * bw / w1)
-            .min(0.6 * bh / canvas::cap_mm(1.0))
-            .clamp(4.0, 8.0);
         let at = map(0.5 * (x0 + x1), 0.5 * (y0 + y1));
         // A part much taller than wide is labelled upright.
-        if bh > 2.0 * bw && bw < w1 * 4.0 {
-            let size = (0.85 * bh / w1)
-                .min(0.6 * bw / canvas::cap_mm(1.0))
-                .clamp(4.0, 8.0);
+        let upright = bh > 2.0 * bw && bw < w1 * 4.0;
+        let size = if upright {
+            (0.85 * bh / w1).min(0.6 * bw / canvas::cap_mm(1.0))
+        } else {
+            (0.85 * bw / w1).min(0.6 * bh / canvas::cap_mm(1.0))
+        }
+        .clamp(4.0, 8.0);
+        // The box from the descender to the cap height.
+        let desc = 0.3 * canvas::cap_mm(size);
+        let (w, h) = (w1 * size, canvas::cap_mm(size) + desc);
+        let (bw_l, bh_l) = if upright { (h, w) } else { (w, h) };
+        let centred = [
+            at[0] - 0.5 * bw_l,
+            at[1] - 0.5 * bh_l,
+            at[0] + 0.5 * bw_l,
+            at[1] + 0.5 * bh_l,
+        ];
+        let lower_left = if labels.free(&centred) {
+            labels.hold(centred);
+            Some([centred[0], centred[1]])
+        } else {
+            labels.place(at, bw_l, bh_l, 0.3).map(|(ll, _)| ll)
+        };
+        let Some(ll) = lower_left else {
+            *unlabelled.entry(part.part.as_str()).or_default() += 1;
+            continue;
+        };
+        if upright {
             c.text(
-                [at[0] + 0.5 * canvas::cap_mm(size), at[1]],
+                [ll[0] + h - desc, ll[1] + 0.5 * w],
                 size,
                 false,
                 Align::Center,
@@ -150,7 +177,7 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
             );
         } else {
             c.text(
-                [at[0], at[1] - 0.5 * canvas::cap_mm(size)],
+                [ll[0] + 0.5 * w, ll[1] + desc],
                 size,
                 false,
                 Align::Center,
@@ -158,6 +185,21 @@ pub fn page(sheet: &SheetDrawing, meta: &PlanSheet, count: usize, frame: &Frame)
                 &text,
             );
         }
+    }
+    if !unlabelled.is_empty() {
+        let list: Vec<String> = unlabelled
+            .iter()
+            .map(|(id, n)| format!("{id} × {n}"))
+            .collect();
+        c.fill(BLACK);
+        c.text(
+            [frame.x1_mm, frame.y1_mm - 4.0],
+            7.0,
+            false,
+            Align::Right,
+            0.0,
+            &format!("not labelled above (no room): {}", list.join(", ")),
+        );
     }
     page.seal()
 }

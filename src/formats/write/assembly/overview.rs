@@ -2,9 +2,11 @@
 //! from the front, y, z from the side), one scale for all three, chosen
 //! from the standard series so they fit. A and B strips coloured by their
 //! utilisation (a colour bar explains it), edge strips in black and
-//! thicker, nodes as dots, every strip labelled at both ends in plan.
+//! thicker, nodes as dots, every strip labelled at both ends in plan
+//! where its id fits clear of the others (else on the node plan only).
 
 use super::canvas::{self, Align, Canvas, BLACK, GREY};
+use super::nodeplan::Labels;
 use super::{standard_scale, utilisation_colour, AssemblyInput, Frame, Page};
 use std::collections::HashMap;
 
@@ -142,13 +144,16 @@ pub fn pages(input: &AssemblyInput, frame: &Frame) -> Vec<Page> {
         }
         if vi == 0 {
             let centre = [ox + 0.5 * ext[i] * s, oy + 0.5 * ext[j] * s];
+            // Labels never overprint: each goes where it fits, else is left
+            // to the node plan (which labels every strip at its own scale).
+            let mut labels = Labels::new(Some([bx, by, bx + bw, by + bh - 5.0]));
             for cv in curves {
                 let pts: Vec<[f64; 2]> = cv.points_mm.iter().map(map).collect();
                 let edge = util.get(cv.id.as_str()).is_none_or(|u| u.0 == "edge");
                 if edge {
-                    label_middle(c, &cv.id, &pts, centre);
+                    label_middle(c, &mut labels, &cv.id, &pts, centre);
                 } else {
-                    label_ends(c, &cv.id, &pts);
+                    label_ends(c, &mut labels, &cv.id, &pts);
                 }
             }
         }
@@ -173,13 +178,34 @@ fn thin(pts: Vec<[f64; 2]>, tol_mm: f64) -> Vec<[f64; 2]> {
     out
 }
 
+/// Draw `id` with its baseline start at `at` (`bold` or not) when its
+/// box is free, else at the nearest free place around `near`; nothing
+/// when there is none.
+fn put(c: &mut Canvas, labels: &mut Labels, id: &str, at: [f64; 2], near: [f64; 2], bold: bool) {
+    let w = canvas::text_width_mm(&canvas::winansi(id), LABEL_PT, bold);
+    let h = canvas::cap_mm(LABEL_PT);
+    let b = [at[0] - 0.2, at[1] - 0.5, at[0] + w + 0.2, at[1] + h + 0.3];
+    let at = if labels.free(&b) {
+        labels.hold(b);
+        Some(at)
+    } else {
+        labels
+            .place(near, w + 0.4, h + 0.8, 1.2)
+            .map(|(ll, _)| [ll[0] + 0.2, ll[1] + 0.5])
+    };
+    if let Some(at) = at {
+        c.text(at, LABEL_PT, bold, Align::Left, 0.0, id);
+    }
+}
+
 /// The strip's id just beyond both ends, along its end direction.
-fn label_ends(c: &mut Canvas, id: &str, pts: &[[f64; 2]]) {
+fn label_ends(c: &mut Canvas, labels: &mut Labels, id: &str, pts: &[[f64; 2]]) {
     if pts.len() < 2 {
         return;
     }
     let n = pts.len();
     let ends = [(pts[0], pts[1.min(n - 1)]), (pts[n - 1], pts[n - 2])];
+    let w = canvas::text_width_mm(&canvas::winansi(id), LABEL_PT, false);
     c.fill(BLACK);
     for (end, inner) in ends {
         let (dx, dy) = (end[0] - inner[0], end[1] - inner[1]);
@@ -189,25 +215,20 @@ fn label_ends(c: &mut Canvas, id: &str, pts: &[[f64; 2]]) {
             end[0] + 1.2 * ux,
             end[1] + 1.2 * uy - 0.35 * canvas::cap_mm(LABEL_PT),
         ];
-        let align = if ux > 0.4 {
-            Align::Left
-        } else if ux < -0.4 {
-            Align::Right
-        } else {
-            Align::Center
-        };
-        let at = if align == Align::Center {
-            [at[0], at[1] + if uy > 0.0 { 0.8 } else { -1.6 }]
-        } else {
+        let at = if ux > 0.4 {
             at
+        } else if ux < -0.4 {
+            [at[0] - w, at[1]]
+        } else {
+            [at[0] - 0.5 * w, at[1] + if uy > 0.0 { 0.8 } else { -1.6 }]
         };
-        c.text(at, LABEL_PT, false, align, 0.0, id);
+        put(c, labels, id, at, end, false);
     }
 }
 
 /// An edge strip's id beside its middle, on the side away from `centre`
 /// (its ends meet the lamella strips' labels).
-fn label_middle(c: &mut Canvas, id: &str, pts: &[[f64; 2]], centre: [f64; 2]) {
+fn label_middle(c: &mut Canvas, labels: &mut Labels, id: &str, pts: &[[f64; 2]], centre: [f64; 2]) {
     if pts.is_empty() {
         return;
     }
@@ -215,14 +236,17 @@ fn label_middle(c: &mut Canvas, id: &str, pts: &[[f64; 2]], centre: [f64; 2]) {
     let (dx, dy) = (m[0] - centre[0], m[1] - centre[1]);
     c.fill(BLACK);
     let cap = canvas::cap_mm(LABEL_PT);
-    if dx.abs() >= dy.abs() {
-        let align = if dx > 0.0 { Align::Left } else { Align::Right };
-        let x = m[0] + if dx > 0.0 { 6.0 } else { -6.0 };
-        c.text([x, m[1] + 1.5], LABEL_PT, true, align, 0.0, id);
+    let w = canvas::text_width_mm(&canvas::winansi(id), LABEL_PT, true);
+    let at = if dx.abs() >= dy.abs() {
+        if dx > 0.0 {
+            [m[0] + 6.0, m[1] + 1.5]
+        } else {
+            [m[0] - 6.0 - w, m[1] + 1.5]
+        }
     } else {
-        let y = m[1] + if dy > 0.0 { 5.5 } else { -5.5 - cap };
-        c.text([m[0] + 6.0, y], LABEL_PT, true, Align::Left, 0.0, id);
-    }
+        [m[0] + 6.0, m[1] + if dy > 0.0 { 5.5 } else { -5.5 - cap }]
+    };
+    put(c, labels, id, at, m, true);
 }
 
 /// A colour bar from utilisation 0 to 1 (and above), `w` mm long.
@@ -263,7 +287,7 @@ fn colour_bar(c: &mut Canvas, x: f64, y: f64, w: f64) {
         false,
         Align::Left,
         0.0,
-        "utilisation of the strip's worst lamella; edge strips black; dots: nodes",
+        "utilisation of the strip's worst lamella; edge strips black; dots: nodes; ids that would overprint are on the node plan",
     );
 }
 

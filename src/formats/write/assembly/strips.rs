@@ -16,9 +16,12 @@
 //!   the page starts a new one; a strip longer than a page fills pages of
 //!   `rows_per_page` rows, each with the strip's line again.
 //!
-//! At each node: a tick, the distance from the lamella's start end (mm,
-//! its running station) and the crossing strip's id, written upright
-//! along the tick; labels too close to read are moved right along a leader.
+//! At each node: a tick, the distance from its piece's cut start end (mm,
+//! x = 0 of the piece, the end its engraved orientation arrow points from:
+//! the one datum of every station in the kit) and the crossing strip's id,
+//! written upright along the tick; a 0 at every piece's start end and the
+//! last piece's length at its far end; labels too close to read are moved
+//! right along a leader.
 
 use super::canvas::{Align, Canvas, BLACK, BLUE, GREY};
 use super::{mm0, Frame, Page, SealedPage};
@@ -249,7 +252,7 @@ fn strip_pages(
                         Align::Left,
                         0.0,
                         &format!(
-                            "{} mm along its curve, {} nodes, {} lamella{}{cont}; stations in mm from each lamella's start end; crossing strip ids at the nodes",
+                            "{} mm along its curve, {} nodes, {} lamella{}{cont}; stations in mm from each piece's cut start end (0: where its engraved arrow starts); crossing strip ids at the nodes",
                             mm0(s.length_mm),
                             s.nodes.len(),
                             st.lamellas.len(),
@@ -362,6 +365,16 @@ fn draw_row(
         0.0,
         &format!("lamella {}, row {} of {}", l.number, r + 1, l.rows),
     );
+    // The pieces this row shows (stations count from each one's start end).
+    let shown: Vec<&str> = l
+        .pieces
+        .iter()
+        .filter(|p| {
+            let off = p.station_start_mm.unwrap_or(0.0) - l.start_mm;
+            off < xb && off + p.length_mm > xa
+        })
+        .map(|p| p.id.as_str())
+        .collect();
     c.fill(GREY);
     c.text(
         [frame.x0_mm, y_top - 6.0],
@@ -369,10 +382,16 @@ fn draw_row(
         false,
         Align::Left,
         0.0,
-        &format!("{} to {}", mm0(xa), mm0(xb)),
+        &match shown.as_slice() {
+            [one] => format!("piece {one}"),
+            [first, .., last] => format!("{first} to {last}"),
+            [] => String::new(),
+        },
     );
-    // Shear blocks first (under the outline), then outlines, holes.
-    let mut nodes: Vec<(f64, String)> = Vec::new();
+    // Shear blocks first (under the outline), then outlines, holes. Every
+    // station printed is from its own piece's start end (x = 0 there).
+    let mut nodes: Vec<(f64, f64, String)> = Vec::new();
+    let mut starts: Vec<f64> = Vec::new();
     for p in &l.pieces {
         let off = p.station_start_mm.unwrap_or(0.0) - l.start_mm;
         if off > xb || off + p.length_mm < xa {
@@ -421,15 +440,18 @@ fn draw_row(
                 );
             }
         }
+        if (xa..xb).contains(&off) {
+            starts.push(off);
+        }
         for f in &p.features {
             if let (Some(_), Some(cross)) = (f.node, &f.crossing) {
                 let x = f.center_mm[0] + off;
                 if (xa..=xb).contains(&x)
                     && !nodes
                         .iter()
-                        .any(|(nx, id)| id == cross && (nx - x).abs() < 1.0)
+                        .any(|(nx, _, id)| id == cross && (nx - x).abs() < 1.0)
                 {
-                    nodes.push((x, cross.clone()));
+                    nodes.push((x, f.station_mm.unwrap_or(f.center_mm[0]), cross.clone()));
                 }
             }
         }
@@ -476,27 +498,28 @@ fn draw_row(
     if r > 0 {
         zig(c, px(xa) - 1.5);
     }
-    // Stations: the start end, each node, the far end.
-    nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut marks: Vec<(f64, Option<String>)> = Vec::new();
-    if r == 0 {
-        marks.push((0.0, None));
-    }
-    marks.extend(nodes.into_iter().map(|(x, id)| (x, Some(id))));
+    // Stations: each piece's start end (0), each node (from its piece's
+    // start end), the last piece's far end (its length).
+    let mut marks: Vec<(f64, f64, Option<String>)> =
+        starts.into_iter().map(|x| (x, 0.0, None)).collect();
+    marks.extend(nodes.into_iter().map(|(x, st, id)| (x, st, Some(id))));
     if r + 1 == l.rows {
-        marks.push((l.end_mm - l.start_mm, None));
+        if let Some(last) = l.pieces.last() {
+            marks.push((l.end_mm - l.start_mm, last.length_mm, None));
+        }
     }
+    marks.sort_by(|a, b| a.0.total_cmp(&b.0));
     let cap = 0.718 * LABEL_PT * 25.4 / 72.0;
     let pitch = cap + 0.9;
     // Where each label goes (moved right along a leader when crowded).
     let mut last_label = f64::NEG_INFINITY;
     let placed: Vec<(f64, f64, String, Option<String>)> = marks
         .into_iter()
-        .map(|(x, id)| {
+        .map(|(x, st, id)| {
             let tick = px(x);
             let lx = tick.max(last_label + pitch);
             last_label = lx;
-            (tick, lx, mm0(x), id)
+            (tick, lx, mm0(st), id)
         })
         .collect();
     // Ticks and leaders, then the stations, then the ids: one colour and

@@ -9,6 +9,7 @@ use super::canvas::{self, Align, Canvas, Rgb3, BLACK, BLUE, GREY, LIGHT, RED};
 use super::{fixed, mm0, AssemblyInput, Frame, Page};
 use crate::plan::takeoff::Takeoff;
 use crate::plan::{Plan, PlanHoleUse, PlanPart};
+use std::collections::HashMap;
 
 /// Height of a table row, mm.
 pub const ROW_MM: f64 = 4.5;
@@ -111,82 +112,171 @@ pub fn table_pages(
         .collect()
 }
 
-/// The node schedule's columns.
-pub const NODE_COLUMNS: [Column; 7] = [
-    ("node", 12.0, Align::Right),
-    ("strip", 14.0, Align::Left),
-    ("station", 18.0, Align::Right),
-    ("strip", 14.0, Align::Left),
-    ("station", 18.0, Align::Right),
-    ("angle", 14.0, Align::Right),
-    ("joint", 16.0, Align::Left),
-];
+/// The node schedule's columns for strips of `lamellas` lamellas (1 or
+/// 2): the node, then for each of its two strips the strip id and, per
+/// lamella, the piece holding the node and the node's station on it.
+pub fn node_columns(lamellas: u32) -> Vec<Column> {
+    let mut cols: Vec<Column> = vec![("node", 12.0, Align::Right)];
+    for _ in 0..2 {
+        cols.push(("strip", 14.0, Align::Left));
+        for n in 1..=lamellas.clamp(1, 2) {
+            cols.push((if n == 1 { "piece" } else { "piece 2" }, 18.0, Align::Left));
+            cols.push(("at", 11.0, Align::Right));
+        }
+    }
+    cols.push(("angle", 14.0, Align::Right));
+    cols.push(("joint", 16.0, Align::Left));
+    cols
+}
 
-/// The node schedule: every node of the plan, in id order.
+/// Lamellas per strip of the plan's parts (1 without a profile).
+fn lamellas_per_strip(plan: &Plan) -> u32 {
+    plan.profile
+        .as_ref()
+        .map_or(1, |p| p.lamellas_per_strip)
+        .clamp(1, 2)
+}
+
+/// Where each node sits on each piece: (node, strip, lamella) → (piece id,
+/// station from the piece's start end, mm). Lamellas and edge strips.
+pub fn node_stations(plan: &Plan) -> HashMap<(usize, &str, u32), (&str, f64)> {
+    let mut at = HashMap::new();
+    for p in plan.parts.iter().flatten() {
+        let Some(strip) = p.strip.as_deref() else {
+            continue;
+        };
+        for f in &p.features {
+            if let (Some(n), Some(st)) = (f.node, f.station_mm) {
+                at.entry((n, strip, p.lamella.unwrap_or(1)))
+                    .or_insert((p.id.as_str(), st));
+            }
+        }
+    }
+    at
+}
+
+/// The node schedule: every node of the plan, in id order, located on
+/// the pieces: for each strip the piece that holds the node and the
+/// station there, from the piece's cut start end.
 pub fn node_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
+    let lamellas = lamellas_per_strip(plan);
+    let at = node_stations(plan);
     let rows: Vec<Row> = plan
         .nodes
         .iter()
         .map(|n| {
-            (
-                vec![
-                    n.id.to_string(),
-                    n.a.clone(),
-                    mm0(n.station_a_mm),
-                    n.b.clone(),
-                    mm0(n.station_b_mm),
-                    format!("{}°", fixed(n.angle_deg, 1)),
-                    n.joint.clone(),
-                ],
-                None,
-            )
+            let mut cells = vec![n.id.to_string()];
+            for strip in [&n.a, &n.b] {
+                cells.push(strip.clone());
+                for l in 1..=lamellas {
+                    // An edge strip's pieces are lamella 1's column.
+                    match at.get(&(n.id, strip.as_str(), l)) {
+                        Some((piece, st)) => {
+                            cells.push((*piece).to_string());
+                            cells.push(mm0(*st));
+                        }
+                        None => {
+                            cells.push("-".into());
+                            cells.push(String::new());
+                        }
+                    }
+                }
+            }
+            cells.push(format!("{}°", fixed(n.angle_deg, 1)));
+            cells.push(n.joint.clone());
+            (cells, None)
         })
         .collect();
     table_pages(
         frame,
         "Node schedule",
         &format!(
-            "Node schedule: {} nodes, stations along each strip's curve from its start, mm",
+            "Node schedule: {} nodes; the piece that holds each and its station, mm from the piece's cut start end (where its engraved arrow starts)",
             plan.nodes.len()
         ),
-        &NODE_COLUMNS,
+        &node_columns(lamellas),
+        &rows,
+    )
+}
+
+/// The setting-out table's columns.
+pub const SETTING_OUT_COLUMNS: [Column; 9] = [
+    ("node", 12.0, Align::Right),
+    ("strip", 14.0, Align::Left),
+    ("strip", 14.0, Align::Left),
+    ("x mm", 20.0, Align::Right),
+    ("y mm", 20.0, Align::Right),
+    ("z mm", 20.0, Align::Right),
+    ("normal x", 15.0, Align::Right),
+    ("normal y", 15.0, Align::Right),
+    ("normal z", 15.0, Align::Right),
+];
+
+/// The setting-out table: every node's position (mm, one decimal) and
+/// unit surface normal (3 decimals) in the network's frame, in id order;
+/// `setting-out.csv` holds the same at plan.json's precision.
+pub fn setting_out_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
+    let rows: Vec<Row> = plan
+        .nodes
+        .iter()
+        .map(|n| {
+            let mut cells = vec![n.id.to_string(), n.a.clone(), n.b.clone()];
+            cells.extend(n.position_mm.iter().map(|v| fixed(*v, 1)));
+            cells.extend(n.normal.iter().map(|v| fixed(*v, 3)));
+            (cells, None)
+        })
+        .collect();
+    table_pages(
+        frame,
+        "Setting out",
+        &format!(
+            "Setting out: {} nodes in the network's frame (position mm, unit surface normal); setting-out.csv",
+            plan.nodes.len()
+        ),
+        &SETTING_OUT_COLUMNS,
         &rows,
     )
 }
 
 /// The shear-block schedule's columns.
-pub const BLOCK_COLUMNS: [Column; 4] = [
+pub const BLOCK_COLUMNS: [Column; 6] = [
     ("strip", 14.0, Align::Left),
     ("block", 12.0, Align::Right),
-    ("lam. 1", 20.0, Align::Right),
-    ("lam. 2", 20.0, Align::Right),
+    ("lam. 1 piece", 20.0, Align::Left),
+    ("at", 11.0, Align::Right),
+    ("lam. 2 piece", 20.0, Align::Left),
+    ("at", 11.0, Align::Right),
 ];
 
-/// The stations of a strip's shear-block holes on lamella `n`'s line,
-/// ascending.
-fn block_stations(parts: &[&PlanPart], n: u32) -> Vec<f64> {
-    let mut v: Vec<f64> = parts
+/// A strip's shear-block holes on lamella `n`, in order along its line:
+/// the piece and the station from the piece's start end.
+fn block_stations<'a>(parts: &[&'a PlanPart], n: u32) -> Vec<(f64, &'a str, f64)> {
+    let mut v: Vec<(f64, &str, f64)> = parts
         .iter()
         .filter(|p| p.lamella == Some(n))
         .flat_map(|p| {
             p.features
                 .iter()
                 .filter(|f| f.hole_use == Some(PlanHoleUse::ShearBlock))
-                .filter_map(|f| f.station_mm)
+                .filter_map(|f| {
+                    let st = f.station_mm?;
+                    Some((f.line_station_mm.unwrap_or(st), p.id.as_str(), st))
+                })
         })
         .collect();
-    v.sort_by(f64::total_cmp);
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
     v
 }
 
-/// The shear-block schedule: every block by strip, its stations on the
-/// two lamellas' lines. No pages when the kit has no shear blocks.
+/// The shear-block schedule: every block by strip, its bolt on the two
+/// lamellas: the piece and the station from the piece's cut start end.
+/// No pages when the kit has no shear blocks.
 pub fn block_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
     let Some(parts) = &plan.parts else {
         return Vec::new();
     };
     let mut rows: Vec<Row> = Vec::new();
-    let mut by_strip: std::collections::HashMap<&str, Vec<&PlanPart>> = Default::default();
+    let mut by_strip: HashMap<&str, Vec<&PlanPart>> = Default::default();
     for p in parts.iter().filter(|p| p.kind == "lamella") {
         if let Some(s) = &p.strip {
             by_strip.entry(s.as_str()).or_default().push(p);
@@ -197,13 +287,19 @@ pub fn block_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
             continue;
         };
         let (one, two) = (block_stations(ps, 1), block_stations(ps, 2));
-        for (i, st) in one.iter().enumerate() {
+        for (i, (_, piece, st)) in one.iter().enumerate() {
+            let (p2, s2) = two
+                .get(i)
+                .map(|(_, p, x)| ((*p).to_string(), mm0(*x)))
+                .unwrap_or_default();
             rows.push((
                 vec![
                     s.id.clone(),
                     (i + 1).to_string(),
+                    (*piece).to_string(),
                     mm0(*st),
-                    two.get(i).map(|x| mm0(*x)).unwrap_or_default(),
+                    p2,
+                    s2,
                 ],
                 None,
             ));
@@ -216,7 +312,7 @@ pub fn block_pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
         frame,
         "Shear blocks",
         &format!(
-            "Shear blocks: {} blocks (part SB), bolt stations on each lamella's line, mm",
+            "Shear blocks: {} blocks (part SB); each bolt's piece and station, mm from the piece's cut start end",
             rows.len()
         ),
         &BLOCK_COLUMNS,
@@ -682,12 +778,23 @@ pub fn cover_page(input: &AssemblyInput, frame: &Frame, first: &[(&str, usize, u
         c.text([x0 + 70.0, y], 9.0, false, Align::Right, 0.0, &pages);
         y -= 4.8;
     }
-    legend(c, frame);
+    legend(c, frame, plan);
     page
 }
 
-/// The legend of the engraved marks, drawn on a sample lamella.
-fn legend(c: &mut Canvas, frame: &Frame) {
+/// The legend of the engraved marks, drawn on a sample lamella of the
+/// kit's joint system (an interlocking lamella with a slot, a two-level
+/// one with its stud holes), naming only the parts the kit has.
+fn legend(c: &mut Canvas, frame: &Frame, plan: &Plan) {
+    let two_level = plan
+        .profile
+        .as_ref()
+        .is_some_and(|p| p.joint_system == "two_level");
+    let has = |kind: &str| {
+        plan.parts_summary
+            .as_ref()
+            .is_some_and(|k| k.kinds.iter().any(|kc| kc.kind == kind && kc.count > 0))
+    };
     let w = 150.0_f64.min(0.45 * frame.width_mm());
     let x = frame.x1_mm - w;
     let mut y = frame.y1_mm - 24.0;
@@ -717,7 +824,13 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     ];
     c.stroke(BLACK);
     c.width(0.3);
-    c.polyline(&outline, true);
+    if two_level {
+        // No slots: a node's stud fastener hole.
+        c.rect(lx, y, lw, lh, false, true);
+        c.circle([slot_x, y + 0.5 * lh], 1.2, false);
+    } else {
+        c.polyline(&outline, true);
+    }
     c.circle([lx + 0.85 * lw, y + 0.5 * lh], 1.2, false);
     c.fill(BLUE);
     c.stroke(BLUE);
@@ -729,7 +842,14 @@ fn legend(c: &mut Canvas, frame: &Frame) {
         0.0,
         "A05-1.2",
     );
-    c.text([slot_x, y + 2.5], 8.0, false, Align::Center, 0.0, "B12");
+    c.text(
+        [slot_x, y + if two_level { 9.5 } else { 2.5 }],
+        8.0,
+        false,
+        Align::Center,
+        0.0,
+        "B12",
+    );
     c.text(
         [lx + 0.85 * lw, y + 2.5],
         8.0,
@@ -752,18 +872,37 @@ fn legend(c: &mut Canvas, frame: &Frame) {
     );
     c.line([ax, ay], [ax, ay + 3.0]);
     c.fill(BLACK);
-    let notes = [
+    let mut notes: Vec<&str> = vec![
         "A05-1.2   part id: strip A05, lamella 1 (of 2), piece 2 (pieces are spliced)",
-        "B12       beside a slot or node hole: the strip crossing there",
-        "arrow     from the strip's start toward its end; the tick points to the top edge",
-        "          (the surface normal side: family A's slots open there, B's opposite)",
-        "SB        shear block between the two lamellas of a strip (bolted)",
-        "SP        splice plate joining two pieces of a lamella",
-        "W87.5     star washer for nodes whose crossing angle rounds to 87.5°",
-        "ST        stud joining the two levels of a two-level grid",
-        "E-edge00.1   edge strip edge00, piece 1 (into the lamellas' end slots)",
-        "SP-edge00.1  splice plate joining pieces 1 and 2 of edge strip edge00",
+        if two_level {
+            "B12       beside a node hole: the strip crossing there"
+        } else {
+            "B12       beside a slot or node hole: the strip crossing there"
+        },
+        "arrow     from the piece's cut start end (x = 0: every station is measured from it);",
+        "          its tick points to the top edge",
+        if two_level {
+            "          (the surface normal side)"
+        } else {
+            "          (the surface normal side: family A's slots open there, B's opposite)"
+        },
     ];
+    if has("shear_block") {
+        notes.push("SB        shear block between the two lamellas of a strip (bolted)");
+    }
+    if has("splice_plate") {
+        notes.push("SP        splice plate joining two pieces of a lamella");
+    }
+    if has("washer") {
+        notes.push("W87.5     star washer for nodes whose crossing angle rounds to 87.5°");
+    }
+    if has("stud") {
+        notes.push("ST        stud joining the two levels of a two-level grid");
+    }
+    if has("edge_strip") {
+        notes.push("E-edge00.1   edge strip edge00, piece 1 (into the lamellas' end slots)");
+        notes.push("SP-edge00.1  splice plate joining pieces 1 and 2 of edge strip edge00");
+    }
     let mut ty = y - 7.0;
     for n in notes {
         let (k, v) = n.split_at(n.find(' ').unwrap_or(0));
