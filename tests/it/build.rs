@@ -724,7 +724,7 @@ fn steel_enneper_kit_files_match_the_plan_and_pass_readers() {
         "by stock group: lamella-1.5 3, washer-3 1, shear-block-10 1",
         "elastic check: PASS",
         "node bolt",
-        "wrote 212 files",
+        "wrote 224 files",
     ] {
         assert!(stdout.contains(want), "summary lacks {want:?}:\n{stdout}");
     }
