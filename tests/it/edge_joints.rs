@@ -300,9 +300,14 @@ fn an_end_slot_alone_has_no_band_hole_and_no_edge_bolt() {
 
 #[test]
 fn a_bolted_edge_joint_needs_a_gap_for_its_bolt() {
-    let text = std::fs::read_to_string(crate::support::root().join("profiles/beech-veneer.yaml"))
-        .unwrap()
-        + "edge_joint:\n  kind: bolt\n  bolt_diameter_mm: 2.0\n";
+    let text =
+        std::fs::read_to_string(crate::support::root().join("profiles/beech-veneer.yaml")).unwrap();
+    // The veneer profile has an `edge_joint:` section: the bolt goes into it.
+    assert!(text.contains("\nedge_joint:\n"));
+    let text = text.replace(
+        "\nedge_joint:\n",
+        "\nedge_joint:\n  kind: bolt\n  bolt_diameter_mm: 2.0\n",
+    );
     let e = lamella::formats::read::profile_file::parse(&text, std::path::Path::new("v.yaml"))
         .expect_err("single lamellas have no gap")
         .to_string();

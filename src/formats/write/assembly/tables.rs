@@ -900,7 +900,7 @@ fn legend(c: &mut Canvas, frame: &Frame, plan: &Plan) {
         notes.push("ST        stud joining the two levels of a two-level grid");
     }
     if has("edge_strip") {
-        notes.push("E-edge00.1   edge strip edge00, piece 1 (into the lamellas' end slots)");
+        notes.push("E-edge00.1   edge strip edge00, piece 1");
         notes.push("SP-edge00.1  splice plate joining pieces 1 and 2 of edge strip edge00");
     }
     let mut ty = y - 7.0;
