@@ -44,16 +44,7 @@ impl Ctx<'_> {
                         )));
                     }
                     ends.push(m);
-                    sheets.push(SheetNest {
-                        id: String::new(),
-                        size: 0,
-                        stock: z.label.clone(),
-                        width_mm: z.width,
-                        length_mm: z.length,
-                        price_per_unit: z.price,
-                        placements: Vec::new(),
-                        part_area_mm2: 0.0,
-                    });
+                    sheets.push(self.new_sheet(0));
                     sheets.len() - 1
                 }
             };

@@ -26,7 +26,7 @@
 //! never skips a free place; the first place with no conflict is the lowest
 //! in that column. Deterministic: fixed orders, ties by index.
 
-use super::model::{bounds, rotate, Placement, SheetNest};
+use super::model::{bounds, place_at, rotate, Placement, SheetNest};
 use super::outline::{placed_outline, Setting};
 use crate::fabricate::part::{Part, PartKind};
 use crate::geom::plane;
@@ -503,14 +503,7 @@ pub fn place_bands(setting: Setting, sheets: &mut Vec<SheetNest>) -> usize {
                     let x = m + di as f64 * c.dx_mm;
                     let y = m + dj as f64 * c.dy_mm;
                     let part = &kit.parts[pl.part];
-                    let (x_mm, y_mm) = placement_origin(part, t[r].rot, x, y);
-                    let mut new = Placement {
-                        part: pl.part,
-                        copy: pl.copy,
-                        x_mm,
-                        y_mm,
-                        rotation_deg: t[r].rot,
-                    };
+                    let mut new = place_at(pl.part, part, pl.copy, t[r].rot, x, y);
                     let o = placed_outline(part, &new);
                     if !b.confirm(&o, setting.gap_mm) {
                         return 0;
@@ -534,14 +527,6 @@ pub fn place_bands(setting: Setting, sheets: &mut Vec<SheetNest>) -> usize {
     let dropped = sheets.len() - work.len();
     *sheets = work;
     dropped
-}
-
-/// The placement translation that puts part `p` turned by `rot` with its
-/// box's lower-left corner at (x, y).
-fn placement_origin(p: &Part, rot: u32, x: f64, y: f64) -> (f64, f64) {
-    let o: Vec<Point> = p.outline_part_mm.iter().map(|&q| rotate(q, rot)).collect();
-    let b = bounds(&o);
-    (x - b.0, y - b.1)
 }
 
 #[cfg(test)]

@@ -338,7 +338,7 @@ impl Ctx<'_> {
         })
     }
 
-    fn new_sheet(&self, size: usize) -> SheetNest {
+    pub(super) fn new_sheet(&self, size: usize) -> SheetNest {
         let z = &self.sizes[size];
         SheetNest {
             id: String::new(),
