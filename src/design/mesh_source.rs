@@ -250,10 +250,14 @@ pub fn prepare(
 /// the wiggles are smoothed away by `nodes` and `check` like the rounding
 /// of an export, not read as bending. Measured on Delaunay meshes of
 /// Enneper's surface, the catenoid and the helicoid (`tests/it/mesh_truth.rs`,
-/// README "Accuracy by input"): 70–80 mm cells jittered by 15–35 % give every
-/// strip's smallest bending radius within 5 % and largest twist within 1 %
-/// of the closed form's; 40 mm cells (rounding noise in the tensors) and
-/// 100 mm cells (smoothing bias on strongly twisting curves) reach 7–11 %.
+/// README "Accuracy by input"): 40–100 mm cells jittered by 15–35 % give
+/// every strip's smallest bending radius within 5 % and largest twist
+/// within 1 % of the closed form's (at 40 mm the coordinates' rounding
+/// would dominate the curvature tensors, at 100 mm their truncation: the
+/// jets balance the two, `crate::design::mesh::curvature`), except the
+/// catenoid at 100 mm: 7 % there, the smoothing this precision sets
+/// (±850 mm) biases the curvature at the ends of curves that twist faster
+/// than they bend.
 pub fn mesh_precision_mm(
     mesh: &TriMesh,
     cell_mm: f64,

@@ -3,25 +3,39 @@
 //! osculating jets", 2005).
 //!
 //! At each vertex: the n-ring neighbourhood, grown ring by ring until it
-//! holds at least [`MIN_POINTS`] vertices (the 2-ring inside a regular mesh,
-//! the 3-ring on the boundary), is written in a frame whose z axis is the
-//! vertex normal (angle-weighted, on the side the counter-clockwise
-//! triangles point to), its coordinates divided by the neighbourhood's
-//! radius for conditioning, and a height function with constant, linear,
-//! quadratic and cubic terms (a cubic jet, 10 coefficients) is fitted by
-//! least squares (Householder QR). The fit is repeated once in the frame of
-//! the fitted normal. The shape operator of the fitted graph at the vertex
+//! holds at least a given number of vertices, is written in a frame whose z
+//! axis is the vertex normal (angle-weighted, on the side the
+//! counter-clockwise triangles point to), its coordinates divided by the
+//! neighbourhood's radius for conditioning, and a height function (a
+//! polynomial of degree 3 or 4: 10 or 15 coefficients) is fitted by least
+//! squares (Householder QR). The fit is repeated once in the frame of the
+//! fitted normal. The shape operator of the fitted graph at the vertex
 //! gives k1 ≥ k2 and the principal directions.
 //!
-//! Accuracy: the jet's curvature error is O(h²) in the mesh spacing h
-//! (Cazals & Pouget, degree-3 fit); the tests measure it on jittered,
-//! rounded meshes of the sphere, cylinder, Enneper's surface and the
-//! catenoid, at interior and boundary vertices separately (the one-sided
-//! neighbourhood at the boundary has a larger constant). Coordinates rounded
-//! to δ add an error of order δ/ρ² (ρ the neighbourhood radius, about 2h),
-//! which matters only on meshes much finer than the surface's curvature.
-//! [`VertexJet::sigma_per_mm`] is the curvature's standard error from the
-//! rounding (the coordinates' decimal step, [`coordinate_step_mm`]).
+//! Accuracy, and how the fit is chosen ([`vertex_jets`]). Two errors enter
+//! the curvature. Truncation: a degree-d jet over a neighbourhood of radius
+//! ρ misses the surface's terms of degree d + 1, an error of about
+//! c·(κρ)^{d−1} relative to the curvature κ (Cazals & Pouget; the constants
+//! [`TRUNCATION`] measured on jittered Delaunay meshes of the catenoid). Its
+//! smooth part moves features; its vertex-to-vertex spread (irregular
+//! neighbourhoods) is noise to a traced curve. Rounding: coordinates
+//! rounded to δ add noise σ ∝ δ/(ρ²·√N) over N vertices
+//! ([`VertexJet::sigma_per_mm`], from the fit's own least squares and the
+//! coordinates' decimal step, [`coordinate_step_mm`]). The first falls with
+//! the mesh spacing h, the second grows as h shrinks: a cubic over two rings
+//! is right for neither end. So the jets are fitted once as cubics over
+//! [`MIN_POINTS`] and once as quartics over [`QUARTIC_MIN_POINTS`], and
+//! [`balanced_fit`] finds, per degree, the neighbourhood size with the least
+//! sum of the two (σ/κ shrinking as N^{−3/2}, the truncation growing as
+//! N^{(d−1)/2}); the pair with the least wins. Measured on Delaunay meshes of
+//! Enneper's surface, the catenoid and the helicoid at 0.001 mm: quartics
+//! everywhere from 40 to 100 mm cells, over the 3-ring (24 vertices) at
+//! 100 mm and 45–75 vertices at 40 mm; the catenoid's spread of (k1 − k2)/2
+//! falls from 1.3e-3 to 2.9e-4 at 100 mm cells and from 2.0e-4 to 6e-5 at
+//! 40 mm against two-ring cubics. The tests also measure the error on
+//! jittered, rounded meshes of the sphere, cylinder, Enneper's surface and
+//! the catenoid, at interior and boundary vertices separately (the
+//! one-sided neighbourhood at the boundary has a larger constant).
 //!
 //! The [`Curvature`] returned per vertex is expressed in its own principal
 //! frame: `first = [1, 0, 1]` and `second = [k1, 0, k2]` are the fundamental
@@ -37,8 +51,24 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 /// The neighbourhood of a vertex grows ring by ring until it holds at least
-/// this many vertices (the vertex included).
+/// this many vertices (the vertex included) for a cubic jet.
 pub const MIN_POINTS: usize = 16;
+
+/// A quartic jet (15 coefficients) is fitted to at least this many
+/// vertices (the 3-ring inside a mesh).
+pub const QUARTIC_MIN_POINTS: usize = 24;
+
+/// The most vertices a quartic jet is fitted to (on a plane, or a mesh so
+/// fine that the rounding outweighs the truncation everywhere).
+pub const MAX_POINTS: usize = 120;
+
+/// A degree-d jet's truncation error in the principal curvatures, relative
+/// to κ, is about `TRUNCATION[d]`·(κρ)^{d−1} over a neighbourhood of radius
+/// ρ (index 3: cubic, 4: quartic): measured as the spread of the errors on
+/// jittered Delaunay meshes of the catenoid at 40 and 100 mm cells, where
+/// rounding adds little (cubic: 2e-4 at κρ 0.076, 1.3e-3 at 0.19; quartic:
+/// 2.9e-4 at κρ 0.27, 1.1e-3 at 0.38).
+pub const TRUNCATION: [f64; 5] = [f64::INFINITY, f64::INFINITY, f64::INFINITY, 0.04, 0.015];
 
 /// The neighbourhood grows by at most this many rings.
 pub const MAX_RINGS: usize = 8;
@@ -103,9 +133,12 @@ pub struct VertexJet {
     pub points: usize,
     /// Rings of neighbours used.
     pub rings: usize,
-    /// Degree of the fitted polynomial: 3, or lower only where the whole
-    /// mesh has too few vertices (1 means no curvature: zero).
+    /// Degree of the fitted polynomial: 4 ([`vertex_jets`]) or 3
+    /// ([`vertex_jets_over`]), or lower only where the whole mesh has too
+    /// few vertices (1 means no curvature: zero).
     pub degree: usize,
+    /// Radius of the fitted neighbourhood in the tangent plane, mm.
+    pub radius_mm: f64,
 }
 
 /// Per-vertex curvature of `mesh`, which must be `topo.mesh()` (the
@@ -118,22 +151,98 @@ pub fn vertex_curvatures(mesh: &TriMesh, topo: &Topology) -> Vec<Curvature> {
 }
 
 /// Per-vertex fitted jets of `mesh`, which must be `topo.mesh()`; in vertex
-/// order, the same for any number of threads.
+/// order, the same for any number of threads. The degree (cubic or
+/// quartic) and the neighbourhood's size are the pair whose rounding noise
+/// and truncation error add up to the least ([`balanced_fit`]).
 pub fn vertex_jets(mesh: &TriMesh, topo: &Topology) -> Vec<VertexJet> {
-    vertex_jets_over(mesh, topo, MIN_POINTS)
+    let mut best: Option<(f64, usize, usize, usize, Vec<VertexJet>)> = None;
+    for (degree, n0) in [(3, MIN_POINTS), (4, QUARTIC_MIN_POINTS)] {
+        let jets = jets_of(mesh, topo, n0, degree);
+        let (points, error) = balanced_fit(&jets, degree, n0);
+        if best.as_ref().is_none_or(|b| error < b.0) {
+            best = Some((error, degree, n0, points, jets));
+        }
+    }
+    let Some((_, degree, n0, points, jets)) = best else {
+        return Vec::new();
+    };
+    if points <= n0 {
+        return jets;
+    }
+    jets_of(mesh, topo, points, degree)
 }
 
-/// As [`vertex_jets`], each neighbourhood grown to at least `min_points`
-/// vertices (up to [`MAX_RINGS`] rings): more averaging of noisy vertices
-/// (a form-found film's) at the price of a wider fit.
+/// The neighbourhood size (vertices) at which a degree-`degree` jet's
+/// curvature error is least, and that error relative to the curvature,
+/// from `jets` fitted over `n0` vertices. With ρ the median neighbourhood
+/// radius, σ the median standard error from the rounding
+/// ([`VertexJet::sigma_per_mm`]) and κ the 95th percentile of the largest
+/// |principal curvature|: the noise σ/κ falls as (n0/N)^{3/2} (ρ² grows
+/// with N, and the fit averages N points); the truncation error grows as
+/// c·(κρ)^{d−1} ([`TRUNCATION`]). Sizes from n0 up to [`MAX_POINTS`].
+pub fn balanced_fit(jets: &[VertexJet], degree: usize, n0: usize) -> (usize, f64) {
+    let median = |mut x: Vec<f64>| -> Option<f64> {
+        if x.is_empty() {
+            return None;
+        }
+        let mid = x.len() / 2;
+        Some(*x.select_nth_unstable_by(mid, f64::total_cmp).1)
+    };
+    let finite = |f: fn(&VertexJet) -> f64| -> Vec<f64> {
+        jets.iter().map(f).filter(|x| x.is_finite()).collect()
+    };
+    let c = TRUNCATION.get(degree).copied().unwrap_or(f64::INFINITY);
+    let (Some(sigma), Some(rho)) = (
+        median(finite(|j| j.sigma_per_mm)),
+        median(finite(|j| j.radius_mm)),
+    ) else {
+        return (n0, f64::INFINITY);
+    };
+    let mut kappa = finite(|j| j.curvature.k1.abs().max(j.curvature.k2.abs()));
+    if kappa.is_empty() {
+        return (n0, f64::INFINITY);
+    }
+    let i95 = (kappa.len() * 95 / 100).min(kappa.len() - 1);
+    let k95 = *kappa.select_nth_unstable_by(i95, f64::total_cmp).1;
+    if k95 <= 0.0 {
+        return (MAX_POINTS, 0.0);
+    }
+    let error = |n: f64| {
+        let growth = n / n0 as f64;
+        sigma / k95 * growth.powf(-1.5) + c * (k95 * rho * growth.sqrt()).powi(degree as i32 - 1)
+    };
+    let mut best = (n0, error(n0 as f64));
+    let mut n = n0 as f64;
+    while n < MAX_POINTS as f64 {
+        n = (n * 1.25).min(MAX_POINTS as f64);
+        let e = error(n);
+        if e < best.1 {
+            best = (n as usize, e);
+        }
+    }
+    best
+}
+
+/// As [`vertex_jets`] but cubic, each neighbourhood grown to at least
+/// `min_points` vertices (up to [`MAX_RINGS`] rings): more averaging of
+/// noisy vertices (a form-found film's) at the price of a wider fit.
 pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> Vec<VertexJet> {
+    jets_of(mesh, topo, min_points, 3)
+}
+
+/// Jets of degree `degree` (lower only where a neighbourhood of
+/// [`MAX_RINGS`] rings cannot carry it) over at least `min_points` vertices.
+fn jets_of(mesh: &TriMesh, topo: &Topology, min_points: usize, degree: usize) -> Vec<VertexJet> {
     debug_assert_eq!(mesh.positions_mm.len(), topo.vertex_count());
     let normals = topo.vertex_normals();
     let fits: Vec<(VertexJet, f64)> = (0..mesh.positions_mm.len() as u32)
         .into_par_iter()
         .map_init(
             || crate::geom::mesh::VisitMarks::new(mesh.positions_mm.len()),
-            |marks, v| fit_vertex(mesh, topo, normals[v as usize], v, min_points, marks),
+            |marks, v| {
+                let n = normals[v as usize];
+                fit_vertex(mesh, topo, n, v, (min_points, degree), marks)
+            },
         )
         .collect();
     // Rounding to a step q: uniform noise of standard deviation q/√12.
@@ -146,7 +255,8 @@ pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> V
         .collect()
 }
 
-/// Monomials of a degree-`d` jet: 1, x, y, x², xy, y², x³, x²y, xy², y³.
+/// Monomials of a degree-`d` jet: 1, x, y, x², xy, y², x³, x²y, xy², y³,
+/// x⁴, x³y, x²y², xy³, y⁴.
 fn unknowns(degree: usize) -> usize {
     (degree + 1) * (degree + 2) / 2
 }
@@ -163,6 +273,11 @@ fn monomials(x: f64, y: f64, out: &mut [f64]) {
         x * x * y,
         x * y * y,
         y * y * y,
+        x * x * x * x,
+        x * x * x * y,
+        x * x * y * y,
+        x * y * y * y,
+        y * y * y * y,
     ];
     out.copy_from_slice(&all[..out.len()]);
 }
@@ -193,7 +308,7 @@ fn fit_vertex(
     topo: &Topology,
     n0: DVec3,
     v: u32,
-    min_points: usize,
+    (min_points, top): (usize, usize),
     marks: &mut crate::geom::mesh::VisitMarks,
 ) -> (VertexJet, f64) {
     let p = &mesh.positions_mm;
@@ -224,23 +339,25 @@ fn fit_vertex(
                     points: rel.len(),
                     rings,
                     degree,
+                    radius_mm: second.scale,
                 },
                 second.gain_per_mm2(),
             ))
         };
-        if let Some(j) = jet(3) {
+        if let Some(j) = jet(top) {
             return j;
         }
-        // A rank-deficient cubic may recover with one ring more; only a
-        // mesh too small for a cubic falls back to lower degrees.
+        // A rank-deficient jet may recover with one ring more; only a
+        // mesh too small for it falls back to lower degrees.
         if rings < MAX_RINGS && grow(topo, &mut hood, seen, &mut frontier) {
             rings += 1;
             continue;
         }
         // Not even a plane fits only on a mesh with no proper triangle
         // (which validation refuses): zero curvature, unknown error.
-        return jet(2)
-            .or_else(|| jet(1))
+        return (1..top)
+            .rev()
+            .find_map(jet)
             .unwrap_or_else(|| flat(n0, rel.len(), rings));
     }
 }
@@ -262,6 +379,7 @@ fn flat(n: DVec3, points: usize, rings: usize) -> (VertexJet, f64) {
         points,
         rings,
         degree: 1,
+        radius_mm: 0.0,
     };
     (jet, f64::INFINITY)
 }
@@ -671,19 +789,22 @@ mod tests {
 
     /// Enneper's surface × 1000 mm over [−1, 1]² (k = ±2/(λ²·1000 mm),
     /// λ = 1 + u² + v², d1 along X_u), 20² and 40² cells (h ≈ 195 → 97 mm).
-    /// Measured max |Δk| / max |k|: interior 6.2e-2 → 1.3e-2, boundary
-    /// 1.6e-1 → 3.4e-2; d1 within 0.72° (interior) and 1.4° (boundary);
-    /// rms order 2.12, 1.97.
+    /// Measured max |Δk| / max |k|: interior 2.2e-2 → 3.6e-3, boundary
+    /// 2.4e-1 → 3.6e-2; d1 within 0.15° (interior) and 0.73° (boundary);
+    /// rms order 3.1 at both. (Quartic jets: cubic ones gave 6.2e-2 →
+    /// 1.3e-2 inside and 1.6e-1 → 3.4e-2 at the rim, where the coarse
+    /// mesh's one-sided quartic is the worse of the two in its largest
+    /// error, not in its rms: 7.8e-2.)
     #[test]
     fn enneper_curvature_is_second_order() {
         check(
             "enneper",
             enneper(20),
             enneper(40),
-            [6.3e-2, 1.4e-2],
-            [1.6e-1, 3.4e-2],
-            [0.052, 0.191],
-            [0.722, 1.426],
+            [2.2e-2, 3.7e-3],
+            [2.5e-1, 3.7e-2],
+            [0.022, 0.13],
+            [0.15, 0.74],
         );
     }
 

@@ -17,7 +17,7 @@
 //!   form (quadratic patches gave O(h²) normals and 1–4 % twist errors on
 //!   70 mm Delaunay meshes; cubic ones 0.03–0.5 %).
 //! * The curvature is the per-vertex shape operators (from
-//!   [`vertex_curvatures`](crate::design::mesh::curvature), O(h²)) of the chart
+//!   [`vertex_curvatures`](crate::design::mesh::curvature): quartic or cubic jets, see there) of the chart
 //!   triangle's corners, each turned by the smallest rotation taking its
 //!   vertex normal to the point's normal (as Rusinkiewicz 2004 moves
 //!   tensors between frames), interpolated barycentrically: continuous
