@@ -246,7 +246,7 @@ pub fn build(
     plan::add_takeoff(&mut the_plan, kit, nest, session.profile()?);
     plan::add_nest(&mut the_plan, kit, nest);
     let kinds = kit.summary.kinds.clone();
-    plan::set_parts(&mut the_plan, plan_parts, kit);
+    plan::set_parts(&mut the_plan, plan_parts, kit, session.profile()?);
     let plan_target = out.join("plan.json");
     if let Some(field) = plan_json::first_non_finite(&mut the_plan) {
         return Err(Error::output(

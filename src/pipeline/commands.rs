@@ -218,7 +218,11 @@ pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
     let mut notes = Vec::new();
     if plan.nodes.len() <= crate::plan::ShapeOptions::BIG_NODES {
         match session.kit() {
-            Ok(kit) => crate::plan::add_parts(&mut plan, kit),
+            Ok(_) => {
+                if let (Some(kit), Ok(profile)) = (session.made(), session.profile()) {
+                    crate::plan::add_parts(&mut plan, kit, profile);
+                }
+            }
             Err(e) => notes.push(format!("no slots or hardware in the model: {e}")),
         }
     }
