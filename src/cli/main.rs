@@ -44,7 +44,8 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
         /// Offset outer contours out and inner contours in by half the
-        /// profile's kerf (for controllers that do not compensate).
+        /// kerf of each part's stock group (for controllers that do not
+        /// compensate).
         #[arg(long)]
         kerf_compensation: bool,
         /// Write the kit even when a strip is overstressed.
