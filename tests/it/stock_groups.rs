@@ -223,7 +223,19 @@ fn a_builds_files_name_their_group_material_and_thickness() {
 fn bad_stock_fields_are_one_line_errors_naming_the_field() {
     let base = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap();
     let dir = scratch("bad");
-    let cases: [(&str, &str, &str); 6] = [
+    let cases: [(&str, &str, &str); 8] = [
+        // Unknown fields in an entry stay errors naming them (in the
+        // size fields' place and in the entry's own).
+        (
+            "    kerf_mm: 0.4                    # fibre laser in 10 mm steel\n",
+            "    kerf_mm: 0.4\n    colour: red\n",
+            "colour",
+        ),
+        (
+            "  washer:                           # star washers, 3 mm\n    length_mm: 2000.0\n",
+            "  washer:\n    length: 2000.0\n",
+            "stocks.washer.length",
+        ),
         (
             "  washer:                           # star washers, 3 mm\n    length_mm: 2000.0\n",
             "  washer:\n    length_mm: -5\n",
