@@ -6,43 +6,16 @@
 //! byte-identical rebuilds. Without pypdf the reading is skipped (CI
 //! installs it and sets LAMELLA_REQUIRE_PYPDF).
 
+use crate::support::tools::{lines, read_pdf, read_runs};
 use crate::support::{build, lamella_command, ok, root, scratch};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// `lamella build … --quiet`: the tests read the files, not the progress.
 fn build_quiet(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
     build(sample, profile, out, &[&["--quiet"], extra].concat())
-}
-
-/// pypdf's reading of a PDF, or `None` when pypdf is not installed.
-fn read_pdf(path: &Path) -> Option<Value> {
-    let have = Command::new("python3")
-        .args(["-c", "import pypdf"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !have {
-        assert!(
-            std::env::var_os("LAMELLA_REQUIRE_PYPDF").is_none(),
-            "pypdf is required (pip install -r tests/tools/requirements.txt)"
-        );
-        eprintln!("pypdf not installed: the PDF is not read back (CI reads it)");
-        return None;
-    }
-    let o = Command::new("python3")
-        .arg(root().join("tests/tools/pdf_text.py"))
-        .arg(path)
-        .output()
-        .expect("python3");
-    assert!(
-        o.status.success(),
-        "pypdf could not read {}: {}",
-        path.display(),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    Some(serde_json::from_slice(&o.stdout).expect("json"))
 }
 
 /// The layout rules of the README's "Assembly sheets", written out again.
@@ -507,19 +480,6 @@ fn flat_layout_page_when_the_flat_state_is_computed() {
     }
 }
 
-/// pypdf's reading of every text run with its place on the page
-/// (`tests/tools/pdf_words.py`), or `None` without pypdf.
-fn read_runs(path: &Path) -> Option<Value> {
-    read_pdf(path)?;
-    let o = Command::new("python3")
-        .arg(root().join("tests/tools/pdf_words.py"))
-        .arg(path)
-        .output()
-        .expect("python3");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    Some(serde_json::from_slice(&o.stdout).expect("json"))
-}
-
 /// A printed whole number of millimetres (`1 216`).
 fn printed_mm(s: &str) -> Option<f64> {
     s.chars()
@@ -555,17 +515,12 @@ fn section_runs<'a>(doc: &'a Value, section: &str) -> Vec<Vec<&'a Value>> {
 /// Table rows of a page: runs on one baseline, left to right, cut into
 /// rows after each angle cell (`90.0°`) and the joint cell that follows it.
 fn schedule_rows(runs: &[&Value]) -> Vec<Vec<String>> {
-    let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
-    for r in runs.iter().filter(|r| r["rot_deg"].as_f64() == Some(0.0)) {
-        let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
-        lines.entry(y).or_default().push((
-            r["x_mm"].as_f64().expect("x"),
-            r["text"].as_str().expect("t").to_string(),
-        ));
-    }
     let mut rows = Vec::new();
-    for (_, mut cells) in lines {
-        cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for cells in lines(
+        runs.iter()
+            .copied()
+            .filter(|r| r["rot_deg"].as_f64() == Some(0.0)),
+    ) {
         let mut row: Vec<String> = Vec::new();
         let mut after_angle = false;
         for (_, t) in cells {
@@ -697,16 +652,7 @@ fn every_station_from_the_pieces_start_end() {
     // The shear blocks: each bolt's piece and the station printed after it.
     let mut printed: HashMap<String, Vec<f64>> = HashMap::new();
     for runs in section_runs(&doc, "Shear blocks") {
-        let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
-        for r in &runs {
-            let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
-            lines.entry(y).or_default().push((
-                r["x_mm"].as_f64().expect("x"),
-                r["text"].as_str().expect("t").to_string(),
-            ));
-        }
-        for (_, mut cells) in lines {
-            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for cells in lines(runs.iter().copied()) {
             for w in cells.windows(2) {
                 if let Some(v) = printed_mm(&w[1].1).filter(|_| w[0].1.contains('.')) {
                     printed.entry(w[0].1.clone()).or_default().push(v);
@@ -940,16 +886,7 @@ fn setting_out_is_the_networks_nodes() {
     };
     let mut seen = 0;
     for runs in section_runs(&doc, "Setting out") {
-        let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
-        for r in &runs {
-            let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
-            lines.entry(y).or_default().push((
-                r["x_mm"].as_f64().expect("x"),
-                r["text"].as_str().expect("t").to_string(),
-            ));
-        }
-        for (_, mut cells) in lines {
-            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for cells in lines(runs.iter().copied()) {
             // Blocks of 9 cells: node, strip, strip, x, y, z, normal.
             for row in cells.chunks(9).filter(|c| c.len() == 9) {
                 let Ok(id) = row[0].1.parse::<u64>() else {
