@@ -547,4 +547,46 @@ mod tests {
             "{e}"
         );
     }
+
+    /// Edge bolts by hand on the steel profile: the full stack h = 50 with
+    /// two M8 plain washers 1.6, nut 6.8 and two pitches 1.25 needs 62.5,
+    /// so 65; at rebates a grip of 25.45 needs 37.95, so 40, and one of 30
+    /// needs 42.5, so 45: one line per length, the rest at the full grip.
+    #[test]
+    fn edge_bolts_at_rebates_by_length() {
+        let p = load("profiles/steel-1.5.yaml");
+        let hw = hardware(
+            &p,
+            Counts {
+                edge_nodes: 5,
+                edge_rebate_grips_mm: vec![25.45, 30.0, 25.45],
+                ..Counts::default()
+            },
+        )
+        .expect("hardware");
+        let lines: Vec<(&str, &str, u64, Option<f64>)> = hw
+            .iter()
+            .map(|h| (h.item.as_str(), h.designation.as_str(), h.count, h.grip_mm))
+            .collect();
+        assert_eq!(
+            lines,
+            vec![
+                ("edge bolt", "M8 × 65 ISO 4017 8.8", 2, Some(50.0)),
+                (
+                    "edge bolt at a rebate",
+                    "M8 × 40 ISO 4017 8.8",
+                    2,
+                    Some(25.45)
+                ),
+                (
+                    "edge bolt at a rebate",
+                    "M8 × 45 ISO 4017 8.8",
+                    1,
+                    Some(30.0)
+                ),
+                ("nut", "M8 ISO 4032 8", 5, None),
+                ("plain washer", "M8 ISO 7089 200 HV", 10, None),
+            ]
+        );
+    }
 }
