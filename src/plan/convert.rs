@@ -510,7 +510,12 @@ pub fn add_takeoff(
         profile,
     ));
     let hardware = super::takeoff::hardware_lines(kit);
-    plan.joints = super::joints::joints(profile, &hardware);
+    let edge_nodes = kit.parts.iter().any(|p| {
+        p.features
+            .iter()
+            .any(|f| f.edge == Some(crate::fabricate::part::SlotEdge::End))
+    });
+    plan.joints = super::joints::joints(profile, &hardware, edge_nodes);
 }
 
 /// One part as plan.json writes it (rounded); its round holes only as

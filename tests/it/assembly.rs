@@ -105,7 +105,8 @@ impl Rules {
 }
 
 /// The joint sections: one page, when the kit has a bolted joint (a bolt
-/// line in the hardware) or halving slots (an interlocking grid).
+/// line in the hardware) or halving slots (an interlocking grid), and one
+/// for the edge joint when lamellas end on edge bands.
 fn joint_sections(plan: &Value) -> usize {
     let bolts = plan["parts_summary"]["hardware"]
         .as_array()
@@ -113,7 +114,14 @@ fn joint_sections(plan: &Value) -> usize {
             h.iter()
                 .any(|l| l["item"].as_str().is_some_and(|i| i.ends_with("bolt")))
         });
-    usize::from(bolts || plan["profile"]["joint_system"] == "interlocking")
+    // The edge joint on a page of its own, where lamellas end on bands.
+    let edge = plan["parts"].as_array().is_some_and(|parts| {
+        parts
+            .iter()
+            .flat_map(|p| p["features"].as_array().into_iter().flatten())
+            .any(|f| f["edge"] == "end")
+    });
+    usize::from(bolts || plan["profile"]["joint_system"] == "interlocking") + usize::from(edge)
 }
 
 /// The standard scales 1, 2, 2.5, 5 × 10^k (whole numbers), ascending.
@@ -948,4 +956,116 @@ fn joint_sections_show_each_stack() {
         !page.contains("Stud joint"),
         "no studs in an interlocking kit"
     );
+}
+
+/// The profile file's number at `path` (`lamella.height_mm`).
+fn yaml_mm(doc: &serde_yaml::Value, path: &str) -> f64 {
+    path.split('.')
+        .fold(doc, |v, k| &v[k])
+        .as_f64()
+        .unwrap_or_else(|| panic!("{path}"))
+}
+
+/// The texts of the edge joint's page (its heading names the edge joint).
+fn edge_joint_page(out: &Path) -> Option<Vec<String>> {
+    let doc = read_runs(&out.join("assembly.pdf"))?;
+    let page = section_runs(&doc, "Joint sections")
+        .into_iter()
+        .find(|runs| {
+            runs.iter().any(|r| {
+                r["text"]
+                    .as_str()
+                    .is_some_and(|t| t.starts_with("Edge joint"))
+            })
+        })
+        .expect("an edge joint page");
+    Some(
+        page.iter()
+            .filter_map(|r| r["text"].as_str().map(String::from))
+            .collect(),
+    )
+}
+
+/// The edge joint drawn in section and elevation, its figures re-derived
+/// here from the profile file: on steel-1.5 (bolted; hypar-small, which has
+/// rebates) the end slot t + 2 × clearance, its depth at a right angle
+/// allowance + h/2 + clearance, the band hole node bolt + hole clearance,
+/// the grip h and the bolt length from the ISO 4017 series (h + two M8
+/// plain washers 1.6 + nut 6.8 + two 1.25 pitches, rounded up to the
+/// series 60, 65, 70); on poplar-ply-4 (two levels, no bolt) the end slots
+/// alone.
+#[test]
+fn edge_joint_page_prints_the_profiles_figures() {
+    let out = scratch("edge-joint");
+    ok(&build_quiet("hypar-small", "steel-1.5", &out, &[]));
+    let Some(texts) = edge_joint_page(&out) else {
+        return;
+    };
+    let yaml: serde_yaml::Value = serde_yaml::from_str(
+        &std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).expect("profile"),
+    )
+    .expect("yaml");
+    let t = yaml_mm(&yaml, "lamella.thickness_mm");
+    let h = yaml_mm(&yaml, "lamella.height_mm");
+    let gap = yaml_mm(&yaml, "lamella.gap_mm");
+    let c = yaml_mm(&yaml, "joint.slot_clearance_mm");
+    let allowance = yaml_mm(&yaml, "lamella.end_allowance_mm");
+    let d = yaml_mm(&yaml, "node_bolt.diameter_mm");
+    let hole = d + yaml_mm(&yaml, "node_bolt.hole_clearance_mm");
+    assert_eq!(d, 8.0, "the M8 figures below");
+    let needed = h + 2.0 * 1.6 + 6.8 + 2.0 * 1.25;
+    let length = [60.0, 65.0, 70.0, 80.0]
+        .into_iter()
+        .find(|&l| l >= needed)
+        .expect("series");
+    let has = |want: &str| texts.iter().any(|x| x.contains(want));
+    for want in [
+        "Edge joint, bolted".to_string(),
+        format!("lamellas 2 | 1, t = {t:.1}, gap {gap:.1}, h = {h:.1}"),
+        format!("in the end slots {:.1}", t + 2.0 * c),
+        format!("end slot {:.1} deep", allowance + 0.5 * h + c),
+        format!("allowance {allowance:.1}"),
+        format!("band {h:.1} wide"),
+        format!("band hole Ø {hole:.1}"),
+        format!("grip {h:.1}"),
+        format!("L = {length:.0}"),
+        format!("M8 × {length:.0} ISO 4017 8.8"),
+        // At a rebate: the band on the end slot's floor (h/2 - t/2 - c),
+        // the washer on the band.
+        format!("grip {:.2}", 0.5 * h - 0.5 * t - c + t),
+        "M8 × 40 ISO 4017 8.8".to_string(),
+    ] {
+        assert!(
+            has(&want),
+            "no '{want}' on the edge joint page:\n{texts:#?}"
+        );
+    }
+
+    let out = scratch("edge-joint-slots");
+    ok(&build_quiet("enneper-4m", "poplar-ply-4", &out, &[]));
+    let Some(texts) = edge_joint_page(&out) else {
+        return;
+    };
+    let yaml: serde_yaml::Value = serde_yaml::from_str(
+        &std::fs::read_to_string(root().join("profiles/poplar-ply-4.yaml")).expect("profile"),
+    )
+    .expect("yaml");
+    let t = yaml_mm(&yaml, "lamella.thickness_mm");
+    let h = yaml_mm(&yaml, "lamella.height_mm");
+    let c = yaml_mm(&yaml, "joint.slot_clearance_mm");
+    let allowance = yaml_mm(&yaml, "lamella.end_allowance_mm");
+    let has = |want: &str| texts.iter().any(|x| x.contains(want));
+    for want in [
+        "Edge joint, end slots".to_string(),
+        format!("in the end slots {:.1}", t + 2.0 * c),
+        format!("end slot {:.1} deep", allowance + 0.5 * h + c),
+        format!("h = {h:.1}"),
+        "no bolt: the end slots alone hold the band".to_string(),
+    ] {
+        assert!(
+            has(&want),
+            "no '{want}' on the edge joint page:\n{texts:#?}"
+        );
+    }
+    assert!(!has("grip"), "no bolt, no grip");
 }
