@@ -44,7 +44,8 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
         /// Offset outer contours out and inner contours in by half the
-        /// profile's kerf (for controllers that do not compensate).
+        /// kerf of each part's stock group (for controllers that do not
+        /// compensate).
         #[arg(long)]
         kerf_compensation: bool,
         /// Write the kit even when a strip is overstressed.
@@ -165,8 +166,10 @@ enum Command {
         /// Directory for plan.json (created if missing).
         #[arg(long)]
         out: PathBuf,
-        /// Also write the part set as a sparrow strip-packing instance
-        /// (jagua-rs 0.7 JSON; parts grown by half the kerf plus spacing).
+        /// Also write each stock group's parts as a sparrow strip-packing
+        /// instance (jagua-rs 0.7 JSON; parts grown by half the group's
+        /// kerf plus spacing), named by group beside FILE
+        /// (`kit.json` → `kit.lamella-1.5.json`, …; bar groups not).
         #[arg(long, value_name = "FILE")]
         export_instance: Option<PathBuf>,
         /// Size each slot from its node's rotation between the flat state

@@ -22,6 +22,8 @@ const ID_HEIGHT_MM: f64 = 8.0;
 const CROSSING_HEIGHT_MM: f64 = 5.0;
 /// The smallest cap height engraved, mm (below it a laser's line blurs).
 pub const MIN_HEIGHT_MM: f64 = 1.0;
+/// The step of the last, fine search across a small part's height, mm.
+const FINE_STEP_MM: f64 = 0.05;
 /// How far a crossing label may move from its slot, in text widths.
 const CROSSING_SEARCH_WIDTHS: f64 = 3.0;
 
@@ -303,6 +305,16 @@ fn engrave_other(p: &mut Part, c: f64) -> Option<String> {
             anchors.push(Point::new(x0 + fx * (x1 - x0), y0 + fy * (y1 - y0)));
         }
     }
+    // Last, for the narrowest (a short splice plate cut from a strongly
+    // bowed band, its holes on the centre line: the strip beside them may
+    // be only a few tenths wider than the smallest text and its
+    // clearances), the centre line of the length at every
+    // [`FINE_STEP_MM`] across the height, the text sliding along the
+    // whole length.
+    // (At most 400 steps: a tall part's grid has found room long before.)
+    let step = FINE_STEP_MM.max((y1 - y0) / 400.0);
+    let steps = ((y1 - y0) / step).floor() as u32;
+    anchors.extend((1..steps).map(|k| Point::new(0.5 * (x0 + x1), y0 + f64::from(k) * step)));
     for a in anchors {
         if let Some(l) = placer.text(&p.id, a, &size) {
             p.engraving = vec![l.engraving];
@@ -325,5 +337,139 @@ mod tests {
         // A gap too narrow for the box is skipped.
         assert_eq!(nearest_free(25.0, 12.0, &blocked, 50.0), Some(4.0));
         assert_eq!(nearest_free(25.0, 12.0, &blocked, 5.0), None);
+    }
+
+    /// A 41 × 13 mm splice plate cut from a strongly bowed veneer band
+    /// (the 1:5 pavilion's SP-edge03.1 at a 200 mm band bow): four 2.6 mm
+    /// holes on its centre line, 1.65 mm clearance; the strip above the
+    /// holes is 0.3 mm wider than a 1 mm id and its clearances, and no
+    /// anchor of the grid lies in it. The fine search finds it: the id is
+    /// engraved, inside and clear of every cut.
+    #[test]
+    fn a_short_bowed_plate_gets_its_id() {
+        use super::super::invariants::check_part;
+        use super::super::part::{Feature, HoleUse};
+        let outline: Vec<Point> = [
+            (0.0, 1.3549),
+            (0.1539, 1.3352),
+            (1.3322, 1.1891),
+            (2.5119, 1.051),
+            (3.6929, 0.9211),
+            (4.8751, 0.7994),
+            (5.1492, 0.7724),
+            (6.1956, 0.6735),
+            (7.2429, 0.5812),
+            (8.4283, 0.4848),
+            (9.6147, 0.3969),
+            (10.802, 0.3176),
+            (11.9901, 0.247),
+            (13.1789, 0.1852),
+            (14.3684, 0.1321),
+            (15.5065, 0.0896),
+            (16.7489, 0.0524),
+            (17.9398, 0.026),
+            (19.1311, 0.0085),
+            (20.3226, 0.0),
+            (21.5143, 0.0005),
+            (22.706, 0.0101),
+            (23.8977, 0.0287),
+            (24.8993, 0.0514),
+            (25.9008, 0.0805),
+            (26.2806, 0.0932),
+            (27.4717, 0.1391),
+            (28.6624, 0.1941),
+            (29.8527, 0.2582),
+            (31.0423, 0.3313),
+            (32.2314, 0.4135),
+            (33.4197, 0.5048),
+            (34.6071, 0.6051),
+            (35.7937, 0.7143),
+            (36.2751, 0.7612),
+            (38.1638, 0.9597),
+            (39.3471, 1.0957),
+            (40.5292, 1.2405),
+            (41.4365, 1.3577),
+            (39.8649, 13.2544),
+            (39.0256, 13.1459),
+            (37.9324, 13.012),
+            (36.8384, 12.8862),
+            (35.0929, 12.7029),
+            (34.6482, 12.6595),
+            (33.5521, 12.5586),
+            (32.4553, 12.466),
+            (31.358, 12.3817),
+            (30.2602, 12.3058),
+            (29.1619, 12.2383),
+            (28.0631, 12.1791),
+            (26.9639, 12.1284),
+            (25.8644, 12.086),
+            (25.5138, 12.0743),
+            (24.5892, 12.0474),
+            (23.6644, 12.0264),
+            (22.5641, 12.0092),
+            (21.4635, 12.0004),
+            (20.3628, 11.9999),
+            (19.2621, 12.0078),
+            (18.1613, 12.024),
+            (17.0604, 12.0484),
+            (15.9117, 12.0827),
+            (14.8589, 12.122),
+            (13.7583, 12.1712),
+            (12.6579, 12.2284),
+            (11.5577, 12.2938),
+            (10.4578, 12.3673),
+            (9.3581, 12.4487),
+            (8.2588, 12.5381),
+            (7.2871, 12.6238),
+            (6.3158, 12.7156),
+            (6.0613, 12.7407),
+            (4.9632, 12.8537),
+            (3.8656, 12.9744),
+            (2.7685, 13.1028),
+            (1.6719, 13.2388),
+            (1.5287, 13.2571),
+        ]
+        .iter()
+        .map(|&(x, y)| Point::new(x, y))
+        .collect();
+        let features = [
+            (5.7325, 6.744),
+            (15.7091, 6.0861),
+            (25.7073, 6.0774),
+            (35.684, 6.732),
+        ]
+        .iter()
+        .map(|&(x, y)| Feature {
+            kind: FeatureKind::Hole,
+            hole_use: Some(HoleUse::Splice),
+            node: None,
+            crossing: None,
+            center_part_mm: Point::new(x, y),
+            width_mm: 2.6,
+            depth_mm: 0.0,
+            edge: None,
+            angle_range_deg: None,
+            station_mm: None,
+        })
+        .collect();
+        let mut p = Part {
+            id: "SP-edge03.1".into(),
+            kind: PartKind::SplicePlate,
+            strip: Some("edge03".into()),
+            lamella: None,
+            count: 1,
+            length_mm: 41.4365,
+            height_mm: 13.2571,
+            station_start_mm: None,
+            outline_part_mm: outline,
+            holes_part_mm: Vec::new(),
+            engraving: Vec::new(),
+            features,
+        };
+        let clearance = 0.15 + 1.5;
+        assert_eq!(engrave_other(&mut p, clearance), None);
+        assert_eq!(p.engraving.len(), 1);
+        assert!(p.engraving[0].height_mm >= MIN_HEIGHT_MM);
+        assert_eq!(check_part(&p, clearance), Ok(()));
     }
 }

@@ -18,6 +18,15 @@
 //! * stud bolt (across one level's doubled strip and the stud, two per
 //!   stud): 2t + gap.
 //!
+//! * edge bolt (along the surface normal through the gap of a doubled
+//!   strip ending on a band, and the band's hole): the stack between the
+//!   washers at that node ([`edge_grips_mm`]): the lamella height h (with
+//!   the band where it lies beyond: two levels); where every lamella of
+//!   the strip has its end slot opened into a rebate from one edge, the
+//!   washer on that side bears on the band, which lies on the rebate's
+//!   floor: floor + band thickness t (from the other edge). Edge bolts of
+//!   one length are one line; those at rebates are `edge bolt at a rebate`.
+//!
 //! Every bolt but the node bolt bears on thin sheet or plywood through a
 //! clearance hole, so it has a plain washer under its head and one under
 //! its nut (EN 1995-1-1 asks for them under both in timber; on 1.5 mm steel
@@ -27,8 +36,64 @@
 //! the joint, as is a diameter that is no thread of the table.
 
 use super::fasteners::{self, Thread};
+use super::part::{Part, PartKind, SlotEdge};
 use crate::error::{Error, Result};
 use crate::profile::Profile;
+
+/// The edge bolt's grip where nothing is cut away at its node, mm: along
+/// the normal from the top to the bottom of the stack, the lamella's
+/// height (lifted by the level offset in two levels) and the band through
+/// its end slot, wherever it lies beyond.
+pub fn full_edge_grip_mm(profile: &Profile) -> f64 {
+    let (h, t) = (profile.section.height_mm, profile.section.thickness_mm);
+    let (dz, half_t) = (profile.joint.level_offset_mm.abs(), 0.5 * t);
+    (dz + 0.5 * h).max(half_t) - (dz - 0.5 * h).min(-half_t)
+}
+
+/// The edge bolts' grips at the bolted edge nodes `nodes` (node ids) where
+/// it is less than [`full_edge_grip_mm`], mm, in node order: at a node
+/// where every lamella of the strip ending there has its end slot opened
+/// into a rebate from its top (bottom) edge, nothing of the lamellas is
+/// left under the washer on that side, which bears on the band; the band
+/// lies on the highest (lowest) rebate floor, so the stack ends a band
+/// thickness past that floor. One lamella keeping its edge there holds
+/// the washer at the full height.
+pub fn edge_grips_mm(profile: &Profile, parts: &[Part], nodes: &[usize]) -> Vec<f64> {
+    let (h, t) = (profile.section.height_mm, profile.section.thickness_mm);
+    let full = full_edge_grip_mm(profile);
+    let eps = 1e-9;
+    // Per node: the end slots' (y0, y1) across the lamellas.
+    let mut slots: std::collections::BTreeMap<usize, Vec<(f64, f64)>> = Default::default();
+    for p in parts.iter().filter(|p| p.kind == PartKind::Lamella) {
+        for f in p.features.iter().filter(|f| f.edge == Some(SlotEdge::End)) {
+            if let Some(node) = f.node {
+                let (c, w) = (f.center_part_mm.y, 0.5 * f.width_mm);
+                slots.entry(node).or_default().push((c - w, c + w));
+            }
+        }
+    }
+    nodes
+        .iter()
+        .filter_map(|id| {
+            let s = slots.get(id)?;
+            let top = if s.iter().all(|&(_, y1)| y1 >= h - eps) {
+                s.iter()
+                    .map(|&(y0, _)| y0)
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    + t
+            } else {
+                h
+            };
+            let bottom = if s.iter().all(|&(y0, _)| y0 <= eps) {
+                s.iter().map(|&(_, y1)| y1).fold(f64::INFINITY, f64::min) - t
+            } else {
+                0.0
+            };
+            let grip = top - bottom;
+            (grip < full - eps).then_some(grip)
+        })
+        .collect()
+}
 
 /// What a hardware line is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -70,7 +135,7 @@ pub struct Hardware {
 
 /// What the kit counts: grid nodes, shear blocks, splice plates and studs
 /// (pieces).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Counts {
     /// A×B nodes of the grid.
     pub grid_nodes: u64,
@@ -83,6 +148,10 @@ pub struct Counts {
     /// Edge nodes with a bolt (a lamella strip ending on a bolted edge
     /// strip).
     pub edge_nodes: u64,
+    /// The edge bolts' grips where a rebate leaves less than the full
+    /// stack, mm, one per such node (of the `edge_nodes`;
+    /// [`edge_grips_mm`]).
+    pub edge_rebate_grips_mm: Vec<f64>,
     /// Splice plates joining edge band pieces.
     pub band_splice_plates: u64,
 }
@@ -138,17 +207,49 @@ pub fn hardware(profile: &Profile, n: Counts) -> Result<Vec<Hardware>> {
         });
     }
     if let Some(d) = profile.edge_bolt_mm() {
-        // Along the normal from the top to the bottom of the stack: the
-        // lamella's height (lifted by the level offset in two levels) and
-        // the band through its end slot, wherever it lies beyond.
-        let (dz, half_t) = (profile.joint.level_offset_mm.abs(), 0.5 * t);
+        let full = full_edge_grip_mm(profile);
+        let rebates = n.edge_rebate_grips_mm.len() as u64;
         joints.push(Joint {
             item: "edge bolt",
             diameter_mm: d,
-            grip_mm: (dz + 0.5 * h).max(half_t) - (dz - 0.5 * h).min(-half_t),
+            grip_mm: full,
             plain_washers: 2,
-            count: n.edge_nodes,
+            count: n.edge_nodes.saturating_sub(rebates),
         });
+        // At rebates: one line per bolt length, sized for the largest grip
+        // that takes it.
+        if let Some(th) = fasteners::thread(d) {
+            let washers = 2.0 * th.washer_mm;
+            let mut lines: Vec<(Option<f64>, f64, u64)> = Vec::new();
+            let mut grips = n.edge_rebate_grips_mm.clone();
+            grips.sort_by(f64::total_cmp);
+            for g in grips {
+                let length =
+                    fasteners::bolt_length_mm(th, g + washers + th.nut_mm + 2.0 * th.pitch_mm);
+                match lines.last_mut() {
+                    Some(l) if l.0 == length => {
+                        l.1 = g;
+                        l.2 += 1;
+                    }
+                    _ => lines.push((length, g, 1)),
+                }
+            }
+            joints.extend(lines.into_iter().map(|(_, g, count)| Joint {
+                item: "edge bolt at a rebate",
+                diameter_mm: d,
+                grip_mm: g,
+                plain_washers: 2,
+                count,
+            }));
+        } else {
+            joints.push(Joint {
+                item: "edge bolt at a rebate",
+                diameter_mm: d,
+                grip_mm: full,
+                plain_washers: 2,
+                count: rebates,
+            });
+        }
     }
     if let Some(s) = &profile.splice {
         joints.push(Joint {
@@ -376,7 +477,7 @@ mod tests {
             grid_nodes: 1,
             ..Counts::default()
         };
-        let hw = hardware(&p, counts).expect("hardware");
+        let hw = hardware(&p, counts.clone()).expect("hardware");
         assert_eq!(hw[0].designation, "M8 × 70 ISO 4017 10.9");
         assert_eq!(hw[0].torque_nm, Some(36.0));
         assert_eq!(hw[1].designation, "M8 ISO 4032 10");
@@ -444,6 +545,48 @@ mod tests {
         assert!(
             e.contains("joint splice bolt:") && e.contains("7 mm"),
             "{e}"
+        );
+    }
+
+    /// Edge bolts by hand on the steel profile: the full stack h = 50 with
+    /// two M8 plain washers 1.6, nut 6.8 and two pitches 1.25 needs 62.5,
+    /// so 65; at rebates a grip of 25.45 needs 37.95, so 40, and one of 30
+    /// needs 42.5, so 45: one line per length, the rest at the full grip.
+    #[test]
+    fn edge_bolts_at_rebates_by_length() {
+        let p = load("profiles/steel-1.5.yaml");
+        let hw = hardware(
+            &p,
+            Counts {
+                edge_nodes: 5,
+                edge_rebate_grips_mm: vec![25.45, 30.0, 25.45],
+                ..Counts::default()
+            },
+        )
+        .expect("hardware");
+        let lines: Vec<(&str, &str, u64, Option<f64>)> = hw
+            .iter()
+            .map(|h| (h.item.as_str(), h.designation.as_str(), h.count, h.grip_mm))
+            .collect();
+        assert_eq!(
+            lines,
+            vec![
+                ("edge bolt", "M8 × 65 ISO 4017 8.8", 2, Some(50.0)),
+                (
+                    "edge bolt at a rebate",
+                    "M8 × 40 ISO 4017 8.8",
+                    2,
+                    Some(25.45)
+                ),
+                (
+                    "edge bolt at a rebate",
+                    "M8 × 45 ISO 4017 8.8",
+                    1,
+                    Some(30.0)
+                ),
+                ("nut", "M8 ISO 4032 8", 5, None),
+                ("plain washer", "M8 ISO 7089 200 HV", 10, None),
+            ]
         );
     }
 }

@@ -167,6 +167,14 @@ pub fn fabricate(
             .map(|p| u64::from(p.count))
             .sum::<u64>()
     };
+    let bolted_edge_nodes: Vec<usize> = if profile.edge_bolt_mm().is_some() {
+        edges
+            .iter()
+            .flat_map(|e| e.nodes.iter().map(|n| n.id))
+            .collect()
+    } else {
+        Vec::new()
+    };
     summary.hardware = hardware::hardware(
         profile,
         hardware::Counts {
@@ -174,11 +182,8 @@ pub fn fabricate(
             shear_blocks: blocks as u64,
             splice_plates: plates as u64,
             studs: pieces(PartKind::Stud),
-            edge_nodes: if profile.edge_bolt_mm().is_some() {
-                edges.iter().map(|e| e.nodes.len() as u64).sum()
-            } else {
-                0
-            },
+            edge_nodes: bolted_edge_nodes.len() as u64,
+            edge_rebate_grips_mm: hardware::edge_grips_mm(profile, &parts, &bolted_edge_nodes),
             band_splice_plates: band_plates as u64,
         },
     )?;

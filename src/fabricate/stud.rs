@@ -93,7 +93,9 @@ pub fn studs(profile: &Profile, nodes: usize) -> Result<Option<StudCut>> {
             "a {len} mm stud does not pass through both levels: it needs 2 × {o} mm level offset + {h} mm lamella height = {need} mm"
         ));
     }
-    let per_bar = pieces_per_bar(stud.bar_length_mm, len, profile.cutting.kerf_mm);
+    // Sawn with the bar group's kerf.
+    let kerf_mm = profile.piece_cutting(crate::profile::Piece::Stud).kerf_mm;
+    let per_bar = pieces_per_bar(stud.bar_length_mm, len, kerf_mm);
     if per_bar == 0 {
         return fail(format!(
             "a {len} mm stud is longer than the {} mm bar it is sawn from",
@@ -155,6 +157,24 @@ mod tests {
         // 2000 mm bars, 0.3 mm kerf: 16 × 120 + 15 × 0.3 = 1924.5 ≤ 2000 < 17 × 120 + 16 × 0.3.
         assert_eq!(cut.per_bar, 16);
         assert_eq!(cut.bars, 3);
+    }
+
+    /// A kerf of the bars' own (`stocks.stud.kerf_mm`) is the one the
+    /// studs are sawn with: at 10 mm, 16 × 120 + 15 × 10 = 2070 > 2000, so
+    /// 15 to a bar (15 × 120 + 14 × 10 = 1940).
+    #[test]
+    fn studs_are_sawn_with_the_bars_own_kerf() {
+        let mut p = poplar();
+        let entry = p
+            .stocks
+            .iter_mut()
+            .find(|e| e.piece == crate::profile::Piece::Stud)
+            .expect("poplar's stud stock");
+        entry.kerf_mm = Some(10.0);
+        let cut = studs(&p, 37).expect("studs").expect("two-level");
+        assert_eq!((cut.per_bar, cut.bars), (15, 3));
+        let cut = studs(&p, 46).expect("studs").expect("two-level");
+        assert_eq!((cut.per_bar, cut.bars), (15, 4));
     }
 
     #[test]

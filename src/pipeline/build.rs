@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::fabricate::part::PartKind;
 use crate::formats::out::staging::Staging;
 use crate::formats::write::arcs::DEFAULT_TOLERANCE_MM;
-use crate::formats::write::drawing::{part_file_stem, Drawer, SheetFileOptions};
+use crate::formats::write::drawing::{part_file_stem, Drawer, Kerf, SheetFileOptions};
 use crate::formats::write::{
     assembly, dxf as dxf_out, plan_json, svg as svg_out, takeoff as takeoff_file,
 };
@@ -246,7 +246,7 @@ pub fn build(
     plan::add_takeoff(&mut the_plan, kit, nest, session.profile()?);
     plan::add_nest(&mut the_plan, kit, nest);
     let kinds = kit.summary.kinds.clone();
-    plan::set_parts(&mut the_plan, plan_parts, kit);
+    plan::set_parts(&mut the_plan, plan_parts, kit, session.profile()?);
     let plan_target = out.join("plan.json");
     if let Some(field) = plan_json::first_non_finite(&mut the_plan) {
         return Err(Error::output(
@@ -270,9 +270,20 @@ pub fn build(
             )
         })
         .collect();
-    let kerf = opts
-        .kerf_compensation
-        .then_some(session.profile()?.cutting.kerf_mm);
+    let kerf = match opts.kerf_compensation {
+        true => {
+            let profile = session.profile()?;
+            Some(Kerf {
+                default_mm: profile.cutting.kerf_mm,
+                by_group_mm: profile
+                    .stock_groups()
+                    .into_iter()
+                    .map(|g| (g.name, g.cutting.kerf_mm))
+                    .collect(),
+            })
+        }
+        false => None,
+    };
     // The network's points live on as the overview's curves.
     plan::add_curves(&mut the_plan, session.into_network().curves);
     clock.lap("plan");
@@ -305,9 +316,9 @@ pub fn build(
     };
     // With kerf compensation the cutting files are offset; the nested
     // sheets' pages stay nominal, drawn apart.
-    let nominal = match kerf {
-        Some(_) => Some(Drawer::new(&the_plan, None, &plan_target)?.arc_tolerance(tol_mm)),
-        None => None,
+    let nominal = match opts.kerf_compensation {
+        true => Some(Drawer::new(&the_plan, None, &plan_target)?.arc_tolerance(tol_mm)),
+        false => None,
     };
     let sheets_meta = the_plan.sheets.as_deref().unwrap_or_default();
     // plan.json streams out on one thread while the sheets (each drawn once

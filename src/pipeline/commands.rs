@@ -95,8 +95,9 @@ pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> 
 pub enum PartsGoal {
     /// The parts only (`lamella parts`).
     Parts,
-    /// The parts nested onto stock (`lamella nest`), and the part set as a
-    /// sparrow strip-packing instance into `instance` when given.
+    /// The parts nested onto stock (`lamella nest`), and each stock
+    /// group's parts as a sparrow strip-packing instance beside `instance`
+    /// when given ([`instance_path`]).
     Nest {
         /// Where to write the instance.
         instance: Option<PathBuf>,
@@ -104,7 +105,8 @@ pub enum PartsGoal {
 }
 
 /// `lamella parts` and `lamella nest`: every part (and its nest);
-/// `DIR/plan.json`, and the sparrow instance when asked for.
+/// `DIR/plan.json`, and the sparrow instances when asked for (one per
+/// stock group, [`instance_path`]).
 pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
     let instance = match goal {
         PartsGoal::Nest {
@@ -117,30 +119,44 @@ pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
         outputs.push(Output::File("instance", file));
     }
     let real = check_outputs(&outputs, &inputs.files())?;
+    let input_files = inputs.clone();
     let mut session = Session::open(inputs)?;
     session.kit()?;
     if let PartsGoal::Nest { .. } = goal {
         session.nest()?;
     }
-    let instance_text = match &instance {
-        Some(file) => {
-            let (Some(kit), Ok(profile)) = (session.made(), session.profile()) else {
-                return Err(Error::output(file, "internal: no parts to export"));
-            };
-            let inst = crate::plan::sparrow::instance(&session.network().name, kit, profile);
-            Some(
-                crate::formats::write::sparrow::to_json(&inst)
-                    .map_err(|e| Error::output(file, e))?,
-            )
-        }
-        None => None,
-    };
+    // The instances' files are named by the groups, known now: checked
+    // like the named file, still before anything is written.
+    let mut instances: Vec<(PathBuf, PathBuf, String)> = Vec::new();
+    if let Some(file) = &instance {
+        let (Some(kit), Ok(profile)) = (session.made(), session.profile()) else {
+            return Err(Error::output(file, "internal: no parts to export"));
+        };
+        let named: Vec<(PathBuf, String)> =
+            crate::plan::sparrow::instances(&session.network().name, kit, profile)
+                .iter()
+                .map(|(group, inst)| {
+                    let path = instance_path(file, group);
+                    let text = crate::formats::write::sparrow::to_json(inst)
+                        .map_err(|e| Error::output(&path, e))?;
+                    Ok((path, text))
+                })
+                .collect::<Result<_>>()?;
+        let mut outputs = vec![Output::Dir(out, &["plan.json"])];
+        outputs.extend(named.iter().map(|(p, _)| Output::File("instance", p)));
+        let real = check_outputs(&outputs, &input_files.files())?;
+        instances = named
+            .into_iter()
+            .zip(real.into_iter().skip(1))
+            .map(|((path, text), real)| (path, real, text))
+            .collect();
+    }
     let mut plan = session.plan(false)?;
     write_plan(&plan_path(&real[0]), &mut plan)?;
     let mut written = vec![plan_path(out)];
-    if let (Some(file), Some(text), Some(real_file)) = (instance, instance_text, real.get(1)) {
-        write_atomic(real_file, text.as_bytes())?;
-        written.push(file);
+    for (path, real_file, text) in instances {
+        write_atomic(&real_file, text.as_bytes())?;
+        written.push(path);
     }
     Ok(Done {
         session,
@@ -148,6 +164,20 @@ pub fn parts(inputs: Inputs, out: &Path, goal: &PartsGoal) -> Result<Done> {
         written,
         notes: Vec::new(),
     })
+}
+
+/// The file of a stock group's instance for `--export-instance FILE`: the
+/// group's name before FILE's extension (`kit.json` → `kit.washer-3.json`).
+pub fn instance_path(file: &Path, group: &str) -> PathBuf {
+    let stem = file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let name = match file.extension() {
+        Some(ext) => format!("{stem}.{group}.{}", ext.to_string_lossy()),
+        None => format!("{stem}.{group}"),
+    };
+    file.with_file_name(name)
 }
 
 /// `lamella flat`: the flat assembly state; `DIR/plan.json` (with `flat`)
@@ -218,7 +248,11 @@ pub fn view(inputs: Inputs, out: &Path, flat: bool) -> Result<Done> {
     let mut notes = Vec::new();
     if plan.nodes.len() <= crate::plan::ShapeOptions::BIG_NODES {
         match session.kit() {
-            Ok(kit) => crate::plan::add_parts(&mut plan, kit),
+            Ok(_) => {
+                if let (Some(kit), Ok(profile)) = (session.made(), session.profile()) {
+                    crate::plan::add_parts(&mut plan, kit, profile);
+                }
+            }
             Err(e) => notes.push(format!("no slots or hardware in the model: {e}")),
         }
     }

@@ -300,9 +300,9 @@ impl Session {
                 crate::plan::add_flat(&mut plan, p, s);
             }
         }
-        if let Some(kit) = &self.kit {
-            crate::plan::add_parts(&mut plan, kit);
-            if let (Some(nest), Some(profile)) = (&self.nest, &self.profile) {
+        if let (Some(kit), Some(profile)) = (&self.kit, &self.profile) {
+            crate::plan::add_parts(&mut plan, kit, profile);
+            if let Some(nest) = &self.nest {
                 crate::plan::add_nest(&mut plan, kit, nest);
                 crate::plan::add_takeoff(&mut plan, kit, nest, profile);
             }

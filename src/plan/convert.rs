@@ -352,8 +352,8 @@ fn money(x: f64) -> f64 {
 }
 
 /// Add a kit's parts to a plan (formatting only: rounding to 1e-4 mm).
-pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit) {
-    set_parts(plan, plan_parts(kit), kit);
+pub fn add_parts(plan: &mut Plan, kit: &crate::fabricate::Kit, profile: &Profile) {
+    set_parts(plan, plan_parts(kit), kit, profile);
 }
 
 /// The font entry of every character and mark the parts engrave.
@@ -404,9 +404,23 @@ pub fn plan_parts(kit: &crate::fabricate::Kit) -> Vec<PlanPart> {
     kit.parts.par_iter().map(plan_part).collect()
 }
 
-/// Put `parts` (from [`plan_parts`] of `kit`) into the plan, with the
-/// engraving font and the kit's summary: what [`add_parts`] does.
-pub fn set_parts(plan: &mut Plan, parts: Vec<PlanPart>, kit: &crate::fabricate::Kit) {
+/// Put `parts` (from [`plan_parts`] of `kit`) into the plan, each with
+/// its stock group of `profile`, and the engraving font and the kit's
+/// summary: what [`add_parts`] does.
+pub fn set_parts(
+    plan: &mut Plan,
+    mut parts: Vec<PlanPart>,
+    kit: &crate::fabricate::Kit,
+    profile: &Profile,
+) {
+    let groups = profile.stock_groups();
+    for (part, made) in parts.iter_mut().zip(&kit.parts) {
+        if let Some(g) = groups.get(Profile::group_of(&groups, made.kind.piece())) {
+            part.group = g.name.clone();
+            part.material = g.material.clone();
+            part.thickness_mm = round(g.thickness_mm, MM);
+        }
+    }
     plan.parts = Some(parts);
     add_kit_summary(plan, kit);
     add_joints(plan);
@@ -496,7 +510,12 @@ pub fn add_takeoff(
         profile,
     ));
     let hardware = super::takeoff::hardware_lines(kit);
-    plan.joints = super::joints::joints(profile, &hardware);
+    let edge_nodes = kit.parts.iter().any(|p| {
+        p.features
+            .iter()
+            .any(|f| f.edge == Some(crate::fabricate::part::SlotEdge::End))
+    });
+    plan.joints = super::joints::joints(profile, &hardware, edge_nodes);
 }
 
 /// One part as plan.json writes it (rounded); its round holes only as
@@ -508,6 +527,9 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
     PlanPart {
         id: p.id.clone(),
         kind: p.kind.as_str().into(),
+        group: String::new(),
+        material: String::new(),
+        thickness_mm: 0.0,
         strip: p.strip.clone(),
         lamella: p.lamella,
         count: p.count,

@@ -25,6 +25,41 @@ pub struct PlanJoint {
     pub bolt: Option<JointBolt>,
     /// What the crew must know besides (sides, slots, count).
     pub notes: Vec<String>,
+    /// The edge joint: a lamella's end on its band (drawn on a page of its
+    /// own, in section and in elevation).
+    pub edge: Option<EdgeSection>,
+}
+
+/// A lamella strip ending on an edge band, mm: the band in the lamellas'
+/// end slots and, bolted, the edge bolt along the surface normal through
+/// the strip's gap and the band's hole.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EdgeSection {
+    /// Lamella thickness t (the band is as thick), mm.
+    pub thickness_mm: f64,
+    /// Lamella height h (the band is as wide), mm.
+    pub height_mm: f64,
+    /// Gap between the lamellas of a doubled strip, mm.
+    pub gap_mm: f64,
+    /// Lamellas per strip.
+    pub per_strip: u32,
+    /// The end slot's opening across: t + twice the slot clearance, mm.
+    pub slot_mm: f64,
+    /// Height of the end slot's centre (where the surface passes) above
+    /// the lamella's bottom edge: h/2 − level offset, mm.
+    pub slot_centre_mm: f64,
+    /// End allowance past the node, mm.
+    pub allowance_mm: f64,
+    /// The end slot's reach from the lamella's end where the strip meets
+    /// the band at a right angle: allowance + h/2 + clearance, mm (more at
+    /// an oblique node: (h/2)/sin φ).
+    pub slot_depth_mm: f64,
+    /// The band's hole for the edge bolt (bolt + clearance), mm, when
+    /// bolted.
+    pub hole_mm: Option<f64>,
+    /// Bolts at rebates (both lamellas' end slots opened to one edge):
+    /// their order line, count and grip.
+    pub rebate: Option<(String, u64, f64)>,
 }
 
 /// A part the bolt passes through.
@@ -64,9 +99,10 @@ pub struct JointBolt {
 }
 
 /// The joints of a kit made to `profile`, with the takeoff's bolt lines
-/// (`hardware`): one per bolt line whose joint is known, and the
-/// halving slots of an interlocking grid without a node bolt.
-pub fn joints(profile: &Profile, hardware: &[HardwareLine]) -> Vec<PlanJoint> {
+/// (`hardware`): one per bolt line whose joint is known, the halving
+/// slots of an interlocking grid without a node bolt, and last, when
+/// lamellas end on edge bands (`edge_nodes`), the edge joint.
+pub fn joints(profile: &Profile, hardware: &[HardwareLine], edge_nodes: bool) -> Vec<PlanJoint> {
     let (t, h, gap) = (
         profile.section.thickness_mm,
         profile.section.height_mm,
@@ -135,6 +171,7 @@ pub fn joints(profile: &Profile, hardware: &[HardwareLine]) -> Vec<PlanJoint> {
                         "the star washers' arms lie along the two strips, on the top and bottom edges".into(),
                         sides.into(),
                     ],
+                    edge: None,
                 });
             }
         }
@@ -150,6 +187,7 @@ pub fn joints(profile: &Profile, hardware: &[HardwareLine]) -> Vec<PlanJoint> {
                 ),
                 "lay family A slots up, then slot family B in from above".into(),
             ],
+            edge: None,
         }),
         (None, JointSystem::TwoLevel) => {
             if let Some(b) = bolt("stud bolt", true) {
@@ -172,6 +210,7 @@ pub fn joints(profile: &Profile, hardware: &[HardwareLine]) -> Vec<PlanJoint> {
                         "lower level: family A; upper level: family B".into(),
                         sides.into(),
                     ],
+                    edge: None,
                 });
             }
         }
@@ -199,6 +238,7 @@ pub fn joints(profile: &Profile, hardware: &[HardwareLine]) -> Vec<PlanJoint> {
                 "across the doubled strip, between its two lamellas, at the stations of the shear-block schedule".into(),
                 sides.into(),
             ],
+            edge: None,
         });
     }
     if let Some(b) = bolt("splice bolt", true) {
@@ -223,7 +263,77 @@ pub fn joints(profile: &Profile, hardware: &[HardwareLine]) -> Vec<PlanJoint> {
                 "piece .1's far end meets piece .2's start end (stations restart at 0 there)"
                     .into(),
             ],
+            edge: None,
         });
     }
+    if edge_nodes {
+        out.push(edge_joint(profile, hardware, bolt("edge bolt", true)));
+    }
     out
+}
+
+/// The edge joint of a kit with edge bands: its figures from the profile,
+/// the edge bolt (`bolt`) where the joint is bolted, the bolts at rebates.
+fn edge_joint(profile: &Profile, hardware: &[HardwareLine], bolt: Option<JointBolt>) -> PlanJoint {
+    let (t, h, gap) = (
+        profile.section.thickness_mm,
+        profile.section.height_mm,
+        profile.section.gap_mm,
+    );
+    let c = profile.joint.slot_clearance_mm;
+    let allowance = profile.section.end_allowance_mm;
+    let bolted = profile.edge_bolt_mm();
+    let rebate = hardware
+        .iter()
+        .filter(|l| l.item == "edge bolt at a rebate")
+        .map(|l| (l.designation.clone(), l.count, l.grip_mm.unwrap_or(0.0)))
+        .next();
+    let edge = EdgeSection {
+        thickness_mm: t,
+        height_mm: h,
+        gap_mm: gap,
+        per_strip: profile.section.per_strip,
+        slot_mm: t + 2.0 * c,
+        slot_centre_mm: 0.5 * h - profile.joint.level_offset_mm,
+        allowance_mm: allowance,
+        slot_depth_mm: allowance + 0.5 * h + c,
+        hole_mm: bolted.map(|d| d + profile.edge_bolt_clearance_mm()),
+        rebate,
+    };
+    let mut notes = vec![
+        "the band lies in the surface; every lamella ending on it has an end slot at the height where the surface passes, and the band slides into the slots".into(),
+        "the slot reaches past the band's far edge (end slot depth = allowance + h/2 + clearance at a right angle; (h/2)/sin φ instead of h/2 where the strip meets the band at φ); each slot's depth is in plan.json".into(),
+    ];
+    if profile.joint.level_offset_mm != 0.0 {
+        notes.push(format!(
+            "two levels: drawn for family A, standing {} above the surface; family B stands as far below it, its end slot as far from its top edge",
+            fasteners::trim(profile.joint.level_offset_mm.abs())
+        ));
+    }
+    match (&bolt, bolted) {
+        (Some(_), _) | (None, Some(_)) => notes.push(
+            "the edge bolt runs along the surface normal through the gap between the strip's lamellas and the band's hole at the node; a plain washer on the lamellas' edges top and bottom".into(),
+        ),
+        (None, None) => notes.push(
+            "no bolt: the end slots alone hold the band (glue or pin it on site); the band has no holes".into(),
+        ),
+    }
+    if let Some((designation, count, grip)) = &edge.rebate {
+        notes.push(format!(
+            "at {count} nodes both lamellas' end slots open into a rebate from one edge: the washer bears on the band on the rebate's floor, grip {}, {designation}",
+            fasteners::trim(*grip)
+        ));
+    }
+    PlanJoint {
+        title: if bolted.is_some() {
+            "Edge joint, bolted".into()
+        } else {
+            "Edge joint, end slots".into()
+        },
+        stack: Vec::new(),
+        beside: None,
+        bolt,
+        notes,
+        edge: Some(edge),
+    }
 }

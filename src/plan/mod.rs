@@ -418,6 +418,16 @@ pub struct PlanPart {
     pub id: String,
     /// `lamella`, `shear_block`, `washer`, `stud`, `splice_plate` or `edge_strip`.
     pub kind: Name,
+    /// The stock group it is cut from (`washer-3`): its sheets carry the
+    /// same name.
+    #[serde(default)]
+    pub group: String,
+    /// The material it is made of (its group's).
+    #[serde(default)]
+    pub material: String,
+    /// Its thickness (a stud: its bar section's side), mm.
+    #[serde(default)]
+    pub thickness_mm: f64,
     /// The strip it belongs to, if any.
     pub strip: Option<String>,
     /// Lamella number within the strip, if any.

@@ -264,6 +264,15 @@ impl Profile {
             .unwrap_or(0)
     }
 
+    /// The cutting allowances a piece is cut with: its group's (its
+    /// `stocks:` entry's where that gives them, else `cutting:`).
+    pub fn piece_cutting(&self, piece: Piece) -> Cutting {
+        let groups = self.stock_groups();
+        groups
+            .get(Profile::group_of(&groups, piece))
+            .map_or_else(|| self.cutting.clone(), |g| g.cutting.clone())
+    }
+
     fn new_group(
         &self,
         piece: Piece,

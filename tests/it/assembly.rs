@@ -6,43 +6,16 @@
 //! byte-identical rebuilds. Without pypdf the reading is skipped (CI
 //! installs it and sets LAMELLA_REQUIRE_PYPDF).
 
+use crate::support::tools::{lines, read_pdf, read_runs};
 use crate::support::{build, lamella_command, ok, root, scratch};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// `lamella build … --quiet`: the tests read the files, not the progress.
 fn build_quiet(sample: &str, profile: &str, out: &Path, extra: &[&str]) -> Output {
     build(sample, profile, out, &[&["--quiet"], extra].concat())
-}
-
-/// pypdf's reading of a PDF, or `None` when pypdf is not installed.
-fn read_pdf(path: &Path) -> Option<Value> {
-    let have = Command::new("python3")
-        .args(["-c", "import pypdf"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !have {
-        assert!(
-            std::env::var_os("LAMELLA_REQUIRE_PYPDF").is_none(),
-            "pypdf is required (pip install -r tests/tools/requirements.txt)"
-        );
-        eprintln!("pypdf not installed: the PDF is not read back (CI reads it)");
-        return None;
-    }
-    let o = Command::new("python3")
-        .arg(root().join("tests/tools/pdf_text.py"))
-        .arg(path)
-        .output()
-        .expect("python3");
-    assert!(
-        o.status.success(),
-        "pypdf could not read {}: {}",
-        path.display(),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    Some(serde_json::from_slice(&o.stdout).expect("json"))
 }
 
 /// The layout rules of the README's "Assembly sheets", written out again.
@@ -132,7 +105,8 @@ impl Rules {
 }
 
 /// The joint sections: one page, when the kit has a bolted joint (a bolt
-/// line in the hardware) or halving slots (an interlocking grid).
+/// line in the hardware) or halving slots (an interlocking grid), and one
+/// for the edge joint when lamellas end on edge bands.
 fn joint_sections(plan: &Value) -> usize {
     let bolts = plan["parts_summary"]["hardware"]
         .as_array()
@@ -140,7 +114,14 @@ fn joint_sections(plan: &Value) -> usize {
             h.iter()
                 .any(|l| l["item"].as_str().is_some_and(|i| i.ends_with("bolt")))
         });
-    usize::from(bolts || plan["profile"]["joint_system"] == "interlocking")
+    // The edge joint on a page of its own, where lamellas end on bands.
+    let edge = plan["parts"].as_array().is_some_and(|parts| {
+        parts
+            .iter()
+            .flat_map(|p| p["features"].as_array().into_iter().flatten())
+            .any(|f| f["edge"] == "end")
+    });
+    usize::from(bolts || plan["profile"]["joint_system"] == "interlocking") + usize::from(edge)
 }
 
 /// The standard scales 1, 2, 2.5, 5 × 10^k (whole numbers), ascending.
@@ -507,19 +488,6 @@ fn flat_layout_page_when_the_flat_state_is_computed() {
     }
 }
 
-/// pypdf's reading of every text run with its place on the page
-/// (`tests/tools/pdf_words.py`), or `None` without pypdf.
-fn read_runs(path: &Path) -> Option<Value> {
-    read_pdf(path)?;
-    let o = Command::new("python3")
-        .arg(root().join("tests/tools/pdf_words.py"))
-        .arg(path)
-        .output()
-        .expect("python3");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    Some(serde_json::from_slice(&o.stdout).expect("json"))
-}
-
 /// A printed whole number of millimetres (`1 216`).
 fn printed_mm(s: &str) -> Option<f64> {
     s.chars()
@@ -555,17 +523,12 @@ fn section_runs<'a>(doc: &'a Value, section: &str) -> Vec<Vec<&'a Value>> {
 /// Table rows of a page: runs on one baseline, left to right, cut into
 /// rows after each angle cell (`90.0°`) and the joint cell that follows it.
 fn schedule_rows(runs: &[&Value]) -> Vec<Vec<String>> {
-    let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
-    for r in runs.iter().filter(|r| r["rot_deg"].as_f64() == Some(0.0)) {
-        let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
-        lines.entry(y).or_default().push((
-            r["x_mm"].as_f64().expect("x"),
-            r["text"].as_str().expect("t").to_string(),
-        ));
-    }
     let mut rows = Vec::new();
-    for (_, mut cells) in lines {
-        cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for cells in lines(
+        runs.iter()
+            .copied()
+            .filter(|r| r["rot_deg"].as_f64() == Some(0.0)),
+    ) {
         let mut row: Vec<String> = Vec::new();
         let mut after_angle = false;
         for (_, t) in cells {
@@ -697,16 +660,7 @@ fn every_station_from_the_pieces_start_end() {
     // The shear blocks: each bolt's piece and the station printed after it.
     let mut printed: HashMap<String, Vec<f64>> = HashMap::new();
     for runs in section_runs(&doc, "Shear blocks") {
-        let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
-        for r in &runs {
-            let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
-            lines.entry(y).or_default().push((
-                r["x_mm"].as_f64().expect("x"),
-                r["text"].as_str().expect("t").to_string(),
-            ));
-        }
-        for (_, mut cells) in lines {
-            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for cells in lines(runs.iter().copied()) {
             for w in cells.windows(2) {
                 if let Some(v) = printed_mm(&w[1].1).filter(|_| w[0].1.contains('.')) {
                     printed.entry(w[0].1.clone()).or_default().push(v);
@@ -940,16 +894,7 @@ fn setting_out_is_the_networks_nodes() {
     };
     let mut seen = 0;
     for runs in section_runs(&doc, "Setting out") {
-        let mut lines: std::collections::BTreeMap<i64, Vec<(f64, String)>> = Default::default();
-        for r in &runs {
-            let y = (r["y_mm"].as_f64().expect("y") * 10.0).round() as i64;
-            lines.entry(y).or_default().push((
-                r["x_mm"].as_f64().expect("x"),
-                r["text"].as_str().expect("t").to_string(),
-            ));
-        }
-        for (_, mut cells) in lines {
-            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for cells in lines(runs.iter().copied()) {
             // Blocks of 9 cells: node, strip, strip, x, y, z, normal.
             for row in cells.chunks(9).filter(|c| c.len() == 9) {
                 let Ok(id) = row[0].1.parse::<u64>() else {
@@ -1011,4 +956,116 @@ fn joint_sections_show_each_stack() {
         !page.contains("Stud joint"),
         "no studs in an interlocking kit"
     );
+}
+
+/// The profile file's number at `path` (`lamella.height_mm`).
+fn yaml_mm(doc: &serde_yaml::Value, path: &str) -> f64 {
+    path.split('.')
+        .fold(doc, |v, k| &v[k])
+        .as_f64()
+        .unwrap_or_else(|| panic!("{path}"))
+}
+
+/// The texts of the edge joint's page (its heading names the edge joint).
+fn edge_joint_page(out: &Path) -> Option<Vec<String>> {
+    let doc = read_runs(&out.join("assembly.pdf"))?;
+    let page = section_runs(&doc, "Joint sections")
+        .into_iter()
+        .find(|runs| {
+            runs.iter().any(|r| {
+                r["text"]
+                    .as_str()
+                    .is_some_and(|t| t.starts_with("Edge joint"))
+            })
+        })
+        .expect("an edge joint page");
+    Some(
+        page.iter()
+            .filter_map(|r| r["text"].as_str().map(String::from))
+            .collect(),
+    )
+}
+
+/// The edge joint drawn in section and elevation, its figures re-derived
+/// here from the profile file: on steel-1.5 (bolted; hypar-small, which has
+/// rebates) the end slot t + 2 × clearance, its depth at a right angle
+/// allowance + h/2 + clearance, the band hole node bolt + hole clearance,
+/// the grip h and the bolt length from the ISO 4017 series (h + two M8
+/// plain washers 1.6 + nut 6.8 + two 1.25 pitches, rounded up to the
+/// series 60, 65, 70); on poplar-ply-4 (two levels, no bolt) the end slots
+/// alone.
+#[test]
+fn edge_joint_page_prints_the_profiles_figures() {
+    let out = scratch("edge-joint");
+    ok(&build_quiet("hypar-small", "steel-1.5", &out, &[]));
+    let Some(texts) = edge_joint_page(&out) else {
+        return;
+    };
+    let yaml: serde_yaml::Value = serde_yaml::from_str(
+        &std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).expect("profile"),
+    )
+    .expect("yaml");
+    let t = yaml_mm(&yaml, "lamella.thickness_mm");
+    let h = yaml_mm(&yaml, "lamella.height_mm");
+    let gap = yaml_mm(&yaml, "lamella.gap_mm");
+    let c = yaml_mm(&yaml, "joint.slot_clearance_mm");
+    let allowance = yaml_mm(&yaml, "lamella.end_allowance_mm");
+    let d = yaml_mm(&yaml, "node_bolt.diameter_mm");
+    let hole = d + yaml_mm(&yaml, "node_bolt.hole_clearance_mm");
+    assert_eq!(d, 8.0, "the M8 figures below");
+    let needed = h + 2.0 * 1.6 + 6.8 + 2.0 * 1.25;
+    let length = [60.0, 65.0, 70.0, 80.0]
+        .into_iter()
+        .find(|&l| l >= needed)
+        .expect("series");
+    let has = |want: &str| texts.iter().any(|x| x.contains(want));
+    for want in [
+        "Edge joint, bolted".to_string(),
+        format!("lamellas 2 | 1, t = {t:.1}, gap {gap:.1}, h = {h:.1}"),
+        format!("in the end slots {:.1}", t + 2.0 * c),
+        format!("end slot {:.1} deep", allowance + 0.5 * h + c),
+        format!("allowance {allowance:.1}"),
+        format!("band {h:.1} wide"),
+        format!("band hole Ø {hole:.1}"),
+        format!("grip {h:.1}"),
+        format!("L = {length:.0}"),
+        format!("M8 × {length:.0} ISO 4017 8.8"),
+        // At a rebate: the band on the end slot's floor (h/2 - t/2 - c),
+        // the washer on the band.
+        format!("grip {:.2}", 0.5 * h - 0.5 * t - c + t),
+        "M8 × 40 ISO 4017 8.8".to_string(),
+    ] {
+        assert!(
+            has(&want),
+            "no '{want}' on the edge joint page:\n{texts:#?}"
+        );
+    }
+
+    let out = scratch("edge-joint-slots");
+    ok(&build_quiet("enneper-4m", "poplar-ply-4", &out, &[]));
+    let Some(texts) = edge_joint_page(&out) else {
+        return;
+    };
+    let yaml: serde_yaml::Value = serde_yaml::from_str(
+        &std::fs::read_to_string(root().join("profiles/poplar-ply-4.yaml")).expect("profile"),
+    )
+    .expect("yaml");
+    let t = yaml_mm(&yaml, "lamella.thickness_mm");
+    let h = yaml_mm(&yaml, "lamella.height_mm");
+    let c = yaml_mm(&yaml, "joint.slot_clearance_mm");
+    let allowance = yaml_mm(&yaml, "lamella.end_allowance_mm");
+    let has = |want: &str| texts.iter().any(|x| x.contains(want));
+    for want in [
+        "Edge joint, end slots".to_string(),
+        format!("in the end slots {:.1}", t + 2.0 * c),
+        format!("end slot {:.1} deep", allowance + 0.5 * h + c),
+        format!("h = {h:.1}"),
+        "no bolt: the end slots alone hold the band".to_string(),
+    ] {
+        assert!(
+            has(&want),
+            "no '{want}' on the edge joint page:\n{texts:#?}"
+        );
+    }
+    assert!(!has("grip"), "no bolt, no grip");
 }

@@ -6,7 +6,7 @@
 //! stop; safe output (foreign files kept, a killed build leaves DIR as it
 //! was).
 
-use crate::support::{build, lamella_command, ok, root, scratch};
+use crate::support::{build, lamella_command, ok, root, scratch, tools};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -585,16 +585,13 @@ fn dxf_matches_plan(out: &Path) -> usize {
 /// ezdxf's audit of every DXF, the sheets' and the parts': no errors. Runs where ezdxf is installed;
 /// CI installs it and sets LAMELLA_REQUIRE_EZDXF so a missing ezdxf fails.
 fn ezdxf_audit(out: &Path) {
-    let have = Command::new("python3")
-        .args(["-c", "import ezdxf"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !have {
-        assert!(
-            std::env::var_os("LAMELLA_REQUIRE_EZDXF").is_none(),
-            "ezdxf is required (pip install ezdxf)"
-        );
-        eprintln!("ezdxf not installed: DXF audit skipped (CI runs it)");
+    if !tools::present(
+        tools::runs("python3", &["-c", "import ezdxf"]),
+        "LAMELLA_REQUIRE_EZDXF",
+        "ezdxf",
+        "pip install ezdxf",
+        "DXF audit",
+    ) {
         return;
     }
     let mut files: Vec<PathBuf> = ["sheets", "parts"]
@@ -1201,97 +1198,150 @@ fn takeoff_hardware_by_hand() {
     assert_eq!(in_plan, got3);
 }
 
-/// With --kerf-compensation every vertex of an outer contour lies half the
-/// kerf (0.1 mm, within the arc fit's tolerance) from the nominal outline
-/// and outside it; round holes
-/// shrink by half the kerf.
+/// With --kerf-compensation every vertex of an outer contour lies half
+/// its stock group's kerf (within the arc fit's tolerance) from the
+/// nominal outline and outside it, and every round hole shrinks by as
+/// much. The profile is steel-1.5 with the washers given a kerf of their
+/// own: three groups, three kerfs (lamellas 0.2 mm, washers 0.3, shear
+/// blocks 0.4), each read here from the profile file by part kind.
 #[test]
-fn kerf_compensation_offsets_by_half_the_kerf() {
-    let out = scratch("kerf").join("kit");
-    ok(&build(
-        "enneper-4m",
-        "steel-1.5",
-        &out,
-        &["--kerf-compensation"],
-    ));
+fn kerf_compensation_offsets_each_group_by_half_its_kerf() {
+    let dir = scratch("kerf");
+    let text = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).expect("profile");
+    let washer_price = "    price_per_unit: 85.0";
+    assert!(text.contains(washer_price));
+    let text = text.replacen(
+        washer_price,
+        &format!("{washer_price}\n    kerf_mm: 0.3"),
+        1,
+    );
+    let profile = dir.join("steel-kerfs.yaml");
+    std::fs::write(&profile, &text).expect("write");
+    let yaml: serde_yaml::Value = serde_yaml::from_str(&text).expect("yaml");
+    let kerf_of = |kind: &str| {
+        let key = match kind {
+            "washer" => "washer",
+            "shear_block" => "shear_block",
+            "edge_strip" => "edge",
+            "splice_plate" => "splice",
+            _ => "",
+        };
+        yaml["stocks"][key]["kerf_mm"]
+            .as_f64()
+            .or(yaml["cutting"]["kerf_mm"].as_f64())
+            .expect("kerf")
+    };
+    let out = dir.join("kit");
+    ok(&lamella_command()
+        .args(["build", "samples/enneper-4m.yaml", "--profile"])
+        .arg(&profile)
+        .arg("--out")
+        .arg(&out)
+        .arg("--kerf-compensation")
+        .output()
+        .expect("run lamella"));
     ezdxf_audit(&out);
     let plan = json(&out.join("plan.json"));
     let parts = parts_by_id(&plan);
-    let sheet = &plan["sheets"][0];
-    let (_, ents) = read_dxf(&out.join("sheets/lamella-1.5-sheet-001.dxf"));
-    let outers: Vec<&Vec<[f64; 2]>> = ents
-        .iter()
-        .filter_map(|e| match e {
-            Ent::Poly { layer, pts, .. } if layer == "CUT-OUTER" => Some(pts),
-            _ => None,
-        })
-        .collect();
-    let placements = sheet["placements"].as_array().expect("placements");
-    assert_eq!(outers.len(), placements.len());
+    let mut halves: Vec<f64> = Vec::new();
     let mut arcs = 0;
-    for e in &ents {
-        if let Ent::Poly { layer, bulges, .. } = e {
-            if layer == "CUT-OUTER" {
-                arcs += bulges.iter().filter(|b| **b != 0.0).count();
+    for (i, sheet) in plan["sheets"]
+        .as_array()
+        .expect("sheets")
+        .iter()
+        .enumerate()
+    {
+        let half = |part: &Value| 0.5 * kerf_of(part["kind"].as_str().expect("kind"));
+        arcs += offset_by_half_kerf(&sheet_file(&out, sheet, i, "dxf"), sheet, &parts, &half);
+        for pl in sheet["placements"].as_array().expect("placements") {
+            let h = half(parts[pl["part"].as_str().expect("part")]);
+            if !halves.contains(&h) {
+                halves.push(h);
             }
         }
     }
     assert!(arcs > 0, "convex corners become arcs");
-    let nominals: Vec<(&Value, Vec<[f64; 2]>)> = placements
-        .iter()
-        .map(|pl| {
-            let part = parts[pl["part"].as_str().expect("part")];
-            let rot = pl["rotation_deg"].as_u64().expect("rot");
-            let (tx, ty) = (
-                pl["x_mm"].as_f64().expect("x"),
-                pl["y_mm"].as_f64().expect("y"),
-            );
-            let nominal = part["outline"]
-                .as_array()
-                .expect("outline")
-                .iter()
-                .map(|v| placed(pt(v), rot, tx, ty))
-                .collect();
-            (part, nominal)
-        })
-        .collect();
-    // Each offset outline against the nominal outline nearest to it (the
-    // files are in travel order, not the nest's); the offset is of the
-    // fitted outline, within the fit's tolerance of the nominal one.
-    for got in outers {
-        let (part, nominal) = nominals
-            .iter()
-            .min_by(|a, b| {
-                distance_to_polygon(got[0], &a.1).total_cmp(&distance_to_polygon(got[0], &b.1))
-            })
-            .expect("a placement");
-        for q in got {
-            let d = distance_to_polygon(*q, nominal);
-            assert!(
-                (d - 0.1).abs() <= ARC_TOL_MM + 1e-6,
-                "part {}: vertex {q:?} at {d} mm",
-                part["id"]
-            );
-            assert!(!inside(*q, nominal), "part {}: vertex inside", part["id"]);
+    halves.sort_by(f64::total_cmp);
+    assert_eq!(halves, [0.1, 0.15, 0.2]);
+}
+
+/// Checks one kerf-compensated sheet file against its plan sheet: every
+/// outer contour (against the nominal outline nearest to it: the files
+/// are in travel order, not the nest's) lies `half_mm(part)` outside it,
+/// within the arc fit's tolerance; every circle is a placed round hole
+/// shrunk by as much. Returns the outer contours' arcs.
+fn offset_by_half_kerf(
+    file: &Path,
+    sheet: &Value,
+    parts: &BTreeMap<&str, &Value>,
+    half_mm: &dyn Fn(&Value) -> f64,
+) -> usize {
+    let (_, ents) = read_dxf(file);
+    let placements = sheet["placements"].as_array().expect("placements");
+    let mut nominals: Vec<(&Value, Vec<[f64; 2]>)> = Vec::new();
+    let mut holes: Vec<([f64; 2], f64)> = Vec::new();
+    for pl in placements {
+        let part = parts[pl["part"].as_str().expect("part")];
+        let rot = pl["rotation_deg"].as_u64().expect("rot");
+        let (tx, ty) = (
+            pl["x_mm"].as_f64().expect("x"),
+            pl["y_mm"].as_f64().expect("y"),
+        );
+        let at = |v: &Value| placed(pt(v), rot, tx, ty);
+        let outline = part["outline"].as_array().expect("outline");
+        nominals.push((part, outline.iter().map(at).collect()));
+        for f in part["features"].as_array().expect("features") {
+            if f["kind"] == "hole" {
+                let r = 0.5 * f["width_mm"].as_f64().expect("width");
+                holes.push((at(&f["center_mm"]), r - half_mm(part)));
+            }
         }
     }
-    let steel_hole = 8.0 + 1.0; // M8 with 1 mm clearance
-                                // The node holes are the star washers' (on their own 3 mm sheets).
-    let mut circles: Vec<f64> = Vec::new();
-    for e in std::fs::read_dir(out.join("sheets"))
-        .expect("sheets")
-        .flatten()
-    {
-        if e.path().extension().is_some_and(|x| x == "dxf") {
-            circles.extend(read_dxf(&e.path()).1.iter().filter_map(|e| match e {
-                Ent::Circle { r, .. } => Some(*r),
-                _ => None,
-            }));
+    let (mut outers, mut circles, mut arcs) = (0, 0, 0);
+    for e in &ents {
+        match e {
+            Ent::Poly {
+                layer, pts, bulges, ..
+            } if layer == "CUT-OUTER" => {
+                outers += 1;
+                arcs += bulges.iter().filter(|b| **b != 0.0).count();
+                let (part, nominal) = nominals
+                    .iter()
+                    .min_by(|a, b| {
+                        distance_to_polygon(pts[0], &a.1)
+                            .total_cmp(&distance_to_polygon(pts[0], &b.1))
+                    })
+                    .expect("a placement");
+                let want = half_mm(part);
+                for q in pts {
+                    let d = distance_to_polygon(*q, nominal);
+                    assert!(
+                        (d - want).abs() <= ARC_TOL_MM + 1e-6,
+                        "{}: part {}: vertex {q:?} at {d} mm, not {want}",
+                        file.display(),
+                        part["id"]
+                    );
+                    assert!(!inside(*q, nominal), "part {}: vertex inside", part["id"]);
+                }
+            }
+            Ent::Circle { c, r, .. } => {
+                circles += 1;
+                let (_, want) = holes
+                    .iter()
+                    .find(|(h, _)| (h[0] - c[0]).hypot(h[1] - c[1]) < 1e-6)
+                    .unwrap_or_else(|| panic!("{}: a circle at {c:?}", file.display()));
+                assert!(
+                    (r - want).abs() < 1e-9,
+                    "{}: r {r}, not {want}",
+                    file.display()
+                );
+            }
+            _ => {}
         }
     }
-    assert!(circles
-        .iter()
-        .any(|r| (r - (0.5 * steel_hole - 0.1)).abs() < 1e-9));
+    assert_eq!(outers, placements.len(), "{}", file.display());
+    assert_eq!(circles, holes.len(), "{}", file.display());
+    arcs
 }
 
 fn distance_to_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> f64 {

@@ -313,3 +313,59 @@ fn a_bolted_edge_joint_needs_a_gap_for_its_bolt() {
         .to_string();
     assert!(e.contains("edge_joint.kind") && !e.contains('\n'), "{e}");
 }
+
+/// Where a halving slot runs into an end slot, the two become one rebate
+/// from that edge; where both lamellas of a doubled strip have it, the
+/// washer on that side bears on the band, not on the lamellas' edges. On
+/// hypar-small / steel-1.5, by hand: the end slot is the band (t = 1.5)
+/// plus 0.3 clearance each side, 2.1 mm, centred at h/2 = 25, so its floor
+/// is at 23.95 and the band on it ends at 25.45: the grip. With two M8
+/// plain washers (1.6), the nut (6.8) and two pitches (1.25): 37.95 mm, so
+/// M8 × 40 (ISO 4017), not the M8 × 65 of the full 50 mm height.
+#[test]
+fn an_edge_bolt_at_a_rebate_grips_the_band_and_one_lamella_finger() {
+    let p = profile("steel-1.5");
+    assert_eq!(
+        (
+            p.section.height_mm,
+            p.section.thickness_mm,
+            p.joint.slot_clearance_mm
+        ),
+        (50.0, 1.5, 0.3)
+    );
+    let (nodes, kit) = kit("hypar-small", &p);
+    // Rebated nodes, from the lamella parts: every lamella of the strip has
+    // its end slot at that node open to the top or to the bottom edge.
+    let mut ends: HashMap<usize, Vec<(f64, f64)>> = HashMap::new();
+    for q in kit.parts.iter().filter(|q| q.kind == PartKind::Lamella) {
+        for f in q.features.iter().filter(|f| f.edge == Some(SlotEdge::End)) {
+            let (c, w) = (f.center_part_mm.y, 0.5 * f.width_mm);
+            ends.entry(f.node.unwrap())
+                .or_default()
+                .push((c - w, c + w));
+        }
+    }
+    let rebated = nodes
+        .iter()
+        .filter(|n| {
+            let s = &ends[&n.id];
+            assert_eq!(s.len(), 2, "node {}", n.id);
+            s.iter().all(|y| y.1 > 50.0 - 1e-6) || s.iter().all(|y| y.0 < 1e-6)
+        })
+        .count() as u64;
+    assert!(rebated > 0, "hypar-small has rebated edge nodes");
+    let line = |item: &str| {
+        kit.summary
+            .hardware
+            .iter()
+            .find(|x| x.item == item && x.kind == HardwareKind::Bolt)
+            .unwrap_or_else(|| panic!("no {item} line"))
+    };
+    let at = line("edge bolt at a rebate");
+    assert!((at.grip_mm.unwrap() - 25.45).abs() < 1e-9, "{at:?}");
+    assert_eq!(at.designation, "M8 × 40 ISO 4017 8.8");
+    assert_eq!(at.count, rebated);
+    let full = line("edge bolt");
+    assert_eq!(full.designation, "M8 × 65 ISO 4017 8.8");
+    assert_eq!(full.count + at.count, nodes.len() as u64);
+}

@@ -79,6 +79,9 @@ fn crossings_within_half_a_degree(
 struct Strip {
     id: String,
     radius_mm: (f64, f64),
+    /// The largest |kg| lamella measures, 1/mm (read where the closed form
+    /// is straight: its radius is infinite there).
+    max_kg_per_mm: f64,
     twist_per_mm: (f64, f64),
     length_mm: (f64, f64),
 }
@@ -90,10 +93,51 @@ struct Claims {
     crossings: bool,
 }
 
+/// A strip whose closed-form radius exceeds this is straight (lamella's own
+/// threshold: `FrameOptions::straight_curvature_per_mm` = 1e-5 /mm): a 5 %
+/// claim on an infinite radius is judged on its curvature instead, see
+/// [`compare`].
+const STRAIGHT_RADIUS_MM: f64 = 1e5;
+
+/// Each strip against the closed form: twist within 3 %, length within
+/// 0.5 %, and (when `claims.radius`) the smallest bending radius within
+/// 5 %. On a strip straight in closed form (radius beyond
+/// [`STRAIGHT_RADIUS_MM`]) the claim is on its curvature: the largest |kg|
+/// lamella reads there within 5 % of the film's largest closed-form kg.
+/// Bending stress is E·t·kg/2, so this says what the 5 % on radii says of
+/// the strip that governs: no strip's bending stress is misread by more
+/// than 5 % of the largest the film has.
 fn compare(what: &str, strips: &[Strip], claims: Claims, failures: &mut Vec<String>) {
-    let (mut wr, mut wt, mut wl) = (0.0f64, 0.0f64, 0.0f64);
+    let (mut wr, mut wt, mut wl, mut wk) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let kg_film = strips
+        .iter()
+        .map(|s| 1.0 / s.radius_mm.1)
+        .fold(0.0f64, f64::max);
     for s in strips {
-        let er = (s.radius_mm.0 - s.radius_mm.1) / s.radius_mm.1;
+        if s.radius_mm.1 > STRAIGHT_RADIUS_MM {
+            let ek = (s.max_kg_per_mm - 1.0 / s.radius_mm.1).abs() / kg_film;
+            wk = wk.max(ek);
+            eprintln!(
+                "{what} {}: straight in closed form (R {:.0} m): largest kg {:.2e} /mm = {:.1} % of the film's largest ({:.2e} /mm)",
+                s.id,
+                s.radius_mm.1 * 1e-3,
+                s.max_kg_per_mm,
+                100.0 * ek,
+                kg_film
+            );
+            if claims.radius && ek > 0.05 {
+                failures.push(format!(
+                    "{what} {}: kg on a straight strip {:.1} % of the film's largest",
+                    s.id,
+                    100.0 * ek
+                ));
+            }
+        }
+        let er = if s.radius_mm.1 > STRAIGHT_RADIUS_MM {
+            0.0
+        } else {
+            (s.radius_mm.0 - s.radius_mm.1) / s.radius_mm.1
+        };
         let et = (s.twist_per_mm.0 - s.twist_per_mm.1) / s.twist_per_mm.1;
         let el = (s.length_mm.0 - s.length_mm.1) / s.length_mm.1;
         wr = wr.max(er.abs());
@@ -127,9 +171,10 @@ fn compare(what: &str, strips: &[Strip], claims: Claims, failures: &mut Vec<Stri
         }
     }
     eprintln!(
-        "{what}: {} strips, worst radius {:.2} %, twist {:.2} %, length {:.3} %",
+        "{what}: {} strips, worst radius {:.2} % (straight strips' kg {:.2} % of the largest), twist {:.2} %, length {:.3} %",
         strips.len(),
         100.0 * wr,
+        100.0 * wk,
         100.0 * wt,
         100.0 * wl
     );
@@ -204,6 +249,7 @@ fn ring_film(dir: &Path, r_mm: f64, h_mm: f64, claims: Claims) -> Vec<String> {
                 s.min_bending_radius_mm().unwrap_or(f64::INFINITY),
                 1.0 / kg_max,
             ),
+            max_kg_per_mm: s.max_abs_kg_per_mm,
             twist_per_mm: (s.max_abs_tg_per_mm, twist),
             length_mm: (polyline_length(pts), length),
         });
@@ -215,8 +261,8 @@ fn ring_film(dir: &Path, r_mm: f64, h_mm: f64, claims: Claims) -> Vec<String> {
 /// Rings of 1.5 m radius 1.2 m apart (neck 1366 mm) and 0.8 m apart (neck
 /// 1444 mm): every strip's smallest bending radius within 5 %, twist within
 /// 3 %, length within 0.5 %, every crossing within 0.5° of 90°. Measured:
-/// radius 0.4 % and 1.1 %, twist 0.01 %, lengths below 0.001 %, crossings
-/// 0.002°. (With every quad of the loft split along the same diagonal the
+/// radius 0.4 % and 1.0 %, twist 0.01 %, lengths below 0.001 %, crossings
+/// 0.003°. (With every quad of the loft split along the same diagonal the
 /// near rings' A family bent 4.4 % less and the B family 5.7 % more at the
 /// rim: the triangulation's handedness.)
 #[test]
@@ -294,6 +340,7 @@ fn enneper_film(tag: &str, claims: Claims) -> Vec<String> {
                 s.min_bending_radius_mm().unwrap_or(f64::INFINITY),
                 1.0 / kg_max,
             ),
+            max_kg_per_mm: s.max_abs_kg_per_mm,
             twist_per_mm: (s.max_abs_tg_per_mm, twist),
             length_mm: (polyline_length(pts), length),
         });
@@ -306,11 +353,7 @@ fn enneper_film(tag: &str, claims: Claims) -> Vec<String> {
 /// The film over the image of the circle r = 0.8 on Enneper's surface
 /// (scale 2.5 m, 400 boundary points, 50 mm film edges): every strip's
 /// largest twist within 3 % and length within 0.5 % of the closed form's.
-/// Measured: twist 2.4 %, lengths 0.013 %. Its bending radii are within
-/// 1 % on the inner strips but 11–50 % low on the short strips at the rim,
-/// its straight middle strips show radii of 26–72 m, and its crossings
-/// reach 0.98° off 90° at the rim (`an_enneper_film_bends_like_enneper`,
-/// a known limit the README states).
+/// Measured: twist 1.5 %, lengths below 0.001 %.
 #[test]
 fn a_film_over_an_enneper_boundary_twists_like_enneper() {
     let failures = enneper_film(
@@ -323,10 +366,17 @@ fn a_film_over_an_enneper_boundary_twists_like_enneper() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The Enneper film's radii within 5 % and crossings within 0.5° (fails at
-/// the rim).
+/// The same film's bending radii within 5 % (the straight middle strips'
+/// curvature within 5 % of the film's largest, see [`compare`]) and its
+/// crossings within 0.5° of 90°. Measured: radii within 4.5 % (the short
+/// strips at the rim; 3 % inside), the straight strips' largest kg 2.1 %
+/// of the film's largest, crossings 0.012°. The film is steep over its
+/// plan at the rim (its normal 77° from the plan's): over the plan its
+/// triangles squeezed into 6.8° slivers and one-sided cubic fits there bent
+/// the rim strips 11–50 % too much and crossed 0.98° off 90°; the film is
+/// now made over a disk chart there and its tensors fitted as a minimal
+/// surface's (`design::minimal`, `mesh::curvature::vertex_jets_minimal`).
 #[test]
-#[ignore]
 fn an_enneper_film_bends_like_enneper() {
     let failures = enneper_film(
         "enneper-strict",

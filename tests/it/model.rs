@@ -3,7 +3,7 @@
 //! the bytes stable; the Khronos glTF-Validator on every shipped sample's
 //! model; the page drawn and picked in headless Chromium.
 
-use crate::support::{build, lamella, ok, root, scratch};
+use crate::support::{build, lamella, ok, root, scratch, tools};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -341,17 +341,13 @@ fn every_sample_model_holds_its_plans_nodes() {
 /// LAMELLA_REQUIRE_GLTF_VALIDATOR so a missing one fails.
 fn validator() -> Option<PathBuf> {
     let dir = root().join("tests/tools/gltf");
-    let have = dir.join("node_modules/gltf-validator").is_dir()
-        && Command::new("node")
-            .arg("--version")
-            .output()
-            .is_ok_and(|o| o.status.success());
-    if !have {
-        assert!(
-            std::env::var_os("LAMELLA_REQUIRE_GLTF_VALIDATOR").is_none(),
-            "the glTF-Validator is required (npm ci --prefix tests/tools/gltf)"
-        );
-        eprintln!("glTF-Validator not installed: skipped (CI runs it)");
+    if !tools::present(
+        dir.join("node_modules/gltf-validator").is_dir() && tools::runs("node", &["--version"]),
+        "LAMELLA_REQUIRE_GLTF_VALIDATOR",
+        "the glTF-Validator",
+        "npm ci --prefix tests/tools/gltf",
+        "validating the model",
+    ) {
         return None;
     }
     Some(dir.join("validate.js"))
@@ -411,16 +407,13 @@ fn every_sample_model_passes_the_gltf_validator() {
 /// unresolvable besides); None when it is not installed and
 /// LAMELLA_REQUIRE_CHROMIUM is unset.
 fn chromium(args: &[String]) -> Option<std::process::Output> {
-    let have = Command::new("chromium")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !have {
-        assert!(
-            std::env::var_os("LAMELLA_REQUIRE_CHROMIUM").is_none(),
-            "chromium is required (apt-get install chromium)"
-        );
-        eprintln!("chromium not installed: the page test skipped (CI runs it)");
+    if !tools::present(
+        tools::runs("chromium", &["--version"]),
+        "LAMELLA_REQUIRE_CHROMIUM",
+        "chromium",
+        "apt-get install chromium",
+        "the page test",
+    ) {
         return None;
     }
     let flags = [

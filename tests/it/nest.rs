@@ -67,10 +67,10 @@ const TABLE: [(&str, [Promise; 3]); 12] = {
             [
                 PartsRefuse("no room for a 160 mm splice plate"),
                 PartsRefuse("no room for a 200 mm splice plate"),
-                AtMost(5),
+                AtMost(4),
             ],
         ),
-        ("schwarz-d-pavilion", [AtMost(17), AtMost(27), AtMost(20)]),
+        ("schwarz-d-pavilion", [AtMost(16), AtMost(27), AtMost(16)]),
     ]
 };
 
@@ -81,7 +81,7 @@ const GROUPS_ABOVE: [(&str, &str, &str, usize); 2] = [
     ("schwarz-d-pavilion", "steel-1.5", "shear-block-10", 3),
 ];
 
-/// Issue 9's last point: on every shipped sample with each profile the nest
+/// On every shipped sample with each profile the nest
 /// keeps its rules and uses the lower bound's sheets, or no more than the
 /// README's table says (where it names why one more is needed), or the
 /// parts stage refuses the kit as the table says. The samples the other
@@ -540,59 +540,181 @@ fn random_lane_only_kits_stay_within_a_sheet_of_the_bound() {
     eprintln!("random lane-only kits: {over} of 60 one sheet over the bound");
 }
 
-/// `nest --export-instance`: a sparrow strip-packing instance with every
-/// part once, its count as demand, the profile's rotations, and an outline
-/// grown by half the kerf plus spacing (so larger than the part's).
+/// `nest --export-instance DIR/instance.json`: one sparrow strip-packing
+/// instance per stock group nested in two dimensions, `instance.GROUP.json`
+/// (none for a bar group, nothing at the named path): its items exactly
+/// the parts placed on that group's sheets (ids are plan.json's part
+/// indices), each once with its count as demand (so the demands add up to
+/// the group's placements), an outline grown beyond the part's, the
+/// group's rotations, and as strip height the group's sheet width less
+/// its margins, read here from the profile file.
 #[test]
-fn the_sparrow_instance_holds_every_part_grown() {
-    let dir = scratch("instance");
-    let inst = dir.join("instance.json");
-    let out = lamella_command()
-        .args([
-            "nest",
-            "samples/catenoid.yaml",
-            "--profile",
-            "profiles/steel-1.5.yaml",
-            "--out",
-        ])
-        .arg(&dir)
-        .arg("--export-instance")
-        .arg(&inst)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&inst).unwrap()).unwrap();
-    let plan: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("plan.json")).unwrap()).unwrap();
-    let parts = plan["parts"].as_array().unwrap();
-    let items = v["items"].as_array().unwrap();
-    assert_eq!(items.len(), parts.len());
-    assert_eq!(v["strip_height"].as_f64().unwrap(), 1480.0);
-    let area = |pts: &[serde_json::Value]| {
-        let p: Vec<(f64, f64)> = pts
-            .iter()
-            .map(|q| (q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
-            .collect();
-        (0..p.len())
-            .map(|i| {
-                let (a, b) = (p[i], p[(i + 1) % p.len()]);
-                a.0 * b.1 - b.0 * a.1
-            })
-            .sum::<f64>()
-            / 2.0
-    };
-    for (item, part) in items.iter().zip(parts) {
-        assert_eq!(item["demand"], part["count"]);
-        assert_eq!(item["shape"]["type"], "simple_polygon");
-        assert_eq!(item["allowed_orientations"].as_array().unwrap().len(), 4);
-        let grown = area(item["shape"]["data"].as_array().unwrap());
-        let own = area(part["outline"].as_array().unwrap());
-        assert!(grown > own, "{}: {grown} vs {own}", part["id"]);
+fn the_sparrow_instances_hold_each_groups_parts_grown() {
+    let (mut total, mut bars) = (0, 0);
+    for (sample, profile) in [("catenoid", "steel-1.5"), ("enneper-4m", "poplar-ply-4")] {
+        let what = format!("{sample} × {profile}");
+        let dir = scratch(&format!("instance-{sample}"));
+        let out = lamella_command()
+            .args(["nest", &format!("samples/{sample}.yaml"), "--profile"])
+            .arg(format!("profiles/{profile}.yaml"))
+            .arg("--out")
+            .arg(&dir)
+            .arg("--export-instance")
+            .arg(dir.join("instance.json"))
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{what}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text =
+            std::fs::read_to_string(root().join(format!("profiles/{profile}.yaml"))).unwrap();
+        let yaml: serde_yaml::Value = serde_yaml::from_str(&text).unwrap();
+        let plan: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("plan.json")).unwrap()).unwrap();
+        let parts = plan["parts"].as_array().unwrap();
+        let index = |id: &str| parts.iter().position(|p| p["id"] == id).unwrap();
+        // Each group's parts and placements, from its sheets.
+        let mut placed: std::collections::BTreeMap<
+            String,
+            (std::collections::BTreeSet<usize>, u64),
+        > = Default::default();
+        for s in plan["sheets"].as_array().unwrap() {
+            let e = placed
+                .entry(s["group"].as_str().unwrap().to_string())
+                .or_default();
+            for pl in s["placements"].as_array().unwrap() {
+                e.0.insert(index(pl["part"].as_str().unwrap()));
+                e.1 += 1;
+            }
+        }
+        let mut written = 0;
+        for g in plan["nesting"]["groups"].as_array().unwrap() {
+            let name = g["group"].as_str().unwrap();
+            let file = dir.join(format!("instance.{name}.json"));
+            if g["form"] == "bar" {
+                assert!(!file.exists(), "{what}: {name} is a cut list");
+                bars += 1;
+                continue;
+            }
+            written += 1;
+            let v: serde_json::Value =
+                serde_json::from_slice(&std::fs::read(&file).unwrap()).unwrap();
+            let items = v["items"].as_array().unwrap();
+            let ids: std::collections::BTreeSet<usize> = items
+                .iter()
+                .map(|i| i["id"].as_u64().unwrap() as usize)
+                .collect();
+            let (own_parts, placements) = &placed[name];
+            assert_eq!(&ids, own_parts, "{what}: {name}");
+            assert_eq!(ids.len(), items.len(), "{what}: {name}: each part once");
+            let demand: u64 = items.iter().map(|i| i["demand"].as_u64().unwrap()).sum();
+            assert_eq!(demand, *placements, "{what}: {name}");
+            // The stock and cutting of the group's first kind, from the file.
+            let key = match g["kinds"][0].as_str().unwrap() {
+                "washer" => "washer",
+                "shear_block" => "shear_block",
+                _ => "",
+            };
+            let entry = &yaml["stocks"][key];
+            let width = entry["width_mm"]
+                .as_f64()
+                .or(yaml["stock"]["width_mm"].as_f64())
+                .unwrap();
+            let margin = entry["edge_margin_mm"]
+                .as_f64()
+                .or(yaml["cutting"]["edge_margin_mm"].as_f64())
+                .unwrap();
+            assert_eq!(
+                v["strip_height"].as_f64().unwrap(),
+                width - 2.0 * margin,
+                "{what}: {name}"
+            );
+            let rotations: Vec<f64> = entry["allowed_rotations_deg"]
+                .as_sequence()
+                .or(yaml["cutting"]["allowed_rotations_deg"].as_sequence())
+                .unwrap()
+                .iter()
+                .map(|r| r.as_f64().unwrap())
+                .collect();
+            let mut area_own = 0.0;
+            for item in items {
+                let part = &parts[item["id"].as_u64().unwrap() as usize];
+                assert_eq!(item["demand"], part["count"], "{what}: {}", part["id"]);
+                assert_eq!(item["shape"]["type"], "simple_polygon");
+                let got: Vec<f64> = item["allowed_orientations"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|r| r.as_f64().unwrap())
+                    .collect();
+                assert_eq!(got, rotations, "{what}: {}", part["id"]);
+                let grown = shoelace(item["shape"]["data"].as_array().unwrap());
+                let own = shoelace(part["outline"].as_array().unwrap());
+                assert!(grown > own, "{what}: {}: {grown} vs {own}", part["id"]);
+                // Net of its inner contours and round holes.
+                let inner: f64 = part["holes"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|h| shoelace(h.as_array().unwrap()))
+                    .sum::<f64>()
+                    + part["features"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .filter(|f| f["kind"] == "hole")
+                        .map(|f| {
+                            std::f64::consts::PI * (0.5 * f["width_mm"].as_f64().unwrap()).powi(2)
+                        })
+                        .sum::<f64>();
+                area_own += (own - inner) * part["count"].as_f64().unwrap();
+            }
+            // The instance's net part area is the group's: its utilisation
+            // × its sheets' area (plan.json rounds the utilisation).
+            let sheets_area: f64 = plan["sheets"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|s| s["group"] == name)
+                .map(|s| s["width_mm"].as_f64().unwrap() * s["length_mm"].as_f64().unwrap())
+                .sum();
+            let u = g["utilization"].as_f64().unwrap();
+            assert!(
+                (area_own / sheets_area - u).abs() < 1e-3,
+                "{what}: {name}: {area_own} over {sheets_area} against {u}"
+            );
+        }
+        total += written;
+        let files = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().starts_with("instance"))
+            .count();
+        assert_eq!(
+            files, written,
+            "{what}: one file per group, none at the named path"
+        );
     }
+    // Steel: lamellas, washers, shear blocks; poplar: lamellas (and studs).
+    assert_eq!((total, bars), (4, 1));
+}
+
+/// A polygon's area, mm², from plan.json's [x, y] pairs.
+fn shoelace(pts: &[serde_json::Value]) -> f64 {
+    let p: Vec<(f64, f64)> = pts
+        .iter()
+        .map(|q| (q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+        .collect();
+    (0..p.len())
+        .map(|i| {
+            let (a, b) = (p[i], p[(i + 1) % p.len()]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum::<f64>()
+        .abs()
+        / 2.0
 }
 
 /// 1500 right-angled star washers (the steel profile's: arms 45 mm from

@@ -343,9 +343,15 @@ fn every_output_is_checked_before_anything_is_written() {
     );
     refused(&nest(&out), "is a directory");
     assert!(names_in(&out).is_empty());
+    // A group's instance file (named by the group beside the one named)
+    // is checked too, before anything is written.
+    std::fs::create_dir_all(out.join("x.lamella-0.6.json")).expect("mkdir");
+    refused(&nest(&out.join("x.json")), "is a directory");
+    assert_eq!(names_in(&out), ["x.lamella-0.6.json"]);
+    std::fs::remove_dir(out.join("x.lamella-0.6.json")).expect("rmdir");
     // Beside the plan is fine.
     ok(&nest(&out.join("instance.json")));
-    assert_eq!(names_in(&out), ["instance.json", "plan.json"]);
+    assert_eq!(names_in(&out), ["instance.lamella-0.6.json", "plan.json"]);
     assert_eq!(names_in(&dir), ["folder", "kit"]);
 }
 

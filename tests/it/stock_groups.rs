@@ -1,6 +1,7 @@
 //! Stock groups: every sheet of every shipped sample × profile holds parts
 //! of one material and thickness only, and says which (plan.json's sheet,
 //! the sheet files' names, the DXF header, the SVG title, the takeoff);
+//! every part of plan.json says the same as the sheets it is placed on;
 //! the material and thickness each part kind should have are read here
 //! from the profile file itself, not from the code that grouped them.
 //! Bad `stocks:` fields are one-line errors naming the field.
@@ -88,6 +89,23 @@ fn every_shipped_sheet_holds_one_material_and_thickness() {
                 .iter()
                 .map(|p| (p["id"].as_str().unwrap(), p["kind"].as_str().unwrap()))
                 .collect();
+            // Every part says its material and thickness (the file's) and
+            // its group (the one whose sheets it is placed on, below).
+            let part_groups: BTreeMap<&str, &str> = plan["parts"]
+                .as_array()
+                .expect("parts")
+                .iter()
+                .map(|p| {
+                    let (m, want) = expected(&yaml, p["kind"].as_str().unwrap());
+                    assert_eq!(
+                        (p["material"].as_str().unwrap(), p["thickness_mm"].as_f64()),
+                        (m.as_str(), Some(want)),
+                        "{what}: part {}",
+                        p["id"]
+                    );
+                    (p["id"].as_str().unwrap(), p["group"].as_str().unwrap())
+                })
+                .collect();
             let sheets = plan["sheets"].as_array().expect("sheets");
             assert!(!sheets.is_empty(), "{what}");
             for s in sheets {
@@ -106,6 +124,12 @@ fn every_shipped_sheet_holds_one_material_and_thickness() {
                         pl["part"]
                     );
                     assert_eq!(s["form"] == "bar", kind == "stud", "{what}: {id}");
+                    assert_eq!(
+                        s["group"].as_str(),
+                        Some(part_groups[pl["part"].as_str().unwrap()]),
+                        "{what}: {id} holds {}",
+                        pl["part"]
+                    );
                 }
             }
             // Never fewer sheets than a group's bound (each group's
@@ -199,7 +223,19 @@ fn a_builds_files_name_their_group_material_and_thickness() {
 fn bad_stock_fields_are_one_line_errors_naming_the_field() {
     let base = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap();
     let dir = scratch("bad");
-    let cases: [(&str, &str, &str); 6] = [
+    let cases: [(&str, &str, &str); 8] = [
+        // Unknown fields in an entry stay errors naming them (in the
+        // size fields' place and in the entry's own).
+        (
+            "    kerf_mm: 0.4                    # fibre laser in 10 mm steel\n",
+            "    kerf_mm: 0.4\n    colour: red\n",
+            "colour",
+        ),
+        (
+            "  washer:                           # star washers, 3 mm\n    length_mm: 2000.0\n",
+            "  washer:\n    length: 2000.0\n",
+            "stocks.washer.length",
+        ),
         (
             "  washer:                           # star washers, 3 mm\n    length_mm: 2000.0\n",
             "  washer:\n    length_mm: -5\n",

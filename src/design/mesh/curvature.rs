@@ -37,6 +37,16 @@
 //! the catenoid, at interior and boundary vertices separately (the
 //! one-sided neighbourhood at the boundary has a larger constant).
 //!
+//! On a minimal surface (a form-found film, [`vertex_jets_minimal`]) the
+//! second fit is made in the basis of a minimal graph's Taylor expansion
+//! (the minimal surface equation and its derivatives at the vertex make
+//! the quadratic and cubic parts harmonic, the quartic harmonic but for a
+//! term the quadratic part fixes: [`minimal_monomials`]): a cubic of 7
+//! unknowns where the neighbourhood lies all around the vertex, a quartic
+//! of 9 where it reaches the boundary. There the neighbourhood is
+//! lopsided and a general cubic extrapolates the quartic truncation into
+//! the curvature; known structure, not more data, removes it.
+//!
 //! The [`Curvature`] returned per vertex is expressed in its own principal
 //! frame: `first = [1, 0, 1]` and `second = [k1, 0, k2]` are the fundamental
 //! forms in the orthonormal basis (d1, d2), so that the asymptotic
@@ -157,7 +167,7 @@ pub fn vertex_curvatures(mesh: &TriMesh, topo: &Topology) -> Vec<Curvature> {
 pub fn vertex_jets(mesh: &TriMesh, topo: &Topology) -> Vec<VertexJet> {
     let mut best: Option<(f64, usize, usize, usize, Vec<VertexJet>)> = None;
     for (degree, n0) in [(3, MIN_POINTS), (4, QUARTIC_MIN_POINTS)] {
-        let jets = jets_of(mesh, topo, n0, degree);
+        let jets = jets_of(mesh, topo, n0, degree, false);
         let (points, error) = balanced_fit(&jets, degree, n0);
         if best.as_ref().is_none_or(|b| error < b.0) {
             best = Some((error, degree, n0, points, jets));
@@ -169,7 +179,7 @@ pub fn vertex_jets(mesh: &TriMesh, topo: &Topology) -> Vec<VertexJet> {
     if points <= n0 {
         return jets;
     }
-    jets_of(mesh, topo, points, degree)
+    jets_of(mesh, topo, points, degree, false)
 }
 
 /// The neighbourhood size (vertices) at which a degree-`degree` jet's
@@ -227,12 +237,31 @@ pub fn balanced_fit(jets: &[VertexJet], degree: usize, n0: usize) -> (usize, f64
 /// `min_points` vertices (up to [`MAX_RINGS`] rings): more averaging of
 /// noisy vertices (a form-found film's) at the price of a wider fit.
 pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> Vec<VertexJet> {
-    jets_of(mesh, topo, min_points, 3)
+    jets_of(mesh, topo, min_points, 3, false)
+}
+
+/// As [`vertex_jets_over`] for a minimal surface (a form-found film): the
+/// jets are fitted in the basis of a minimal graph's Taylor expansion
+/// ([`minimal_monomials`]: harmonic quadratic and cubic parts, a quartic
+/// part harmonic but for the term the quadratic part fixes), 9 unknowns
+/// in place of a general cubic's 10. What the film is known to be is not
+/// left to the data: at the rim, where the neighbourhood lies on one side,
+/// a general cubic extrapolates its quartic truncation into the curvature
+/// and bent the traced lines near their ends by up to 1e-5 /mm.
+pub fn vertex_jets_minimal(mesh: &TriMesh, topo: &Topology, min_points: usize) -> Vec<VertexJet> {
+    jets_of(mesh, topo, min_points, 3, true)
 }
 
 /// Jets of degree `degree` (lower only where a neighbourhood of
-/// [`MAX_RINGS`] rings cannot carry it) over at least `min_points` vertices.
-fn jets_of(mesh: &TriMesh, topo: &Topology, min_points: usize, degree: usize) -> Vec<VertexJet> {
+/// [`MAX_RINGS`] rings cannot carry it) over at least `min_points`
+/// vertices; `minimal`: a cubic in a minimal surface's basis.
+fn jets_of(
+    mesh: &TriMesh,
+    topo: &Topology,
+    min_points: usize,
+    degree: usize,
+    minimal: bool,
+) -> Vec<VertexJet> {
     debug_assert_eq!(mesh.positions_mm.len(), topo.vertex_count());
     let normals = topo.vertex_normals();
     let fits: Vec<(VertexJet, f64)> = (0..mesh.positions_mm.len() as u32)
@@ -241,7 +270,7 @@ fn jets_of(mesh: &TriMesh, topo: &Topology, min_points: usize, degree: usize) ->
             || crate::geom::mesh::VisitMarks::new(mesh.positions_mm.len()),
             |marks, v| {
                 let n = normals[v as usize];
-                fit_vertex(mesh, topo, n, v, (min_points, degree), marks)
+                fit_vertex(mesh, topo, n, v, (min_points, degree, minimal), marks)
             },
         )
         .collect();
@@ -253,6 +282,93 @@ fn jets_of(mesh: &TriMesh, topo: &Topology, min_points: usize, degree: usize) ->
             j
         })
         .collect()
+}
+
+/// Unknowns of a minimal surface's jet ([`minimal_monomials`]).
+const MINIMAL_UNKNOWNS: usize = 9;
+
+/// Unknowns of its cubic part alone (the first seven).
+const MINIMAL_CUBIC_UNKNOWNS: usize = 7;
+
+/// The basis a jet is fitted in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Basis {
+    /// A general cubic (10 unknowns).
+    General,
+    /// A minimal surface's cubic (7): a neighbourhood all around the
+    /// vertex, where the quartic term's odd and even parts do not reach
+    /// the curvature.
+    Minimal,
+    /// A minimal surface's quartic (9): a neighbourhood that reaches the
+    /// boundary, lopsided, where a cubic extrapolates the quartic
+    /// truncation into the curvature.
+    MinimalQuartic,
+}
+
+/// Fits of a minimal jet: the first without the quartic's particular
+/// term, each next one with the term from the one before (it is of third
+/// order in the curvature: two corrections settle it to rounding).
+const MINIMAL_PASSES: usize = 3;
+
+/// The basis of a quartic jet of a minimal surface in its tangent frame:
+/// 1, x, y, x² − y², xy, x³ − 3xy², y³ − 3x²y, x⁴ − 6x²y² + y⁴,
+/// 4x³y − 4xy³. A minimal graph z = f(x, y) with ∇f = 0 at the origin
+/// satisfies the minimal surface equation E = (1 + f_y²) f_xx −
+/// 2 f_x f_y f_xy + (1 + f_x²) f_yy = 0; at the origin E = 0 gives
+/// f_xx + f_yy = 0 (H = 0), its first derivatives f_xxx + f_xyy = 0 and
+/// f_xxy + f_yyy = 0 (a harmonic cubic), its second derivatives, with
+/// r = f_xx = −f_yy and s = f_xy, f_xxxx + f_xxyy = 2r(r² + s²),
+/// f_yyyy + f_xxyy = −2r(r² + s²), f_xxxy + f_xyyy = 2s(r² + s²): the
+/// quartic is harmonic plus the particular term A/24 (x⁴ − y⁴) + B/6 x³y,
+/// A = 2r(r² + s²), B = 2s(r² + s²) (subtracted from the data, see
+/// [`MINIMAL_PASSES`]).
+fn minimal_monomials(x: f64, y: f64, out: &mut [f64]) {
+    let (x2, y2) = (x * x, y * y);
+    out.copy_from_slice(&[
+        1.0,
+        x,
+        y,
+        x2 - y2,
+        x * y,
+        x2 * x - 3.0 * x * y2,
+        y2 * y - 3.0 * x2 * y,
+        x2 * x2 - 6.0 * x2 * y2 + y2 * y2,
+        4.0 * x * y * (x2 - y2),
+    ]);
+}
+
+/// A minimal jet's coefficients as the full cubic's (the order of
+/// [`monomials`]; the quartic's are not needed).
+fn minimal_to_full(a: &[f64]) -> Vec<f64> {
+    vec![
+        a[0],
+        a[1],
+        a[2],
+        a[3],
+        a[4],
+        -a[3],
+        a[5],
+        -3.0 * a[6],
+        -3.0 * a[5],
+        a[6],
+    ]
+}
+
+/// The variances of [`minimal_to_full`]'s coefficients (each a multiple
+/// of one unknown).
+fn minimal_to_full_variance(d: &[f64]) -> Vec<f64> {
+    vec![
+        d[0],
+        d[1],
+        d[2],
+        d[3],
+        d[4],
+        d[3],
+        d[5],
+        9.0 * d[6],
+        9.0 * d[5],
+        d[6],
+    ]
 }
 
 /// Monomials of a degree-`d` jet: 1, x, y, x², xy, y², x³, x²y, xy², y³,
@@ -308,7 +424,7 @@ fn fit_vertex(
     topo: &Topology,
     n0: DVec3,
     v: u32,
-    (min_points, top): (usize, usize),
+    (min_points, top, minimal): (usize, usize, bool),
     marks: &mut crate::geom::mesh::VisitMarks,
 ) -> (VertexJet, f64) {
     let p = &mesh.positions_mm;
@@ -325,12 +441,22 @@ fn fit_vertex(
     }
     let n0 = if n0 == DVec3::ZERO { DVec3::Z } else { n0 };
     loop {
+        let basis = match (minimal, hood.iter().any(|&w| topo.is_boundary(w))) {
+            (false, _) => Basis::General,
+            (true, false) => Basis::Minimal,
+            (true, true) => Basis::MinimalQuartic,
+        };
         let rel: Vec<DVec3> = hood.iter().map(|&w| p[w as usize] - p0).collect();
         let jet = |degree: usize| -> Option<(VertexJet, f64)> {
             if rel.len() < unknowns(degree) {
                 return None;
             }
-            let second = fit(&rel, fit(&rel, n0, degree)?.normal(), degree)?;
+            let second = fit(
+                &rel,
+                fit(&rel, n0, degree, Basis::General)?.normal(),
+                degree,
+                basis,
+            )?;
             Some((
                 VertexJet {
                     curvature: second.curvature(),
@@ -400,7 +526,7 @@ struct Fit {
 
 /// Fit a degree-`degree` height function over the tangent plane of `n` to
 /// the points `rel` (relative to the vertex); None when rank deficient.
-fn fit(rel: &[DVec3], n: DVec3, degree: usize) -> Option<Fit> {
+fn fit(rel: &[DVec3], n: DVec3, degree: usize, basis: Basis) -> Option<Fit> {
     let e1 = n.any_orthonormal_vector();
     let e2 = n.cross(e1);
     let scale = rel
@@ -410,15 +536,73 @@ fn fit(rel: &[DVec3], n: DVec3, degree: usize) -> Option<Fit> {
     if scale <= 0.0 {
         return None;
     }
-    let (m, k) = (rel.len(), unknowns(degree));
-    let mut a = vec![0.0; m * k];
-    let mut b = vec![0.0; m];
-    for (i, q) in rel.iter().enumerate() {
-        let (x, y, z) = (q.dot(e1) / scale, q.dot(e2) / scale, q.dot(n) / scale);
-        monomials(x, y, &mut a[i * k..(i + 1) * k]);
-        b[i] = z;
+    let minimal = basis != Basis::General && degree == 3;
+    let cubic_only = basis == Basis::Minimal;
+    let (m, k) = (
+        rel.len(),
+        if minimal {
+            if cubic_only {
+                MINIMAL_CUBIC_UNKNOWNS
+            } else {
+                MINIMAL_UNKNOWNS
+            }
+        } else {
+            unknowns(degree)
+        },
+    );
+    let local: Vec<DVec3> = rel
+        .iter()
+        .map(|q| DVec3::new(q.dot(e1), q.dot(e2), q.dot(n)) / scale)
+        .collect();
+    let mut a0 = vec![0.0; m * k];
+    for (i, q) in local.iter().enumerate() {
+        let row = &mut a0[i * k..(i + 1) * k];
+        if minimal {
+            if cubic_only {
+                let mut full = [0.0; MINIMAL_UNKNOWNS];
+                minimal_monomials(q.x, q.y, &mut full);
+                row.copy_from_slice(&full[..MINIMAL_CUBIC_UNKNOWNS]);
+            } else {
+                minimal_monomials(q.x, q.y, row);
+            }
+        } else {
+            monomials(q.x, q.y, row);
+        }
     }
-    let (coef, rss, diag) = least_squares(&mut a, &mut b, m, k)?;
+    // The quartic part of a minimal graph is harmonic but for a term the
+    // quadratic part fixes ([`minimal_monomials`]): fitted by fixed-point
+    // iteration from zero.
+    let mut particular = (0.0, 0.0);
+    let mut passes = if minimal && !cubic_only {
+        MINIMAL_PASSES
+    } else {
+        1
+    };
+    let (coef, rss, diag) = loop {
+        let mut a = a0.clone();
+        let mut b: Vec<f64> = local
+            .iter()
+            .map(|q| {
+                let (x2, y2) = (q.x * q.x, q.y * q.y);
+                q.z - particular.0 * (x2 * x2 - y2 * y2) - particular.1 * x2 * q.x * q.y
+            })
+            .collect();
+        let sol = least_squares(&mut a, &mut b, m, k)?;
+        passes -= 1;
+        if passes == 0 {
+            break sol;
+        }
+        // r = f_xx = 2a₃, s = f_xy = a₄: P = A/24 (x⁴ − y⁴) + B/6 x³y with
+        // A = 2r(r² + s²), B = 2s(r² + s²).
+        let (r, s) = (2.0 * sol.0[3], sol.0[4]);
+        let g = r * r + s * s;
+        particular = (2.0 * r * g / 24.0, 2.0 * s * g / 6.0);
+    };
+    let (coef, diag) = if minimal {
+        (minimal_to_full(&coef), minimal_to_full_variance(&diag))
+    } else {
+        (coef, diag)
+    };
     let residual_mm = if m > k {
         (rss / (m - k) as f64).sqrt() * scale
     } else {
@@ -825,6 +1009,53 @@ mod tests {
             [0.017, 0.065],
             [0.102, 0.600],
         );
+    }
+
+    /// On a minimal surface the minimal basis beats the general cubic where
+    /// the neighbourhood is lopsided: Enneper's surface × 1000 mm over
+    /// [−1, 1]², 40² jittered cells (h ≈ 97 mm), exact vertices, fits over
+    /// 120 vertices (a film's): the largest principal-direction error at
+    /// the boundary vertices, and the curvature's there, both at least
+    /// halved, the interior no worse. Measured: boundary |Δk|/k 0.124 →
+    /// 0.031, d1 9.6° → 2.8°; interior 0.086 → 0.060, 7.1° → 1.9° (the
+    /// wide fits' bias; two-ring fits on a mesh are within 1.4°).
+    #[test]
+    fn minimal_jets_hold_the_rim_of_a_minimal_surface() {
+        use crate::design::surface::{Enneper, Surface};
+        let (uv, tris) = samples::grid(40, 40, (-1.0, 1.0), (-1.0, 1.0), 0.3, 13);
+        let mesh = samples::place(&uv, &tris, |q| Enneper.point(q) * S);
+        let topo = Topology::build(&mesh, Path::new("t.obj")).expect("valid");
+        let worst = |jets: &[VertexJet], boundary: bool| {
+            let (mut ek, mut ed) = (0.0f64, 0.0f64);
+            for (i, (j, &q)) in jets.iter().zip(&uv).enumerate() {
+                if topo.is_boundary(i as u32) != boundary {
+                    continue;
+                }
+                let (u, v) = (q.x, q.y);
+                let lam = 1.0 + u * u + v * v;
+                let pu = DVec3::new(1.0 - u * u + v * v, 2.0 * u * v, 2.0 * u);
+                let k = 2.0 / (lam * lam * S);
+                let c = j.curvature;
+                ek = ek.max((c.k1 - k).abs().max((c.k2 + k).abs()) * S / 2.0);
+                let a = c.d1.angle_between(pu.normalize()).to_degrees();
+                ed = ed.max(a.min(180.0 - a));
+            }
+            (ek, ed)
+        };
+        let general = vertex_jets_over(topo.mesh(), &topo, 120);
+        let minimal = vertex_jets_minimal(topo.mesh(), &topo, 120);
+        let (gb, mb) = (worst(&general, true), worst(&minimal, true));
+        let (gi, mi) = (worst(&general, false), worst(&minimal, false));
+        eprintln!(
+            "boundary: general |dk| {:.2e} d1 {:.3}°, minimal {:.2e} {:.3}°",
+            gb.0, gb.1, mb.0, mb.1
+        );
+        eprintln!(
+            "interior: general |dk| {:.2e} d1 {:.3}°, minimal {:.2e} {:.3}°",
+            gi.0, gi.1, mi.0, mi.1
+        );
+        assert!(mb.0 <= 0.5 * gb.0 && mb.1 <= 0.5 * gb.1, "{gb:?} {mb:?}");
+        assert!(mi.0 <= gi.0 && mi.1 <= gi.1, "{gi:?} {mi:?}");
     }
 
     /// The normal follows the triangles: reversing every triangle turns

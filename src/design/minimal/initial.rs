@@ -26,23 +26,83 @@ pub fn planar(
     max_area_mm2: f64,
 ) -> Option<Film> {
     let frame: Frame = domain.frame;
+    let rings: Vec<Vec<DVec3>> = loops
+        .iter()
+        .enumerate()
+        .map(|(l, pts)| {
+            let mut ring = boundary::resample(pts, &pieces[l]);
+            if domain.reversed[l] {
+                ring.reverse();
+            }
+            ring
+        })
+        .collect();
+    let charts: Vec<Vec<DVec2>> = rings
+        .iter()
+        .map(|r| r.iter().map(|&p| frame.project(p)).collect())
+        .collect();
+    triangulate(&rings, &charts, max_area_mm2, |q| {
+        frame.origin + frame.u * q.x + frame.v * q.y
+    })
+}
+
+/// The coarse mesh of a disk over a circle: the one loop resampled
+/// (`pieces`; reversed when `reversed`, so that it runs as the planar
+/// domain orients it) and placed on a circle as long as the loop, each
+/// point at the angle 2π × its arc-length fraction, the disk triangulated
+/// and refined like [`planar`]'s domain. A film steep over its plan keeps
+/// its triangles' shapes over this chart (its arc length is the film's
+/// own along the boundary), where the plan's squeeze into slivers.
+/// Interior positions are left at the chart's points (the harmonic
+/// extension replaces them).
+pub fn disk(pts: &[DVec3], pieces: &[usize], reversed: bool, max_area_mm2: f64) -> Option<Film> {
+    let mut ring = boundary::resample(pts, pieces);
+    if reversed {
+        ring.reverse();
+    }
+    let lengths = boundary::segment_lengths(&ring);
+    let total: f64 = lengths.iter().sum();
+    if total.is_nan() || total <= 0.0 {
+        return None;
+    }
+    let radius = total / TAU;
+    let mut acc = 0.0;
+    let chart: Vec<DVec2> = lengths
+        .iter()
+        .map(|l| {
+            let a = TAU * acc / total;
+            acc += l;
+            DVec2::new(radius * a.cos(), radius * a.sin())
+        })
+        .collect();
+    triangulate(&[ring], &[chart], max_area_mm2, |q| q.extend(0.0))
+}
+
+/// The constrained Delaunay triangulation of the domain bounded by
+/// `charts` (one ring of chart points per loop, the outer counter-clockwise,
+/// holes clockwise; `rings` their 3D points), refined to triangles of at
+/// most `max_area_mm2` and angles of at least [`CDT_MIN_ANGLE_DEG`];
+/// Steiner points placed at `lift(chart point)`.
+fn triangulate(
+    rings: &[Vec<DVec3>],
+    charts: &[Vec<DVec2>],
+    max_area_mm2: f64,
+    lift: impl Fn(DVec2) -> DVec3,
+) -> Option<Film> {
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::new();
     let mut positions = Vec::new();
-    for (l, pts) in loops.iter().enumerate() {
-        let mut ring = boundary::resample(pts, &pieces[l]);
-        if domain.reversed[l] {
-            ring.reverse();
-        }
+    let mut chart: Vec<DVec2> = Vec::new();
+    for (ring, ring_chart) in rings.iter().zip(charts) {
         let mut handles = Vec::with_capacity(ring.len());
-        for &p in &ring {
-            let q = frame.project(p);
+        for (&p, &q) in ring.iter().zip(ring_chart) {
             let h = cdt.insert(Point2::new(q.x, q.y)).ok()?;
             if h.index() != positions.len() {
                 return None; // two boundary points project onto one
             }
             handles.push(h);
             positions.push(p);
+            chart.push(q);
         }
         let n = handles.len();
         for i in 0..n {
@@ -70,7 +130,6 @@ pub fn planar(
     for (i, slot) in index.iter_mut().enumerate().take(n_boundary) {
         *slot = Some(i as u32);
     }
-    let mut chart: Vec<DVec2> = positions.iter().map(|&p| frame.project(p)).collect();
     let mut triangles = Vec::new();
     for f in cdt.inner_faces() {
         if excluded.contains(&f.fix().index()) {
@@ -86,7 +145,7 @@ pub fn planar(
                     let p = v.position();
                     let q = DVec2::new(p.x, p.y);
                     chart.push(q);
-                    positions.push(frame.origin + frame.u * q.x + frame.v * q.y);
+                    positions.push(lift(q));
                     index[vi] = Some(i);
                     i
                 }

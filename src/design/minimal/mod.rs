@@ -35,6 +35,23 @@
 //!    loop that intersects itself in projection. The interior starts at
 //!    the harmonic extension of the boundary with the chart's cotangent
 //!    weights.
+//!
+//!    **A film steep over its plan.** Form finding keeps the chart's
+//!    vertex distribution (below), so where the film rises steeply over
+//!    its plan the plan's triangles stretch into slivers (over Enneper's
+//!    boundary at r = 0.8, the normal 77° from the plan's at the rim:
+//!    6.8°). A one-loop film whose smallest angle ends below
+//!    [`STEEP_MIN_ANGLE_DEG`] is made again over a disk chart
+//!    ([`initial::disk`]: the loop on a circle as long as itself, each
+//!    point at 2π × its arc-length fraction, the disk triangulated and
+//!    refined like the plan), and the result with the larger smallest
+//!    angle is kept. On a minimal disk the harmonic extension over that
+//!    chart is the conformal one wherever the film's conformal factor is
+//!    constant along its boundary (Enneper over a circle of its parameter
+//!    plane exactly: 28.1° smallest angle there, and two iterations from
+//!    the harmonic start to the area tolerance), and a fair
+//!    approximation elsewhere. The price is a second form finding, on
+//!    steep one-loop films only (the loft plays this part for two loops).
 //! 3. **Pinkall–Polthier iteration** (Pinkall & Polthier 1993, *Computing
 //!    discrete minimal surfaces and their conjugates*): build the
 //!    cotangent Laplacian of the current mesh M_i, solve the Dirichlet
@@ -281,7 +298,7 @@ pub fn form_find(
     let levels = coarse_levels(&lengths, opts);
     let h0_mm = opts.target_edge_mm * f64::from(1u32 << levels);
     let mut pieces: Vec<Vec<usize>> = lengths.iter().map(|l| boundary::pieces(l, h0_mm)).collect();
-    let (mut film, initial) = match &domain {
+    let (film, initial) = match &domain {
         Some(d) => {
             let film = initial::planar(&loops, &pieces, d, 0.5 * h0_mm * h0_mm).ok_or_else(|| {
                 Error::input(
@@ -304,38 +321,32 @@ pub fn form_find(
             (initial::loft(&loops, &pieces, h0_mm), InitialMesh::Loft)
         }
     };
-    if let Some(t) = chart_inverted(&film) {
-        return Err(Error::input(
-            path,
-            Location::Field("boundaries".into()),
-            format!("the initial chart has an inverted triangle {t}: the loops are too close to each other for the target edge length"),
-        ));
-    }
-    // Harmonic extension with the chart's weights.
-    let chart3: Vec<DVec3> = film.chart.iter().map(|q| q.extend(0.0)).collect();
-    let mut dirichlet = solve::Dirichlet::new(&film);
-    film.positions = dirichlet
-        .solve(&film, &chart3, &film.positions)
-        .map_err(|e| failure(path, e, 0, 0))?;
-    let initial_area_mm2 = solve::area_mm2(&film, &film.positions);
-    let mut iterations_per_level = Vec::new();
-    let mut converged = true;
-    let mut refinements = 0;
-    loop {
-        let (its, ok) = iterate(&mut film, &mut dirichlet, opts)
-            .map_err(|(e, it)| failure(path, e, refinements, it))?;
-        iterations_per_level.push(its);
-        converged &= ok;
-        if refinements >= opts.max_refinements
-            || solve::mean_edge_mm(&film, &film.positions)
-                <= std::f64::consts::SQRT_2 * opts.target_edge_mm
-        {
-            break;
+    let mut run = relax(film, opts, path)?;
+    // A film steep over its plan (one loop): the plan's triangles squeeze
+    // into slivers there; made again over a disk chart by arc length, the
+    // one with the larger smallest angle is kept.
+    if let (Some(d), [single]) = (&domain, loops.as_slice()) {
+        let squeezed = solve::min_angle_deg(&run.film, &run.film.positions);
+        if squeezed < STEEP_MIN_ANGLE_DEG {
+            if let Some(film) =
+                initial::disk(single, &pieces[0], d.reversed[0], 0.5 * h0_mm * h0_mm)
+            {
+                // A disk that fails (where the plan's film did not) is dropped.
+                if let Ok(disk) = relax(film, opts, path) {
+                    if solve::min_angle_deg(&disk.film, &disk.film.positions) > squeezed {
+                        run = disk;
+                    }
+                }
+            }
         }
-        film = refine::split(&film);
-        dirichlet = solve::Dirichlet::new(&film);
-        refinements += 1;
     }
+    let Relaxed {
+        film,
+        initial_area_mm2,
+        iterations_per_level,
+        converged,
+        refinements,
+    } = run;
     let h = solve::mean_curvature(&film, &film.positions).ok_or_else(|| {
         failure(
             path,
@@ -379,6 +390,66 @@ pub fn form_find(
         },
         chart_uv: film.chart,
         report,
+    })
+}
+
+/// A film relaxed to a discrete minimal surface: the mesh, the area of
+/// its harmonic start, iterations per level, whether every level met the
+/// area tolerance, refinements made.
+struct Relaxed {
+    film: Film,
+    initial_area_mm2: f64,
+    iterations_per_level: Vec<usize>,
+    converged: bool,
+    refinements: usize,
+}
+
+/// Below this smallest triangle angle (degrees; half the angle the
+/// triangulation of the plan aims for) a one-loop film is made again over
+/// a disk chart ([`initial::disk`]).
+pub const STEEP_MIN_ANGLE_DEG: f64 = 14.0;
+
+/// Harmonic start, then Pinkall–Polthier level by level with 1 → 4 splits
+/// down to the target edge.
+fn relax(mut film: Film, opts: &FormFindOptions, path: &Path) -> Result<Relaxed> {
+    if let Some(t) = chart_inverted(&film) {
+        return Err(Error::input(
+            path,
+            Location::Field("boundaries".into()),
+            format!("the initial chart has an inverted triangle {t}: the loops are too close to each other for the target edge length"),
+        ));
+    }
+    // Harmonic extension with the chart's weights.
+    let chart3: Vec<DVec3> = film.chart.iter().map(|q| q.extend(0.0)).collect();
+    let mut dirichlet = solve::Dirichlet::new(&film);
+    film.positions = dirichlet
+        .solve(&film, &chart3, &film.positions)
+        .map_err(|e| failure(path, e, 0, 0))?;
+    let initial_area_mm2 = solve::area_mm2(&film, &film.positions);
+    let mut iterations_per_level = Vec::new();
+    let mut converged = true;
+    let mut refinements = 0;
+    loop {
+        let (its, ok) = iterate(&mut film, &mut dirichlet, opts)
+            .map_err(|(e, it)| failure(path, e, refinements, it))?;
+        iterations_per_level.push(its);
+        converged &= ok;
+        if refinements >= opts.max_refinements
+            || solve::mean_edge_mm(&film, &film.positions)
+                <= std::f64::consts::SQRT_2 * opts.target_edge_mm
+        {
+            break;
+        }
+        film = refine::split(&film);
+        dirichlet = solve::Dirichlet::new(&film);
+        refinements += 1;
+    }
+    Ok(Relaxed {
+        film,
+        initial_area_mm2,
+        iterations_per_level,
+        converged,
+        refinements,
     })
 }
 

@@ -15,6 +15,74 @@ use std::path::Path;
 /// The newest profile version this build reads.
 pub const CURRENT_VERSION: u32 = 1;
 
+/// Declares a file section with the size and price fields of `stock:`
+/// (one sheet size, several `sizes`, or a coil) between fields of its
+/// own: `stock:` and every `stocks.<piece>:` entry share them this way,
+/// as serde's `flatten` would lose `deny_unknown_fields`. `price and
+/// currency` is those two fields' serde attribute (the lamella stock
+/// writes them when empty).
+macro_rules! sized_stock {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $($(#[$bmeta:meta])* pub $before:ident: $bty:ty,)*
+        }
+        price and currency: #[$price:meta]
+        then {
+            $($(#[$ameta:meta])* pub $after:ident: $aty:ty,)*
+        }
+    ) => {
+        $(#[$meta])*
+        pub struct $name {
+            $($(#[$bmeta])* pub $before: $bty,)*
+            /// One sheet size: its length; coil: the longest piece (optional), mm.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub length_mm: Option<f64>,
+            /// One sheet size: its width; coil: its width, mm.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub width_mm: Option<f64>,
+            /// Price of one sheet (or coil piece, or bar), in `currency`; optional.
+            #[$price]
+            pub price_per_unit: Option<f64>,
+            /// Currency of the prices (e.g. `EUR`); optional.
+            #[$price]
+            pub currency: Option<String>,
+            /// One sheet size (or coil pieces): how many there are at most; optional.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub max_count: Option<u32>,
+            /// Several sheet sizes, instead of `length_mm` and `width_mm`.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub sizes: Option<Vec<StockSize>>,
+            /// Coil: price per metre cut, in `currency`; optional.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub price_per_m: Option<f64>,
+            /// Coil: lengths are cut (and sold) in multiples of this, mm; default 1.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub length_step_mm: Option<f64>,
+            $($(#[$ameta])* pub $after: $aty,)*
+        }
+    };
+}
+
+/// A section of type `$to` with the other fields given and the size and
+/// price fields of [`sized_stock`] moved from `$from`.
+macro_rules! stock_sizes {
+    ($from:expr => $to:ident { $($field:ident $(: $value:expr)?),* $(,)? }) => {{
+        let from = $from;
+        $to {
+            $($field $(: $value)?,)*
+            length_mm: from.length_mm,
+            width_mm: from.width_mm,
+            price_per_unit: from.price_per_unit,
+            currency: from.currency,
+            max_count: from.max_count,
+            sizes: from.sizes,
+            price_per_m: from.price_per_m,
+            length_step_mm: from.length_step_mm,
+        }
+    }};
+}
+
 /// A material profile file as written: material, lamella section, joint,
 /// hardware, stock and cutting. Validated by conversion to [`Profile`].
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
@@ -90,58 +158,39 @@ impl Stocks {
     }
 }
 
-/// `stocks.<piece>:` what one kind of part is cut from: a group name, a
-/// material, sizes in any form `stock:` takes (`kind`, `length_mm`,
-/// `width_mm`, `sizes`, …), a price and the cutting allowances; every
-/// field optional.
-#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct PieceStock {
-    /// The group's name (sheet file names); default `ROLE-THICKNESS`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub name: Option<String>,
-    /// The material, if not the profile's `material.name`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
-    /// `sheet` or `coil` (with sizes of its own).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub kind: Option<StockKind>,
-    /// One sheet size: its length; coil: the longest piece, mm.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub length_mm: Option<f64>,
-    /// One sheet size: its width; coil: its width, mm.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub width_mm: Option<f64>,
-    /// Price of one sheet (or bar, or coil piece).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub price_per_unit: Option<f64>,
-    /// Currency of the prices (the lamella stock's).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub currency: Option<String>,
-    /// How many sheets there are at most.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub max_count: Option<u32>,
-    /// Several sheet sizes.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub sizes: Option<Vec<StockSize>>,
-    /// Coil: price per metre cut.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub price_per_m: Option<f64>,
-    /// Coil: lengths are cut in multiples of this, mm.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub length_step_mm: Option<f64>,
-    /// Kerf, mm; default `cutting.kerf_mm`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub kerf_mm: Option<f64>,
-    /// Part spacing, mm; default `cutting.part_spacing_mm` (bars: 0).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub part_spacing_mm: Option<f64>,
-    /// Edge margin, mm; default `cutting.edge_margin_mm` (bars: 0).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub edge_margin_mm: Option<f64>,
-    /// Allowed rotations, degrees; default `cutting.allowed_rotations_deg`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub allowed_rotations_deg: Option<Vec<u32>>,
+sized_stock! {
+    /// `stocks.<piece>:` what one kind of part is cut from: a group name, a
+    /// material, sizes in any form `stock:` takes (`kind`, `length_mm`,
+    /// `width_mm`, `sizes`, …), a price and the cutting allowances; every
+    /// field optional.
+    #[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+    #[serde(deny_unknown_fields)]
+    pub struct PieceStock {
+        /// The group's name (sheet file names); default `ROLE-THICKNESS`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub name: Option<String>,
+        /// The material, if not the profile's `material.name`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub material: Option<String>,
+        /// `sheet` or `coil` (with sizes of its own).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub kind: Option<StockKind>,
+    }
+    price and currency: #[serde(default, skip_serializing_if = "Option::is_none")]
+    then {
+        /// Kerf, mm; default `cutting.kerf_mm`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub kerf_mm: Option<f64>,
+        /// Part spacing, mm; default `cutting.part_spacing_mm` (bars: 0).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub part_spacing_mm: Option<f64>,
+        /// Edge margin, mm; default `cutting.edge_margin_mm` (bars: 0).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub edge_margin_mm: Option<f64>,
+        /// Allowed rotations, degrees; default `cutting.allowed_rotations_deg`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub allowed_rotations_deg: Option<Vec<u32>>,
+    }
 }
 
 impl PieceStock {
@@ -156,65 +205,48 @@ impl PieceStock {
             || self.max_count.is_some()
             || self.price_per_m.is_some()
             || self.length_step_mm.is_some();
-        let (stock, price_per_unit, currency) = if sized {
-            let st = Stock {
-                kind: self.kind.unwrap_or(StockKind::Sheet),
-                length_mm: self.length_mm,
-                width_mm: self.width_mm,
-                price_per_unit: self.price_per_unit,
-                currency: self.currency,
-                max_count: self.max_count,
-                sizes: self.sizes,
-                price_per_m: self.price_per_m,
-                length_step_mm: self.length_step_mm,
-            };
-            (Some(st.into()), None, None)
-        } else {
-            (None, self.price_per_unit, self.currency)
-        };
-        profile::PieceStock {
+        let mut entry = profile::PieceStock {
             piece,
-            name: self.name,
-            material: self.material,
-            stock,
-            price_per_unit,
-            currency,
+            name: self.name.clone(),
+            material: self.material.clone(),
+            stock: None,
+            price_per_unit: None,
+            currency: None,
             kerf_mm: self.kerf_mm,
             part_spacing_mm: self.part_spacing_mm,
             edge_margin_mm: self.edge_margin_mm,
-            allowed_rotations_deg: self.allowed_rotations_deg,
+            allowed_rotations_deg: self.allowed_rotations_deg.clone(),
+        };
+        if sized {
+            let kind = self.kind.unwrap_or_default();
+            entry.stock = Some(stock_sizes!(self => Stock { kind }).into());
+        } else {
+            (entry.price_per_unit, entry.currency) = (self.price_per_unit, self.currency);
         }
+        entry
     }
 
     /// The model's entry back in the file's form.
     fn from_model(e: &profile::PieceStock) -> PieceStock {
-        let st: Option<Stock> = e
-            .stock
-            .as_ref()
-            .map(|s| Stock::from(&profile::Stock::from(s.clone())));
-        PieceStock {
+        let st = match &e.stock {
+            Some(s) => Stock::from(&profile::Stock::from(s.clone())),
+            None => Stock {
+                price_per_unit: e.price_per_unit,
+                currency: e.currency.clone(),
+                ..Stock::default()
+            },
+        };
+        // `sheet` is the default a file may leave out.
+        let kind = Some(st.kind).filter(|k| *k != StockKind::Sheet);
+        stock_sizes!(st => PieceStock {
             name: e.name.clone(),
             material: e.material.clone(),
-            // `sheet` is the default a file may leave out.
-            kind: st
-                .as_ref()
-                .map(|s| s.kind)
-                .filter(|k| *k != StockKind::Sheet),
-            length_mm: st.as_ref().and_then(|s| s.length_mm),
-            width_mm: st.as_ref().and_then(|s| s.width_mm),
-            price_per_unit: st.as_ref().map_or(e.price_per_unit, |s| s.price_per_unit),
-            currency: st
-                .as_ref()
-                .map_or(e.currency.clone(), |s| s.currency.clone()),
-            max_count: st.as_ref().and_then(|s| s.max_count),
-            sizes: st.as_ref().and_then(|s| s.sizes.clone()),
-            price_per_m: st.as_ref().and_then(|s| s.price_per_m),
-            length_step_mm: st.as_ref().and_then(|s| s.length_step_mm),
+            kind,
             kerf_mm: e.kerf_mm,
             part_spacing_mm: e.part_spacing_mm,
             edge_margin_mm: e.edge_margin_mm,
             allowed_rotations_deg: e.allowed_rotations_deg.clone(),
-        }
+        })
     }
 }
 
@@ -429,50 +461,30 @@ fn class_text<'de, D: serde::Deserializer<'de>>(
     }))
 }
 
-/// `stock:` the material the parts are cut from, in one of three forms:
-///
-/// * one sheet size: `kind: sheet`, `length_mm`, `width_mm`, optional
-///   `price_per_unit` and `max_count` (the form every version-1 profile has);
-/// * several sheet sizes: `kind: sheet` and `sizes:` a list of
-///   [`StockSize`] (then no `length_mm`, `width_mm`, `price_per_unit` or
-///   `max_count` beside it);
-/// * coil (or strip cut to length): `kind: coil`, `width_mm`, optional
-///   `length_mm` (the longest piece cut from it, e.g. a coil's length or
-///   the cutting bed's), `length_step_mm` (lengths are cut and sold in
-///   multiples of it), and a price: `price_per_m` (per metre cut) or
-///   `price_per_unit` (per piece, with `length_mm`).
-///
-/// [`Profile`]'s validation ([`crate::profile::validate`]) says which field
-/// of which form is missing or misplaced.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Stock {
-    /// `sheet` or `coil`.
-    pub kind: StockKind,
-    /// One sheet size: its length; coil: the longest piece (optional), mm.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub length_mm: Option<f64>,
-    /// One sheet size: its width; coil: its width, mm.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub width_mm: Option<f64>,
-    /// Price of one sheet (or coil piece), in `currency`; optional.
-    #[serde(default)]
-    pub price_per_unit: Option<f64>,
-    /// Currency of the prices (e.g. `EUR`); optional.
-    #[serde(default)]
-    pub currency: Option<String>,
-    /// One sheet size (or coil pieces): how many there are at most; optional.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub max_count: Option<u32>,
-    /// Several sheet sizes, instead of `length_mm` and `width_mm`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub sizes: Option<Vec<StockSize>>,
-    /// Coil: price per metre cut, in `currency`; optional.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub price_per_m: Option<f64>,
-    /// Coil: lengths are cut (and sold) in multiples of this, mm; default 1.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub length_step_mm: Option<f64>,
+sized_stock! {
+    /// `stock:` the material the parts are cut from, in one of three forms:
+    ///
+    /// * one sheet size: `kind: sheet`, `length_mm`, `width_mm`, optional
+    ///   `price_per_unit` and `max_count` (the form every version-1 profile has);
+    /// * several sheet sizes: `kind: sheet` and `sizes:` a list of
+    ///   [`StockSize`] (then no `length_mm`, `width_mm`, `price_per_unit` or
+    ///   `max_count` beside it);
+    /// * coil (or strip cut to length): `kind: coil`, `width_mm`, optional
+    ///   `length_mm` (the longest piece cut from it, e.g. a coil's length or
+    ///   the cutting bed's), `length_step_mm` (lengths are cut and sold in
+    ///   multiples of it), and a price: `price_per_m` (per metre cut) or
+    ///   `price_per_unit` (per piece, with `length_mm`).
+    ///
+    /// [`Profile`]'s validation ([`crate::profile::validate`]) says which field
+    /// of which form is missing or misplaced.
+    #[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+    #[serde(deny_unknown_fields)]
+    pub struct Stock {
+        /// `sheet` or `coil`.
+        pub kind: StockKind,
+    }
+    price and currency: #[serde(default)]
+    then {}
 }
 
 /// `stock.sizes[]:` one sheet size of several.
@@ -497,11 +509,12 @@ pub struct StockSize {
 }
 
 /// `stock.kind:` the form of the stock.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum StockKind {
     /// Flat sheets of `length_mm` × `width_mm`, or of several `sizes`
     /// (flat bars of a fixed length are sheets too).
+    #[default]
     Sheet,
     /// A coil `width_mm` wide, cut to the length needed.
     Coil,

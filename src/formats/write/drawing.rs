@@ -22,15 +22,16 @@
 //! than [`MERGE_MM`] are merged so no segment has zero length; cut
 //! contours are fitted by lines and arcs within the drawer's tolerance
 //! ([`super::arcs`]). With kerf compensation, outer contours are offset
-//! out and inner contours in by half the kerf (cavalier_contours, round
-//! joins: convex corners become arcs, written as bulges).
+//! out and inner contours in by half the kerf of the sheet's (or part's)
+//! stock group ([`Kerf`]; cavalier_contours, round joins: convex corners
+//! become arcs, written as bulges).
 
 use crate::error::{Error, Result};
 use crate::plan::{
     Plan, PlanEngraving, PlanFeatureKind, PlanFont, PlanGlyph, PlanPart, PlanPlacement, PlanSheet,
 };
 use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 /// Points of a contour closer than this are one point, mm.
@@ -269,6 +270,28 @@ pub fn place(p: [f64; 2], rotation_deg: u32, tx_mm: f64, ty_mm: f64) -> [f64; 2]
     [rx + tx_mm, ry + ty_mm]
 }
 
+/// Kerf compensation: the kerf each stock group is cut with (a sheet's
+/// `group`, a part's `group` in plan.json), mm.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Kerf {
+    /// The kerf of a sheet or part whose group is not listed (a plan
+    /// without groups), mm.
+    pub default_mm: f64,
+    /// Each group's kerf by its name, mm.
+    pub by_group_mm: BTreeMap<String, f64>,
+}
+
+impl Kerf {
+    /// Half the kerf of `group`, mm: how far its contours move.
+    pub fn half_mm(&self, group: &str) -> f64 {
+        0.5 * self
+            .by_group_mm
+            .get(group)
+            .copied()
+            .unwrap_or(self.default_mm)
+    }
+}
+
 /// Draws the sheets of a plan one at a time (a big kit's drawings need not
 /// all be in memory at once).
 #[derive(Debug)]
@@ -277,18 +300,18 @@ pub struct Drawer<'a> {
     parts: &'a [PlanPart],
     by_id: HashMap<&'a str, &'a PlanPart>,
     font: Font<'a>,
-    half_kerf_mm: Option<f64>,
+    kerf: Option<Kerf>,
     arc_tolerance_mm: Option<f64>,
     plan_path: &'a Path,
 }
 
 impl<'a> Drawer<'a> {
-    /// A drawer for `plan`'s sheets. `kerf_compensation_mm`: offset outer
-    /// contours out and inner contours in by half of it. `plan_path` names
-    /// the plan in errors.
+    /// A drawer for `plan`'s sheets. `kerf_compensation`: offset outer
+    /// contours out and inner contours in by half of each group's kerf.
+    /// `plan_path` names the plan in errors.
     pub fn new(
         plan: &'a Plan,
-        kerf_compensation_mm: Option<f64>,
+        kerf_compensation: Option<Kerf>,
         plan_path: &'a Path,
     ) -> Result<Drawer<'a>> {
         let (Some(parts), Some(sheets)) = (&plan.parts, &plan.sheets) else {
@@ -302,7 +325,7 @@ impl<'a> Drawer<'a> {
             parts,
             by_id: parts.iter().map(|p| (p.id.as_str(), p)).collect(),
             font: Font::new(plan.engraving_font.as_ref()),
-            half_kerf_mm: kerf_compensation_mm.map(|k| 0.5 * k),
+            kerf: kerf_compensation,
             arc_tolerance_mm: Some(super::arcs::DEFAULT_TOLERANCE_MM),
             plan_path,
         })
@@ -353,7 +376,7 @@ impl<'a> Drawer<'a> {
         let placed = part_on_sheet(
             part,
             &at,
-            self.half_kerf_mm,
+            self.half_kerf_mm(&part.group),
             self.arc_tolerance_mm,
             &self.font,
             true,
@@ -368,6 +391,11 @@ impl<'a> Drawer<'a> {
             group: String::new(),
             stock_note: None,
         })
+    }
+
+    /// Half the kerf a contour of `group` moves by, if compensated.
+    fn half_kerf_mm(&self, group: &str) -> Option<f64> {
+        self.kerf.as_ref().map(|k| k.half_mm(group))
     }
 
     /// The drawing of sheet `i` (0-based) without the engraving: the cuts.
@@ -393,7 +421,7 @@ impl<'a> Drawer<'a> {
                 part_on_sheet(
                     part,
                     pl,
-                    self.half_kerf_mm,
+                    self.half_kerf_mm(&s.group),
                     self.arc_tolerance_mm,
                     &self.font,
                     engraving,
@@ -427,10 +455,10 @@ impl<'a> Drawer<'a> {
 /// Every sheet of `plan` as a drawing (see [`Drawer::new`]).
 pub fn sheet_drawings(
     plan: &Plan,
-    kerf_compensation_mm: Option<f64>,
+    kerf_compensation: Option<Kerf>,
     plan_path: &Path,
 ) -> Result<Vec<SheetDrawing>> {
-    let d = Drawer::new(plan, kerf_compensation_mm, plan_path)?;
+    let d = Drawer::new(plan, kerf_compensation, plan_path)?;
     (0..d.len()).map(|i| d.sheet(i)).collect()
 }
 

@@ -497,6 +497,9 @@ mod plan_tests {
         PlanPart {
             id: id.into(),
             kind: "washer".into(),
+            group: "washer-3".into(),
+            material: "S235".into(),
+            thickness_mm: 3.0,
             strip: None,
             lamella: None,
             count: 1,

@@ -8,6 +8,7 @@ use lamella::analysis::{analyze, Analysis, AnalysisOptions};
 use lamella::network::{Network, RawNetwork};
 use lamella::profile::Profile;
 pub mod meshes;
+pub mod tools;
 /// Networks made from closed forms (shared with the benchmarks).
 pub use lamella_synth as synth;
 
