@@ -30,6 +30,7 @@ pub mod pipeline;
 pub mod plan;
 pub mod profile;
 pub mod spec;
+pub mod structure;
 
 /// Every program built on lamella (the CLI, the tests and the benchmarks)
 /// allocates through mimalloc: writing a big kit's files makes and frees

@@ -1,0 +1,11 @@
+//! The erected grid as a frame: will it carry its own weight, snow and wind?
+//!
+//! Every lamella is a chain of 3D beam elements on its own offset line,
+//! joints and shear blocks are springs, the strips' erection moments and
+//! torques are the initial state; the solver runs linear statics, the
+//! critical load factor (buckling) and second order on that model.
+//!
+//! [`model`] holds the plain data a solver takes (N, mm; OpenSees' local
+//! axes, so the model exports one to one).
+
+pub mod model;

@@ -1,0 +1,153 @@
+//! The frame model: plain data a frame solver takes, in N and mm.
+//!
+//! Units throughout: lengths mm, forces N, moments N·mm, stresses and moduli
+//! MPa (N/mm²), distributed loads N/mm. Degrees of freedom per node, in the
+//! global frame: `[ux, uy, uz, rx, ry, rz]` (mm and rad).
+//!
+//! Element local axes follow OpenSees' `geomTransf` convention so that the
+//! model exports one to one (`DIR/structure/opensees.py`): local x runs from
+//! the element's first node to its second; local z lies in the plane of x
+//! and [`Beam::z_axis`] (the strip's height direction, the surface normal),
+//! perpendicular to x; local y = z × x. Hence for an upright strip of height
+//! h and thickness t:
+//!
+//! * `i_y_mm4` = t·h³/12 — about local y: bending that deflects along the
+//!   normal (the strong axis; curvature kn);
+//! * `i_z_mm4` = h·t³/12 — about local z: bending that deflects across the
+//!   strip, in the surface (the weak axis; curvature kg);
+//! * `j_mm4` — St. Venant torsion (twist tg).
+
+use glam::{DMat3, DVec3};
+
+/// Number of degrees of freedom per node.
+pub const DOF_PER_NODE: usize = 6;
+
+/// A cross-section with its material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    /// Young's modulus, MPa.
+    pub e_mpa: f64,
+    /// Shear modulus, MPa.
+    pub g_mpa: f64,
+    /// Area, mm².
+    pub area_mm2: f64,
+    /// Second moment about local y (strong axis of an upright strip), mm⁴.
+    pub i_y_mm4: f64,
+    /// Second moment about local z (weak axis of an upright strip), mm⁴.
+    pub i_z_mm4: f64,
+    /// St. Venant torsion constant, mm⁴.
+    pub j_mm4: f64,
+}
+
+/// Section forces a beam element carries before any load: the erection
+/// state of a strip cut flat and straight and bent into place. Constant
+/// along the element, in its local axes (N, N·mm); they add to the section
+/// forces of every load combination and the axial force enters the
+/// geometric stiffness.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct InitialForces {
+    /// Axial force, N (tension positive).
+    pub axial_n: f64,
+    /// Torque about local x, N·mm.
+    pub torque_nmm: f64,
+    /// Moment about local y (strong axis), N·mm.
+    pub moment_y_nmm: f64,
+    /// Moment about local z (weak axis), N·mm.
+    pub moment_z_nmm: f64,
+}
+
+/// A straight 3D Euler–Bernoulli beam element (12 degrees of freedom).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Beam {
+    /// Its two nodes (indices into [`FrameModel::nodes_mm`]), first → second
+    /// is local x.
+    pub nodes: [usize; 2],
+    /// Index into [`FrameModel::sections`].
+    pub section: usize,
+    /// A direction in the local x–z plane, not parallel to the element (the
+    /// strip's height direction). Need not be unit or exactly perpendicular.
+    pub z_axis: DVec3,
+    /// The erection state it carries before any load.
+    pub initial: InitialForces,
+}
+
+/// A zero-length spring between two nodes: six stiffnesses in a local frame
+/// (translations along, rotations about the frame's columns). Joints
+/// (bolted crossings, shear blocks, stud connections) are links; a "rigid"
+/// tie is a link of a stiffness the model builder chooses (see its doc), so
+/// that lamella and the OpenSees export solve exactly the same model
+/// (OpenSees `zeroLength` with elastic materials, `-orient` from `frame`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Link {
+    /// Its two nodes; they may be at different points (an eccentric link is
+    /// a short stiff [`Beam`] instead).
+    pub nodes: [usize; 2],
+    /// Columns: the local axes (orthonormal).
+    pub frame: DMat3,
+    /// Translational stiffness along each axis, N/mm (0: free).
+    pub translation_n_per_mm: [f64; 3],
+    /// Rotational stiffness about each axis, N·mm/rad (0: free).
+    pub rotation_nmm_per_rad: [f64; 3],
+}
+
+/// A support: restrained global degrees of freedom of one node, and
+/// optionally a translation restrained along one oblique direction (a
+/// roller on an inclined bearing).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    /// The node.
+    pub node: usize,
+    /// Which of `[ux, uy, uz, rx, ry, rz]` are fixed (global).
+    pub fixed: [bool; 6],
+    /// A unit direction along which translation is fixed (besides `fixed`).
+    pub along: Option<DVec3>,
+}
+
+/// A distributed load on a beam element, uniform along it, in global
+/// directions, N per mm of the element's length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElementLoad {
+    /// The element (index into [`FrameModel::beams`]).
+    pub beam: usize,
+    /// Force per length, global, N/mm.
+    pub force_n_per_mm: DVec3,
+}
+
+/// A force and moment on a node, global.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeLoad {
+    /// The node.
+    pub node: usize,
+    /// Force, N.
+    pub force_n: DVec3,
+    /// Moment, N·mm.
+    pub moment_nmm: DVec3,
+}
+
+/// A set of loads applied together (a load case or a combination of them,
+/// already factored).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LoadSet {
+    /// Its name (`G`, `S`, `W+`, `ULS-1`, …).
+    pub name: String,
+    /// Loads on nodes.
+    pub nodes: Vec<NodeLoad>,
+    /// Uniform loads on beam elements.
+    pub beams: Vec<ElementLoad>,
+}
+
+/// The frame: nodes, elements, links and supports. Plain data; the solver
+/// checks indices and reports a mechanism by the node that moves.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FrameModel {
+    /// Node positions, mm.
+    pub nodes_mm: Vec<DVec3>,
+    /// Sections.
+    pub sections: Vec<Section>,
+    /// Beam elements.
+    pub beams: Vec<Beam>,
+    /// Zero-length springs.
+    pub links: Vec<Link>,
+    /// Supports.
+    pub supports: Vec<Support>,
+}
