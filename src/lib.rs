@@ -1,18 +1,20 @@
 //! lamella: fabrication CAM for gridshells built from flat, straight strips
 //! laid along the asymptotic curves of a minimal surface.
 //!
-//! Stages (see ARCHITECTURE.md), one folder each:
-//! * [`design`]: analytic minimal surfaces, tracing, clips, periodic unfolding
-//!   → a network file;
-//! * [`io`]: file formats only (network files in, plan.json out, profiles,
-//!   trace specs) → [`network::Network`] in mm, validated;
-//! * [`geom`]: smooth curves through samples, smoothed to their precision;
+//! Stages (see ARCHITECTURE.md), one folder each, over plain models
+//! ([`network`], [`profile`], [`spec`], `loads`) and shared geometry
+//! ([`geom`]):
+//! * [`design`]: analytic minimal surfaces, meshes and soap films, tracing,
+//!   clips, periodic unfolding → a network;
 //! * [`analysis`]: nodes ([`analysis::topology`]), Darboux frames and
-//!   curvatures ([`analysis::strip`], [`analysis::normal_field`]), lamella
-//!   lines and the finished model ([`analysis::model`]);
+//!   curvatures ([`analysis::strip`], [`analysis::normal_field`]), each
+//!   lamella on its own line ([`analysis::lines`]);
 //! * [`check`]: the elastic check of every lamella against a [`profile`];
+//! * [`flat`]: the flat assembly state;
 //! * [`fabricate`]: flat parts per profile; [`nest`]: parts onto stock;
-//! * [`emit`]: cutting files, takeoff, safe output; `lamella build`.
+//! * [`structure`]: the erected grid as a frame (statics, buckling);
+//! * [`plan`]: what every writer formats; [`formats`]: file readers and
+//!   writers, safe output; [`pipeline`]: the commands and `lamella build`.
 
 #![warn(missing_docs)]
 
