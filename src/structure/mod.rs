@@ -9,3 +9,4 @@
 //! axes, so the model exports one to one).
 
 pub mod model;
+pub mod verdict;
