@@ -151,3 +151,72 @@ pub struct FrameModel {
     /// Supports.
     pub supports: Vec<Support>,
 }
+
+/// Which limit state a combination is checked at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LimitState {
+    /// Ultimate (EN 1990 6.10): strength and stability.
+    Ultimate,
+    /// Serviceability, characteristic (EN 1990 6.14b): deflection.
+    Serviceability,
+}
+
+impl LimitState {
+    /// `ULS` or `SLS`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LimitState::Ultimate => "ULS",
+            LimitState::Serviceability => "SLS",
+        }
+    }
+}
+
+/// A factored combination of load cases.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Combination {
+    /// The factored loads (their name is the combination's).
+    pub loads: LoadSet,
+    /// Where it is checked.
+    pub limit_state: LimitState,
+}
+
+/// What a beam element is, for the verdict: a lamella's element (checked)
+/// or a connecting piece (a block, a link beam: not checked; `None` in the
+/// roles list).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeamRole {
+    /// Index of the strip in the network (file order).
+    pub strip: usize,
+    /// The lamella of the strip (1 or 2).
+    pub lamella: u32,
+    /// The element's middle, as a station along its lamella's line, mm.
+    pub station_mm: f64,
+    /// The member's length between restraints (the crossing nodes), mm.
+    pub member_span_mm: f64,
+    /// σ_w = E·tg²·h²/12 of the erection twist there, MPa.
+    pub trapeze_mpa: f64,
+}
+
+/// What loads and supports are applied to, named as the user names them
+/// (network node ids, strip ids), built with the model.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LoadTargets {
+    /// Per model node: the surface area it carries times the unit surface
+    /// normal there (normal oriented with z ≥ 0), mm²; zero for nodes that
+    /// are not joints. Σ over nodes of the area is the grid's surface area;
+    /// |z component| is the plan-projected area (snow).
+    pub tributary_mm2: Vec<DVec3>,
+    /// Network node id → the model node of that joint.
+    pub node_ids: std::collections::BTreeMap<String, usize>,
+    /// Strip id → its lamella elements (beam indices), in order along it.
+    pub strip_beams: std::collections::BTreeMap<String, Vec<usize>>,
+    /// Self-weight of every beam element from the kit (the lamella's
+    /// material), N per mm of its length, acting along −z; 0 for links.
+    pub beam_weight_n_per_mm: Vec<f64>,
+    /// Hardware and small parts (bolts, washers, shear blocks, studs,
+    /// splice plates) lumped at model nodes, N, along −z.
+    pub node_weight_n: Vec<f64>,
+    /// The joints on the network's boundary (a strip's first or last
+    /// node), model node indices, ascending.
+    pub boundary_nodes: Vec<usize>,
+}
