@@ -5,8 +5,18 @@
 //! torques are the initial state; the solver runs linear statics, the
 //! critical load factor (buckling) and second order on that model.
 //!
-//! [`model`] holds the plain data a solver takes (N, mm; OpenSees' local
-//! axes, so the model exports one to one).
+//! * [`model`]: the plain data a solver takes (N, mm; OpenSees' local
+//!   axes, so the model exports one to one);
+//! * [`solve`]: element matrices, assembly, the sparse Cholesky
+//!   factorisation, static solves, section forces, reactions, mechanisms;
+//! * [`buckling`]: the critical load factors and modes;
+//! * [`second_order`]: equilibrium on the imperfect, deformed geometry;
+//! * [`verdict`]: cross-section and member checks of an upright strip;
+//! * [`analyse`]: every analysis of every combination, and the verdict.
 
+pub mod analyse;
+pub mod buckling;
 pub mod model;
+pub mod second_order;
+pub mod solve;
 pub mod verdict;

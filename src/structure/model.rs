@@ -134,6 +134,20 @@ pub struct LoadSet {
     pub nodes: Vec<NodeLoad>,
     /// Uniform loads on beam elements.
     pub beams: Vec<ElementLoad>,
+    /// Pressures that follow their element's rotation.
+    pub pressures: Vec<PressureLoad>,
+}
+
+/// A uniform pressure on a beam element along its own local z axis (the
+/// surface normal of an upright strip), N per mm of its length, that turns
+/// with the element's chord: hydrostatic pressure on an arch, wind on a
+/// surface. Its load stiffness enters the buckling analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PressureLoad {
+    /// The element (index into [`FrameModel::beams`]).
+    pub beam: usize,
+    /// Force per length along the element's local z, N/mm.
+    pub n_per_mm: f64,
 }
 
 /// The frame: nodes, elements, links and supports. Plain data; the solver

@@ -1,0 +1,91 @@
+//! Second-order analysis: equilibrium on the geometry imperfect in a given
+//! shape, with every element's geometric stiffness under its own axial
+//! force (load plus erection), iterated until the axial forces settle.
+//!
+//! Each step solves (K + K_G(N_k))·u = P on the imperfect geometry
+//! (the symbolic factorisation is reused; a new numeric one per step) and
+//! takes N_{k+1} from u. The iteration stops when no element's axial force
+//! changes by more than `tolerance` times the largest one (plus 1e-9 N).
+//! Under a load above the critical load the tangent stiffness is not
+//! positive definite: [`FrameError::Unstable`] names the load set. The
+//! section forces include the geometric stiffness' share (the P–Δ and
+//! P–δ moments), and the displacements are measured from the imperfect
+//! geometry.
+
+use super::model::{FrameModel, LoadSet};
+use super::solve::{add, factorise, solve_with, Assembly, FrameError, StaticResult};
+use glam::DVec3;
+
+/// Most iterations.
+pub const MAX_ITERATIONS: usize = 100;
+
+/// A second-order solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SecondOrderResult {
+    /// Displacements from the imperfect geometry, section forces with the
+    /// second-order moments, reactions.
+    pub result: StaticResult,
+    /// Iterations taken.
+    pub iterations: usize,
+}
+
+/// Second order of `loads` on `model` with each node displaced by
+/// `imperfection_mm` (empty: none).
+pub fn second_order(
+    model: &FrameModel,
+    loads: &LoadSet,
+    imperfection_mm: &[DVec3],
+    tolerance: f64,
+) -> Result<SecondOrderResult, FrameError> {
+    let nodes: Vec<DVec3> = model
+        .nodes_mm
+        .iter()
+        .enumerate()
+        .map(|(i, p)| *p + imperfection_mm.get(i).copied().unwrap_or(DVec3::ZERO))
+        .collect();
+    let assembly = Assembly::new(model, &nodes)?;
+    let k = assembly.stiffness(model);
+    let initial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
+    let (p, _) = assembly.load_vector(model, loads);
+    let mut symbolic = None;
+    let mut axial_load = vec![0.0; model.beams.len()];
+    for iteration in 1..=MAX_ITERATIONS {
+        let total: Vec<f64> = initial
+            .iter()
+            .zip(&axial_load)
+            .map(|(a, b)| a + b)
+            .collect();
+        let kt = add(&k, &assembly.geometric(model, &total, None), 1.0);
+        let (factor, sym) =
+            factorise(&kt, &assembly.dofs, symbolic.as_ref()).map_err(|e| match e {
+                FrameError::Mechanism { .. } if iteration > 1 => {
+                    FrameError::Unstable(loads.name.clone())
+                }
+                other => other,
+            })?;
+        symbolic = Some(sym);
+        let x = solve_with(&factor, &p)?;
+        let result = assembly.results(model, loads, &x, Some(&total));
+        let next: Vec<f64> = result
+            .beam_forces
+            .iter()
+            .map(|f| 0.5 * (f.start.axial_n + f.end.axial_n))
+            .collect();
+        let largest = next.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let change = next
+            .iter()
+            .zip(&axial_load)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        axial_load = next;
+        if iteration > 1 && change <= tolerance * largest + 1e-9 {
+            return Ok(SecondOrderResult {
+                result,
+                iterations: iteration,
+            });
+        }
+    }
+    Err(FrameError::NotConverged {
+        what: format!("second order under {}", loads.name),
+        iterations: MAX_ITERATIONS,
+    })
+}
