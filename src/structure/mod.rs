@@ -6,7 +6,9 @@
 //! critical load factor (buckling) and second order on that model.
 //!
 //! [`model`] holds the plain data a solver takes (N, mm; OpenSees' local
-//! axes, so the model exports one to one).
+//! axes, so the model exports one to one); [`loads`] applies a loads file
+//! to it (load cases, EN 1990 combinations, supports, deflection limit).
 
+pub mod loads;
 pub mod model;
 pub mod verdict;

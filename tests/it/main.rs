@@ -18,6 +18,7 @@ mod film_truth;
 mod flat;
 mod invariance;
 mod layers;
+mod loads;
 mod mesh;
 mod mesh_trace;
 mod mesh_truth;
