@@ -732,3 +732,33 @@ fn the_pavilion_file_reads() {
     assert_eq!(s.deflection, Deflection::SpanOver(300.0));
     assert_eq!(combinations(&s).len(), 19);
 }
+
+#[test]
+fn an_upward_load_is_also_combined_with_the_favourable_permanent_factor() {
+    // A lifting force (a crane hook, say) relieves G like suction does.
+    let s = spec(
+        "version: 1
+cases:
+  - {name: G, action: permanent}
+  - {name: Q, action: imposed, point_loads: [{node: N11, force_kn: [0, 0, 2]}]}
+",
+    );
+    let u = LimitState::Ultimate;
+    let v = LimitState::Serviceability;
+    assert_table(
+        &combinations(&s),
+        &[
+            ("ULS G", u, vec![(0, 1.35)]),
+            ("ULS Q", u, vec![(0, 1.35), (1, 1.5)]),
+            ("ULS Q (G inf)", u, vec![(0, 1.0), (1, 1.5)]),
+            ("SLS G", v, vec![(0, 1.0)]),
+            ("SLS Q", v, vec![(0, 1.0), (1, 1.0)]),
+        ],
+    );
+    // Without permanent cases: no G combination, no γG,inf variant.
+    let s = spec("version: 1\ncases: [{name: W-, action: wind, wind_kn_per_m2: -0.4}]\n");
+    assert_table(
+        &combinations(&s),
+        &[("ULS W-", u, vec![(0, 1.5)]), ("SLS W-", v, vec![(0, 1.0)])],
+    );
+}
