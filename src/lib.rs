@@ -2,7 +2,7 @@
 //! laid along the asymptotic curves of a minimal surface.
 //!
 //! Stages (see ARCHITECTURE.md), one folder each, over plain models
-//! ([`network`], [`profile`], [`spec`], `loads`) and shared geometry
+//! ([`network`], [`profile`], [`spec`], [`loads`]) and shared geometry
 //! ([`geom`]):
 //! * [`design`]: analytic minimal surfaces, meshes and soap films, tracing,
 //!   clips, periodic unfolding → a network;
@@ -26,6 +26,7 @@ pub mod fabricate;
 pub mod flat;
 pub mod formats;
 pub mod geom;
+pub mod loads;
 pub mod nest;
 pub mod network;
 pub mod pipeline;

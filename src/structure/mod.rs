@@ -7,6 +7,8 @@
 //!
 //! * [`model`]: the plain data a solver takes (N, mm; OpenSees' local
 //!   axes, so the model exports one to one);
+//! * [`loads`]: a loads file applied to it (load cases, EN 1990
+//!   combinations, supports, deflection limit);
 //! * [`solve`]: element matrices, assembly, the sparse Cholesky
 //!   factorisation, static solves, section forces, reactions, mechanisms;
 //! * [`buckling`]: the critical load factors and modes;
@@ -16,6 +18,7 @@
 
 pub mod analyse;
 pub mod buckling;
+pub mod loads;
 pub mod model;
 pub mod second_order;
 pub mod solve;

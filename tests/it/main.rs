@@ -19,6 +19,7 @@ mod flat;
 mod frame;
 mod invariance;
 mod layers;
+mod loads;
 mod mesh;
 mod mesh_trace;
 mod mesh_truth;

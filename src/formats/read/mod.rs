@@ -3,6 +3,7 @@
 //! in file units; [`read_network`] validates it into a [`Network`] in mm.
 
 pub mod dxf;
+pub mod loads_file;
 pub mod mesh;
 pub mod network_file;
 pub mod obj;
