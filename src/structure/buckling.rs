@@ -274,6 +274,7 @@ mod tests {
                     section: 0,
                     z_axis: DVec3::Z,
                     initial: InitialForces::default(),
+                    offsets_mm: [DVec3::ZERO; 2],
                 })
                 .collect(),
             links: vec![],

@@ -23,7 +23,8 @@
 use crate::error::{Error, Location, Result};
 use crate::loads::{Action, Deflection, LoadCase, LoadSpec, Selection, SupportKind, SupportSpec};
 use crate::structure::model::{
-    Combination, ElementLoad, FrameModel, LimitState, LoadSet, LoadTargets, NodeLoad, Support,
+    Combination, ElementLoad, FrameModel, LimitState, LoadSet, LoadTargets, NodeLoad, PressureLoad,
+    Support,
 };
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -205,6 +206,7 @@ impl Sums {
                     force_n_per_mm,
                 })
                 .collect(),
+            pressures: Vec::new(),
         }
     }
 }
@@ -352,8 +354,19 @@ pub fn combine(cases: &[LoadSet], spec: &CombinationSpec) -> Combination {
             sums.beam(l.beam, l.force_n_per_mm * factor);
         }
     }
+    let mut loads = sums.into_set(&spec.name);
+    for &(i, factor) in &spec.factors {
+        if let Some(set) = cases.get(i) {
+            loads
+                .pressures
+                .extend(set.pressures.iter().map(|p| PressureLoad {
+                    n_per_mm: p.n_per_mm * factor,
+                    ..*p
+                }));
+        }
+    }
     Combination {
-        loads: sums.into_set(&spec.name),
+        loads,
         limit_state: spec.limit_state,
     }
 }

@@ -69,6 +69,12 @@ pub struct Beam {
     pub z_axis: DVec3,
     /// The erection state it carries before any load.
     pub initial: InitialForces,
+    /// Rigid end offsets, global, mm: the element runs from
+    /// `nodes[0] + offsets_mm[0]` to `nodes[1] + offsets_mm[1]`, each end
+    /// tied rigidly to its node (u_end = u_node + θ_node × offset). A
+    /// lamella meets its joint's node this way, on its own line beside
+    /// the joint (OpenSees `geomTransf … -jntOffset`).
+    pub offsets_mm: [DVec3; 2],
 }
 
 /// A zero-length spring between two nodes: six stiffnesses in a local frame

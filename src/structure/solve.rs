@@ -190,7 +190,8 @@ pub fn element_frame(
     index: usize,
     beam: &Beam,
 ) -> Result<ElementFrame, FrameError> {
-    let d = nodes_mm[beam.nodes[1]] - nodes_mm[beam.nodes[0]];
+    let d = (nodes_mm[beam.nodes[1]] + beam.offsets_mm[1])
+        - (nodes_mm[beam.nodes[0]] + beam.offsets_mm[0]);
     let length_mm = d.length();
     if !exceeds(length_mm, 1e-9) {
         return Err(FrameError::Degenerate {
@@ -310,6 +311,61 @@ fn to_global(k: &Mat12, r: &DMat3) -> Mat12 {
         }
     }
     out
+}
+
+/// The rigid-offset transformation of an element (ends from nodes:
+/// u_end = u_node + θ_node × offset), `None` without offsets.
+fn offset_matrix(offsets: &[DVec3; 2]) -> Option<Mat12> {
+    if offsets.iter().all(|o| *o == DVec3::ZERO) {
+        return None;
+    }
+    let mut h = [[0.0; 12]; 12];
+    for (i, row) in h.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for (a, r) in offsets.iter().enumerate() {
+        // θ × r = −[r]×·θ.
+        let skew = [[0.0, -r.z, r.y], [r.z, 0.0, -r.x], [-r.y, r.x, 0.0]];
+        for p in 0..3 {
+            for q in 0..3 {
+                h[6 * a + p][6 * a + 3 + q] = -skew[p][q];
+            }
+        }
+    }
+    Some(h)
+}
+
+/// Hᵀ·k·H.
+fn sandwich(h: &Mat12, k: &Mat12) -> Mat12 {
+    let mut kh = [[0.0; 12]; 12];
+    for i in 0..12 {
+        for j in 0..12 {
+            kh[i][j] = (0..12).map(|m| k[i][m] * h[m][j]).sum();
+        }
+    }
+    let mut out = [[0.0; 12]; 12];
+    for i in 0..12 {
+        for j in 0..12 {
+            out[i][j] = (0..12).map(|m| h[m][i] * kh[m][j]).sum();
+        }
+    }
+    out
+}
+
+/// H·u (node displacements → element end displacements).
+fn apply_h(h: &Option<Mat12>, u: [f64; 12]) -> [f64; 12] {
+    match h {
+        None => u,
+        Some(h) => std::array::from_fn(|i| (0..12).map(|j| h[i][j] * u[j]).sum()),
+    }
+}
+
+/// Hᵀ·f (element end forces → node forces).
+fn apply_ht(h: &Option<Mat12>, f: [f64; 12]) -> [f64; 12] {
+    match h {
+        None => f,
+        Some(h) => std::array::from_fn(|i| (0..12).map(|j| h[j][i] * f[j]).sum()),
+    }
 }
 
 /// Local ← global for an element's 12 displacements.
@@ -546,6 +602,8 @@ pub struct Assembly {
     /// The node positions the frames were taken at (imperfect geometry in
     /// second order).
     pub nodes_mm: Vec<DVec3>,
+    /// Per beam: its rigid-offset transformation, if it has offsets.
+    offsets: Vec<Option<Mat12>>,
 }
 
 impl Assembly {
@@ -562,6 +620,11 @@ impl Assembly {
             dofs: Dofs::of(model),
             frames,
             nodes_mm: nodes_mm.to_vec(),
+            offsets: model
+                .beams
+                .iter()
+                .map(|b| offset_matrix(&b.offsets_mm))
+                .collect(),
         })
     }
 
@@ -572,6 +635,15 @@ impl Assembly {
             d[6 + k] = self.dofs.index[b.nodes[1] * 6 + k];
         }
         d
+    }
+
+    /// Scatters an element's matrix (at its ends) onto its nodes.
+    fn scatter_beam(&self, t: &mut Vec<(usize, usize, f64)>, index: usize, beam: &Beam, k: &Mat12) {
+        let d = self.element_dofs(beam);
+        match &self.offsets[index] {
+            None => self.scatter(t, &d, k),
+            Some(h) => self.scatter(t, &d, &sandwich(h, k)),
+        }
     }
 
     fn scatter(&self, t: &mut Vec<(usize, usize, f64)>, d: &[usize; 12], k: &Mat12) {
@@ -599,7 +671,7 @@ impl Assembly {
                 &local_stiffness(&model.sections[b.section], f.length_mm),
                 &f.rotation,
             );
-            self.scatter(&mut t, &self.element_dofs(b), &k);
+            self.scatter_beam(&mut t, i, b, &k);
         }
         for l in &model.links {
             let mut k = [[0.0; 12]; 12];
@@ -679,7 +751,7 @@ impl Assembly {
                 &local_geometric(&model.sections[b.section], f.length_mm, axial_n[i]),
                 &f.rotation,
             );
-            self.scatter(&mut t, &self.element_dofs(b), &k);
+            self.scatter_beam(&mut t, i, b, &k);
         }
         if let Some(loads) = pressures {
             self.pressure_stiffness(model, loads, &mut t);
@@ -720,7 +792,7 @@ impl Assembly {
                     sym[a][c] = 0.5 * (k[a][c] + k[c][a]);
                 }
             }
-            self.scatter(t, &self.element_dofs(b), &sym);
+            self.scatter_beam(t, p.beam, b, &sym);
         }
     }
 
@@ -764,7 +836,10 @@ impl Assembly {
             if equivalent[i].iter().all(|&v| v == 0.0) {
                 continue;
             }
-            let g = globalise(&self.frames[i].rotation, &equivalent[i]);
+            let g = apply_ht(
+                &self.offsets[i],
+                globalise(&self.frames[i].rotation, &equivalent[i]),
+            );
             for k in 0..6 {
                 add(b.nodes[0], k, g[k]);
                 add(b.nodes[1], k, g[6 + k]);
@@ -817,7 +892,7 @@ impl Assembly {
             let mut ug = [0.0; 12];
             ug[..6].copy_from_slice(&displacements[b.nodes[0]]);
             ug[6..].copy_from_slice(&displacements[b.nodes[1]]);
-            let ul = localise(&f.rotation, &ug);
+            let ul = localise(&f.rotation, &apply_h(&self.offsets[i], ug));
             let mut k = local_stiffness(s, f.length_mm);
             if let Some(n) = axial_n {
                 let kg = local_geometric(s, f.length_mm, n[i]);
@@ -831,7 +906,7 @@ impl Assembly {
             for a in 0..12 {
                 fl[a] = (0..12).map(|c| k[a][c] * ul[c]).sum::<f64>() - equivalent[i][a];
             }
-            let g = globalise(&f.rotation, &fl);
+            let g = apply_ht(&self.offsets[i], globalise(&f.rotation, &fl));
             for k in 0..6 {
                 internal[b.nodes[0]][k] += g[k];
                 internal[b.nodes[1]][k] += g[6 + k];

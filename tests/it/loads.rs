@@ -95,6 +95,7 @@ fn beam(a: usize, b: usize, z_axis: DVec3) -> Beam {
         section: 0,
         z_axis,
         initial: InitialForces::default(),
+        offsets_mm: [DVec3::ZERO; 2],
     }
 }
 
