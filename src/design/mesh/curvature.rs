@@ -22,8 +22,8 @@
 //! neighbourhood's size are decided once per mesh, from the jets of at
 //! most [`DECISION_SAMPLE`] vertices. On the 160,801-vertex mesh of
 //! `cargo bench --bench mesh` (5 mm cells: quartics over 120 vertices)
-//! this took the stage from 48 s to 17 s of CPU time (dev profile, a
-//! loaded machine).
+//! this took the stage from 68 s to 27 s (dev profile, two cores loaded
+//! 2.5 times over).
 //!
 //! Accuracy, and how the fit is chosen ([`vertex_jets`]). Two errors enter
 //! the curvature. Truncation: a degree-d jet over a neighbourhood of radius
