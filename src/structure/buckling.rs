@@ -4,24 +4,27 @@
 //! axial forces of the linear solution under the load set, and following
 //! pressures' load stiffness scaled with them.
 //!
-//! **Method.** Shift-invert subspace iteration (Bathe): with K_e = K +
-//! K_G,0 factorised once (sparse Cholesky), iterate Y = K_e⁻¹·(−K_G)·X
-//! on a block of p = 2m + 8 vectors; after every step the Rayleigh–Ritz
-//! problem (Yᵀ·(−K_G)·Y)·v = μ·(Yᵀ·K_e·Y)·v gives μ = 1/λ. Eigenvalues of
-//! either sign appear (λ < 0: buckling under the reversed load, members in
-//! tension); the m smallest positive λ are kept. Converged when each of
-//! them changes by less than [`TOLERANCE`] relative in one step.
+//! **Method.** Shift-invert Lanczos: with K_e = K + K_G,0 factorised
+//! once (sparse Cholesky), the operator Op = K_e⁻¹·(−K_G) is self-adjoint
+//! in the K_e inner product and its eigenvalues are μ = 1/λ; Lanczos in
+//! that inner product (one solve and two sparse products per step, full
+//! reorthogonalisation twice, so no spurious copies) finds both ends of
+//! the spectrum first, and the wanted end is the largest positive μ.
+//! Eigenvalues of either sign appear (λ < 0: buckling under the reversed
+//! load, members in tension); the m smallest positive λ are kept. A Ritz
+//! pair is converged when its residual |β_j·s_j| is below [`TOLERANCE`]·μ
+//! (the eigenvalue's error is of the order of its square); at least
+//! 2m + 4 steps are taken so that a missing mode would have shown.
 
 use super::model::{FrameModel, LoadSet};
-use super::solve::{axial_forces, Assembly, FrameError, LinearFrame, SymSparse};
-use faer::linalg::solvers::Solve;
+use super::solve::{axial_forces, solve_with, Assembly, FrameError, LinearFrame, SymSparse};
 use faer::{Mat, Side};
 
-/// Relative change of every wanted α_cr in one step at convergence.
+/// Relative residual of every wanted Ritz pair at convergence.
 pub const TOLERANCE: f64 = 1e-8;
 
-/// Most subspace steps.
-pub const MAX_ITERATIONS: usize = 200;
+/// Most Lanczos steps.
+pub const MAX_ITERATIONS: usize = 400;
 
 /// A buckling mode.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,7 +61,7 @@ pub fn critical_factors_of(
     if modes == 0 || kg.entries.iter().all(|e| e.2 == 0.0) {
         return Ok(Vec::new());
     }
-    let found = subspace(linear, &kg, modes)?;
+    let found = lanczos(linear, &kg, modes)?;
     Ok(found
         .into_iter()
         .map(|(factor, v)| BucklingMode {
@@ -107,143 +110,115 @@ fn shape_of(assembly: &Assembly, v: &[f64]) -> Vec<[f64; 6]> {
     shape
 }
 
-/// Deterministic start vectors: the diagonal ratio and pseudo-random.
-fn start(n: usize, p: usize, kg: &SymSparse, ke: &SymSparse) -> Mat<f64> {
-    let (dg, de) = (kg.diagonal(), ke.diagonal());
-    let mut x = Mat::<f64>::zeros(n, p);
-    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-    for i in 0..n {
-        x[(i, 0)] = if de[i] > 0.0 {
-            dg[i].abs() / de[i]
-        } else {
-            0.0
-        };
-    }
-    for c in 1..p {
-        for i in 0..n {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            x[(i, c)] = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-        }
-    }
-    x
-}
-
-fn gram(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    a.transpose() * b
-}
-
-/// Subspace iteration; returns (λ, vector) for the smallest positive λ.
-fn subspace(
+/// Lanczos on Op = K_e⁻¹·(−K_G), self-adjoint in the K_e inner product,
+/// with full reorthogonalisation (twice); returns (λ, vector) for the
+/// smallest positive λ = 1/μ.
+fn lanczos(
     linear: &LinearFrame<'_>,
     kg: &SymSparse,
     modes: usize,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
+    let ke = &linear.stiffness;
     let n = kg.n;
-    let p = (2 * modes + 8).min(n);
-    let mut x = start(n, p, kg, &linear.stiffness);
-    let mut previous: Vec<f64> = Vec::new();
-    for iteration in 0..MAX_ITERATIONS {
-        // Y = K_e⁻¹ · (−K_G) · X.
-        let mut gx = kg.mul(&x);
-        for c in 0..p {
-            for i in 0..n {
-                gx[(i, c)] = -gx[(i, c)];
+    let steps = MAX_ITERATIONS.min(n);
+    let k_dot = |x: &[f64], y: &[f64]| -> f64 {
+        let kx = ke.mul_vec(x);
+        kx.iter().zip(y).map(|(a, b)| a * b).sum()
+    };
+    // A deterministic start: pseudo-random, K_e-normalised.
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut r: Vec<f64> = (0..n)
+        .map(|_| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+        .collect();
+    let norm = k_dot(&r, &r).sqrt();
+    r.iter_mut().for_each(|v| *v /= norm);
+    let mut q: Vec<Vec<f64>> = vec![r];
+    let (mut alpha, mut beta): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
+    for j in 0..steps {
+        // w = K_e⁻¹·(−K_G·q_j); α_j = q_jᵀ·(−K_G·q_j).
+        let g: Vec<f64> = kg.mul_vec(&q[j]).into_iter().map(|v| -v).collect();
+        alpha.push(g.iter().zip(&q[j]).map(|(a, b)| a * b).sum());
+        let mut w = solve_with(&linear.factor, &g)?;
+        for _pass in 0..2 {
+            let kw = ke.mul_vec(&w);
+            for qi in &q {
+                let c: f64 = kw.iter().zip(qi).map(|(a, b)| a * b).sum();
+                w.iter_mut().zip(qi).for_each(|(a, b)| *a -= c * b);
             }
         }
-        let mut y = gx.clone();
-        linear.factor.llt.solve_in_place(y.as_mut());
-        // Rayleigh–Ritz: Ke_r = Yᵀ·K_e·Y = Yᵀ·(−K_G·X); G_r = Yᵀ·(−K_G)·Y.
-        let ke_r = symmetric(&gram(&y, &gx));
-        let mut gy = kg.mul(&y);
-        for c in 0..p {
-            for i in 0..n {
-                gy[(i, c)] = -gy[(i, c)];
+        let b = k_dot(&w, &w).max(0.0).sqrt();
+        let check = (j + 1) % 5 == 0 || j + 1 == steps || !(b > 1e-14 * alpha[j].abs().max(1e-300));
+        if check {
+            if let Some(found) = ritz(&q, &alpha, &beta, b, modes)? {
+                return Ok(found);
             }
         }
-        let g_r = symmetric(&gram(&y, &gy));
-        // Whiten Ke_r = U·S·Uᵀ (drop directions the block has lost).
-        let e = ke_r
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| FrameError::Invalid(format!("buckling: {e:?}")))?;
-        let (s, u) = (e.S().column_vector(), e.U());
-        let smax = (0..p).map(|i| s[i]).fold(0.0, f64::max);
-        let keep: Vec<usize> = (0..p).filter(|&i| s[i] > 1e-13 * smax).collect();
-        let mut w = Mat::<f64>::zeros(p, keep.len());
-        for (c, &i) in keep.iter().enumerate() {
-            let f = 1.0 / s[i].sqrt();
-            for r in 0..p {
-                w[(r, c)] = u[(r, i)] * f;
-            }
+        if !(b > 1e-14 * alpha[j].abs().max(1e-300)) {
+            // An invariant subspace: every Ritz pair is exact.
+            return Ok(ritz(&q, &alpha, &beta, 0.0, modes)?.unwrap_or_default());
         }
-        let c_r = symmetric(&(w.transpose() * &g_r * &w));
-        let ec = c_r
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| FrameError::Invalid(format!("buckling: {e:?}")))?;
-        let (mu, v) = (ec.S().column_vector(), ec.U());
-        let q = keep.len();
-        // Order by μ descending (largest positive μ = smallest positive λ).
-        let mut order: Vec<usize> = (0..q).collect();
-        order.sort_by(|&a, &b| mu[b].total_cmp(&mu[a]));
-        let vv = &w * v;
-        let mut next = Mat::<f64>::zeros(n, p);
-        let ritz = &y * &vv;
-        for (c, &k) in order.iter().enumerate() {
-            for i in 0..n {
-                next[(i, c)] = ritz[(i, k)];
-            }
-        }
-        // Refill lost directions with fresh vectors.
-        for c in q..p {
-            let mut seed: u64 = 0x9e37_79b9 ^ (c as u64 * 7919 + iteration as u64);
-            for i in 0..n {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                next[(i, c)] = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-            }
-        }
-        x = next;
-        let lambdas: Vec<f64> = order
-            .iter()
-            .map(|&k| mu[k])
-            .filter(|&m| m > 0.0)
-            .map(|m| 1.0 / m)
-            .take(modes)
-            .collect();
-        let converged = lambdas.len() == previous.len()
-            && lambdas
-                .iter()
-                .zip(&previous)
-                .all(|(a, b)| ((a - b) / a).abs() < TOLERANCE);
-        // Only trust eigenpairs deep inside the block: the wanted ones sit
-        // in the first `modes` positive slots of p ≥ 2·modes + 8.
-        if converged && iteration > 1 {
-            let mut out = Vec::with_capacity(lambdas.len());
-            for (c, lambda) in lambdas.iter().enumerate() {
-                let col: Vec<f64> = (0..n).map(|i| x[(i, c)]).collect();
-                out.push((*lambda, col));
-            }
-            return Ok(out);
-        }
-        previous = lambdas;
+        beta.push(b);
+        w.iter_mut().for_each(|v| *v /= b);
+        q.push(w);
     }
     Err(FrameError::NotConverged {
-        what: "the buckling analysis".into(),
-        iterations: MAX_ITERATIONS,
+        what: "the buckling analysis (Lanczos)".into(),
+        iterations: steps,
     })
 }
 
-fn symmetric(a: &Mat<f64>) -> Mat<f64> {
-    let n = a.nrows();
-    let mut s = Mat::<f64>::zeros(n, n);
-    for i in 0..n {
-        for j in 0..n {
-            s[(i, j)] = 0.5 * (a[(i, j)] + a[(j, i)]);
+/// The Ritz pairs of the tridiagonal (α, β); `Some` when the wanted ones
+/// (the `modes` largest positive μ) have residuals |b·s_last| below
+/// [`TOLERANCE`]·μ.
+fn ritz(
+    q: &[Vec<f64>],
+    alpha: &[f64],
+    beta: &[f64],
+    b: f64,
+    modes: usize,
+) -> Result<Option<Vec<(f64, Vec<f64>)>>, FrameError> {
+    let m = alpha.len();
+    let mut t = Mat::<f64>::zeros(m, m);
+    for i in 0..m {
+        t[(i, i)] = alpha[i];
+        if i + 1 < m {
+            t[(i + 1, i)] = beta[i];
+            t[(i, i + 1)] = beta[i];
         }
     }
-    s
+    let e = t
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|e| FrameError::Invalid(format!("buckling: {e:?}")))?;
+    let (mu, s) = (e.S().column_vector(), e.U());
+    // Ascending μ: the wanted are the last, positive ones.
+    let wanted: Vec<usize> = (0..m).rev().filter(|&i| mu[i] > 0.0).take(modes).collect();
+    let converged = wanted
+        .iter()
+        .all(|&i| (b * s[(m - 1, i)]).abs() <= TOLERANCE * mu[i]);
+    // Enough steps that a missing mode would have shown (at least twice
+    // the modes), unless the space is exhausted.
+    if !converged || (m < 2 * modes + 4 && b != 0.0) {
+        return Ok(None);
+    }
+    let n = q[0].len();
+    Ok(Some(
+        wanted
+            .iter()
+            .map(|&i| {
+                let mut x = vec![0.0; n];
+                for (k, qk) in q.iter().enumerate().take(m) {
+                    let c = s[(k, i)];
+                    x.iter_mut().zip(qk).for_each(|(a, b)| *a += c * b);
+                }
+                (1.0 / mu[i], x)
+            })
+            .collect(),
+    ))
 }
 
 #[cfg(test)]

@@ -462,6 +462,18 @@ impl SymSparse {
         y
     }
 
+    /// y = A·x.
+    pub(crate) fn mul_vec(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.n];
+        for &(i, j, v) in &self.entries {
+            y[i] += v * x[j];
+            if i != j {
+                y[j] += v * x[i];
+            }
+        }
+        y
+    }
+
     pub(crate) fn diagonal(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.n];
         for &(i, j, v) in &self.entries {
