@@ -8,5 +8,6 @@
 //! [`model`] holds the plain data a solver takes (N, mm; OpenSees' local
 //! axes, so the model exports one to one).
 
+pub mod build;
 pub mod model;
 pub mod verdict;
