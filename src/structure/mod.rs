@@ -6,7 +6,9 @@
 //! critical load factor (buckling) and second order on that model.
 //!
 //! [`model`] holds the plain data a solver takes (N, mm; OpenSees' local
-//! axes, so the model exports one to one).
+//! axes, so the model exports one to one); [`build`] makes that model from
+//! the analysis, the profile and the kit (lamella chains with their
+//! erection state, joints, shear blocks, tributary areas and weights).
 
 pub mod build;
 pub mod model;
