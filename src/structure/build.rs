@@ -1691,4 +1691,30 @@ mod tests {
     fn poplar_masses_add_up() {
         masses("hypar-small", "poplar-ply-4");
     }
+
+    #[test]
+    fn every_shipped_profile_builds_a_connected_frame_on_five_samples() {
+        let mut built = 0;
+        for sample in [
+            "catenoid",
+            "scherk",
+            "schwarz-d-patch",
+            "film-saddle",
+            "hypar-small",
+        ] {
+            for profile in ["steel-1.5", "poplar-ply-4", "beech-veneer"] {
+                let (net, an, p, kit) = load(sample, profile);
+                let f = build_frame(&net, &an, &p, &kit, &FrameOptions::default())
+                    .unwrap_or_else(|e| panic!("{sample} {profile}: {e}"));
+                assert!(connected(&f.model), "{sample} {profile}");
+                let trib: f64 = f.targets.tributary_mm2.iter().map(|v| v.length()).sum();
+                let cells: f64 = grid_cells(&an).iter().map(|c| c.1).sum();
+                assert!(cells > 0.0 && (trib - cells).abs() < 1e-9 * cells);
+                assert!(f.targets.boundary_nodes.windows(2).all(|w| w[0] < w[1]));
+                assert_eq!(f.targets.node_ids.len(), an.topology.nodes.len());
+                built += 1;
+            }
+        }
+        assert_eq!(built, 15);
+    }
 }
