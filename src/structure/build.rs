@@ -1180,6 +1180,62 @@ mod tests {
         assert!(worst < 1e-3 * scale, "{worst} against {scale}");
     }
 
+    #[test]
+    fn the_rotation_rate_of_a_helix_on_its_cylinder_has_normal_curvature() {
+        // r = 1000, p = 500 mm per radian, the cylinder's outward normals
+        // from the file: kg = 0, kn = −r/(r² + p²) = −8e-4, tg = p/(r² +
+        // p²) = 4e-4 per mm, so ω = (4e-4, 8e-4, 0); the frame's finite
+        // difference gives the same, in particular the sign of ω_y = −kn.
+        let (r, pitch) = (1000.0f64, 500.0f64);
+        let th: Vec<f64> = (0..=120).map(|k| f64::from(k * 3).to_radians()).collect();
+        let curve = crate::network::Curve {
+            id: "A0".into(),
+            family: Family::A,
+            normals_world: Some(
+                th.iter()
+                    .map(|&t| DVec3::new(t.cos(), t.sin(), 0.0))
+                    .collect(),
+            ),
+            points_world_mm: th
+                .iter()
+                .map(|&t| DVec3::new(r * t.cos(), r * t.sin(), pitch * t))
+                .collect(),
+        };
+        let smooth = SmoothCurve::new(&curve.points_world_mm);
+        let strip = StripGeometry::new(
+            0,
+            &curve,
+            &smooth,
+            &[],
+            &[],
+            crate::analysis::strip::FrameOptions::default(),
+        );
+        let a2 = r * r + pitch * pitch;
+        let at = 0.5 * strip.length_mm;
+        let d = 0.05;
+        let (f0, fm, fp) = (
+            strip.frame_at(&smooth, at),
+            strip.frame_at(&smooth, at - d),
+            strip.frame_at(&smooth, at + d),
+        );
+        let der = |a: DVec3, b: DVec3| (b - a) / (2.0 * d);
+        let w = 0.5
+            * (f0.x.cross(der(fm.x, fp.x))
+                + f0.y.cross(der(fm.y, fp.y))
+                + f0.z.cross(der(fm.z, fp.z)));
+        let local = DVec3::new(w.dot(f0.x), w.dot(f0.y), w.dot(f0.z));
+        let exact = DVec3::new(pitch / a2, r / a2, 0.0);
+        assert!(
+            (local - exact).abs().max_element() < 1e-7,
+            "{local} against {exact}"
+        );
+        let rate = darboux_rate(f0.kg_per_mm, f0.kn_per_mm, f0.tg_per_mm);
+        assert!(
+            (rate - exact).abs().max_element() < 1e-7,
+            "{rate} against {exact}"
+        );
+    }
+
     /// Union–find root.
     fn find(p: &mut [usize], i: usize) -> usize {
         let mut i = i;
