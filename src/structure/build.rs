@@ -1392,6 +1392,36 @@ mod tests {
             m.beams.len(),
             m.links.len()
         );
+        // Each A×B joint carries its two star washers and its node bolt
+        // (M8, no plain washers under the stars), nothing else.
+        let bolt = kit
+            .summary
+            .hardware
+            .iter()
+            .find(|hw| hw.item == "node bolt")
+            .expect("node bolts");
+        let set_kg = bolt_set_mass_kg(8.0, bolt.length_mm.expect("a length"), 0).unwrap();
+        for g in &grid {
+            let star = kit
+                .parts
+                .iter()
+                .find(|q| q.id == washer::washer_id(washer::angle_class_deg(g.angle_deg)))
+                .expect("its washer");
+            let want = (2.0 * part_mass_kg(star, &p) + set_kg) * G_M_PER_S2;
+            let got = f.targets.node_weight_n[f.targets.node_ids[&g.id.to_string()]];
+            assert!(
+                (got - want).abs() < 1e-9,
+                "node {}: {got} against {want}",
+                g.id
+            );
+        }
+        // The boundary: every strip's first and last node.
+        for s in &an.strips {
+            for cn in [s.nodes.first(), s.nodes.last()].into_iter().flatten() {
+                let j = f.targets.node_ids[&cn.node.to_string()];
+                assert!(f.targets.boundary_nodes.binary_search(&j).is_ok());
+            }
+        }
         // Edge bands: chains on the edge curves, `elements_per_span` per
         // span between their nodes, no role.
         for s in an.edge_strips() {
