@@ -7,6 +7,9 @@
 //!
 //! * [`model`]: the plain data a solver takes (N, mm; OpenSees' local
 //!   axes, so the model exports one to one);
+//! * [`build`]: that model from the analysis, the profile and the kit
+//!   (lamella chains with their erection state, joints, shear blocks,
+//!   tributary areas and weights);
 //! * [`loads`]: a loads file applied to it (load cases, EN 1990
 //!   combinations, supports, deflection limit);
 //! * [`solve`]: element matrices, assembly, the sparse Cholesky
@@ -18,6 +21,7 @@
 
 pub mod analyse;
 pub mod buckling;
+pub mod build;
 pub mod loads;
 pub mod model;
 pub mod second_order;
