@@ -83,7 +83,8 @@ pub struct CombinationResult {
     pub max_translation_node: usize,
     /// The first buckling modes (ULS only), ascending α_cr.
     pub buckling: Vec<BucklingMode>,
-    /// Whether second order ran, and the iterations it took.
+    /// Whether second order ran, and the iterations it took (`Some(0)`:
+    /// it ran and did not converge, so the combination fails).
     pub second_order_iterations: Option<usize>,
     /// Per beam element: the larger of section and member utilisation
     /// (ULS; 0 for connecting pieces and SLS).
@@ -124,10 +125,19 @@ pub fn analyse(
             if let Some(mode) = buckling.first() {
                 if mode.factor > 1.0 && mode.factor < ALPHA_CR_LIMIT {
                     let imperfection = imperfection_of(mode, settings.imperfection_mm);
-                    let second =
-                        second_order(model, &combination.loads, &imperfection, settings.tolerance)?;
-                    iterations = Some(second.iterations);
-                    result = second.result;
+                    match second_order(model, &combination.loads, &imperfection, settings.tolerance)
+                    {
+                        Ok(second) => {
+                            iterations = Some(second.iterations);
+                            result = second.result;
+                        }
+                        // Not shown stable to second order: the verdict fails
+                        // (the linear results stay for the report).
+                        Err(FrameError::NotConverged { .. } | FrameError::Unstable(_)) => {
+                            iterations = Some(0);
+                        }
+                        Err(other) => return Err(other),
+                    }
                 }
             }
         }

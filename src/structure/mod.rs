@@ -17,7 +17,8 @@
 //! * [`buckling`]: the critical load factors and modes;
 //! * [`second_order`]: equilibrium on the imperfect, deformed geometry;
 //! * [`verdict`]: cross-section and member checks of an upright strip;
-//! * [`analyse`]: every analysis of every combination, and the verdict.
+//! * [`analyse`]: every analysis of every combination, and the verdict;
+//! * [`stage`]: a network under a loads file, from model to verdict.
 
 pub mod analyse;
 pub mod buckling;
@@ -26,4 +27,5 @@ pub mod loads;
 pub mod model;
 pub mod second_order;
 pub mod solve;
+pub mod stage;
 pub mod verdict;

@@ -3,7 +3,8 @@
 //! force (load plus erection), iterated until the axial forces settle.
 //!
 //! Each step solves (K + K_G(N_k))·u = P on the imperfect geometry
-//! (the symbolic factorisation is reused; a new numeric one per step) and
+//! (the symbolic factorisation is reused while the pattern stays the
+//! same; a new numeric one per step) and
 //! takes N_{k+1} from u. The iteration stops when no element's axial force
 //! changes by more than `tolerance` times the largest one (plus 1e-9 N).
 //! Under a load above the critical load the tangent stiffness is not
@@ -13,11 +14,11 @@
 //! geometry.
 
 use super::model::{FrameModel, LoadSet};
-use super::solve::{add, factorise, solve_with, Assembly, FrameError, StaticResult};
+use super::solve::{add, factorise, solve_refined, Assembly, FrameError, StaticResult};
 use glam::DVec3;
 
 /// Most iterations.
-pub const MAX_ITERATIONS: usize = 100;
+pub const MAX_ITERATIONS: usize = 200;
 
 /// A second-order solution.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,8 +47,20 @@ pub fn second_order(
     let assembly = Assembly::new(model, &nodes)?;
     let k = assembly.stiffness(model);
     let initial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
+    // The imperfect elements carry the same total load as the perfect ones.
+    let mut scaled = loads.clone();
+    for l in scaled.beams.iter_mut() {
+        let [a, b] = model.beams[l.beam].nodes;
+        let perfect = (model.nodes_mm[b] - model.nodes_mm[a]).length();
+        let imperfect = (nodes[b] - nodes[a]).length();
+        if imperfect > 0.0 {
+            l.force_n_per_mm *= perfect / imperfect;
+        }
+    }
+    let loads = &scaled;
     let (p, _) = assembly.load_vector(model, loads);
     let mut symbolic = None;
+    let mut pattern: Vec<(usize, usize)> = Vec::new();
     let mut axial_load = vec![0.0; model.beams.len()];
     for iteration in 1..=MAX_ITERATIONS {
         let total: Vec<f64> = initial
@@ -56,6 +69,11 @@ pub fn second_order(
             .map(|(a, b)| a + b)
             .collect();
         let kt = add(&k, &assembly.geometric(model, &total, None), 1.0);
+        let this: Vec<(usize, usize)> = kt.entries.iter().map(|e| (e.0, e.1)).collect();
+        if this != pattern {
+            symbolic = None;
+            pattern = this;
+        }
         let (factor, sym) =
             factorise(&kt, &assembly.dofs, symbolic.as_ref()).map_err(|e| match e {
                 FrameError::Mechanism { .. } if iteration > 1 => {
@@ -64,7 +82,7 @@ pub fn second_order(
                 other => other,
             })?;
         symbolic = Some(sym);
-        let x = solve_with(&factor, &p)?;
+        let x = solve_refined(&factor, &kt, &p)?;
         let result = assembly.results(model, loads, &x, Some(&total));
         let next: Vec<f64> = result
             .beam_forces

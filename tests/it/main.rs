@@ -35,6 +35,7 @@ mod readers;
 mod readme;
 mod robustness;
 mod stock_groups;
+mod structure;
 mod trace;
 mod traced_accuracy;
 mod web_ends;

@@ -1,0 +1,190 @@
+//! The structure stage: a network's frame under a loads file, every
+//! combination analysed, and the verdict.
+//!
+//! The model is [`super::build`]'s (from the analysis and the kit), the
+//! supports, load cases and combinations are [`super::loads`]'s, the
+//! analyses and the element verdict are [`super::analyse`]'s. Settings
+//! taken from the profile:
+//!
+//! * the lamella section t × h, E and G;
+//! * the design strength f_d = k_mod·f_k/γ_M (k_mod = 1 for steel);
+//! * the member rules: EN 1993-1-1 for a material without grain (f_y = f_k,
+//!   γ_M1 = γ_M), EN 1995-1-1 for timber (k_mod, γ_M);
+//! * the first [`MODES`] buckling modes per ULS combination;
+//! * the second-order imperfection: the first mode scaled to span/300
+//!   ([`IMPERFECTION_SPAN_OVER`]; the order of EN 1993-1-1 §5.3.2's bow
+//!   imperfections e0/L = 1/300…1/150 for elastic analysis, taken over the
+//!   grid's span because the first mode of a grid is global).
+
+use super::analyse::{analyse, Settings, StructureResults};
+use super::build::{build_frame, BuiltFrame, FrameOptions};
+use super::loads::{
+    combinations, combine, deflection_limit_mm, deflection_span_mm, load_cases, supports,
+};
+use super::model::{Combination, LimitState};
+use super::verdict::{Code, Rectangle};
+use crate::analysis::Analysis;
+use crate::error::{Error, Result};
+use crate::fabricate::Kit;
+use crate::loads::LoadSpec;
+use crate::network::Network;
+use crate::profile::{Grain, Profile};
+
+/// Buckling modes computed per ULS combination.
+pub const MODES: usize = 6;
+
+/// The second-order imperfection's amplitude: span over this.
+pub const IMPERFECTION_SPAN_OVER: f64 = 300.0;
+
+/// Relative tolerance of the second-order iteration (axial forces).
+pub const SECOND_ORDER_TOLERANCE: f64 = 1e-4;
+
+/// Everything the structure stage found.
+#[derive(Debug, Clone)]
+pub struct FrameReport {
+    /// The model, its elements' roles and the load targets.
+    pub built: BuiltFrame,
+    /// The combinations, as analysed.
+    pub combinations: Vec<Combination>,
+    /// How the elements were judged.
+    pub settings: Settings,
+    /// The span the deflection limit and the imperfection refer to, mm.
+    pub span_mm: f64,
+    /// Every combination's results.
+    pub results: StructureResults,
+}
+
+impl FrameReport {
+    /// The largest ULS utilisation, its combination and element.
+    pub fn governing(&self) -> Option<(usize, usize, f64)> {
+        let mut best: Option<(usize, usize, f64)> = None;
+        for (c, r) in self.results.combinations.iter().enumerate() {
+            if let Some(g) = r.governing {
+                if best.is_none_or(|b| g.utilisation > b.2) {
+                    best = Some((c, g.beam, g.utilisation));
+                }
+            }
+        }
+        best
+    }
+
+    /// The smallest α_cr over the ULS combinations and its combination.
+    pub fn alpha_cr(&self) -> Option<(usize, f64)> {
+        self.results
+            .combinations
+            .iter()
+            .enumerate()
+            .filter_map(|(c, r)| r.alpha_cr().map(|a| (c, a)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// The largest SLS translation, its combination and node.
+    pub fn deflection(&self) -> Option<(usize, usize, f64)> {
+        self.results
+            .combinations
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.limit_state == LimitState::Serviceability)
+            .map(|(c, r)| (c, r.max_translation_node, r.max_translation_mm))
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+    }
+
+    /// Whether the grid stands: every ULS utilisation ≤ 1, α_cr > 1 for
+    /// every ULS combination, every SLS deflection within the limit.
+    pub fn passes(&self) -> bool {
+        let strength = self.governing().is_none_or(|g| g.2 <= 1.0);
+        let stability = self.alpha_cr().is_none_or(|a| a.1 > 1.0)
+            && self
+                .results
+                .combinations
+                .iter()
+                .all(|r| r.second_order_iterations != Some(0));
+        let deflection = self
+            .deflection()
+            .is_none_or(|d| d.2 <= self.settings.deflection_limit_mm);
+        strength && stability && deflection
+    }
+}
+
+/// The settings a profile and a deflection limit give.
+pub fn settings_of(profile: &Profile, deflection_limit_mm: f64, span_mm: f64) -> Settings {
+    let m = &profile.material;
+    let code = match m.grain {
+        Grain::None => Code::Steel {
+            yield_mpa: m.characteristic_strength_mpa,
+            gamma_m1: m.partial_factor,
+        },
+        Grain::AlongStrip => Code::Timber {
+            strength_mpa: m.characteristic_strength_mpa,
+            k_mod: m.modification_factor,
+            gamma_m: m.partial_factor,
+        },
+    };
+    let k_mod = match m.grain {
+        Grain::None => 1.0,
+        Grain::AlongStrip => m.modification_factor,
+    };
+    Settings {
+        section: Rectangle {
+            thickness_mm: profile.section.thickness_mm,
+            height_mm: profile.section.height_mm,
+        },
+        youngs_mpa: m.youngs_modulus_mpa,
+        shear_mpa: m.shear_modulus_mpa,
+        design_strength_mpa: k_mod * m.characteristic_strength_mpa / m.partial_factor,
+        code,
+        modes: MODES,
+        deflection_limit_mm,
+        imperfection_mm: span_mm / IMPERFECTION_SPAN_OVER,
+        tolerance: SECOND_ORDER_TOLERANCE,
+    }
+}
+
+/// The frame of `net` under `spec`: built, supported, loaded, analysed and
+/// judged. A frame that is a mechanism under its supports is an error
+/// naming the network node (or the model node) that moves.
+pub fn run(
+    net: &Network,
+    an: &Analysis,
+    profile: &Profile,
+    kit: &Kit,
+    spec: &LoadSpec,
+    opts: &FrameOptions,
+) -> Result<FrameReport> {
+    let mut built = build_frame(net, an, profile, kit, opts)?;
+    built.model.supports = supports(spec, &built.model, &built.targets)?;
+    let cases = load_cases(spec, &built.model, &built.targets)?;
+    let combinations: Vec<Combination> = combinations(spec)
+        .iter()
+        .map(|c| combine(&cases, c))
+        .collect();
+    let span_mm = deflection_span_mm(&built.model, &built.model.supports);
+    let limit = deflection_limit_mm(spec, &built.model, &built.model.supports);
+    let settings = settings_of(profile, limit, span_mm);
+    let results = analyse(&built.model, &built.roles, &combinations, &settings).map_err(|e| {
+        let what = match &e {
+            super::solve::FrameError::Mechanism { node, dof } => {
+                let id = built
+                    .targets
+                    .node_ids
+                    .iter()
+                    .find(|(_, &m)| m == *node)
+                    .map(|(id, _)| format!("network node {id}"))
+                    .unwrap_or_else(|| format!("model node {node} (a lamella or connector node)"));
+                format!(
+                    "the frame is a mechanism under its supports: {id} moves freely ({})",
+                    super::solve::DOF_NAMES[*dof]
+                )
+            }
+            other => other.to_string(),
+        };
+        Error::input(&spec.source, crate::error::Location::File, what)
+    })?;
+    Ok(FrameReport {
+        built,
+        combinations,
+        settings,
+        span_mm,
+        results,
+    })
+}
