@@ -14,12 +14,14 @@
 //! * [`buckling`]: the critical load factors and modes;
 //! * [`second_order`]: equilibrium on the imperfect, deformed geometry;
 //! * [`verdict`]: cross-section and member checks of an upright strip;
-//! * [`analyse`]: every analysis of every combination, and the verdict.
+//! * [`analyse`]: every analysis of every combination, and the verdict;
+//! * [`opensees`]: the model exported to OpenSeesPy, to check the solver.
 
 pub mod analyse;
 pub mod buckling;
 pub mod loads;
 pub mod model;
+pub mod opensees;
 pub mod second_order;
 pub mod solve;
 pub mod verdict;
