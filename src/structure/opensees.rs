@@ -27,7 +27,11 @@
 //! (the frame of [`element_frame`], identical to OpenSees' for the same
 //! vecxz); a following pressure is exported as the same uniform load
 //! along the element's initial local z (identical in a linear analysis;
-//! its load stiffness is not exported).
+//! its load stiffness is not exported). Each load set is a pattern on a
+//! `Linear` time series, so a `LoadControl` step of λ applies λ times it.
+//! `build('PDelta')` builds the model with OpenSees' P-Δ geometric
+//! stiffness: a buckling search (`tests/tools/opensees_buckling.py`)
+//! imports the script and bisects on λ.
 //!
 //! **Not exported.** The elements' erection state ([`Beam::initial`]):
 //! lamella's linear solve adds the geometric stiffness of its axial force,
@@ -254,7 +258,11 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
         "# (supported node tag, its roller's fixed node tag)\nROLLERS = {:?}\n",
         extra
     );
-    let _ = writeln!(w, "\ndef build():\n    ops.wipe()");
+    let _ = writeln!(
+        w,
+        "\ndef build(transf='Linear'):\n    \"\"\"The model ('PDelta': with its geometric stiffness).\"\"\"\n    \
+         ops.wipe()"
+    );
     let _ = writeln!(w, "    ops.model('basic', '-ndm', 3, '-ndf', 6)");
     let _ = writeln!(w, "    # Nodes, mm.");
     for (i, n) in model.nodes_mm.iter().enumerate() {
@@ -274,7 +282,7 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
         let tag = i + 1;
         let sec = &model.sections[b.section];
         let mut transf = format!(
-            "    ops.geomTransf('Linear', {tag}, {}",
+            "    ops.geomTransf(transf, {tag}, {}",
             nums(&b.z_axis.to_array())
         );
         if b.offsets_mm.iter().any(|o| *o != DVec3::ZERO) {
@@ -378,7 +386,7 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
             "\n\ndef loads_{i}():\n    \"\"\"Load set {}.\"\"\"",
             l.name.replace('\\', "\\\\").replace('"', "\\\"")
         );
-        let _ = writeln!(w, "    ops.timeSeries('Constant', 1)");
+        let _ = writeln!(w, "    ops.timeSeries('Linear', 1)");
         let _ = writeln!(w, "    ops.pattern('Plain', 1, 1)");
         for n in &l.nodes {
             let _ = writeln!(

@@ -526,3 +526,48 @@ fn opensees_agrees_on_a_dome_of_offset_strips_and_bolts() {
     let (m, loads) = dome();
     compare("dome", &m, &loads);
 }
+
+/// A pinned (or fixed–free) strip of 1 m in `n` elements under a unit
+/// compression at its end.
+fn column(n: usize, fixed_free: bool) -> (FrameModel, LoadSet) {
+    let mut m = member(DVec3::ZERO, DVec3::X * 1000.0, n, DVec3::Z);
+    m.supports = if fixed_free {
+        vec![support(0, [true; 6])]
+    } else {
+        vec![
+            support(0, [true, true, true, true, false, false]),
+            support(n, [false, true, true, false, false, false]),
+        ]
+    };
+    (m, node_load("P", n, -DVec3::X, DVec3::ZERO))
+}
+
+#[test]
+fn opensees_finds_the_critical_factor_of_euler_columns() {
+    use lamella::structure::buckling::critical_factors;
+    if !have_opensees() {
+        return;
+    }
+    for fixed_free in [false, true] {
+        // lamella: 4 elements; OpenSees: each subdivided into 4 (P-Δ).
+        let (m, loads) = column(4, fixed_free);
+        let ours = critical_factors(&m, &loads, 1).unwrap()[0].factor;
+        let (fine, fine_loads) = column(16, fixed_free);
+        let name = if fixed_free {
+            "euler-fixed-free"
+        } else {
+            "euler-pinned"
+        };
+        let path = scratch(name).join("opensees.py");
+        std::fs::write(&path, script(&fine, &[fine_loads]).unwrap()).unwrap();
+        let theirs = tools::python_json("opensees_buckling.py", &path)["alpha_cr"]
+            .as_f64()
+            .unwrap();
+        let rel = (ours - theirs) / theirs;
+        eprintln!("{name}: α_cr lamella {ours:.4} OpenSees {theirs:.4} ({rel:+.1e})");
+        assert!(
+            rel.abs() <= 0.02,
+            "{name}: lamella {ours} against OpenSees {theirs}"
+        );
+    }
+}
