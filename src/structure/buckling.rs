@@ -110,6 +110,9 @@ fn shape_of(assembly: &Assembly, v: &[f64]) -> Vec<[f64; 6]> {
     shape
 }
 
+/// A critical factor and its mode over the unknowns.
+type Pair = (f64, Vec<f64>);
+
 /// Lanczos on Op = K_e⁻¹·(−K_G), self-adjoint in the K_e inner product,
 /// with full reorthogonalisation (twice); returns (λ, vector) for the
 /// smallest positive λ = 1/μ.
@@ -152,13 +155,14 @@ fn lanczos(
             }
         }
         let b = k_dot(&w, &w).max(0.0).sqrt();
-        let check = (j + 1) % 5 == 0 || j + 1 == steps || !(b > 1e-14 * alpha[j].abs().max(1e-300));
+        let exhausted = b.is_nan() || b <= 1e-14 * alpha[j].abs().max(1e-300);
+        let check = (j + 1) % 5 == 0 || j + 1 == steps || exhausted;
         if check {
             if let Some(found) = ritz(&q, &alpha, &beta, b, modes)? {
                 return Ok(found);
             }
         }
-        if !(b > 1e-14 * alpha[j].abs().max(1e-300)) {
+        if exhausted {
             // An invariant subspace: every Ritz pair is exact.
             return Ok(ritz(&q, &alpha, &beta, 0.0, modes)?.unwrap_or_default());
         }
@@ -181,7 +185,7 @@ fn ritz(
     beta: &[f64],
     b: f64,
     modes: usize,
-) -> Result<Option<Vec<(f64, Vec<f64>)>>, FrameError> {
+) -> Result<Option<Vec<Pair>>, FrameError> {
     let m = alpha.len();
     let mut t = Mat::<f64>::zeros(m, m);
     for i in 0..m {

@@ -18,13 +18,15 @@
 //! * [`second_order`]: equilibrium on the imperfect, deformed geometry;
 //! * [`verdict`]: cross-section and member checks of an upright strip;
 //! * [`analyse`]: every analysis of every combination, and the verdict;
-//! * [`stage`]: a network under a loads file, from model to verdict.
+//! * [`stage`]: a network under a loads file, from model to verdict;
+//! * [`opensees`]: the model exported to OpenSeesPy, to check the solver.
 
 pub mod analyse;
 pub mod buckling;
 pub mod build;
 pub mod loads;
 pub mod model;
+pub mod opensees;
 pub mod second_order;
 pub mod solve;
 pub mod stage;

@@ -577,7 +577,7 @@ pub fn validate(model: &FrameModel) -> Result<(), FrameError> {
     Ok(())
 }
 
-fn validate_loads(model: &FrameModel, loads: &LoadSet) -> Result<(), FrameError> {
+pub(crate) fn validate_loads(model: &FrameModel, loads: &LoadSet) -> Result<(), FrameError> {
     let bad = |what: &str| {
         Err(FrameError::Invalid(format!(
             "load set {}: {what}",

@@ -29,6 +29,7 @@ mod nest;
 mod nest_stock;
 mod nodes;
 mod offset;
+mod opensees;
 mod output_safety;
 mod parts;
 mod readers;
