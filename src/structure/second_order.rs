@@ -14,7 +14,9 @@
 //! geometry.
 
 use super::model::{FrameModel, LoadSet};
-use super::solve::{add, factorise, solve_refined, Assembly, FrameError, StaticResult};
+use super::solve::{
+    add, axial_forces, factorise, solve_refined, Assembly, FrameError, StaticResult,
+};
 use glam::DVec3;
 
 /// Most iterations.
@@ -84,11 +86,7 @@ pub fn second_order(
         symbolic = Some(sym);
         let x = solve_refined(&factor, &kt, &p)?;
         let result = assembly.results(model, loads, &x, Some(&total));
-        let next: Vec<f64> = result
-            .beam_forces
-            .iter()
-            .map(|f| 0.5 * (f.start.axial_n + f.end.axial_n))
-            .collect();
+        let next = axial_forces(&result);
         let largest = next.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let change = next
             .iter()
