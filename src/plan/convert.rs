@@ -244,6 +244,7 @@ pub fn build(net: &Network, an: &Analysis, model: &Model) -> Plan {
         sheets: None,
         nesting: None,
         flat: None,
+        structure: None,
         curves: Vec::new(),
         takeoff: None,
         shape: None,

@@ -12,6 +12,7 @@ pub mod joints;
 pub mod model;
 pub mod shape;
 pub mod sparrow;
+pub mod structure;
 pub mod takeoff;
 
 pub use convert::{
@@ -69,6 +70,10 @@ pub struct Plan {
     /// The flat assembly state (added by `flat`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flat: Option<PlanFlat>,
+    /// The erected grid as a frame under a loads file (added by `frame`,
+    /// and by `build --loads`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub structure: Option<structure::PlanStructure>,
     /// The network's curves as read, for drawings of the whole grid (the
     /// assembly sheets' overview). Not in plan.json, which holds the
     /// strips' figures, not their points.

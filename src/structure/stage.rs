@@ -21,12 +21,12 @@ use super::build::{build_frame, BuiltFrame, FrameOptions};
 use super::loads::{
     combinations, combine, deflection_limit_mm, deflection_span_mm, load_cases, supports,
 };
-use super::model::{Combination, LimitState};
+use super::model::{Combination, LimitState, LoadSet};
 use super::verdict::{Code, Rectangle};
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::fabricate::Kit;
-use crate::loads::LoadSpec;
+use crate::loads::{Action, LoadSpec};
 use crate::network::Network;
 use crate::profile::{Grain, Profile};
 
@@ -44,6 +44,11 @@ pub const SECOND_ORDER_TOLERANCE: f64 = 1e-4;
 pub struct FrameReport {
     /// The model, its elements' roles and the load targets.
     pub built: BuiltFrame,
+    /// How the model was meshed.
+    pub options: FrameOptions,
+    /// The characteristic load cases, in the loads file's order, with
+    /// their actions.
+    pub cases: Vec<(LoadSet, Action)>,
     /// The combinations, as analysed.
     pub combinations: Vec<Combination>,
     /// How the elements were judged.
@@ -87,6 +92,39 @@ impl FrameReport {
             .filter(|(_, r)| r.limit_state == LimitState::Serviceability)
             .map(|(c, r)| (c, r.max_translation_node, r.max_translation_mm))
             .max_by(|a, b| a.2.total_cmp(&b.2))
+    }
+
+    /// The one-line verdict: PASS or FAIL with α_cr, the governing
+    /// utilisation (strip, combination) and the largest deflection against
+    /// its limit, e.g. `structure PASS: α_cr 4.28 (ULS …), utilisation
+    /// 0.74 (A3, ULS …), deflection 21.0 mm ≤ 41.7 mm (SLS …)`.
+    pub fn verdict_line(&self, strip_id: impl Fn(usize) -> String) -> String {
+        let results = &self.results.combinations;
+        let mut parts = Vec::new();
+        match self.alpha_cr() {
+            Some((c, a)) => parts.push(format!("α_cr {a:.2} ({})", results[c].name)),
+            None => parts.push("α_cr not computed (no ULS combination)".into()),
+        }
+        if let Some((c, beam, u)) = self.governing() {
+            let strip = self.built.roles[beam]
+                .as_ref()
+                .map(|r| strip_id(r.strip))
+                .unwrap_or_else(|| format!("element {beam}"));
+            parts.push(format!("utilisation {u:.2} ({strip}, {})", results[c].name));
+        }
+        if let Some((c, _, d)) = self.deflection() {
+            let limit = self.settings.deflection_limit_mm;
+            let sign = if d <= limit { "≤" } else { ">" };
+            parts.push(format!(
+                "deflection {d:.1} mm {sign} {limit:.1} mm ({})",
+                results[c].name
+            ));
+        }
+        if results.iter().any(|r| r.second_order_iterations == Some(0)) {
+            parts.push("second order did not converge".into());
+        }
+        let verdict = if self.passes() { "PASS" } else { "FAIL" };
+        format!("structure {verdict}: {}", parts.join(", "))
     }
 
     /// Whether the grid stands: every ULS utilisation ≤ 1, α_cr > 1 for
@@ -180,8 +218,15 @@ pub fn run(
         };
         Error::input(&spec.source, crate::error::Location::File, what)
     })?;
+    let cases = cases
+        .into_iter()
+        .zip(&spec.cases)
+        .map(|(set, case)| (set, case.action))
+        .collect();
     Ok(FrameReport {
         built,
+        options: *opts,
+        cases,
         combinations,
         settings,
         span_mm,
