@@ -75,6 +75,38 @@ enum Command {
         /// No progress bar and no summary (errors and warnings still print).
         #[arg(long, short)]
         quiet: bool,
+        /// Also analyse the erected grid as a frame under this loads file
+        /// (see `lamella frame`): plan.json `structure`, DIR/structure/
+        /// (opensees.py, model.json) and the structure pages of
+        /// assembly.pdf. A grid that does not stand stops the build like
+        /// an overstressed strip (exit status 3, nothing written) unless
+        /// --allow-overstress.
+        #[arg(long, value_name = "LOADS.yaml")]
+        loads: Option<PathBuf>,
+        #[command(flatten)]
+        read: ReadArgs,
+    },
+    /// Will the erected grid stand? Every lamella a chain of beams on its
+    /// own offset line, joints and shear blocks as the profile makes them,
+    /// the strips' erection stresses as the initial state; under the loads
+    /// file's supports, load cases and EN 1990 combinations: linear
+    /// statics, the critical load factor α_cr and its modes, second order
+    /// where α_cr < 10, the EN 1993/1995 checks, deflections and
+    /// reactions. Prints the verdict; writes DIR/plan.json (with
+    /// `structure`), DIR/structure/opensees.py (the model as a runnable
+    /// OpenSeesPy script) and DIR/structure/model.json. Exit status 3 when
+    /// a ULS utilisation exceeds 1, the grid buckles below the load or a
+    /// deflection exceeds its limit.
+    Frame {
+        #[command(flatten)]
+        stage: StageArgs,
+        /// The loads file (supports, load cases, combinations; see
+        /// samples/loads/pavilion.yaml).
+        #[arg(long, value_name = "LOADS.yaml")]
+        loads: PathBuf,
+        /// Output directory (created if missing).
+        #[arg(long)]
+        out: PathBuf,
         #[command(flatten)]
         read: ReadArgs,
     },
@@ -284,6 +316,7 @@ fn inputs(
         profile,
         read: read.options(),
         slots_from_flat,
+        loads: None,
     }
 }
 
@@ -307,6 +340,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             slots_from_flat,
             paper,
             quiet,
+            loads,
             read,
         } => {
             let opts = pipeline::build::BuildOptions {
@@ -318,14 +352,26 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
                 paper: lamella::formats::write::assembly::Paper::parse(&paper).unwrap_or_default(),
             };
             let progress = report::progress(quiet);
+            let mut inputs = stage.inputs(&read, slots_from_flat);
+            inputs.loads = loads;
             let r = pipeline::build::build(
-                stage.inputs(&read, slots_from_flat),
+                inputs,
                 &out,
                 &opts,
                 &progress,
             );
             progress.finish_and_clear();
             Ok(report::build(&r?, quiet))
+        }
+        Command::Frame {
+            stage,
+            loads,
+            out,
+            read,
+        } => {
+            let mut inputs = stage.inputs(&read, false);
+            inputs.loads = Some(loads);
+            Ok(report::frame(&commands::frame(inputs, &out)?))
         }
         Command::Flat { stage, out, read } => Ok(report::flat(&commands::flat(
             stage.inputs(&read, false),

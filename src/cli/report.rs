@@ -37,7 +37,12 @@ pub fn progress(quiet: bool) -> indicatif::ProgressBar {
 pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
     warn(&r.warnings);
     if r.files.is_empty() {
-        if let Some(g) = &r.governing {
+        if let Some(st) = r.structure.as_ref().filter(|s| !s.passes) {
+            eprintln!(
+                "error: the grid does not stand: {}: nothing written; see `lamella frame`, or pass --allow-overstress",
+                st.verdict
+            );
+        } else if let Some(g) = &r.governing {
             eprintln!(
                 "error: {} of {} strips overstressed (worst {} lamella {} at {:.2} × the design strength, {} governs): nothing written; see `lamella check`, or pass --allow-overstress",
                 r.overstressed, r.strips, g.strip, g.lamella, g.utilization, g.governs
@@ -93,12 +98,72 @@ pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
         ),
         None => println!("elastic check: no strips"),
     }
+    if let Some(st) = &r.structure {
+        match st.passes {
+            true => println!("{}", st.verdict),
+            false => println!("{} (--allow-overstress)", st.verdict),
+        }
+    }
     println!(
         "wrote {} files into {} (plan.json, takeoff.csv, takeoff.json, setting-out.csv, assembly.pdf, model.glb, view.html, sheets/, parts/)",
         r.files.len(),
         r.out.display()
     );
     ExitCode::SUCCESS
+}
+
+/// `lamella frame`: the model's size, a line per combination, the
+/// governing items and the verdict; exit status 3 when the grid does not
+/// stand.
+pub fn frame(done: &Done) -> ExitCode {
+    let s = &done.session;
+    warn(&s.warnings());
+    let Some(st) = done.plan.as_ref().and_then(|p| p.structure.as_ref()) else {
+        return ExitCode::from(1);
+    };
+    let m = &st.model;
+    println!(
+        "{} under {}: {} model nodes, {} beam elements ({} per node-to-node span), {} links, {} supports; span {:.0} mm",
+        s.network().name,
+        st.loads,
+        m.nodes,
+        m.beams,
+        m.elements_per_span,
+        m.links,
+        m.supports,
+        st.span_mm
+    );
+    println!(
+        "{:<28} {:>10} {:>11} {:>14}  {:<10} {:>10}",
+        "combination", "α_cr", "utilisation", "max. disp. mm", "at node", "ΣFz kN"
+    );
+    for c in &st.combinations {
+        println!(
+            "{:<28} {:>10} {:>11} {:>14.2}  {:<10} {:>10.2}",
+            c.name,
+            c.alpha_cr
+                .first()
+                .map_or("–".to_string(), |a| format!("{a:.2}")),
+            c.max_utilisation
+                .map_or("–".to_string(), |u| format!("{u:.3}")),
+            c.max_translation_mm,
+            c.max_translation_node,
+            c.load_sum_n[2] / 1000.0
+        );
+    }
+    if let Some(g) = &st.governing {
+        println!(
+            "governing: {} lamella {} at {:.0} mm, {} check, utilisation {:.2} ({})",
+            g.strip, g.lamella, g.station_mm, g.check, g.utilisation, g.combination
+        );
+    }
+    println!("{}", st.verdict);
+    wrote(done);
+    if st.passes {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(FAIL)
+    }
 }
 
 /// `lamella nodes`.

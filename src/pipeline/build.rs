@@ -97,6 +97,8 @@ pub struct BuildReport {
     pub overstressed: usize,
     /// The highest-utilised lamella, if any.
     pub governing: Option<Governing>,
+    /// The frame's verdict, when built with a loads file.
+    pub structure: Option<StructureVerdict>,
     /// Warnings of the analysis and the kit, one line each.
     pub warnings: Vec<String>,
     /// Files written, relative to DIR (empty when the build stopped at the check).
@@ -121,6 +123,52 @@ impl BuildReport {
     }
 }
 
+/// The report of a build stopped before anything was written (an
+/// overstressed strip, a grid that does not stand).
+fn stopped(
+    out: &Path,
+    (network_name, profile_name): (String, String),
+    (strips, edges, nodes): (usize, usize, usize),
+    (overstressed, governing): (usize, Option<Governing>),
+    warnings: Vec<String>,
+    clock: Clock,
+) -> BuildReport {
+    BuildReport {
+        network: network_name.clone(),
+        profile: profile_name.clone(),
+        strips,
+        edges,
+        nodes,
+        kinds: Vec::new(),
+        takeoff: Takeoff {
+            project: network_name,
+            profile: profile_name,
+            ..Default::default()
+        },
+        sheets_used: 0,
+        lower_bound_sheets: 0,
+        sheet_groups: Vec::new(),
+        utilization: 0.0,
+        overstressed,
+        governing,
+        structure: None,
+        warnings,
+        files: Vec::new(),
+        out: out.to_path_buf(),
+        assembly_pages: 0,
+        stages: clock.stages,
+    }
+}
+
+/// The frame's verdict in a build with a loads file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StructureVerdict {
+    /// Whether the grid stands ([`crate::structure::stage::FrameReport::passes`]).
+    pub passes: bool,
+    /// The one-line verdict.
+    pub verdict: String,
+}
+
 /// The files every build writes besides the sheets.
 pub const FIXED_FILES: [&str; 7] = [
     "plan.json",
@@ -133,7 +181,7 @@ pub const FIXED_FILES: [&str; 7] = [
 ];
 
 /// What a build writes in DIR: [`FIXED_FILES`], the sheets' and the parts' folders.
-const KIT: [&str; 9] = [
+const KIT: [&str; 10] = [
     "plan.json",
     "takeoff.csv",
     "takeoff.json",
@@ -143,6 +191,7 @@ const KIT: [&str; 9] = [
     "view.html",
     crate::formats::out::manifest::SHEETS,
     crate::formats::out::manifest::PARTS,
+    crate::formats::out::manifest::STRUCTURE,
 ];
 
 /// Run every stage and write the kit into `out`. Returns the report; when
@@ -185,34 +234,15 @@ pub fn build(
         session.profile()?.name.clone(),
     );
     if overstressed > 0 && !opts.allow_overstress {
-        return Ok(BuildReport {
-            network: network_name.clone(),
-            profile: profile_name.clone(),
-            strips,
-            edges,
-            nodes,
-            kinds: Vec::new(),
-            takeoff: Takeoff {
-                project: network_name,
-                profile: profile_name,
-                ..Default::default()
-            },
-            sheets_used: 0,
-            lower_bound_sheets: 0,
-            sheet_groups: Vec::new(),
-            utilization: 0.0,
-            overstressed,
-            governing,
+        return Ok(stopped(
+            out,
+            (network_name, profile_name),
+            (strips, edges, nodes),
+            (overstressed, governing),
             warnings,
-            files: Vec::new(),
-            out: out.to_path_buf(),
-            assembly_pages: 0,
-            stages: clock.stages,
-        });
+            clock,
+        ));
     }
-    // Checked again (a foreign plan.json or takeoff, a `sheets` link)
-    // before the long work: DIR may have changed while the checks ran.
-    let staging = Staging::begin(out, &KIT)?;
     // The plan's strips and nodes first, so the analysis can go once the
     // parts are made (a big network's analysis and kit need not both stay).
     let mut the_plan = session.plan(false)?;
@@ -225,6 +255,34 @@ pub fn build(
     // The shape in space for the 3D model, while the analysis is there.
     session.add_shape(&mut the_plan)?;
     session.kit()?;
+    // The erected grid as a frame, while the analysis is there: it stops
+    // the build as an overstressed strip does when it does not stand.
+    let mut structure = None;
+    if session.inputs().loads.is_some() {
+        progress.set_message("analysing the frame");
+        let passes = session.frame()?.passes();
+        let verdict = session.frame_verdict().unwrap_or_default();
+        if !passes && !opts.allow_overstress {
+            let mut r = stopped(
+                out,
+                (network_name, profile_name),
+                (strips, edges, nodes),
+                (overstressed, governing),
+                warnings,
+                clock,
+            );
+            r.structure = Some(StructureVerdict { passes, verdict });
+            return Ok(r);
+        }
+        the_plan.structure = session.plan_structure();
+        structure = Some((
+            StructureVerdict { passes, verdict },
+            super::commands::structure_files(&session, out)?,
+        ));
+    }
+    // Checked again (a foreign plan.json or takeoff, a `sheets` link)
+    // before the writing: DIR may have changed while the work ran.
+    let staging = Staging::begin(out, &KIT)?;
     session.release_analysis();
     clock.lap("parts");
     if let Some(kit) = session.made() {
@@ -479,6 +537,16 @@ pub fn build(
         files.push(format!("parts/{stem}.dxf"));
         files.push(format!("parts/{stem}.svg"));
     }
+    let structure = match structure {
+        Some((verdict, frame_files)) => {
+            for (name, bytes) in super::commands::STRUCTURE_FILES.iter().zip(&frame_files) {
+                staging.write(name, bytes)?;
+                files.push(name.to_string());
+            }
+            Some(verdict)
+        }
+        None => None,
+    };
     progress.set_message("moving into place");
     staging.commit()?;
     clock.lap("commit");
@@ -496,6 +564,7 @@ pub fn build(
         utilization,
         overstressed,
         governing,
+        structure,
         warnings,
         files,
         out: out.to_path_buf(),

@@ -12,6 +12,7 @@ use crate::formats::read;
 use crate::formats::write::{flat_svg, gltf, plan_json, view as view_html};
 use crate::network::RawNetwork;
 use crate::plan::Plan;
+use crate::structure;
 use std::path::{Path, PathBuf};
 
 /// What a command made: the session with every stage it ran, the plan (when
@@ -88,6 +89,78 @@ pub fn check(inputs: Inputs, out: Option<&Path>, suggest: bool) -> Result<Done> 
         done.written.push(shown);
     }
     Ok(done)
+}
+
+pub use crate::formats::out::manifest::STRUCTURE_FILES;
+
+/// The structure folder's files of an analysed frame: the OpenSeesPy
+/// script and the model's JSON (marked `"$schema": "lamella-frame-model/1"`),
+/// each under every characteristic load case and every combination.
+pub fn structure_files(session: &Session, dir_shown: &Path) -> Result<[Vec<u8>; 2]> {
+    let Some(report) = session.framed() else {
+        return Err(Error::output(dir_shown, "internal: the frame was not analysed"));
+    };
+    let model = &report.built.model;
+    let sets: Vec<_> = report
+        .cases
+        .iter()
+        .map(|(set, _)| set.clone())
+        .chain(report.combinations.iter().map(|c| c.loads.clone()))
+        .collect();
+    let script = structure::opensees::script(model, &sets)
+        .map_err(|e| Error::output(&dir_shown.join(STRUCTURE_FILES[0]), e.to_string()))?;
+    let json_path = dir_shown.join(STRUCTURE_FILES[1]);
+    let json = structure::opensees::model_json(model, &sets)
+        .map_err(|e| Error::output(&json_path, e.to_string()))?;
+    let mut doc: serde_json::Value =
+        serde_json::from_str(&json).map_err(|e| Error::output(&json_path, e.to_string()))?;
+    if let Some(map) = doc.as_object_mut() {
+        map.insert(
+            "$schema".into(),
+            serde_json::Value::String(FRAME_MODEL_SCHEMA.into()),
+        );
+    }
+    let json = serde_json::to_string_pretty(&doc)
+        .map_err(|e| Error::output(&json_path, e.to_string()))?
+        + "\n";
+    Ok([script.into_bytes(), json.into_bytes()])
+}
+
+/// The schema mark of `structure/model.json` (its first key).
+pub const FRAME_MODEL_SCHEMA: &str = "lamella-frame-model/1";
+
+/// `lamella frame`: the erected grid as a frame under a loads file (every
+/// stage up to the parts, whose masses and blocks the frame takes);
+/// `DIR/plan.json` with `structure`, `DIR/structure/opensees.py` and
+/// `DIR/structure/model.json`. Everything is computed before anything is
+/// written.
+pub fn frame(inputs: Inputs, out: &Path) -> Result<Done> {
+    let mut names = vec!["plan.json", crate::formats::out::manifest::STRUCTURE];
+    names.extend(STRUCTURE_FILES);
+    let real = check_outputs(&[Output::Dir(out, &names)], &inputs.files())?;
+    let mut session = Session::open(inputs)?;
+    session.frame()?;
+    let mut plan = session.plan(false)?;
+    let files = structure_files(&session, out)?;
+    if let Some(field) = plan_json::first_non_finite(&mut plan) {
+        return Err(Error::output(
+            &plan_path(out),
+            format!("not written: {field} is not a finite number"),
+        ));
+    }
+    let mut written = Vec::new();
+    for (name, bytes) in STRUCTURE_FILES.iter().zip(&files) {
+        write_atomic(&real[0].join(name), bytes)?;
+        written.push(out.join(name));
+    }
+    write_plan(&plan_path(&real[0]), &mut plan)?;
+    written.push(plan_path(out));
+    Ok(Done {
+        session,
+        plan: Some(plan),
+        written,
+        notes: Vec::new(),
+    })
 }
 
 /// How far `lamella parts` goes.

@@ -29,7 +29,11 @@ use crate::nest::Nest;
 use crate::network::Network;
 use crate::plan::model::{Checked, Model};
 use crate::plan::Plan;
+use crate::loads::LoadSpec;
+use crate::plan::structure::PlanStructure;
 use crate::profile::Profile;
+use crate::structure::build::FrameOptions;
+use crate::structure::stage::FrameReport;
 use std::path::{Path, PathBuf};
 
 /// What a session reads.
@@ -44,6 +48,9 @@ pub struct Inputs {
     /// Size each slot from its node's rotation between the flat state and
     /// the erected one instead of the profile's blanket tolerance.
     pub slots_from_flat: bool,
+    /// The loads file (supports, load cases, combinations): the erected
+    /// grid is analysed as a frame ([`Session::frame`]).
+    pub loads: Option<PathBuf>,
 }
 
 impl Inputs {
@@ -52,6 +59,9 @@ impl Inputs {
         let mut v = vec![("network", self.network.as_path())];
         if let Some(p) = &self.profile {
             v.push(("profile", p.as_path()));
+        }
+        if let Some(p) = &self.loads {
+            v.push(("loads file", p.as_path()));
         }
         v
     }
@@ -73,6 +83,8 @@ pub struct Session {
     flat: Option<(FlatProblem, FlatState)>,
     kit: Option<Kit>,
     nest: Option<Nest>,
+    loads: Option<LoadSpec>,
+    frame: Option<FrameReport>,
 }
 
 /// A stage a session has not run and cannot run on its own (a program
@@ -89,6 +101,10 @@ impl Session {
     pub fn open(inputs: Inputs) -> Result<Session> {
         let profile = match &inputs.profile {
             Some(p) => Some(read::profile_file::load(p)?),
+            None => None,
+        };
+        let loads = match &inputs.loads {
+            Some(p) => Some(read::loads_file::load(p)?),
             None => None,
         };
         let network = read::read_network(&inputs.network, inputs.read)?;
@@ -108,6 +124,8 @@ impl Session {
             flat: None,
             kit: None,
             nest: None,
+            loads,
+            frame: None,
         })
     }
 
@@ -244,6 +262,63 @@ impl Session {
         self.kit.as_ref()
     }
 
+    /// The erected grid as a frame under the loads file: built from the
+    /// analysis and the kit, supported, loaded, analysed and judged
+    /// ([`crate::structure::stage::run`]). Runs the parts first.
+    pub fn frame(&mut self) -> Result<&FrameReport> {
+        if self.frame.is_none() {
+            self.kit()?;
+            let (Some(an), Some(profile), Some(kit), Some(spec)) =
+                (&self.analysis, &self.profile, &self.kit, &self.loads)
+            else {
+                return Err(not_run(&self.inputs, "the loads file"));
+            };
+            self.frame = Some(crate::structure::stage::run(
+                &self.network,
+                an,
+                profile,
+                kit,
+                spec,
+                &FrameOptions::default(),
+            )?);
+        }
+        self.frame
+            .as_ref()
+            .ok_or_else(|| not_run(&self.inputs, "the frame"))
+    }
+
+    /// The frame's report, once analysed.
+    pub fn framed(&self) -> Option<&FrameReport> {
+        self.frame.as_ref()
+    }
+
+    /// The frame's one-line verdict ([`FrameReport::verdict_line`], strips
+    /// by their ids), once analysed.
+    pub fn frame_verdict(&self) -> Option<String> {
+        let net = &self.network;
+        self.frame.as_ref().map(|r| {
+            r.verdict_line(|c| {
+                net.curves
+                    .get(c)
+                    .map_or_else(|| format!("strip {c}"), |k| k.id.clone())
+            })
+        })
+    }
+
+    /// plan.json's `structure` of the frame, once analysed.
+    pub fn plan_structure(&self) -> Option<PlanStructure> {
+        let report = self.frame.as_ref()?;
+        let loads = self
+            .inputs
+            .loads
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let verdict = self.frame_verdict().unwrap_or_default();
+        Some(PlanStructure::of(report, &self.network, &loads, &verdict))
+    }
+
     /// The parts nested onto the profile's stock, with `beside` run on the
     /// kit at the same time (the nest is mostly one thread); returns what
     /// `beside` returned.
@@ -307,6 +382,7 @@ impl Session {
                 crate::plan::add_takeoff(&mut plan, kit, nest, profile);
             }
         }
+        plan.structure = self.plan_structure();
         Ok(plan)
     }
 

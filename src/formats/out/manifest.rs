@@ -34,9 +34,12 @@ pub const SHEETS: &str = "sheets";
 /// The folder the per-part cutting files go to.
 pub const PARTS: &str = "parts";
 
+/// The folder the frame model's files go to (`opensees.py`, `model.json`).
+pub const STRUCTURE: &str = "structure";
+
 /// The folders of a kit: lamella's files in them are replaced, other
 /// files kept, like at the top.
-pub const FOLDERS: [&str; 2] = [SHEETS, PARTS];
+pub const FOLDERS: [&str; 3] = [SHEETS, PARTS, STRUCTURE];
 
 /// The files lamella writes at the top of an output folder.
 pub const TOP_FILES: [&str; 8] = [
@@ -50,14 +53,19 @@ pub const TOP_FILES: [&str; 8] = [
     "view.html",
 ];
 
+/// The frame model's files lamella writes in [`STRUCTURE`] (with `lamella
+/// frame` and `lamella build --loads`): the runnable OpenSeesPy script and
+/// the plain JSON of the model.
+pub const STRUCTURE_FILES: [&str; 2] = ["structure/opensees.py", "structure/model.json"];
+
 /// Whether lamella writes files named `rel` (`/`-separated, inside DIR):
-/// one of [`TOP_FILES`], `sheets/sheet-NNN.dxf|svg` or
+/// one of [`TOP_FILES`] or [`STRUCTURE_FILES`], `sheets/sheet-NNN.dxf|svg` or
 /// `sheets/GROUP-sheet-NNN.dxf|svg` (three digits or more; a stock group's
 /// name of letters, digits, `-`, `_` and `.`), `parts/parts.csv` or `parts/ID.dxf|svg` (an id of letters,
 /// digits, `-`, `_` and `.`). Nothing else in DIR is ever lamella's to
 /// replace or remove.
 pub fn is_lamella_name(rel: &str) -> bool {
-    if TOP_FILES.contains(&rel) {
+    if TOP_FILES.contains(&rel) || STRUCTURE_FILES.contains(&rel) {
         return true;
     }
     if let Some(file) = rel.strip_prefix("parts/") {
@@ -203,6 +211,11 @@ pub fn replaceable(dir: &Path, rel: &str, manifest: &Manifest) -> bool {
         "flat.svg" => head(&path, 1024).is_some_and(|h| is_flat_svg_head(&h)),
         "model.glb" => head(&path, 256).is_some_and(|h| is_model_head(&h)),
         "view.html" => head(&path, 256).is_some_and(|h| is_view_head(&h)),
+        "structure/opensees.py" => {
+            head(&path, 256).is_some_and(|h| h.contains("\"\"\"A lamella frame model in OpenSees"))
+        }
+        "structure/model.json" => head(&path, 64)
+            .is_some_and(|h| h.contains("\"$schema\": \"lamella-frame-model/")),
         _ => false,
     });
     says_so || vouched(dir, rel, manifest)
