@@ -16,6 +16,7 @@ mod edge_joints;
 mod exports;
 mod film_truth;
 mod flat;
+mod frame_cli;
 mod frame;
 mod invariance;
 mod layers;
