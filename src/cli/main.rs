@@ -354,12 +354,7 @@ fn run(cli: Cli) -> lamella::Result<ExitCode> {
             let progress = report::progress(quiet);
             let mut inputs = stage.inputs(&read, slots_from_flat);
             inputs.loads = loads;
-            let r = pipeline::build::build(
-                inputs,
-                &out,
-                &opts,
-                &progress,
-            );
+            let r = pipeline::build::build(inputs, &out, &opts, &progress);
             progress.finish_and_clear();
             Ok(report::build(&r?, quiet))
         }

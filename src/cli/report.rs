@@ -135,7 +135,7 @@ pub fn frame(done: &Done) -> ExitCode {
     );
     println!(
         "{:<28} {:>10} {:>11} {:>14}  {:<10} {:>10}",
-        "combination", "α_cr", "utilisation", "max. disp. mm", "at node", "ΣFz kN"
+        "combination", "α_cr", "utilisation", "max. disp. mm", "at node", "load z kN"
     );
     for c in &st.combinations {
         println!(

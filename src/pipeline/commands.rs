@@ -98,7 +98,10 @@ pub use crate::formats::out::manifest::STRUCTURE_FILES;
 /// each under every characteristic load case and every combination.
 pub fn structure_files(session: &Session, dir_shown: &Path) -> Result<[Vec<u8>; 2]> {
     let Some(report) = session.framed() else {
-        return Err(Error::output(dir_shown, "internal: the frame was not analysed"));
+        return Err(Error::output(
+            dir_shown,
+            "internal: the frame was not analysed",
+        ));
     };
     let model = &report.built.model;
     let sets: Vec<_> = report

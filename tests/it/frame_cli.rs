@@ -50,7 +50,10 @@ fn verdict_is_the_plans(verdict: &str, st: &Value) {
         .filter(|c| c["limit_state"] == "SLS")
         .map(|c| num(&c["max_translation_mm"]))
         .fold(0.0, f64::max);
-    assert!((after(verdict, "α_cr ") - alpha).abs() <= 0.005, "{verdict}");
+    assert!(
+        (after(verdict, "α_cr ") - alpha).abs() <= 0.005,
+        "{verdict}"
+    );
     assert!(
         (after(verdict, "utilisation ") - utilisation).abs() <= 0.005,
         "{verdict}"
@@ -74,7 +77,10 @@ fn verdict_is_the_plans(verdict: &str, st: &Value) {
         }
     }
     let limit = after(&verdict.replace('≤', ">"), "mm > ");
-    assert!((limit - span / 300.0).abs() <= 0.05, "{verdict}: span {span}");
+    assert!(
+        (limit - span / 300.0).abs() <= 0.05,
+        "{verdict}: span {span}"
+    );
     let passes = alpha > 1.0 && utilisation <= 1.0 && deflection <= span / 300.0;
     assert_eq!(st["passes"].as_bool(), Some(passes), "{verdict}");
     assert!(verdict.starts_with(if passes {
@@ -87,10 +93,7 @@ fn verdict_is_the_plans(verdict: &str, st: &Value) {
     let reactions = st["reactions"].as_array().expect("reactions");
     for (k, c) in combos.iter().enumerate() {
         for axis in 0..3 {
-            let sum: f64 = reactions
-                .iter()
-                .map(|r| num(&r["forces_n"][k][axis]))
-                .sum();
+            let sum: f64 = reactions.iter().map(|r| num(&r["forces_n"][k][axis])).sum();
             let load = num(&c["load_sum_n"][axis]);
             let scale = (0..3).map(|i| num(&c["load_sum_n"][i]).abs()).sum::<f64>();
             // The table's forces are rounded to 1e-3 N each.
@@ -201,7 +204,10 @@ fn build_with_loads_stops_when_the_grid_does_not_stand_and_writes_it_all_when_al
     model_files_are_readable(&out, st);
     let manifest = std::fs::read_to_string(out.join(".lamella-manifest")).expect("manifest");
     for f in ["structure/opensees.py", "structure/model.json"] {
-        assert!(manifest.lines().any(|l| l.ends_with(f)), "{f} in the manifest");
+        assert!(
+            manifest.lines().any(|l| l.ends_with(f)),
+            "{f} in the manifest"
+        );
     }
 
     // `lamella frame` is the same stage: the same section, byte for byte.
@@ -251,7 +257,8 @@ fn frame_with(loads_text: &str, name: &str) -> (Option<i32>, String, String, std
     (code, stdout, stderr, out)
 }
 
-const CASES: &str = "version: 1\ncases:\n  - name: G\n    action: permanent\n    self_weight: 1.0\n";
+const CASES: &str =
+    "version: 1\ncases:\n  - name: G\n    action: permanent\n    self_weight: 1.0\n";
 
 #[test]
 fn a_bad_loads_file_is_one_line_naming_the_field_and_nothing_is_written() {

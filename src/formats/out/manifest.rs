@@ -214,8 +214,9 @@ pub fn replaceable(dir: &Path, rel: &str, manifest: &Manifest) -> bool {
         "structure/opensees.py" => {
             head(&path, 256).is_some_and(|h| h.contains("\"\"\"A lamella frame model in OpenSees"))
         }
-        "structure/model.json" => head(&path, 64)
-            .is_some_and(|h| h.contains("\"$schema\": \"lamella-frame-model/")),
+        "structure/model.json" => {
+            head(&path, 64).is_some_and(|h| h.contains("\"$schema\": \"lamella-frame-model/"))
+        }
         _ => false,
     });
     says_so || vouched(dir, rel, manifest)
