@@ -13,6 +13,7 @@ mod check_cli;
 mod cli_errors;
 mod closed_forms;
 mod edge_joints;
+mod equilibrium;
 mod exports;
 mod film_truth;
 mod flat;
