@@ -16,15 +16,18 @@ use lamella::formats::read::{loads_file, profile_file, read_network, ReadOptions
 use lamella::structure::analyse::load_sum;
 use lamella::structure::build::{build_frame, BuiltFrame, FrameOptions};
 use lamella::structure::loads::{combinations, combine, load_cases, supports};
-use lamella::structure::model::Combination;
+use lamella::structure::model::{Combination, LoadSet};
 use lamella::structure::solve::LinearFrame;
 use rayon::prelude::*;
 use std::path::PathBuf;
 
-/// A sample's frame under the pavilion's loads: the model and its
-/// combinations; `None` when the profile cannot make the sample's parts
+/// A sample's frame under the pavilion's loads: the model, its
+/// characteristic load cases and its combinations; `None` when the profile cannot make the sample's parts
 /// (slots that overlap, no room for a splice).
-pub fn loaded_frame(sample: &str, profile: &str) -> Option<(BuiltFrame, Vec<Combination>)> {
+pub fn loaded_frame(
+    sample: &str,
+    profile: &str,
+) -> Option<(BuiltFrame, Vec<LoadSet>, Vec<Combination>)> {
     let net = read_network(&root().join(sample), ReadOptions::default()).expect("network");
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
     let p = profile_file::load(&root().join(profile)).expect("profile");
@@ -37,7 +40,7 @@ pub fn loaded_frame(sample: &str, profile: &str) -> Option<(BuiltFrame, Vec<Comb
         .iter()
         .map(|c| combine(&cases, c))
         .collect();
-    Some((built, combos))
+    Some((built, cases, combos))
 }
 
 fn samples() -> Vec<String> {
@@ -67,19 +70,27 @@ fn every_shipped_network_is_in_equilibrium_under_every_combination() {
             // The profiles that build it first, then any that makes its
             // parts (a sample every profile refuses as overstressed is
             // still a frame).
-            let profiles = ["steel-1.5", "poplar-ply-4", "beech-veneer", "steel-1.5-mixed"];
-            let (profile, (built, combos)) = profiles
+            let profiles = [
+                "steel-1.5",
+                "poplar-ply-4",
+                "beech-veneer",
+                "steel-1.5-mixed",
+            ];
+            let (profile, (built, _, combos)) = profiles
                 .iter()
                 .filter(|p| !refused.iter().any(|r| r.0 == *name && r.1 == **p))
                 .chain(profiles.iter())
                 .find_map(|p| {
-                    loaded_frame(&format!("samples/{name}.yaml"), &format!("profiles/{p}.yaml"))
-                        .map(|f| (*p, f))
+                    loaded_frame(
+                        &format!("samples/{name}.yaml"),
+                        &format!("profiles/{p}.yaml"),
+                    )
+                    .map(|f| (*p, f))
                 })
                 .unwrap_or_else(|| panic!("{name}: no profile makes its parts"));
             let model = &built.model;
-            let linear = LinearFrame::new(model)
-                .unwrap_or_else(|e| panic!("{name} with {profile}: {e}"));
+            let linear =
+                LinearFrame::new(model).unwrap_or_else(|e| panic!("{name} with {profile}: {e}"));
             let mut worst: f64 = 0.0;
             for c in &combos {
                 let res = linear.solve(&c.loads).expect("solve");
