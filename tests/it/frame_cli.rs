@@ -210,6 +210,8 @@ fn build_with_loads_stops_when_the_grid_does_not_stand_and_writes_it_all_when_al
         );
     }
 
+    structure_pages_are_the_plans(&out, st);
+
     // `lamella frame` is the same stage: the same section, byte for byte.
     let alone = dir.join("frame");
     let (code, _, _) = lamella(&[
@@ -237,6 +239,76 @@ fn build_with_loads_stops_when_the_grid_does_not_stand_and_writes_it_all_when_al
     assert_eq!(o.status.code(), Some(0));
     assert!(!out.join("structure").exists());
     assert!(plan_of(&out).get("structure").is_none_or(Value::is_null));
+}
+
+/// assembly.pdf's structure section, read back by pypdf: its five kinds of
+/// page, the verdict as in the plan (Greek spelt out), and a row per
+/// support with the governing combination's Rz from the plan.
+fn structure_pages_are_the_plans(dir: &Path, st: &Value) {
+    let Some(pdf) = crate::support::tools::read_pdf(&dir.join("assembly.pdf")) else {
+        return;
+    };
+    let texts: Vec<String> = pdf["page"]
+        .as_array()
+        .expect("pages")
+        .iter()
+        .map(|p| p["text"].as_str().unwrap_or_default().to_string())
+        .collect();
+    let first = |heading: &str| {
+        texts
+            .iter()
+            .position(|t| t.contains(heading))
+            .unwrap_or_else(|| panic!("no page \"{heading}\""))
+    };
+    let summary = first("Structure: supports, loads and verdict");
+    let deformed = first("Structure: deformed shape under SLS");
+    let utilisation = first("Structure: utilisation of every lamella");
+    let mode = first("Structure: first buckling mode under ULS");
+    let reactions = first("Structure: reactions on the supports");
+    assert!(summary < deformed && deformed < utilisation && utilisation < mode);
+    assert!(mode < reactions && reactions >= texts.len() - 3);
+    // The cover lists the section.
+    assert!(texts[0].contains("Structure"), "{}", texts[0]);
+    let verdict = st["verdict"]
+        .as_str()
+        .unwrap()
+        .replace("α", "alpha")
+        .replace("≤", "<=");
+    assert!(texts[summary].contains(&verdict), "{verdict}");
+    let limit = format!("limit of {:.1} mm", num(&st["deflection_limit_mm"]));
+    assert!(texts[deformed].contains(&limit), "{limit}");
+    let alpha = format!("alpha_cr = {:.2}", num(&st["alpha_cr"]["factor"]));
+    assert!(texts[mode].contains(&alpha), "{alpha}");
+    let g = &st["governing"];
+    assert!(texts[utilisation].contains(&format!(
+        "governing: strip {} lamella {}",
+        g["strip"].as_str().unwrap(),
+        g["lamella"]
+    )));
+    let combos = st["combinations"].as_array().unwrap();
+    let k = combos
+        .iter()
+        .position(|c| c["name"] == g["combination"])
+        .expect("the governing combination");
+    let rows: Vec<&str> = texts[reactions..].iter().flat_map(|t| t.lines()).collect();
+    for r in st["reactions"].as_array().unwrap() {
+        let start = format!(
+            "{} {} ",
+            r["node"].as_str().unwrap(),
+            r["kind"].as_str().unwrap()
+        );
+        let row = rows
+            .iter()
+            .find(|l| l.starts_with(&start))
+            .unwrap_or_else(|| panic!("no row {start}"));
+        let rz = format!("{:.2}", num(&r["forces_n"][k][2]) / 1000.0);
+        let rz = rz.trim_start_matches("-0.00").to_string();
+        let cells: Vec<&str> = row.split_whitespace().collect();
+        assert!(
+            cells[7] == rz || (rz.is_empty() && cells[7] == "0.00"),
+            "{row}: Rz {rz}"
+        );
+    }
 }
 
 fn frame_with(loads_text: &str, name: &str) -> (Option<i32>, String, String, std::path::PathBuf) {

@@ -398,6 +398,9 @@ pub fn winansi(s: &str) -> String {
             'γ' => out.push_str("gamma"),
             'κ' => out.push_str("kappa"),
             'φ' => out.push_str("phi"),
+            'α' => out.push_str("alpha"),
+            'λ' => out.push_str("lambda"),
+            'Σ' => out.push_str("sum "),
             _ => out.push('?'),
         }
     }

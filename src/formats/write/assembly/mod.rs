@@ -23,7 +23,10 @@
 //! * **schedules** ([`tables`]): nodes, the setting-out table (every
 //!   node's position and normal), shear blocks, parts, stock and hardware;
 //! * **sheets as nested** ([`nested`]): one stock sheet per page;
-//! * **elastic check**: A and B strips by utilisation, governing first.
+//! * **elastic check**: A and B strips by utilisation, governing first;
+//! * **structure** ([`structure`], when built with a loads file): supports,
+//!   loads and the verdict, the deformed shape, utilisation by colour, the
+//!   first buckling mode, the reactions.
 //!
 //! Only the built-in Helvetica is used (no font embedded): text is
 //! WinAnsi, mapped by [`canvas::winansi`]. The file around the pages is
@@ -37,6 +40,7 @@ pub mod nodeplan;
 pub mod overview;
 pub mod pdf;
 pub mod strips;
+pub mod structure;
 pub mod tables;
 
 use crate::error::{Error, Result};
@@ -203,7 +207,7 @@ impl Page {
 }
 
 /// The section names, in the document's order.
-pub const SECTIONS: [&str; 11] = [
+pub const SECTIONS: [&str; 12] = [
     "Cover",
     "Overview",
     "Assembly order",
@@ -215,6 +219,7 @@ pub const SECTIONS: [&str; 11] = [
     "Parts, stock and hardware",
     "Sheets as nested",
     "Elastic check",
+    structure::SECTION,
 ];
 
 /// The PDF of the assembly sheets.
@@ -246,6 +251,7 @@ pub struct Sections {
     blocks: Vec<SealedPage>,
     takeoff: SealedPage,
     check: Vec<SealedPage>,
+    structure: Vec<SealedPage>,
 }
 
 impl Sections {
@@ -263,6 +269,7 @@ impl Sections {
             vec![self.takeoff],
             nested,
             self.check,
+            self.structure,
         ]
     }
 }
@@ -322,6 +329,7 @@ pub fn sections_with(
         },
     );
     let setting_out = seal(tables::setting_out_pages(plan, &frame));
+    let structure = seal(structure::pages(plan, &frame));
     Ok(Sections {
         overview,
         order,
@@ -332,6 +340,7 @@ pub fn sections_with(
         blocks,
         takeoff,
         check,
+        structure,
     })
 }
 

@@ -36,7 +36,7 @@ pub fn table_capacity(columns: &[Column], frame: &Frame, height_mm: f64) -> (usi
 }
 
 /// Draw rows `rows` as a table whose top left is (x, top), one block.
-fn draw_block(c: &mut Canvas, columns: &[Column], x: f64, top: f64, rows: &[Row]) {
+pub fn draw_block(c: &mut Canvas, columns: &[Column], x: f64, top: f64, rows: &[Row]) {
     let w: f64 = columns.iter().map(|c| c.1).sum();
     c.fill(LIGHT);
     c.rect(x, top - HEADER_MM, w, HEADER_MM, true, false);
