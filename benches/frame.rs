@@ -19,11 +19,14 @@
 //!   `--static` skips them);
 //! * peak MiB: the process's peak resident memory, reading, analysis and
 //!   kit included.
+//!
 //! The network's reading, analysis and kit come before and are timed apart
 //! (`before s`).
 //!
-//!     cargo bench --bench frame            # n = 100, 200 (all), 400 (static)
-//!     cargo bench --bench frame -- 200     # one size
+//! ```text
+//! cargo bench --profile dev --bench frame            # n = 100, 200 (all), 400 (static)
+//! cargo bench --profile dev --bench frame -- 20 40   # these sizes
+//! ```
 
 mod support;
 use lamella_synth as synth;
