@@ -16,7 +16,7 @@
 //! * `α_cr`: the first 6 critical factors and modes of the governing ULS
 //!   combination (shift-invert Lanczos), and `2nd order`: that
 //!   combination on the imperfect geometry, to convergence (n ≤ 200 only:
-//!   `--static` skips them);
+//!   `LAMELLA_BENCH_STATIC=1` skips them);
 //! * peak MiB: the process's peak resident memory, reading, analysis and
 //!   kit included.
 //!
