@@ -1521,6 +1521,12 @@ mod tests {
     /// the strip is straight).
     fn erection_matches_the_check(sample: &str, profile: &str) {
         let (_, an, p, _, f) = build(sample, profile);
+        erection_matches(&an, &p, &f);
+    }
+
+    /// The frame's erection state, element by element, against the
+    /// check's stresses at the same station of the same lamella line.
+    fn erection_matches(an: &Analysis, p: &Profile, f: &BuiltFrame) {
         let (t, h) = (p.thickness_mm(), p.height_mm());
         let sec = &f.model.sections[SECTION_LAMELLA];
         let mut compared = 0;
@@ -1601,6 +1607,47 @@ mod tests {
     #[test]
     fn erection_stresses_are_the_checks_in_two_levels() {
         erection_matches_the_check("hypar-small", "poplar-ply-4");
+    }
+
+    /// The helicoid: its rulings are straight and purely twisted (the
+    /// torque alone), its helices bend and twist.
+    #[test]
+    fn erection_stresses_are_the_checks_on_a_helicoid() {
+        let dir =
+            std::env::temp_dir().join(format!("lamella-erection-helicoid-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let spec_path = dir.join("helicoid.trace.yaml");
+        std::fs::write(
+            &spec_path,
+            "surface: helicoid\nc: 1.0\nscale_mm: 1000\nseed: [0.75, 0.9]\nspacing_mm: 250\n\
+             clip:\n  parameters: {polygon: [[0.0, 0.3], [1.5, 0.3], [1.5, 1.5], [0.0, 1.5]]}\n\
+             sampling: {step_mm: 25}\n",
+        )
+        .expect("spec");
+        let spec = crate::formats::read::trace_spec::load(&spec_path).expect("spec reads");
+        let (raw, _) =
+            crate::design::design(&spec, &spec_path, &crate::formats::read::mesh::read_mesh)
+                .expect("traced");
+        let _ = std::fs::remove_dir_all(&dir);
+        let net = Network::new(raw, &spec_path).expect("network");
+        let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
+        let p = profile_file::load(&root().join("profiles/steel-1.5.yaml")).expect("profile");
+        let kit = fabricate(&net, &an, &p, None, NetworkLines::default()).expect("kit");
+        let f = build_frame(&net, &an, &p, &kit, &FrameOptions::default()).expect("frame");
+        // Straight rulings: no bending, a torque; helices: both.
+        let twisted_only = f
+            .model
+            .beams
+            .iter()
+            .zip(&f.roles)
+            .filter(|(b, r)| {
+                r.is_some()
+                    && b.initial.torque_nmm.abs() > 1.0
+                    && b.initial.moment_z_nmm.abs() < 1e-3 * b.initial.torque_nmm.abs()
+            })
+            .count();
+        assert!(twisted_only > 50, "{twisted_only} purely twisted elements");
+        erection_matches(&an, &p, &f);
     }
 
     /// A network of straight lines: A at x = 0, 100, …, 400 (y from −50 to
