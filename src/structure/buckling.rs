@@ -20,8 +20,11 @@ use super::model::{FrameModel, LoadSet};
 use super::solve::{axial_forces, solve_with, Assembly, FrameError, LinearFrame, SymSparse};
 use faer::{Mat, Side};
 
-/// Relative residual of every wanted Ritz pair at convergence.
-pub const TOLERANCE: f64 = 1e-8;
+/// Relative residual of every wanted Ritz pair at convergence: the
+/// eigenvalue's relative error is of the order of its square over the gap
+/// to the next one (1e-12 for a gap of 1 %). 1e-8 took about a third more
+/// steps for no visible digit (the pavilion: 85–160 steps at 1e-6).
+pub const TOLERANCE: f64 = 1e-6;
 
 /// Most Lanczos steps.
 pub const MAX_ITERATIONS: usize = 400;
