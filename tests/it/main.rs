@@ -38,7 +38,6 @@ mod readers;
 mod readme;
 mod robustness;
 mod stock_groups;
-mod structure;
 mod trace;
 mod traced_accuracy;
 mod web_ends;
