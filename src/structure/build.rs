@@ -1553,7 +1553,7 @@ mod tests {
                     let cs = a.1 + (r.station_mm - a.0) / (b.0 - a.0) * (b.1 - a.1);
                     let (kg, kn, tg) = sampled(s, cs);
                     let d = stretch(o.dy_mm, o.dz_mm, kg, kn, tg);
-                    let want = Stresses::of(&p, kg / d, tg / d);
+                    let want = Stresses::of(p, kg / d, tg / d);
                     let sb = bm.initial.moment_z_nmm.abs() / (h * t * t / 6.0);
                     let tau = bm.initial.torque_nmm.abs() * t / sec.j_mm4;
                     let sw = r.trapeze_mpa;
