@@ -200,7 +200,7 @@ pub fn prepare(
         ),
     );
     let cell_mm = median_edge_mm(&mesh);
-    let precision_mm = mesh_precision_mm(&mesh, cell_mm, &curvatures);
+    let precision_mm = mesh_precision_mm(&mesh);
     let surface = if film {
         MeshSurface::with_patch_neighbours(&mesh, uv, &curvatures, FILM_PATCH_NEIGHBOURS)
     } else {
@@ -241,46 +241,31 @@ pub fn prepare(
 }
 
 /// The precision of curves traced on a mesh, mm, before they are traced:
-/// the larger of the coordinates' rounding step and h⁴·κ³, with h the
-/// median edge length ([`median_edge_mm`], `cell_mm`) and κ the 95th percentile of the vertices' largest
-/// |principal curvature|. The design raises it to twice the traced curves'
-/// own roughness at the mesh's scale where that is larger
-/// ([`crate::geom::curve::roughness_mm`] over ±2 cells).
+/// the coordinates' rounding step. The design raises it to twice the
+/// traced curves' own roughness at the mesh's scale where that is larger
+/// ([`crate::geom::curve::roughness_mm`] over ±2 cells, `crate::design`).
 ///
 /// The surface the tracer walks is the blend of cubic patches fitted to
 /// the vertices (`mesh::surface`): it lies O(h⁴·κ³) from the smooth surface
-/// the vertices sample (a cubic's error is the fourth-order term, and a
-/// surface of curvature κ has fourth derivatives of order κ³), and its
-/// curvature tensors vary linearly across each triangle, so the traced
-/// curves wiggle at the mesh's scale. Declared as the network's precision,
-/// the wiggles are smoothed away by `nodes` and `check` like the rounding
-/// of an export, not read as bending. Measured on Delaunay meshes of
-/// Enneper's surface, the catenoid and the helicoid (`tests/it/mesh_truth.rs`,
-/// README "Accuracy by input"): 40–100 mm cells jittered by 15–35 % give
-/// every strip's smallest bending radius within 5 % and largest twist
-/// within 1 % of the closed form's (at 40 mm the coordinates' rounding
-/// would dominate the curvature tensors, at 100 mm their truncation: the
-/// jets balance the two, `crate::design::mesh::curvature`), except the
-/// catenoid at 100 mm: 7 % there, the smoothing this precision sets
-/// (±850 mm) biases the curvature at the ends of curves that twist faster
-/// than they bend.
-pub fn mesh_precision_mm(
-    mesh: &TriMesh,
-    cell_mm: f64,
-    curvatures: &[crate::geom::surface::Curvature],
-) -> f64 {
-    let step = crate::design::mesh::curvature::coordinate_step_mm(mesh);
-    let mut kappa: Vec<f64> = curvatures
-        .iter()
-        .map(|c| c.k1.abs().max(c.k2.abs()))
-        .filter(|k| k.is_finite())
-        .collect();
-    if cell_mm == 0.0 || kappa.is_empty() {
-        return step;
-    }
-    let i95 = (kappa.len() * 95 / 100).min(kappa.len() - 1);
-    let k95 = *kappa.select_nth_unstable_by(i95, f64::total_cmp).1;
-    step.max(cell_mm.powi(4) * k95.powi(3))
+/// the vertices sample (h the spacing, κ the curvature), a smooth error at
+/// the surface's own scale that moves a traced curve but does not bend it
+/// from sample to sample, so no smoothing could or should take it out.
+/// What does bend it is the curvature tensor field, which varies linearly
+/// across each triangle and kinks at its edges: the traced curves wiggle at
+/// the mesh's scale. That roughness is measured on the traced curves and
+/// declared as the network's precision, so that `nodes` and `check` smooth
+/// the wiggles away like the rounding of an export, and no wider. (Declared
+/// as h⁴·κ³ instead, about 14 times twice the roughness measured on
+/// 100 mm Delaunay meshes of the catenoid, the smoothing windows spanned
+/// whole strips there, and a degree-4 fit evaluated at the edge of its
+/// window read the catenoid's fast-twisting lines 7 % too curved at their
+/// ends.) Measured on Delaunay meshes of Enneper's surface, the catenoid
+/// and the helicoid (`tests/it/mesh_truth.rs`, README "Accuracy by
+/// input"): 40–100 mm cells jittered by 15–35 % give every strip's smallest
+/// bending radius within 5 % and largest twist within 3 % of the closed
+/// form's.
+pub fn mesh_precision_mm(mesh: &TriMesh) -> f64 {
+    crate::design::mesh::curvature::coordinate_step_mm(mesh)
 }
 
 /// The median edge length of a mesh, mm (0 for none).

@@ -17,7 +17,15 @@
 //! rounding noise in the curvature stays below
 //! [`CURVATURE_NOISE_TARGET_PER_MM`] (W ∝ (ε²·h)^(1/5)), and no wider than a
 //! fifth of the smallest bending radius so the fit's own bias stays below
-//! ~1e-4 relative. Exact coordinates (precision below [`EXACT_PRECISION_MM`])
+//! ~1e-4 relative. That bound counts bending only: a curve that twists
+//! faster than it bends (a catenoid's asymptotic lines, torsion three to
+//! five times the curvature) changes its curvature vector on the scale of
+//! the twist, and a fit evaluated at the edge of its window (a curve's
+//! first and last samples) is a power less exact than a centred one, so a
+//! precision declared far above a curve's real noise reads its ends too
+//! curved (7 % on a 100 mm mesh of the catenoid, with windows of ±800 mm):
+//! a precision says what the coordinates' noise is, not a bound on their
+//! error. Exact coordinates (precision below [`EXACT_PRECISION_MM`])
 //! keep the 7-sample fit and the interpolant passes through every sample;
 //! smoothed ones lie within the rounding of them.
 
