@@ -26,8 +26,8 @@ use faer::{Mat, Side};
 /// steps for no visible digit (the pavilion: 85–160 steps at 1e-6).
 pub const TOLERANCE: f64 = 1e-6;
 
-/// Most Lanczos steps.
-pub const MAX_ITERATIONS: usize = 400;
+/// Most Lanczos steps (solves), over all restarts.
+pub const MAX_ITERATIONS: usize = 3000;
 
 /// A buckling mode.
 #[derive(Debug, Clone, PartialEq)]
@@ -113,12 +113,19 @@ fn shape_of(assembly: &Assembly, v: &[f64]) -> Vec<[f64; 6]> {
     shape
 }
 
-/// A critical factor and its mode over the unknowns.
-type Pair = (f64, Vec<f64>);
-
 /// Lanczos on Op = K_e⁻¹·(−K_G), self-adjoint in the K_e inner product,
-/// with full reorthogonalisation (twice); returns (λ, vector) for the
-/// smallest positive λ = 1/μ.
+/// with full reorthogonalisation (twice) and thick restarts; returns
+/// (λ, vector) for the smallest positive λ = 1/μ.
+///
+/// The basis is kept K_e-orthonormal and the projected operator
+/// H = Qᵀ·K_e·Op·Q is kept explicitly (tridiagonal but for the arrow a
+/// restart leaves). When the basis reaches [`basis_size`] vectors, it is
+/// cut to the [`kept`] Ritz vectors of largest positive μ (the wanted
+/// ones and a margin) and the current residual direction, with
+/// H = diag(μ) bordered by the residual's couplings β·sᵢ (Wu & Simon's
+/// thick restart): each step then costs O(basis·n) however many steps a
+/// clustered spectrum needs, where the unrestarted basis grew its cost as
+/// O(steps²·n).
 fn lanczos(
     linear: &LinearFrame<'_>,
     kg: &SymSparse,
@@ -126,7 +133,8 @@ fn lanczos(
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
     let ke = &linear.stiffness;
     let n = kg.n;
-    let steps = MAX_ITERATIONS.min(n);
+    let basis_max = basis_size(modes).min(n);
+    let keep = kept(modes).min(basis_max.saturating_sub(2));
     let k_dot = |x: &[f64], y: &[f64]| -> f64 {
         let kx = ke.mul_vec(x);
         kx.iter().zip(y).map(|(a, b)| a * b).sum()
@@ -144,88 +152,120 @@ fn lanczos(
     let norm = k_dot(&r, &r).sqrt();
     r.iter_mut().for_each(|v| *v /= norm);
     let mut q: Vec<Vec<f64>> = vec![r];
-    let (mut alpha, mut beta): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
-    for j in 0..steps {
-        // w = K_e⁻¹·(−K_G·q_j); α_j = q_jᵀ·(−K_G·q_j).
+    // h[i][j] = ⟨q_i, Op·q_j⟩ over the basis (column j filled at step j).
+    let mut h: Vec<Vec<f64>> = vec![vec![0.0; basis_max]; basis_max];
+    for step in 0..MAX_ITERATIONS {
+        let j = q.len() - 1;
+        // w = K_e⁻¹·(−K_G·q_j), then K_e-orthogonal to the basis (twice);
+        // the coefficients are column j of H.
         let g: Vec<f64> = kg.mul_vec(&q[j]).into_iter().map(|v| -v).collect();
-        alpha.push(g.iter().zip(&q[j]).map(|(a, b)| a * b).sum());
         let mut w = solve_with(&linear.factor, &g)?;
+        let mut column = vec![0.0; j + 1];
         for _pass in 0..2 {
             let kw = ke.mul_vec(&w);
-            for qi in &q {
+            for (qi, ci) in q.iter().zip(column.iter_mut()) {
                 let c: f64 = kw.iter().zip(qi).map(|(a, b)| a * b).sum();
                 w.iter_mut().zip(qi).for_each(|(a, b)| *a -= c * b);
+                *ci += c;
             }
+        }
+        for (i, c) in column.iter().enumerate() {
+            h[i][j] = *c;
         }
         let b = k_dot(&w, &w).max(0.0).sqrt();
-        let exhausted = b.is_nan() || b <= 1e-14 * alpha[j].abs().max(1e-300);
-        let check = (j + 1) % 5 == 0 || j + 1 == steps || exhausted;
-        if check {
-            if let Some(found) = ritz(&q, &alpha, &beta, b, modes)? {
-                return Ok(found);
+        let scale = column[j].abs().max(1e-300);
+        let exhausted = b.is_nan() || b <= 1e-14 * scale || j + 1 == n;
+        let full = j + 1 == basis_max;
+        let steps = step + 1;
+        if (steps % 5 == 0 || exhausted || full) && steps >= 2 * modes + 4 || exhausted {
+            let (mu, s) = ritz_values(&h, j + 1)?;
+            let b_eff = if exhausted { 0.0 } else { b };
+            let wanted = wanted_of(&mu, modes);
+            let converged = wanted
+                .iter()
+                .all(|&i| (b_eff * s[(j, i)]).abs() <= TOLERANCE * mu[i]);
+            if converged || exhausted {
+                return Ok(wanted
+                    .iter()
+                    .map(|&i| (1.0 / mu[i], combine(&q, &s, i)))
+                    .collect());
+            }
+            if full {
+                // Thick restart: the kept Ritz vectors, then the residual
+                // direction; H = diag(μ) bordered by β·s_last.
+                let keep_ids = wanted_of(&mu, keep);
+                let mut next: Vec<Vec<f64>> =
+                    keep_ids.iter().map(|&i| combine(&q, &s, i)).collect();
+                w.iter_mut().for_each(|v| *v /= b);
+                next.push(w);
+                for row in h.iter_mut() {
+                    row.iter_mut().for_each(|v| *v = 0.0);
+                }
+                let last = keep_ids.len();
+                for (k, &i) in keep_ids.iter().enumerate() {
+                    h[k][k] = mu[i];
+                    h[last][k] = b * s[(j, i)];
+                    h[k][last] = b * s[(j, i)];
+                }
+                q = next;
+                continue;
             }
         }
-        if exhausted {
-            // An invariant subspace: every Ritz pair is exact.
-            return Ok(ritz(&q, &alpha, &beta, 0.0, modes)?.unwrap_or_default());
-        }
-        beta.push(b);
+        h[j + 1][j] = b;
         w.iter_mut().for_each(|v| *v /= b);
         q.push(w);
     }
     Err(FrameError::NotConverged {
         what: "the buckling analysis (Lanczos)".into(),
-        iterations: steps,
+        iterations: MAX_ITERATIONS,
     })
 }
 
-/// The Ritz pairs of the tridiagonal (α, β); `Some` when the wanted ones
-/// (the `modes` largest positive μ) have residuals |b·s_last| below
-/// [`TOLERANCE`]·μ.
-fn ritz(
-    q: &[Vec<f64>],
-    alpha: &[f64],
-    beta: &[f64],
-    b: f64,
-    modes: usize,
-) -> Result<Option<Vec<Pair>>, FrameError> {
-    let m = alpha.len();
+/// The basis size at which the Lanczos basis is restarted, for `modes`
+/// wanted modes.
+fn basis_size(modes: usize) -> usize {
+    4 * modes + 24
+}
+
+/// How many Ritz vectors a restart keeps, for `modes` wanted modes.
+fn kept(modes: usize) -> usize {
+    2 * modes + 8
+}
+
+/// The eigenvalues (ascending) and vectors of the leading m×m block of
+/// the projected operator, symmetrised.
+fn ritz_values(h: &[Vec<f64>], m: usize) -> Result<(Vec<f64>, Mat<f64>), FrameError> {
     let mut t = Mat::<f64>::zeros(m, m);
     for i in 0..m {
-        t[(i, i)] = alpha[i];
-        if i + 1 < m {
-            t[(i + 1, i)] = beta[i];
-            t[(i, i + 1)] = beta[i];
+        for k in 0..m {
+            t[(i, k)] = 0.5 * (h[i][k] + h[k][i]);
         }
     }
     let e = t
         .self_adjoint_eigen(Side::Lower)
         .map_err(|e| FrameError::Invalid(format!("buckling: {e:?}")))?;
-    let (mu, s) = (e.S().column_vector(), e.U());
-    // Ascending μ: the wanted are the last, positive ones.
-    let wanted: Vec<usize> = (0..m).rev().filter(|&i| mu[i] > 0.0).take(modes).collect();
-    let converged = wanted
-        .iter()
-        .all(|&i| (b * s[(m - 1, i)]).abs() <= TOLERANCE * mu[i]);
-    // Enough steps that a missing mode would have shown (at least twice
-    // the modes), unless the space is exhausted.
-    if !converged || (m < 2 * modes + 4 && b != 0.0) {
-        return Ok(None);
-    }
+    let mu: Vec<f64> = (0..m).map(|i| e.S().column_vector()[i]).collect();
+    Ok((mu, e.U().to_owned()))
+}
+
+/// The indices of the `count` largest positive μ, largest first.
+fn wanted_of(mu: &[f64], count: usize) -> Vec<usize> {
+    (0..mu.len())
+        .rev()
+        .filter(|&i| mu[i] > 0.0)
+        .take(count)
+        .collect()
+}
+
+/// The Ritz vector Q·s_i.
+fn combine(q: &[Vec<f64>], s: &Mat<f64>, i: usize) -> Vec<f64> {
     let n = q[0].len();
-    Ok(Some(
-        wanted
-            .iter()
-            .map(|&i| {
-                let mut x = vec![0.0; n];
-                for (k, qk) in q.iter().enumerate().take(m) {
-                    let c = s[(k, i)];
-                    x.iter_mut().zip(qk).for_each(|(a, b)| *a += c * b);
-                }
-                (1.0 / mu[i], x)
-            })
-            .collect(),
-    ))
+    let mut x = vec![0.0; n];
+    for (k, qk) in q.iter().enumerate() {
+        let c = s[(k, i)];
+        x.iter_mut().zip(qk).for_each(|(a, b)| *a += c * b);
+    }
+    x
 }
 
 #[cfg(test)]
