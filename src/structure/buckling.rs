@@ -7,9 +7,10 @@
 //! **Method.** Shift-invert Lanczos: with K_e = K + K_G,0 factorised
 //! once (sparse Cholesky), the operator Op = K_e⁻¹·(−K_G) is self-adjoint
 //! in the K_e inner product and its eigenvalues are μ = 1/λ; Lanczos in
-//! that inner product (one solve and two sparse products per step, full
-//! reorthogonalisation twice, so no spurious copies) finds both ends of
-//! the spectrum first, and the wanted end is the largest positive μ.
+//! that inner product (one solve per step, full reorthogonalisation
+//! twice, so no spurious copies; the basis thick-restarted at a fixed
+//! size, so every step costs the same) finds both ends of the spectrum
+//! first, and the wanted end is the largest positive μ.
 //! Eigenvalues of either sign appear (λ < 0: buckling under the reversed
 //! load, members in tension); the m smallest positive λ are kept. A Ritz
 //! pair is converged when its residual |β_j·s_j| is below [`TOLERANCE`]·μ
