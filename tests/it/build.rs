@@ -6,7 +6,7 @@
 //! stop; safe output (foreign files kept, a killed build leaves DIR as it
 //! was).
 
-use crate::support::{build, lamella_command, ok, root, scratch, tools};
+use crate::support::{build, lamella_command, ok, root, scratch, shipped_networks, tools};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -763,16 +763,10 @@ fn every_shipped_build_passes_both_readers() {
     let refused = crate::readme::refused(&readme);
     let mut built = 0;
     let mut parts_audited = std::collections::BTreeSet::new();
-    let mut samples: Vec<PathBuf> = std::fs::read_dir(root().join("samples"))
-        .expect("samples")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            p.extension().is_some_and(|e| e == "yaml")
-                && !p.to_string_lossy().ends_with(".trace.yaml")
-        })
+    let samples: Vec<PathBuf> = shipped_networks()
+        .iter()
+        .map(|n| root().join("samples").join(format!("{n}.yaml")))
         .collect();
-    samples.sort();
     for sample in &samples {
         let name = sample
             .file_stem()

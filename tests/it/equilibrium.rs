@@ -7,7 +7,7 @@
 //! loads' totals themselves, areas times loads and the kit's weight, are
 //! held by tests/it/loads.rs.)
 
-use crate::support::root;
+use crate::support::{root, shipped_networks};
 use glam::DVec3;
 use lamella::analysis::lines::NetworkLines;
 use lamella::analysis::{analyze, AnalysisOptions};
@@ -19,7 +19,6 @@ use lamella::structure::loads::{combinations, combine, load_cases, supports};
 use lamella::structure::model::{Combination, LoadSet};
 use lamella::structure::solve::LinearFrame;
 use rayon::prelude::*;
-use std::path::PathBuf;
 
 /// A sample's frame under the pavilion's loads: the model, its
 /// characteristic load cases and its combinations; `None` when the profile cannot make the sample's parts
@@ -43,26 +42,11 @@ pub fn loaded_frame(
     Some((built, cases, combos))
 }
 
-fn samples() -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(root().join("samples"))
-        .expect("samples")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            p.extension().is_some_and(|e| e == "yaml")
-                && !p.to_string_lossy().ends_with(".trace.yaml")
-        })
-        .filter_map(|p: PathBuf| Some(p.file_stem()?.to_string_lossy().into_owned()))
-        .collect();
-    v.sort();
-    v
-}
-
 #[test]
 fn every_shipped_network_is_in_equilibrium_under_every_combination() {
     let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
     let refused = crate::readme::refused(&readme);
-    let names = samples();
+    let names = shipped_networks();
     assert!(names.len() >= 10, "{names:?}");
     let checked: Vec<(String, usize, f64)> = names
         .par_iter()

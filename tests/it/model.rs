@@ -3,7 +3,7 @@
 //! the bytes stable; the Khronos glTF-Validator on every shipped sample's
 //! model; the page drawn and picked in headless Chromium.
 
-use crate::support::{build, lamella, ok, root, scratch, tools};
+use crate::support::{build, lamella, ok, root, scratch, shipped_networks, tools};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -281,25 +281,10 @@ fn view_and_build_write_the_same_model_byte_for_byte() {
     );
 }
 
-/// The shipped samples' networks (not their trace specs).
-fn samples() -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(root().join("samples"))
-        .expect("samples")
-        .flatten()
-        .filter_map(|e| {
-            let n = e.file_name().to_string_lossy().into_owned();
-            (n.ends_with(".yaml") && !n.ends_with(".trace.yaml"))
-                .then(|| n.trim_end_matches(".yaml").to_string())
-        })
-        .collect();
-    v.sort();
-    v
-}
-
 #[test]
 fn every_sample_model_holds_its_plans_nodes() {
     let dir = scratch("samples");
-    for sample in samples() {
+    for sample in shipped_networks() {
         let out = dir.join(&sample);
         let net = format!("samples/{sample}.yaml");
         let o = out.to_str().expect("path");
@@ -359,7 +344,7 @@ fn every_sample_model_passes_the_gltf_validator() {
         return;
     };
     let dir = scratch("validator");
-    let mut runs: Vec<(String, &str, bool)> = samples()
+    let mut runs: Vec<(String, &str, bool)> = shipped_networks()
         .into_iter()
         .map(|s| (s, "steel-1.5", false))
         .collect();

@@ -288,3 +288,19 @@ pub fn keeps_u_plus_v(uvs: &[DVec2]) -> bool {
     };
     spread(&|q| q.x + q.y) < spread(&|q| q.x - q.y)
 }
+
+/// The shipped samples' networks (not their trace specs), by name
+/// (`samples/NAME.yaml`), sorted.
+pub fn shipped_networks() -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(root().join("samples"))
+        .expect("samples")
+        .flatten()
+        .filter_map(|e| {
+            let n = e.file_name().to_string_lossy().into_owned();
+            (n.ends_with(".yaml") && !n.ends_with(".trace.yaml"))
+                .then(|| n.trim_end_matches(".yaml").to_string())
+        })
+        .collect();
+    v.sort();
+    v
+}

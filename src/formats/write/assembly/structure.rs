@@ -23,7 +23,7 @@
 //! only a build in the same process has (a plan read back from plan.json
 //! draws no structure pages).
 
-use super::canvas::{Align, Canvas, BLACK, BLUE, GREY, LIGHT, RED};
+use super::canvas::{Align, Canvas, Rgb3, BLACK, BLUE, GREY, LIGHT, RED};
 use super::tables::{draw_block, table_pages, Column, Row, HEADER_MM, ROW_MM};
 use super::{fixed, utilisation_colour, Frame, Page};
 use crate::plan::structure::{PlanStructure, StructureDrawing};
@@ -318,29 +318,13 @@ fn summary_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Page
 fn deformed_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Option<Page> {
     let (name, moves) = d.deflection.as_ref()?;
     let factor = display_factor(d, moves);
-    let moved: Vec<DVec3> = d
-        .nodes_mm
-        .iter()
-        .zip(moves)
-        .map(|(p, u)| *p + *u * factor)
-        .collect();
     let mut page = Page::new(
         SECTION,
         format!("Structure: deformed shape under {name}, displacements × {factor}"),
         None,
     );
     let c = &mut page.canvas;
-    let all: Vec<DVec3> = d.nodes_mm.iter().chain(&moved).copied().collect();
-    let view = View::fit(&all, drawing_box(frame, 0.0));
-    c.stroke(LIGHT);
-    c.width(0.2);
-    draw_grid(c, d, &view, |n| d.nodes_mm[n]);
-    c.stroke(BLUE);
-    c.width(0.3);
-    draw_grid(c, d, &view, |n| moved[n]);
-    for (node, kind) in &d.supports {
-        support_symbol(c, view.map(d.nodes_mm[*node]), kind);
-    }
+    let (view, moved) = draw_displaced(c, d, frame, moves, factor, BLUE);
     let (most, largest) = moves
         .iter()
         .enumerate()
@@ -449,16 +433,41 @@ fn utilisation_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> 
     page
 }
 
+/// The erected grid in grey, the grid moved by `moves` × `factor` in
+/// `colour` over it and the supports, fitted into the drawing box; the
+/// view and the moved nodes.
+fn draw_displaced(
+    c: &mut Canvas,
+    d: &StructureDrawing,
+    frame: &Frame,
+    moves: &[DVec3],
+    factor: f64,
+    colour: Rgb3,
+) -> (View, Vec<DVec3>) {
+    let moved: Vec<DVec3> = d
+        .nodes_mm
+        .iter()
+        .zip(moves)
+        .map(|(p, u)| *p + *u * factor)
+        .collect();
+    let all: Vec<DVec3> = d.nodes_mm.iter().chain(&moved).copied().collect();
+    let view = View::fit(&all, drawing_box(frame, 0.0));
+    c.stroke(LIGHT);
+    c.width(0.2);
+    draw_grid(c, d, &view, |n| d.nodes_mm[n]);
+    c.stroke(colour);
+    c.width(0.3);
+    draw_grid(c, d, &view, |n| moved[n]);
+    for (node, kind) in &d.supports {
+        support_symbol(c, view.map(d.nodes_mm[*node]), kind);
+    }
+    (view, moved)
+}
+
 /// The first buckling mode.
 fn mode_page(d: &StructureDrawing, frame: &Frame) -> Option<Page> {
     let (name, alpha, shape) = d.mode.as_ref()?;
     let factor = display_factor(d, shape);
-    let moved: Vec<DVec3> = d
-        .nodes_mm
-        .iter()
-        .zip(shape)
-        .map(|(p, u)| *p + *u * factor)
-        .collect();
     let mut page = Page::new(
         SECTION,
         format!(
@@ -467,18 +476,8 @@ fn mode_page(d: &StructureDrawing, frame: &Frame) -> Option<Page> {
         ),
         None,
     );
+    draw_displaced(&mut page.canvas, d, frame, shape, factor, RED);
     let c = &mut page.canvas;
-    let all: Vec<DVec3> = d.nodes_mm.iter().chain(&moved).copied().collect();
-    let view = View::fit(&all, drawing_box(frame, 0.0));
-    c.stroke(LIGHT);
-    c.width(0.2);
-    draw_grid(c, d, &view, |n| d.nodes_mm[n]);
-    c.stroke(RED);
-    c.width(0.3);
-    draw_grid(c, d, &view, |n| moved[n]);
-    for (node, kind) in &d.supports {
-        support_symbol(c, view.map(d.nodes_mm[*node]), kind);
-    }
     let stands = if *alpha > 1.0 {
         "above 1: the grid does not buckle under this combination"
     } else {
