@@ -24,8 +24,8 @@
 //! mesh` (5 mm cells: quartics over 120 vertices) the stage took 68 s with
 //! a Householder QR per fit (dev profile, two cores loaded 2.5 times
 //! over); unloaded, 5.3 s with the QR's dot products fused, 3.0 s by the
-//! normal equations, 0.82 s fitting one vertex in 8.4, 0.42 s deciding
-//! from 8,192 vertices in place of 32,768.
+//! normal equations, 0.82 s fitting one vertex in 8.4, 0.42–0.53 s
+//! deciding from 8,192 vertices in place of 32,768.
 //!
 //! Accuracy, and how the fit is chosen ([`vertex_jets`]). Two errors enter
 //! the curvature. Truncation: a degree-d jet over a neighbourhood of radius
@@ -219,22 +219,26 @@ fn decided_jets(mesh: &TriMesh, topo: &Topology, share: bool) -> Vec<VertexJet> 
 
 /// The neighbourhood size (vertices) from which [`vertex_jets`] fits only
 /// a covering subset of the vertices and evaluates each other vertex's
-/// curvature on a nearby vertex's jet ([`shared_jets`]). A neighbourhood
-/// grows by whole rings until it holds this many, six rings of a regular
-/// mesh (127 vertices), so a vertex [`SHARED_RINGS`] rings away lies in
-/// the inner third of the jet's neighbourhood, where a least-squares
-/// polynomial is as good as at the centre. On a 4 m surface at 0.001 mm
-/// the jets reach this size from cells of about 10 mm down (quartics over
-/// 120 vertices at 5 mm); at 40–100 mm cells they are fitted everywhere.
-pub const SHARED_MIN_POINTS: usize = 100;
+/// curvature on a nearby vertex's jet ([`shared_jets`]): more than four
+/// rings of a regular mesh (61 vertices). On a 4 m surface at 0.001 mm the
+/// jets reach it from cells of about 40 mm down (quartics over 91
+/// vertices at 10 mm, 120 at 5 mm).
+pub const SHARED_MIN_POINTS: usize = 62;
 
 /// How many rings from a fitted vertex its jet is evaluated at others
-/// ([`shared_jets`]).
-const SHARED_RINGS: usize = 2;
+/// ([`shared_jets`]) when it is fitted over `points` vertices: a third of
+/// the rings a regular mesh needs for them (r rings hold 3r(r + 1) + 1),
+/// so the vertices it serves lie in the inner third of its neighbourhood,
+/// where a least-squares polynomial is as good as at its centre: one ring
+/// for five (91 vertices), two for six to eight (127–217).
+fn shared_rings(points: usize) -> usize {
+    let rings = (1..).find(|r| 3 * r * (r + 1) + 1 >= points).unwrap_or(1);
+    (rings / 3).max(1)
+}
 
 /// Jets where neighbourhoods are large ([`SHARED_MIN_POINTS`]): fitted at
 /// a covering subset of the vertices ([`cover`]: every vertex in it or
-/// within [`SHARED_RINGS`] rings of one, every boundary vertex in it), each
+/// within [`shared_rings`] rings of one, every boundary vertex in it), each
 /// other vertex's curvature that of the nearest fitted vertex's polynomial
 /// at the vertex's own position ([`Fit::curvature_at`]; its noise,
 /// residual and neighbourhood are the fitted vertex's). The fits of two
@@ -250,7 +254,8 @@ fn shared_jets(
     noise_mm: f64,
     how: (usize, usize, bool),
 ) -> Vec<VertexJet> {
-    let member = cover(topo);
+    let rings = shared_rings(how.0);
+    let member = cover(topo, rings);
     let members: Vec<u32> = (0..member.len() as u32)
         .filter(|&v| member[v as usize])
         .collect();
@@ -279,7 +284,7 @@ fn shared_jets(
                 if member[v as usize] {
                     return fitted[slot[v as usize] as usize].0;
                 }
-                rings_around(topo, v, hood, seen);
+                rings_around(topo, v, rings, hood, seen);
                 let distance = |w: u32| p[w as usize].distance_squared(p[v as usize]);
                 let nearest = hood
                     .iter()
@@ -301,29 +306,30 @@ fn shared_jets(
 }
 
 /// A covering subset of the vertices, greedily in vertex order: a vertex
-/// joins unless one within [`SHARED_RINGS`] rings already has; boundary
+/// joins unless one within `shared_rings` rings already has; boundary
 /// vertices always join (their neighbourhoods are one-sided, a
 /// neighbour's jet would be extrapolated). Every vertex is in it or within
 /// that many rings of a vertex in it: one left out had one there when it
 /// was visited.
-fn cover(topo: &Topology) -> Vec<bool> {
+fn cover(topo: &Topology, shared_rings: usize) -> Vec<bool> {
     let mut member = vec![false; topo.vertex_count()];
     let mut seen = crate::geom::mesh::VisitMarks::new(member.len());
     let mut hood = Vec::new();
     for v in 0..member.len() as u32 {
         member[v as usize] = topo.is_boundary(v) || {
-            rings_around(topo, v, &mut hood, &mut seen);
+            rings_around(topo, v, shared_rings, &mut hood, &mut seen);
             !hood.iter().any(|&w| member[w as usize])
         };
     }
     member
 }
 
-/// The vertices within [`SHARED_RINGS`] rings of `v` (v first), into
+/// The vertices within `shared_rings` rings of `v` (v first), into
 /// `hood`.
 fn rings_around(
     topo: &Topology,
     v: u32,
+    shared_rings: usize,
     hood: &mut Vec<u32>,
     seen: &mut crate::geom::mesh::VisitMarks,
 ) {
@@ -332,7 +338,7 @@ fn rings_around(
     seen.clear();
     seen.insert(v);
     let mut frontier = 0;
-    for _ in 0..SHARED_RINGS {
+    for _ in 0..shared_rings {
         if !grow(topo, hood, seen, &mut frontier) {
             break;
         }
