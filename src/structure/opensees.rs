@@ -30,8 +30,9 @@
 //! its load stiffness is not exported). Each load set is a pattern on a
 //! `Linear` time series, so a `LoadControl` step of λ applies λ times it.
 //! `build('PDelta')` builds the model with OpenSees' P-Δ geometric
-//! stiffness: a buckling search (`tests/tools/opensees_buckling.py`)
-//! imports the script and bisects on λ.
+//! stiffness (the flexural terms only, no polar term): a linear buckling
+//! search (`tests/tools/opensees_buckling.py`) imports the script and
+//! bisects on λ the definiteness of the tangent after one linear step.
 //!
 //! **Not exported.** The elements' erection state ([`Beam::initial`]):
 //! lamella's linear solve adds the geometric stiffness of its axial force,

@@ -254,9 +254,25 @@ fn bend(k: &mut Mat12, d: [usize; 4], ei: f64, l: f64, sign: f64) {
     }
 }
 
+/// Which terms a geometric stiffness holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GeometricTerms {
+    /// The flexural terms and the polar term N·(I_y + I_z)/(A·L) of
+    /// torsional buckling: what lamella's analyses use.
+    Full,
+    /// The flexural terms only, as a frame program's P-Delta
+    /// transformation has them (OpenSees'): for comparing with one.
+    Flexural,
+}
+
 /// The geometric stiffness in local axes under axial force `axial_n`
 /// (tension positive).
 pub fn local_geometric(s: &Section, l: f64, axial_n: f64) -> Mat12 {
+    local_geometric_terms(s, l, axial_n, GeometricTerms::Full)
+}
+
+/// [`local_geometric`] with the chosen `terms`.
+pub fn local_geometric_terms(s: &Section, l: f64, axial_n: f64, terms: GeometricTerms) -> Mat12 {
     let mut k = [[0.0; 12]; 12];
     let c = axial_n / (30.0 * l);
     for (d, sign) in [([1, 5, 7, 11], 1.0), ([2, 4, 8, 10], -1.0)] {
@@ -273,11 +289,13 @@ pub fn local_geometric(s: &Section, l: f64, axial_n: f64) -> Mat12 {
             }
         }
     }
-    put2(
-        &mut k,
-        [3, 9],
-        axial_n * (s.i_y_mm4 + s.i_z_mm4) / (s.area_mm2 * l),
-    );
+    if terms == GeometricTerms::Full {
+        put2(
+            &mut k,
+            [3, 9],
+            axial_n * (s.i_y_mm4 + s.i_z_mm4) / (s.area_mm2 * l),
+        );
+    }
     k
 }
 
@@ -753,6 +771,17 @@ impl Assembly {
         axial_n: &[f64],
         pressures: Option<&LoadSet>,
     ) -> SymSparse {
+        self.geometric_terms(model, axial_n, pressures, GeometricTerms::Full)
+    }
+
+    /// [`Assembly::geometric`] with the chosen `terms`.
+    pub(crate) fn geometric_terms(
+        &self,
+        model: &FrameModel,
+        axial_n: &[f64],
+        pressures: Option<&LoadSet>,
+        terms: GeometricTerms,
+    ) -> SymSparse {
         let mut t = Vec::with_capacity(model.beams.len() * 78);
         for (i, b) in model.beams.iter().enumerate() {
             if axial_n[i] == 0.0 {
@@ -760,7 +789,7 @@ impl Assembly {
             }
             let f = &self.frames[i];
             let k = to_global(
-                &local_geometric(&model.sections[b.section], f.length_mm, axial_n[i]),
+                &local_geometric_terms(&model.sections[b.section], f.length_mm, axial_n[i], terms),
                 &f.rotation,
             );
             self.scatter_beam(&mut t, i, b, &k);

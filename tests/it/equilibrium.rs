@@ -27,12 +27,21 @@ pub fn loaded_frame(
     sample: &str,
     profile: &str,
 ) -> Option<(BuiltFrame, Vec<LoadSet>, Vec<Combination>)> {
+    loaded_frame_with(sample, profile, &FrameOptions::default())
+}
+
+/// [`loaded_frame`] with `options` (elements per span).
+pub fn loaded_frame_with(
+    sample: &str,
+    profile: &str,
+    options: &FrameOptions,
+) -> Option<(BuiltFrame, Vec<LoadSet>, Vec<Combination>)> {
     let net = read_network(&root().join(sample), ReadOptions::default()).expect("network");
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
     let p = profile_file::load(&root().join(profile)).expect("profile");
     let kit = fabricate(&net, &an, &p, None, NetworkLines::default()).ok()?;
     let spec = loads_file::load(&root().join("samples/loads/pavilion.yaml")).expect("loads");
-    let mut built = build_frame(&net, &an, &p, &kit, &FrameOptions::default()).expect("frame");
+    let mut built = build_frame(&net, &an, &p, &kit, options).expect("frame");
     built.model.supports = supports(&spec, &built.model, &built.targets).expect("supports");
     let cases = load_cases(&spec, &built.model, &built.targets).expect("cases");
     let combos = combinations(&spec)

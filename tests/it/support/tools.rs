@@ -36,9 +36,15 @@ pub fn present(have: bool, require: &str, tool: &str, install: &str, what: &str)
 /// Run a Python tool of `tests/tools/` on `path` and read its JSON.
 #[track_caller]
 pub fn python_json(script: &str, path: &Path) -> Value {
+    python_json_with(script, path, &[])
+}
+
+/// [`python_json`] with further arguments after the path.
+pub fn python_json_with(script: &str, path: &Path, args: &[&str]) -> Value {
     let o = Command::new("python3")
         .arg(root().join("tests/tools").join(script))
         .arg(path)
+        .args(args)
         .output()
         .expect("python3");
     assert!(
