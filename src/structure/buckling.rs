@@ -389,6 +389,34 @@ mod tests {
         );
     }
 
+    /// The polar term N·(I_y + I_z)/(A·L) is torsional buckling: a column
+    /// whose St. Venant stiffness is low buckles in torsion at
+    /// N_T = G·J·A/I_p (no warping: for any length and any mesh, the
+    /// torsional stiffness and the polar term having the same shape),
+    /// below Euler's load; without the term
+    /// ([`critical_factors_flexural`]) at Euler's π²·E·I_z/(4·L²).
+    #[test]
+    fn a_column_soft_in_torsion_buckles_at_the_torsional_load() {
+        let (mut model, loads) = cantilever(16);
+        model.sections[0].j_mm4 = 0.01;
+        let s = model.sections[0].clone();
+        let p = 100.0;
+        let torsional = s.g_mpa * s.j_mm4 * s.area_mm2 / (s.i_y_mm4 + s.i_z_mm4) / p;
+        let euler =
+            std::f64::consts::PI.powi(2) * s.e_mpa * s.i_z_mm4 / (4.0 * 1000.0 * 1000.0) / p;
+        assert!(torsional < 0.6 * euler);
+        let full = critical_factors(&model, &loads, 1).unwrap()[0].factor;
+        let flexural = critical_factors_flexural(&model, &loads, 1).unwrap()[0].factor;
+        assert!(
+            (full - torsional).abs() <= 1e-6 * torsional,
+            "torsional: {full} against {torsional}"
+        );
+        assert!(
+            (flexural - euler).abs() <= 5e-3 * euler,
+            "flexural: {flexural} against Euler's {euler}"
+        );
+    }
+
     #[test]
     fn a_column_in_tension_has_no_buckling_mode() {
         let section = Section {
