@@ -485,7 +485,8 @@ fn jets_over(
 /// The most unknowns of a jet (a quartic's 15).
 const MAX_UNKNOWNS: usize = 15;
 
-/// Columns processed together in the QR's inner loops (vector lanes).
+/// Columns processed together in the QR's and the Gram matrix's inner
+/// loops (vector lanes).
 const LANES: usize = 4;
 
 /// Chunks of [`LANES`] columns in a least-squares row: room for the
@@ -1401,16 +1402,19 @@ mod tests {
             (-1.0, 1.0),
             (-1.0, 1.0),
             |q| Enneper.point(q) * S,
-            |q| {
-                let (u, v) = (q.x, q.y);
-                let lam = 1.0 + u * u + v * v;
-                let pu = DVec3::new(1.0 - u * u + v * v, 2.0 * u * v, 2.0 * u);
-                let pv = DVec3::new(2.0 * u * v, 1.0 - v * v + u * u, -2.0 * v);
-                let k = 2.0 / (lam * lam * S);
-                (pu.cross(pv).normalize(), k, -k, Some(pu.normalize()))
-            },
+            enneper_exact,
             13,
         )
+    }
+
+    /// Enneper × S: the exact normal, k1 = −k2 and d1 at a parameter.
+    fn enneper_exact(q: DVec2) -> Exact {
+        let (u, v) = (q.x, q.y);
+        let lam = 1.0 + u * u + v * v;
+        let pu = DVec3::new(1.0 - u * u + v * v, 2.0 * u * v, 2.0 * u);
+        let pv = DVec3::new(2.0 * u * v, 1.0 - v * v + u * u, -2.0 * v);
+        let k = 2.0 / (lam * lam * S);
+        (pu.cross(pv).normalize(), k, -k, Some(pu.normalize()))
     }
 
     const C: f64 = 1000.0;
@@ -1669,18 +1673,14 @@ mod tests {
             let (mut k, mut nrm, mut rms) = ([0.0f64; 2], [0.0f64; 2], [0.0f64; 2]);
             let mut count = [0usize; 2];
             for (i, (j, &q)) in jets.iter().zip(&uv).enumerate() {
-                let (u, v) = (q.x, q.y);
-                let lam = 1.0 + u * u + v * v;
-                let pu = DVec3::new(1.0 - u * u + v * v, 2.0 * u * v, 2.0 * u);
-                let pv = DVec3::new(2.0 * u * v, 1.0 - v * v + u * u, -2.0 * v);
-                let exact = 2.0 / (lam * lam * S);
+                let (normal, k1, k2, _) = enneper_exact(q);
                 let c = j.curvature;
                 let b = usize::from(topo.is_boundary(i as u32));
-                let e = (c.k1 - exact).abs().max((c.k2 + exact).abs()) * S / 2.0;
+                let e = (c.k1 - k1).abs().max((c.k2 - k2).abs()) * S / 2.0;
                 k[b] = k[b].max(e);
                 rms[b] += e * e;
                 count[b] += 1;
-                let cos = c.normal.dot(pu.cross(pv).normalize()).abs();
+                let cos = c.normal.dot(normal).abs();
                 nrm[b] = nrm[b].max(cos.min(1.0).acos());
             }
             let mut points: Vec<usize> = jets.iter().map(|j| j.points).collect();
@@ -1717,6 +1717,22 @@ mod tests {
         assert_eq!(run(1), run(3));
     }
 
+    /// A tilted plane of `cells` × `cells` jittered cells over a square of
+    /// `width_mm`, rounded to 0.001 mm, and its normal.
+    fn tilted_plane(cells: usize, width_mm: f64) -> (Topology, DVec3) {
+        let (uv, tris) = samples::grid(cells, cells, (0.0, width_mm), (0.0, width_mm), 0.3, 8);
+        let n = DVec3::new(1.0, 2.0, 3.0).normalize();
+        let (a, b) = (
+            n.any_orthonormal_vector(),
+            n.cross(n.any_orthonormal_vector()),
+        );
+        let mesh = samples::place(&uv, &tris, |q| a * q.x + b * q.y);
+        (
+            Topology::build(&mesh, Path::new("p.obj")).expect("valid"),
+            n,
+        )
+    }
+
     /// A plane (tilted, 1 m², 100 mm cells, rounded): the curvature is
     /// rounding noise, and the standard error says so: measured
     /// max(|k1|, |k2|, k1 − k2)/σ = 2.5 (on planes of 1,700 to 10,000
@@ -1724,14 +1740,7 @@ mod tests {
     /// σ ≤ 1.5e-7 /mm, normal within 1.1e-5 rad.
     #[test]
     fn plane_is_flat_within_its_standard_error() {
-        let (uv, tris) = samples::grid(10, 10, (0.0, 1000.0), (0.0, 1000.0), 0.3, 8);
-        let n = DVec3::new(1.0, 2.0, 3.0).normalize();
-        let (a, b) = (
-            n.any_orthonormal_vector(),
-            n.cross(n.any_orthonormal_vector()),
-        );
-        let mesh = samples::place(&uv, &tris, |q| a * q.x + b * q.y);
-        let topo = Topology::build(&mesh, Path::new("p.obj")).expect("valid");
+        let (topo, n) = tilted_plane(10, 1000.0);
         let (mut ratio, mut sigma, mut normal) = (0.0f64, 0.0f64, 0.0f64);
         for j in vertex_jets(topo.mesh(), &topo) {
             let c = j.curvature;
@@ -1752,14 +1761,7 @@ mod tests {
     /// 8.15e-7 /mm, largest ratio 4.3 against 3.1.
     #[test]
     fn shared_jets_on_a_plane_are_no_noisier() {
-        let (uv, tris) = samples::grid(80, 80, (0.0, 400.0), (0.0, 400.0), 0.3, 8);
-        let n = DVec3::new(1.0, 2.0, 3.0).normalize();
-        let (a, b) = (
-            n.any_orthonormal_vector(),
-            n.cross(n.any_orthonormal_vector()),
-        );
-        let mesh = samples::place(&uv, &tris, |q| a * q.x + b * q.y);
-        let topo = Topology::build(&mesh, Path::new("p.obj")).expect("valid");
+        let (topo, _) = tilted_plane(80, 400.0);
         let stats = |share: bool| {
             let jets = decided_jets(topo.mesh(), &topo, share);
             let (mut ratio, mut rms) = (0.0f64, 0.0f64);
