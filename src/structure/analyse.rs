@@ -259,8 +259,7 @@ pub fn load_sum(model: &FrameModel, loads: &LoadSet) -> DVec3 {
         .iter()
         .map(|l| {
             let b = &model.beams[l.beam];
-            let length = (model.nodes_mm[b.nodes[1]] - model.nodes_mm[b.nodes[0]]).length();
-            l.force_n_per_mm * length
+            l.force_n_per_mm * b.length_mm(&model.nodes_mm)
         })
         .sum();
     nodes + beams

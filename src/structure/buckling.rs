@@ -10,7 +10,11 @@
 //! that inner product (one solve per step, full reorthogonalisation
 //! twice, so no spurious copies; the basis thick-restarted at a fixed
 //! size, so every step costs the same) finds both ends of the spectrum
-//! first, and the wanted end is the largest positive μ.
+//! first, and the wanted end is the largest positive μ. That run stops
+//! once the first factor is known roughly; the pencil is then shifted to
+//! 0.9 of it (A = K_e + σ·K_G, factorised once more, ν = 1/(λ − σ)) and
+//! the wanted modes are found on it: the shift spreads a clustered wanted
+//! end (a large grid's many near-equal local modes) apart from the rest.
 //! Eigenvalues of either sign appear (λ < 0: buckling under the reversed
 //! load, members in tension); the m smallest positive λ are kept. A Ritz
 //! pair is converged when its residual |β_j·s_j| is below [`TOLERANCE`]·μ
@@ -19,7 +23,8 @@
 
 use super::model::{FrameModel, LoadSet};
 use super::solve::{
-    axial_forces, solve_with, Assembly, FrameError, GeometricTerms, LinearFrame, SymSparse,
+    add, axial_forces, factorise_definite, solve_with, Assembly, Factor, FrameError,
+    GeometricTerms, LinearFrame, SymSparse,
 };
 use faer::{Mat, Side};
 
@@ -28,6 +33,17 @@ use faer::{Mat, Side};
 /// to the next one (1e-12 for a gap of 1 %). 1e-8 took about a third more
 /// steps for no visible digit (the pavilion: 85–160 steps at 1e-6).
 pub const TOLERANCE: f64 = 1e-6;
+
+/// Relative residual of the rough first factor the shift is taken from.
+pub const PROBE_TOLERANCE: f64 = 1e-2;
+
+/// The shift as a fraction of the rough first factor: below it by more
+/// than the rough factor's error, near enough to spread the wanted modes.
+pub const SHIFT_FRACTION: f64 = 0.9;
+
+/// How often a shift found too high is halved before the unshifted
+/// pencil is run.
+const SHIFT_ATTEMPTS: usize = 3;
 
 /// Most Lanczos steps (solves), over all restarts.
 pub const MAX_ITERATIONS: usize = 3000;
@@ -93,7 +109,7 @@ fn critical_factors_with(
     if modes == 0 || kg.entries.iter().all(|e| e.2 == 0.0) {
         return Ok(Vec::new());
     }
-    let found = lanczos(linear, &kg, modes)?;
+    let found = shifted_lanczos(linear, &kg, modes)?;
     Ok(found
         .into_iter()
         .map(|(factor, v)| BucklingMode {
@@ -142,43 +158,87 @@ fn shape_of(assembly: &Assembly, v: &[f64]) -> Vec<[f64; 6]> {
     shape
 }
 
-/// Lanczos on Op = K_e⁻¹·(−K_G), self-adjoint in the K_e inner product,
-/// with full reorthogonalisation (twice) and thick restarts; returns
-/// (λ, vector) for the smallest positive λ = 1/μ.
+/// The pencil shifted by σ: A = K_e + σ·K_G, factorised. Its
+/// eigenproblem K_e·φ = −λ·K_G·φ reads A⁻¹·(−K_G)·φ = ν·φ with
+/// ν = 1/(λ − σ): self-adjoint in the A inner product while A is positive
+/// definite, i.e. while σ is below the smallest positive λ.
+struct Pencil<'a> {
+    a: &'a SymSparse,
+    factor: &'a Factor,
+    shift: f64,
+}
+
+/// The `modes` smallest positive critical factors and their vectors.
 ///
-/// The basis is kept K_e-orthonormal and the projected operator
-/// H = Qᵀ·K_e·Op·Q is kept explicitly (tridiagonal but for the arrow a
-/// restart leaves). When the basis reaches [`basis_size`] vectors, it is
-/// cut to the [`kept`] Ritz vectors of largest positive μ (the wanted
-/// ones and a margin) and the current residual direction, with
-/// H = diag(μ) bordered by the residual's couplings β·sᵢ (Wu & Simon's
-/// thick restart): each step then costs O(basis·n) however many steps a
-/// clustered spectrum needs, where the unrestarted basis grew its cost as
-/// O(steps²·n).
-fn lanczos(
+/// A first Lanczos run on the unshifted pencil finds the smallest factor
+/// roughly ([`PROBE_TOLERANCE`]); the pencil is then shifted to
+/// [`SHIFT_FRACTION`] of it and factorised once more, which spreads the
+/// wanted end of the spectrum (ν = 1/(λ − σ)) and takes a clustered
+/// spectrum (a large grid's many near-equal local modes) in a fraction of
+/// the steps. Should the shifted pencil not be positive definite (the
+/// rough factor was above the smallest), the shift is halved, and without
+/// one left below the smallest factor the unshifted pencil is run to the
+/// end.
+fn shifted_lanczos(
     linear: &LinearFrame<'_>,
     kg: &SymSparse,
     modes: usize,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
-    lanczos_restarted(linear, kg, modes, (basis_size(modes), kept(modes)))
+    let sizes = (basis_size(modes), kept(modes));
+    let plain = Pencil {
+        a: &linear.stiffness,
+        factor: &linear.factor,
+        shift: 0.0,
+    };
+    let rough = lanczos_restarted(&plain, kg, 1, sizes, PROBE_TOLERANCE)?;
+    let Some(&(estimate, _)) = rough.first() else {
+        return Ok(Vec::new());
+    };
+    let mut shift = SHIFT_FRACTION * estimate;
+    for _ in 0..SHIFT_ATTEMPTS {
+        let a = add(&linear.stiffness, kg, shift);
+        if let Some(factor) = factorise_definite(&a)? {
+            let pencil = Pencil {
+                a: &a,
+                factor: &factor,
+                shift,
+            };
+            return lanczos_restarted(&pencil, kg, modes, sizes, TOLERANCE);
+        }
+        shift *= 0.5;
+    }
+    lanczos_restarted(&plain, kg, modes, sizes, TOLERANCE)
 }
 
-/// [`lanczos`] with the basis restarted at `basis_max` vectors, keeping
-/// `keep` Ritz vectors.
+/// Lanczos on Op = A⁻¹·(−K_G) (A the shifted pencil), self-adjoint in the
+/// A inner product, with full reorthogonalisation (twice) and thick
+/// restarts; returns (λ = σ + 1/ν, vector) for the `modes` largest
+/// positive ν (the smallest λ above the shift σ), each converged to a
+/// residual of `tolerance`·ν.
+///
+/// The basis is kept A-orthonormal and the projected operator
+/// H = Qᵀ·A·Op·Q is kept explicitly (tridiagonal but for the arrow a
+/// restart leaves). When the basis reaches `basis_max` vectors, it is
+/// cut to the `keep` Ritz vectors of largest positive ν (the wanted
+/// ones and a margin) and the current residual direction, with
+/// H = diag(ν) bordered by the residual's couplings β·sᵢ (Wu & Simon's
+/// thick restart): each step then costs O(basis·n) however many steps a
+/// clustered spectrum needs, where the unrestarted basis grew its cost as
+/// O(steps²·n). A·q is kept beside every basis vector q: the new
+/// direction w = A⁻¹·g has A·w = g, so the A inner products need no
+/// product with A after the start.
 fn lanczos_restarted(
-    linear: &LinearFrame<'_>,
+    pencil: &Pencil<'_>,
     kg: &SymSparse,
     modes: usize,
     (basis_max, keep): (usize, usize),
+    tolerance: f64,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
-    let ke = &linear.stiffness;
+    let ke = pencil.a;
     let n = kg.n;
     let basis_max = basis_max.min(n);
     let keep = keep.min(basis_max.saturating_sub(2));
-    let k_dot = |x: &[f64], y: &[f64]| -> f64 {
-        let kx = ke.mul_vec(x);
-        kx.iter().zip(y).map(|(a, b)| a * b).sum()
-    };
+    let dot = |x: &[f64], y: &[f64]| -> f64 { x.iter().zip(y).map(|(a, b)| a * b).sum() };
     // A deterministic start: pseudo-random, K_e-normalised.
     let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
     let mut r: Vec<f64> = (0..n)
@@ -189,30 +249,35 @@ fn lanczos_restarted(
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         })
         .collect();
-    let norm = k_dot(&r, &r).sqrt();
+    let mut kr = ke.mul_vec(&r);
+    let norm = dot(&kr, &r).sqrt();
     r.iter_mut().for_each(|v| *v /= norm);
+    kr.iter_mut().for_each(|v| *v /= norm);
+    // The basis and K_e times it: K_e·w of a new direction w = K_e⁻¹·g is g
+    // itself, so no product with K_e is needed after the start.
     let mut q: Vec<Vec<f64>> = vec![r];
+    let mut kq: Vec<Vec<f64>> = vec![kr];
     // h[i][j] = ⟨q_i, Op·q_j⟩ over the basis (column j filled at step j).
     let mut h: Vec<Vec<f64>> = vec![vec![0.0; basis_max]; basis_max];
     for step in 0..MAX_ITERATIONS {
         let j = q.len() - 1;
         // w = K_e⁻¹·(−K_G·q_j), then K_e-orthogonal to the basis (twice);
         // the coefficients are column j of H.
-        let g: Vec<f64> = kg.mul_vec(&q[j]).into_iter().map(|v| -v).collect();
-        let mut w = solve_with(&linear.factor, &g)?;
+        let mut kw: Vec<f64> = kg.mul_vec(&q[j]).into_iter().map(|v| -v).collect();
+        let mut w = solve_with(pencil.factor, &kw)?;
         let mut column = vec![0.0; j + 1];
         for _pass in 0..2 {
-            let kw = ke.mul_vec(&w);
-            for (qi, ci) in q.iter().zip(column.iter_mut()) {
-                let c: f64 = kw.iter().zip(qi).map(|(a, b)| a * b).sum();
+            for ((qi, kqi), ci) in q.iter().zip(&kq).zip(column.iter_mut()) {
+                let c = dot(&kw, qi);
                 w.iter_mut().zip(qi).for_each(|(a, b)| *a -= c * b);
+                kw.iter_mut().zip(kqi).for_each(|(a, b)| *a -= c * b);
                 *ci += c;
             }
         }
         for (i, c) in column.iter().enumerate() {
             h[i][j] = *c;
         }
-        let b = k_dot(&w, &w).max(0.0).sqrt();
+        let b = dot(&w, &kw).max(0.0).sqrt();
         let scale = column[j].abs().max(1e-300);
         let exhausted = b.is_nan() || b <= 1e-14 * scale || j + 1 == n;
         let full = j + 1 == basis_max;
@@ -226,11 +291,14 @@ fn lanczos_restarted(
             let converged = steps >= 2 * modes + 4
                 && wanted
                     .iter()
-                    .all(|&i| (b_eff * s[(j, i)]).abs() <= TOLERANCE * mu[i]);
+                    .all(|&i| (b_eff * s[(j, i)]).abs() <= tolerance * mu[i]);
             if converged || exhausted {
+                if std::env::var("LAMELLA_DEBUG_LAMBDA").is_ok() {
+                    eprintln!("lanczos: {steps} steps, shift {}", pencil.shift);
+                }
                 return Ok(wanted
                     .iter()
-                    .map(|&i| (1.0 / mu[i], combine(&q, &s, i)))
+                    .map(|&i| (pencil.shift + 1.0 / mu[i], combine(&q, &s, i)))
                     .collect());
             }
             if full {
@@ -239,8 +307,12 @@ fn lanczos_restarted(
                 let keep_ids = wanted_of(&mu, keep);
                 let mut next: Vec<Vec<f64>> =
                     keep_ids.iter().map(|&i| combine(&q, &s, i)).collect();
+                let mut k_next: Vec<Vec<f64>> =
+                    keep_ids.iter().map(|&i| combine(&kq, &s, i)).collect();
                 w.iter_mut().for_each(|v| *v /= b);
+                kw.iter_mut().for_each(|v| *v /= b);
                 next.push(w);
+                k_next.push(kw);
                 for row in h.iter_mut() {
                     row.iter_mut().for_each(|v| *v = 0.0);
                 }
@@ -251,12 +323,15 @@ fn lanczos_restarted(
                     h[k][last] = b * s[(j, i)];
                 }
                 q = next;
+                kq = k_next;
                 continue;
             }
         }
         h[j + 1][j] = b;
         w.iter_mut().for_each(|v| *v /= b);
+        kw.iter_mut().for_each(|v| *v /= b);
         q.push(w);
+        kq.push(kw);
     }
     Err(FrameError::NotConverged {
         what: "the buckling analysis (Lanczos)".into(),
@@ -362,24 +437,33 @@ mod tests {
         (model, loads)
     }
 
-    /// Restarting the basis keeps the answer: a cantilever's six smallest
-    /// factors with a basis of 14 vectors restarted to 8 (many restarts)
-    /// equal those of a basis that never restarts, to 1e-8, and the first
-    /// is Euler's π²·E·I_z/(4·L²·P) within 0.1 %.
+    /// Restarting the basis keeps the answer, and so does the shift: a
+    /// cantilever's six smallest factors with a basis of 14 vectors
+    /// restarted to 8 (many restarts), and those of the shifted pencil,
+    /// equal those of an unshifted basis that never restarts, to 1e-8, and
+    /// the first is Euler's π²·E·I_z/(4·L²·P) within 0.1 %.
     #[test]
-    fn a_restarted_basis_finds_the_factors_of_an_unrestarted_one() {
+    fn a_restarted_basis_and_a_shift_find_the_factors_of_an_unrestarted_one() {
         let (model, loads) = cantilever(40);
         let linear = LinearFrame::new(&model).unwrap();
         let first = linear.solve(&loads).unwrap();
         let kg = linear
             .assembly
             .geometric(&model, &axial_forces(&first), Some(&loads));
-        let restarted = lanczos_restarted(&linear, &kg, 6, (14, 8)).unwrap();
-        let whole = lanczos_restarted(&linear, &kg, 6, (MAX_ITERATIONS, 0)).unwrap();
+        let plain = Pencil {
+            a: &linear.stiffness,
+            factor: &linear.factor,
+            shift: 0.0,
+        };
+        let restarted = lanczos_restarted(&plain, &kg, 6, (14, 8), TOLERANCE).unwrap();
+        let whole = lanczos_restarted(&plain, &kg, 6, (MAX_ITERATIONS, 0), TOLERANCE).unwrap();
+        let shifted = shifted_lanczos(&linear, &kg, 6).unwrap();
         assert_eq!(restarted.len(), 6);
         assert_eq!(whole.len(), 6);
-        for (r, w) in restarted.iter().zip(&whole) {
+        assert_eq!(shifted.len(), 6);
+        for ((r, s), w) in restarted.iter().zip(&shifted).zip(&whole) {
             assert!((r.0 - w.0).abs() <= 1e-8 * w.0, "{} vs {}", r.0, w.0);
+            assert!((s.0 - w.0).abs() <= 1e-8 * w.0, "{} vs {}", s.0, w.0);
         }
         let euler = std::f64::consts::PI.powi(2) * 210_000.0 * 14.0625 / (4.0 * 1e6 * 100.0);
         assert!(
@@ -387,6 +471,13 @@ mod tests {
             "{} vs {euler}",
             restarted[0].0
         );
+        // The shift's premise: K_e + σ·K_G factorises below the first
+        // factor and not above it (then the shift is lowered).
+        let lambda = whole[0].0;
+        for (sigma, definite) in [(0.99 * lambda, true), (1.01 * lambda, false)] {
+            let a = add(&linear.stiffness, &kg, sigma);
+            assert_eq!(factorise_definite(&a).unwrap().is_some(), definite, "σ {sigma}");
+        }
     }
 
     /// The polar term N·(I_y + I_z)/(A·L) is torsional buckling: a column

@@ -53,11 +53,11 @@
 //! lamella (or band) through it has its own chain node there; a chain node
 //! on the curve itself (dy = dz = 0) is put exactly at the joint's
 //! position (it is off by at most half the node gap, below the network's
-//! tolerance) and tied by a zero-length [`Link`]; a lamella on an offset
-//! line (doubled lamellas at dy = ∓(g + t)/2, two-level lamellas at
-//! dz = ±level offset) by a short stiff [`Beam`] (role `None`) to the
-//! joint node: the bolt's and the washers' clamp, or the stud, is rigid
-//! across the offset (an eccentric stiff link).
+//! tolerance); a lamella on an offset line (doubled lamellas at
+//! dy = ∓(g + t)/2, two-level lamellas at dz = ±level offset) stays on its
+//! line. Where the joint ties a chain node fully it is a **rigid tie**:
+//! the bolt's and the washers' clamp, or the stud, is rigid across the
+//! offset (see below).
 //!
 //! * Interlocking with star washers, and two-level studs (square in both
 //!   gaps): every translation and rotation tied (the washers' arms, or the
@@ -68,32 +68,45 @@
 //!   The release sits on the B side only: a connector node at the joint
 //!   takes B's lamellas rigidly, and a link with no stiffness about the
 //!   normal joins it to the joint node (releasing both sides would leave
-//!   the joint node free to spin).
+//!   the joint node free to spin); a centred B lamella needs no connector:
+//!   its own chain node is that link's end.
 //! * Edge joints (bolt or slot): the band sits in the lamellas' end slots:
 //!   translations and the rotations about the surface's tangents tied, the
 //!   rotation about the normal free (a single bolt along the normal, or the
 //!   slot alone, is a pin about it); the release is on the band's side.
 //!
-//! **Stiff ties** ([`RIGID_FACTOR`] = 100). A zero-length link: along
-//! each axis 100 × E·A/L and about each axis 100 × E·I_y/L, L the shortest
-//! lamella or band element at its nodes (E·A/L and E·I_y/L are the largest
-//! axial and bending stiffness scales of a lamella element). A stiff beam:
-//! the lamella's material with A' = 100·A and I'_y = I'_z = 100·I_y,
-//! J' = 100·I_y·E/G (G·J' = E·I'_y); it is shorter than the elements it
-//! joins, so it is at least 100 times stiffer in every mode (its own
-//! compliance is under 1 % of the joint's), while the ratio of the largest
-//! to the smallest stiffness stays near 1e10 (a lamella's own I_y/I_z is
-//! 1e3 for the steel strip, its weak bending over a span 1e6 below the
-//! tie's axial stiffness). Measured: at a factor of 1e3 the Enneper
-//! pavilion's loads and reactions balanced to only 2.3e-6 (round-off in
-//! the ties' forces); at 100 to better than 1e-6, as the tests require.
+//! **Rigid ties are eliminated, not modelled stiff.** Nodes tied rigidly
+//! (a chain node to its joint or connector, the two lamellas' nodes at a
+//! shear block) form a group that moves with one node of it, its anchor:
+//! the joint, the connector, a release link's end, else the group's first
+//! node (a block's node on lamella 1). The other nodes are not in the
+//! model: the elements that ended there reach the anchor by rigid end
+//! offsets ([`Beam::offsets_mm`], u_end = u_anchor + θ_anchor × r,
+//! OpenSees `-jntOffset`), and the weights lumped there act at the anchor
+//! with their lever ([`LoadTargets::node_weight_lever_mm`]). This is exact
+//! where a stiff element only approaches rigidity, and it keeps the
+//! stiffness as well conditioned as the lamellas themselves allow: stiff
+//! ties 100 times the lamellas' stiffness on 6-mm arms made the
+//! Jacobi-scaled smallest eigenvalue of a 100 × 100 grid 1.6e-14, within
+//! reach of round-off, so it was taken for a mechanism. A group never
+//! holds two anchors (checked: an internal inconsistency otherwise).
+//!
+//! **Release links** ([`RIGID_FACTOR`] = 100). A joint that frees one
+//! rotation is a zero-length link: along each axis 100 × E·A/L and about
+//! the two tied axes 100 × E·I_y/L, L the shortest lamella or band element
+//! at its nodes (E·A/L and E·I_y/L are the largest axial and bending
+//! stiffness scales of a lamella element), so its compliance is under 1 %
+//! of the joint's. Measured: at a factor of 1e3 the Enneper pavilion's
+//! loads and reactions balanced to only 2.3e-6 (round-off in the links'
+//! forces); at 100 to better than 1e-6, as the tests require.
 //!
 //! **Doubled strips** are Vierendeel beams: at every shear block of the
 //! kit (its bolt holes' stations on each lamella's own line, paired in
 //! order along the strip) both lamellas get a chain node (inserted between
 //! the subdivision nodes, or the subdivision node itself when within
-//! [`SNAP_MM`]), joined by a short stiff beam (role `None`) across the
-//! gap: the clamped block is taken rigid in every direction (its single
+//! [`SNAP_MM`]), tied rigidly across the gap (lamella 2's elements there
+//! reach lamella 1's node by offsets): the clamped block is taken rigid in
+//! every direction (its single
 //! bolt's pin about its axis is held by the block's bearing and friction;
 //! both lamellas bend about that axis together anyway). Splices: the
 //! lamella stays continuous (the plates restore it).
@@ -112,7 +125,7 @@
 //!   quarter of a quad) along its node normal turned to z ≥ 0. Σ over
 //!   nodes = Σ over cells.
 //! * `beam_weight_n_per_mm` = ρ·A·g (g = 9.81 m/s²) for lamella and band
-//!   elements, 0 for stiff beams.
+//!   elements (the only elements).
 //! * `node_weight_n` (N): the made small parts (star washers by their
 //!   node's angle class, studs at A×B joints, shear blocks half to each
 //!   lamella's node at the block, splice plates at the chain node nearest
@@ -137,11 +150,11 @@
 //!   node (A, B and edge strips).
 //!
 //! Node numbering: the joint nodes first, by topology node id; then the
-//! chain nodes, strip by strip (file order), lamella by lamella, by
-//! station; then the connector nodes, by topology node id. Beams: the
-//! chains' elements in that order, then the stiff beams at the joints (by
-//! node id), then the shear blocks (by strip and station). The same input
-//! gives the same model bit for bit.
+//! chain nodes that are not tied rigidly to another, strip by strip (file
+//! order), lamella by lamella, by station; then the connector nodes, by
+//! topology node id. Beams: the chains' elements in that order. Links: the
+//! connectors' by topology node id, then the other releases in the same
+//! order. The same input gives the same model bit for bit.
 
 use crate::analysis::lines::StripLines;
 use crate::analysis::strip::StripGeometry;
@@ -164,7 +177,8 @@ use std::collections::{BTreeMap, BTreeSet};
 /// Standard gravity, m/s² (N per kg).
 pub const G_M_PER_S2: f64 = 9.81;
 
-/// How much stiffer than a lamella element a stiff tie is.
+/// How much stiffer than a lamella element a release link is in the
+/// directions it ties.
 pub const RIGID_FACTOR: f64 = 100.0;
 
 /// A shear block within this of a subdivision node (on the lamella's line)
@@ -215,8 +229,7 @@ impl Default for FrameOptions {
 pub struct BuiltFrame {
     /// The model (supports left empty).
     pub model: FrameModel,
-    /// One per beam: the lamella element's role, `None` for stiff beams and
-    /// edge bands.
+    /// One per beam: the lamella element's role, `None` for edge bands.
     pub roles: Vec<Option<BeamRole>>,
     /// Tributary areas, names, weights and the boundary.
     pub targets: LoadTargets,
@@ -226,8 +239,6 @@ pub struct BuiltFrame {
 pub const SECTION_LAMELLA: usize = 0;
 /// Index of the edge band's section.
 pub const SECTION_BAND: usize = 1;
-/// Index of the stiff section.
-pub const SECTION_RIGID: usize = 2;
 
 /// St. Venant constant of a thin rectangle b × c (c the shorter side):
 /// b·c³·(1/3 − 0.21·(c/b)·(1 − (c/b)⁴/12)) (Roark), mm⁴.
@@ -241,8 +252,8 @@ pub fn torsion_constant_mm4(thickness_mm: f64, height_mm: f64) -> f64 {
     b * c.powi(3) * (1.0 / 3.0 - 0.21 * r * (1.0 - r.powi(4) / 12.0))
 }
 
-/// The three sections: the upright lamella, the flat band, the stiff tie.
-pub fn sections(profile: &Profile) -> [Section; 3] {
+/// The two sections: the upright lamella, the flat band.
+pub fn sections(profile: &Profile) -> [Section; 2] {
     let (t, h) = (profile.thickness_mm(), profile.height_mm());
     let (e, g) = (profile.youngs_modulus_mpa(), profile.shear_modulus_mpa());
     let area = t * h;
@@ -262,15 +273,7 @@ pub fn sections(profile: &Profile) -> [Section; 3] {
         i_z_mm4: strong,
         ..lamella.clone()
     };
-    let rigid = Section {
-        e_mpa: e,
-        g_mpa: g,
-        area_mm2: RIGID_FACTOR * area,
-        i_y_mm4: RIGID_FACTOR * strong,
-        i_z_mm4: RIGID_FACTOR * strong,
-        j_mm4: RIGID_FACTOR * strong * e / g,
-    };
-    [lamella, band, rigid]
+    [lamella, band]
 }
 
 /// The rotation rate of the Darboux frame in its own axes (x, y, z) per
@@ -296,8 +299,6 @@ struct Chain {
     offset: LamellaOffset,
     /// Per chain node: its station on the line, mm.
     stations: Vec<f64>,
-    /// Per chain node: its station on the strip's curve, mm.
-    curve: Vec<f64>,
     /// Per chain node: its model node.
     nodes: Vec<usize>,
     /// Per element (between chain nodes i and i + 1): the span it lies in,
@@ -345,18 +346,6 @@ impl Builder {
         });
         self.roles.push(role);
         self.model.beams.len() - 1
-    }
-
-    /// A stiff beam between two nodes apart, its z axis `normal` unless
-    /// that runs along it (then `along`).
-    fn stiff_beam(&mut self, a: usize, b: usize, normal: DVec3, along: DVec3) {
-        let d = self.model.nodes_mm[b] - self.model.nodes_mm[a];
-        let z = if d.normalize_or_zero().dot(normal).abs() > 0.9 {
-            along
-        } else {
-            normal
-        };
-        self.beam([a, b], SECTION_RIGID, z, InitialForces::default(), None);
     }
 
     /// A zero-length link, `free_about_normal` releasing the rotation about
@@ -588,7 +577,6 @@ pub fn build_frame(
                 strip: strip.curve,
                 number: off.number,
                 offset: *off,
-                curve: curve[..stations.len()].to_vec(),
                 stations,
                 nodes,
                 spans: st[1..]
@@ -662,7 +650,7 @@ pub fn build_frame(
         }
         m
     };
-    // Ties: (chain node, target, normal, along, frame, release); a target
+    // Ties: (chain node, target, frame, release); a target
     // is a joint node (by topology id) or a connector (by its index).
     #[derive(Clone, Copy)]
     enum Target {
@@ -670,7 +658,7 @@ pub fn build_frame(
         Connector(usize),
     }
     let mut connectors: Vec<(usize, DMat3)> = Vec::new(); // (topology id, frame)
-    let mut ties: Vec<(usize, Target, DVec3, DVec3, DMat3, bool)> = Vec::new();
+    let mut ties: Vec<(usize, Target, DMat3, bool)> = Vec::new();
     for n in &topo.nodes {
         let normal = n.normal_world;
         let xa = (n.tangent_a_world - normal * n.tangent_a_world.dot(normal))
@@ -684,11 +672,6 @@ pub fn build_frame(
             let fam = an.strips[strip].family;
             let release = side == 1
                 && (fam == Family::Edge || (release_b && net.curves[n.a].family != Family::Edge));
-            let along = if side == 0 {
-                n.tangent_a_world
-            } else {
-                n.tangent_b_world
-            };
             let offset_lamellas = cis.iter().any(|&ci| {
                 let o = chains[ci].offset;
                 o.dy_mm != 0.0 || o.dz_mm != 0.0
@@ -703,7 +686,7 @@ pub fn build_frame(
                 let c = &chains[ci];
                 if let Some(&pos) = c.at_node.get(&n.id) {
                     let free = release && !offset_lamellas;
-                    ties.push((c.nodes[pos], target, normal, along, frame, free));
+                    ties.push((c.nodes[pos], target, frame, free));
                 }
             }
         }
@@ -730,12 +713,15 @@ pub fn build_frame(
             &secs[SECTION_LAMELLA],
         );
     }
-    for &(chain_node, target, normal, along, frame, free) in &ties {
+    // Rigid ties (a node, the node it moves with), eliminated below.
+    let mut rigid: Vec<(usize, usize)> = Vec::new();
+    for &(chain_node, target, frame, free) in &ties {
         let tn = target_node(target);
-        if b.model.nodes_mm[chain_node] == b.model.nodes_mm[tn] {
-            b.link(chain_node, tn, frame, free, &secs[SECTION_LAMELLA]);
+        if free {
+            // A centred chain node at its joint's point.
+            b.link(chain_node, tn, frame, true, &secs[SECTION_LAMELLA]);
         } else {
-            b.stiff_beam(chain_node, tn, normal, along);
+            rigid.push((chain_node, tn));
         }
     }
 
@@ -759,28 +745,21 @@ pub fn build_frame(
                 ),
             ));
         }
-        let smooth = &an.curves[strip.curve];
         for (&(p1, in1), &(p2, in2)) in c1.blocks.iter().zip(&c2.blocks) {
             let (n1, n2) = (c1.nodes[p1], c2.nodes[p2]);
             block_places.push((n1, n2));
             if in1 && in2 && n1 != n2 {
-                let f = strip.frame_at(smooth, c1.curve[p1]);
-                b.stiff_beam(n1, n2, f.z, f.x);
+                rigid.push((n2, n1));
             }
         }
     }
 
-    // Load targets.
+    // Load targets (on the nodes before the rigid ties are eliminated).
     let n_nodes = b.model.nodes_mm.len();
     let mut tributary_mm2 = vec![DVec3::ZERO; n_nodes];
     for (id, a) in tributary_areas(an).into_iter().enumerate() {
         tributary_mm2[joint[id]] = a;
     }
-    let node_ids: BTreeMap<String, usize> = topo
-        .nodes
-        .iter()
-        .map(|n| (n.id.to_string(), joint[n.id]))
-        .collect();
     let mut strip_beams: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for c in &chains {
         strip_beams
@@ -793,23 +772,10 @@ pub fn build_frame(
         .model
         .beams
         .iter()
-        .map(|bm| {
-            if bm.section == SECTION_RIGID {
-                0.0
-            } else {
-                density * 1e-9 * b.model.sections[bm.section].area_mm2 * G_M_PER_S2
-            }
-        })
+        .map(|bm| density * 1e-9 * b.model.sections[bm.section].area_mm2 * G_M_PER_S2)
         .collect();
-    let mut boundary: BTreeSet<usize> = BTreeSet::new();
-    for s in &an.strips {
-        if let (Some(f), Some(l)) = (s.nodes.first(), s.nodes.last()) {
-            boundary.insert(joint[f.node]);
-            boundary.insert(joint[l.node]);
-        }
-    }
     let grid_joints: Vec<usize> = washer::grid_nodes(an).iter().map(|g| joint[g.id]).collect();
-    let node_weight_n = node_weights(
+    let weights = node_weights(
         net,
         an,
         profile,
@@ -821,18 +787,165 @@ pub fn build_frame(
         &piece_starts,
         n_nodes,
     );
+
+    // The rigid ties eliminated: every node keeps its anchor's unknowns.
+    let mut anchors: Vec<usize> = joint.clone();
+    anchors.extend(&connector_nodes);
+    anchors.extend(b.model.links.iter().flat_map(|l| l.nodes));
+    let rigid = RigidGroups::new(&b.model.nodes_mm, &rigid, &anchors).map_err(|node| {
+        let id = joint.iter().position(|&j| j == node);
+        Error::fabrication_joint(
+            &profile.source,
+            &id.map_or_else(|| format!("model node {node}"), |i| format!("node {i}")),
+            "two joints or releases are tied rigidly together (an internal inconsistency of the frame model)",
+        )
+    })?;
+    let model = rigid.condense(b.model);
+    let mut node_weight_n = vec![0.0; rigid.nodes()];
+    let mut lever = vec![DVec3::ZERO; rigid.nodes()];
+    for (old, &w) in weights.iter().enumerate() {
+        let new = rigid.node_of[old];
+        node_weight_n[new] += w;
+        lever[new] += w * rigid.lever_mm[old];
+    }
+    let node_weight_lever_mm: Vec<DVec3> = lever
+        .iter()
+        .zip(&node_weight_n)
+        .map(|(l, &w)| if w != 0.0 { *l / w } else { DVec3::ZERO })
+        .collect();
+    let mut tributary = vec![DVec3::ZERO; rigid.nodes()];
+    for (old, a) in tributary_mm2.iter().enumerate() {
+        // Only joints carry areas, and joints are anchors (lever 0).
+        tributary[rigid.node_of[old]] += *a;
+    }
+    let node_ids: BTreeMap<String, usize> = topo
+        .nodes
+        .iter()
+        .map(|n| (n.id.to_string(), rigid.node_of[joint[n.id]]))
+        .collect();
+    let mut boundary: BTreeSet<usize> = BTreeSet::new();
+    for s in &an.strips {
+        if let (Some(f), Some(l)) = (s.nodes.first(), s.nodes.last()) {
+            boundary.insert(rigid.node_of[joint[f.node]]);
+            boundary.insert(rigid.node_of[joint[l.node]]);
+        }
+    }
     Ok(BuiltFrame {
-        model: b.model,
+        model,
         roles: b.roles,
         targets: LoadTargets {
-            tributary_mm2,
+            tributary_mm2: tributary,
             node_ids,
             strip_beams,
             beam_weight_n_per_mm,
             node_weight_n,
+            node_weight_lever_mm,
             boundary_nodes: boundary.into_iter().collect(),
         },
     })
+}
+
+/// Nodes tied rigidly together, each group moving with one node of it
+/// (its anchor): the others' unknowns are eliminated (u = u_a + θ_a × r,
+/// θ = θ_a, r the node's lever from its anchor) and the elements at them
+/// reach the anchor by rigid end offsets. Exact where a stiff tie would
+/// only approximate, and it leaves the stiffness no worse conditioned than
+/// the lamellas themselves.
+#[derive(Debug, Clone)]
+struct RigidGroups {
+    /// Per node before: its node after.
+    node_of: Vec<usize>,
+    /// Per node before: its position less its anchor's, mm.
+    lever_mm: Vec<DVec3>,
+    /// Per node after: the node before it was.
+    kept: Vec<usize>,
+}
+
+impl RigidGroups {
+    /// The groups of `ties` among `nodes_mm`; a group's anchor is its one
+    /// node among `anchors` (joints, connectors, links' ends: nodes whose
+    /// own unknowns other parts of the model use), else its first node.
+    /// `Err(node)` when a group holds two anchors.
+    fn new(
+        nodes_mm: &[DVec3],
+        ties: &[(usize, usize)],
+        anchors: &[usize],
+    ) -> std::result::Result<RigidGroups, usize> {
+        let n = nodes_mm.len();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(p: &mut [usize], mut i: usize) -> usize {
+            while p[i] != i {
+                p[i] = p[p[i]];
+                i = p[i];
+            }
+            i
+        }
+        for &(a, c) in ties {
+            let (ra, rc) = (root(&mut parent, a), root(&mut parent, c));
+            if ra != rc {
+                parent[ra.max(rc)] = ra.min(rc);
+            }
+        }
+        let mut is_anchor = vec![false; n];
+        for &a in anchors {
+            is_anchor[a] = true;
+        }
+        // Per group root: its anchor (the first node when none).
+        let mut anchor_of: Vec<Option<usize>> = vec![None; n];
+        for i in 0..n {
+            let r = root(&mut parent, i);
+            if is_anchor[i] {
+                if let Some(other) = anchor_of[r].filter(|&o| is_anchor[o]) {
+                    return Err(other);
+                }
+                anchor_of[r] = Some(i);
+            } else if anchor_of[r].is_none() {
+                anchor_of[r] = Some(i);
+            }
+        }
+        let mut node_of = vec![usize::MAX; n];
+        let mut kept = Vec::new();
+        for i in 0..n {
+            let r = root(&mut parent, i);
+            if anchor_of[r] == Some(i) {
+                node_of[i] = kept.len();
+                kept.push(i);
+            }
+        }
+        let mut lever_mm = vec![DVec3::ZERO; n];
+        for i in 0..n {
+            let a = anchor_of[root(&mut parent, i)].unwrap_or(i);
+            node_of[i] = node_of[a];
+            lever_mm[i] = nodes_mm[i] - nodes_mm[a];
+        }
+        Ok(RigidGroups {
+            node_of,
+            lever_mm,
+            kept,
+        })
+    }
+
+    /// Nodes after.
+    fn nodes(&self) -> usize {
+        self.kept.len()
+    }
+
+    /// `model` on the anchors: beams at eliminated nodes reach their anchor
+    /// by end offsets; links join anchors only.
+    fn condense(&self, mut model: FrameModel) -> FrameModel {
+        for beam in &mut model.beams {
+            for end in 0..2 {
+                let old = beam.nodes[end];
+                beam.offsets_mm[end] += self.lever_mm[old];
+                beam.nodes[end] = self.node_of[old];
+            }
+        }
+        for link in &mut model.links {
+            link.nodes = link.nodes.map(|old| self.node_of[old]);
+        }
+        model.nodes_mm = self.kept.iter().map(|&i| model.nodes_mm[i]).collect();
+        model
+    }
 }
 
 /// Mass of one bolt d × l with its nut and `plain` plain washers, kg
@@ -1317,12 +1430,7 @@ mod tests {
                     assert!(r1.station_mm > r0.station_mm);
                 }
                 // The chain's ends are at the first and last nodes' stations.
-                let total: f64 = mine
-                    .iter()
-                    .map(|&b| {
-                        m.nodes_mm[m.beams[b].nodes[0]].distance(m.nodes_mm[m.beams[b].nodes[1]])
-                    })
-                    .sum();
+                let total: f64 = mine.iter().map(|&b| m.beams[b].length_mm(&m.nodes_mm)).sum();
                 let arc = st[st.len() - 1] - st[0];
                 assert!(
                     total <= arc + 1e-6 && total > arc * (1.0 - 1e-4),
@@ -1337,45 +1445,45 @@ mod tests {
         let (net, an, p, kit, f) = build("enneper-4m", "steel-1.5");
         check_shape(&an, &p, &kit, &f, 4);
         let m = &f.model;
-        // Every A×B joint: four stiff beams (doubled lamellas at dy = ±5.75
-        // mm), no release (star washers lock the angle: see the pins below).
+        // Every A×B joint: its four lamellas (doubled at dy = ±5.75 mm)
+        // reach the joint node by rigid offsets 5.75 mm long (the bolt and
+        // the washers' clamp), no release (star washers lock the angle:
+        // see the pins below), and no node of their own there.
         let grid = washer::grid_nodes(&an);
+        let at = |j: usize| -> Vec<DVec3> {
+            let mut v: Vec<DVec3> = m
+                .beams
+                .iter()
+                .flat_map(|b| (0..2).filter(move |&e| b.nodes[e] == j).map(|e| b.offsets_mm[e]))
+                .collect();
+            v.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
+            v.dedup_by(|a, b| a.distance(*b) < 1e-9);
+            v
+        };
         for g in &grid {
             let j = f.targets.node_ids[&g.id.to_string()];
-            let stiff = m
-                .beams
-                .iter()
-                .zip(&f.roles)
-                .filter(|(b, r)| r.is_none() && b.section == SECTION_RIGID && b.nodes[1] == j)
-                .count();
-            assert_eq!(stiff, 4, "node {}", g.id);
-            // 5.75 mm from the bolt's axis.
-            for b in m
-                .beams
-                .iter()
-                .filter(|b| b.section == SECTION_RIGID && b.nodes[1] == j)
-            {
-                let d = m.nodes_mm[b.nodes[0]].distance(m.nodes_mm[j]);
-                assert!((d - 5.75).abs() < 1e-6, "{d}");
+            let levers = at(j);
+            assert_eq!(levers.len(), 4, "node {}: {levers:?}", g.id);
+            for o in levers {
+                assert!((o.length() - 5.75).abs() < 1e-6, "{o}");
             }
         }
-        // Shear blocks: one stiff beam 11.5 mm long per block.
+        // Shear blocks: lamella 2 reaches lamella 1's node at every block
+        // by an offset 11.5 mm across the gap.
         let blocks: u64 = kit
             .parts
             .iter()
             .filter(|q| q.kind == PartKind::ShearBlock)
             .map(|q| u64::from(q.count))
             .sum();
-        let across = m
-            .beams
-            .iter()
-            .filter(|b| {
-                b.section == SECTION_RIGID
-                    && (m.nodes_mm[b.nodes[0]].distance(m.nodes_mm[b.nodes[1]]) - 11.5).abs() < 1e-3
-            })
+        let across = (0..m.nodes_mm.len())
+            .filter(|&n| at(n).iter().any(|o| (o.length() - 11.5).abs() < 1e-3))
             .count() as u64;
         assert!(blocks > 0);
         assert_eq!(across, blocks);
+        // Every element is a lamella's or a band's: each weighs.
+        assert_eq!(m.sections.len(), 2);
+        assert!(f.targets.beam_weight_n_per_mm.iter().all(|&w| w > 0.0));
         // Edge joints: the band's node linked with the rotation about the
         // normal free.
         let edge_nodes = an
@@ -1463,17 +1571,18 @@ mod tests {
         let (_, an, p, kit, f) = build("hypar-small", "poplar-ply-4");
         check_shape(&an, &p, &kit, &f, 4);
         let m = &f.model;
-        // Lamellas at dy = ±12, dz = ±30 from the surface: each tied to the
-        // joint by a stiff beam √(12² + 30²) = 32.311 mm long.
+        // Lamellas at dy = ±12, dz = ±30 from the surface: each reaches
+        // the joint by a rigid offset √(12² + 30²) = 32.311 mm long (the
+        // stud).
         for g in washer::grid_nodes(&an) {
             let j = f.targets.node_ids[&g.id.to_string()];
             let lens: Vec<f64> = m
                 .beams
                 .iter()
-                .filter(|b| b.section == SECTION_RIGID && b.nodes[1] == j)
-                .map(|b| m.nodes_mm[b.nodes[0]].distance(m.nodes_mm[j]))
+                .flat_map(|b| (0..2).filter(move |&e| b.nodes[e] == j).map(|e| b.offsets_mm[e]))
+                .map(|o| o.length())
                 .collect();
-            assert_eq!(lens.len(), 4);
+            assert!(!lens.is_empty());
             for d in lens {
                 assert!((d - (144.0f64 + 900.0).sqrt()).abs() < 1e-6, "{d}");
             }
@@ -1494,7 +1603,8 @@ mod tests {
             .count();
         let nodes = an.topology.nodes.len();
         assert_eq!(free, nodes, "one release per node (B or the band)");
-        assert_eq!(f.model.links.len(), 2 * nodes);
+        // A's side is rigid: no link, A's node is the joint's.
+        assert_eq!(f.model.links.len(), nodes);
         let _ = net;
     }
 
@@ -1776,8 +1886,7 @@ mod tests {
         let mut lamella_n = 0.0;
         for (i, b) in m.beams.iter().enumerate() {
             if f.roles[i].is_some() {
-                lamella_n += f.targets.beam_weight_n_per_mm[i]
-                    * m.nodes_mm[b.nodes[0]].distance(m.nodes_mm[b.nodes[1]]);
+                lamella_n += f.targets.beam_weight_n_per_mm[i] * b.length_mm(&m.nodes_mm);
             }
         }
         let mut length = 0.0;

@@ -180,6 +180,10 @@ impl Sums {
         self.nodes.entry(node).or_default().0 += force_n;
     }
 
+    fn moment(&mut self, node: usize, moment_nmm: DVec3) {
+        self.nodes.entry(node).or_default().1 += moment_nmm;
+    }
+
     fn beam(&mut self, beam: usize, force_n_per_mm: DVec3) {
         *self.beams.entry(beam).or_default() += force_n_per_mm;
     }
@@ -218,6 +222,7 @@ fn check_targets(spec: &LoadSpec, model: &FrameModel, targets: &LoadTargets) -> 
     for (what, len, want) in [
         ("tributary areas", targets.tributary_mm2.len(), n),
         ("node weights", targets.node_weight_n.len(), n),
+        ("node weight levers", targets.node_weight_lever_mm.len(), n),
         ("element weights", targets.beam_weight_n_per_mm.len(), b),
     ] {
         if len != want {
@@ -278,7 +283,12 @@ fn load_case(
         }
         for (n, &w) in targets.node_weight_n.iter().enumerate() {
             if w != 0.0 {
-                sums.node(n, down * (case.self_weight * w));
+                let f = down * (case.self_weight * w);
+                sums.node(n, f);
+                let lever = targets.node_weight_lever_mm[n];
+                if lever != DVec3::ZERO {
+                    sums.moment(n, lever.cross(f));
+                }
             }
         }
     }

@@ -77,6 +77,23 @@ pub struct Beam {
     pub offsets_mm: [DVec3; 2],
 }
 
+impl Beam {
+    /// Its two ends (its nodes plus their offsets) at node positions
+    /// `nodes_mm`, mm.
+    pub fn ends_mm(&self, nodes_mm: &[DVec3]) -> [DVec3; 2] {
+        [
+            nodes_mm[self.nodes[0]] + self.offsets_mm[0],
+            nodes_mm[self.nodes[1]] + self.offsets_mm[1],
+        ]
+    }
+
+    /// Its length between its ends at node positions `nodes_mm`, mm.
+    pub fn length_mm(&self, nodes_mm: &[DVec3]) -> f64 {
+        let [a, b] = self.ends_mm(nodes_mm);
+        a.distance(b)
+    }
+}
+
 /// A zero-length spring between two nodes: six stiffnesses in a local frame
 /// (translations along, rotations about the frame's columns). Joints
 /// (bolted crossings, shear blocks, stud connections) are links; a "rigid"
@@ -236,6 +253,11 @@ pub struct LoadTargets {
     /// Hardware and small parts (bolts, washers, shear blocks, studs,
     /// splice plates) lumped at model nodes, N, along −z.
     pub node_weight_n: Vec<f64>,
+    /// Per model node: where its weight acts, from the node, mm (the
+    /// weights' centre: parts on a lamella tied rigidly to the node, such
+    /// as a shear block's half on the far lamella, act beside it, so the
+    /// node takes their moment too).
+    pub node_weight_lever_mm: Vec<DVec3>,
     /// The joints on the network's boundary (a strip's first or last
     /// node), model node indices, ascending.
     pub boundary_nodes: Vec<usize>,

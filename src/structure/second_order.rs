@@ -52,9 +52,9 @@ pub fn second_order(
     // The imperfect elements carry the same total load as the perfect ones.
     let mut scaled = loads.clone();
     for l in scaled.beams.iter_mut() {
-        let [a, b] = model.beams[l.beam].nodes;
-        let perfect = (model.nodes_mm[b] - model.nodes_mm[a]).length();
-        let imperfect = (nodes[b] - nodes[a]).length();
+        let beam = &model.beams[l.beam];
+        let perfect = beam.length_mm(&model.nodes_mm);
+        let imperfect = beam.length_mm(&nodes);
         if imperfect > 0.0 {
             l.force_n_per_mm *= perfect / imperfect;
         }

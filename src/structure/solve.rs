@@ -190,8 +190,8 @@ pub fn element_frame(
     index: usize,
     beam: &Beam,
 ) -> Result<ElementFrame, FrameError> {
-    let d = (nodes_mm[beam.nodes[1]] + beam.offsets_mm[1])
-        - (nodes_mm[beam.nodes[0]] + beam.offsets_mm[0]);
+    let [a, b] = beam.ends_mm(nodes_mm);
+    let d = b - a;
     let length_mm = d.length();
     if !exceeds(length_mm, 1e-9) {
         return Err(FrameError::Degenerate {
@@ -1064,6 +1064,18 @@ pub(crate) fn factorise(
     }
 }
 
+/// Factorises `k` when it is positive definite (`None` when a pivot is not
+/// positive): for a matrix known to be nonsingular where it is definite,
+/// such as a stiffness shifted by part of its critical load.
+pub(crate) fn factorise_definite(k: &SymSparse) -> Result<Option<Factor>, FrameError> {
+    let a = k.to_faer()?;
+    let symbolic = SymbolicLlt::try_new(a.symbolic(), Side::Lower)
+        .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?;
+    Ok(Llt::try_new_with_symbolic(symbolic, a.as_ref(), Side::Lower)
+        .ok()
+        .map(|llt| Factor { llt }))
+}
+
 fn node_of(dofs: &Dofs, unknown: usize) -> (usize, usize) {
     let g = dofs.index.iter().position(|&i| i == unknown).unwrap_or(0);
     (g / 6, g % 6)
@@ -1127,6 +1139,9 @@ fn inverse_iteration(
 /// unknown that moves most in the near-null vector.
 fn near_null(k: &SymSparse, diag: &[f64], factor: &Factor) -> Option<usize> {
     let (lambda, v) = inverse_iteration(k, diag, factor, 4);
+    if std::env::var("LAMELLA_DEBUG_LAMBDA").is_ok() {
+        eprintln!("near_null: n {} lambda {lambda:e}", k.n);
+    }
     if lambda < MECHANISM_RATIO || !lambda.is_finite() {
         let (mut best, mut at) = (-1.0, 0);
         for (i, x) in v.iter().enumerate() {

@@ -84,6 +84,17 @@ fn grid(tilted: bool) -> (FrameModel, LoadTargets) {
         strip_beams,
         beam_weight_n_per_mm: vec![0.1; n_beams],
         node_weight_n: vec![5.0; 9],
+        // The corner's weight acts 12 mm beside it (a part on a lamella
+        // tied to it).
+        node_weight_lever_mm: (0..9)
+            .map(|n| {
+                if n == 0 {
+                    DVec3::new(0.0, 12.0, 0.0)
+                } else {
+                    DVec3::ZERO
+                }
+            })
+            .collect(),
         boundary_nodes: (0..9).filter(|&n| n != index(1, 1)).collect(),
     };
     (model, targets)
@@ -185,6 +196,17 @@ fn load_totals_on_a_level_grid_are_the_areas_times_the_loads() {
     // The point load sits at N11 on top of nothing else in Q.
     let q_mid = sets[4].nodes.iter().find(|l| l.node == 4).expect("N11");
     close(q_mid.force_n, DVec3::new(0.0, 0.0, -1000.0), "Q at N11");
+    // The corner's weight of 5 N acts 12 mm along +y of it: it also
+    // turns the node by (0, 12, 0) × (0, 0, −5) = (−60, 0, 0) N·mm; the
+    // other joints take no moment.
+    for l in &sets[0].nodes {
+        let want = if l.node == 0 {
+            DVec3::new(-60.0, 0.0, 0.0)
+        } else {
+            DVec3::ZERO
+        };
+        close(l.moment_nmm, want, "the weight's moment");
+    }
     // Self-weight: every element along −z at its weight.
     assert_eq!(sets[0].beams.len(), 12);
     assert!(sets[0]
