@@ -7,12 +7,13 @@
 //! **Method.** Shift-invert Lanczos: with K_e = K + K_G,0 factorised
 //! once (sparse Cholesky), the operator Op = K_e⁻¹·(−K_G) is self-adjoint
 //! in the K_e inner product and its eigenvalues are μ = 1/λ; Lanczos in
-//! that inner product (one solve per step, full reorthogonalisation
-//! twice, so no spurious copies; the basis thick-restarted at a fixed
+//! that inner product (one solve per step, full reorthogonalisation,
+//! repeated where the first pass cancels most of the vector, so no
+//! spurious copies; the basis thick-restarted at a fixed
 //! size, so every step costs the same) finds both ends of the spectrum
 //! first, and the wanted end is the largest positive μ. That run stops
 //! once the first factor is known roughly; the pencil is then shifted to
-//! 0.9 of it (A = K_e + σ·K_G, factorised once more, ν = 1/(λ − σ)) and
+//! 0.98 of it (A = K_e + σ·K_G, factorised once more, ν = 1/(λ − σ)) and
 //! the wanted modes are found on it: the shift spreads a clustered wanted
 //! end (a large grid's many near-equal local modes) apart from the rest.
 //! Eigenvalues of either sign appear (λ < 0: buckling under the reversed
@@ -37,13 +38,10 @@ pub const TOLERANCE: f64 = 1e-6;
 /// Relative residual of the rough first factor the shift is taken from.
 pub const PROBE_TOLERANCE: f64 = 1e-2;
 
-/// The shift as a fraction of the rough first factor: below it by more
-/// than the rough factor's error, near enough to spread the wanted modes.
-pub const SHIFT_FRACTION: f64 = 0.9;
-
-/// How often a shift found too high is halved before the unshifted
-/// pencil is run.
-const SHIFT_ATTEMPTS: usize = 3;
+/// The shift as a fraction of the rough first factor, tried in turn until
+/// the shifted pencil is positive definite (the shift below the smallest
+/// factor): the nearer, the more the wanted end is spread.
+pub const SHIFT_FRACTIONS: [f64; 3] = [0.98, 0.9, 0.5];
 
 /// Most Lanczos steps (solves), over all restarts.
 pub const MAX_ITERATIONS: usize = 3000;
@@ -172,13 +170,13 @@ struct Pencil<'a> {
 ///
 /// A first Lanczos run on the unshifted pencil finds the smallest factor
 /// roughly ([`PROBE_TOLERANCE`]); the pencil is then shifted to
-/// [`SHIFT_FRACTION`] of it and factorised once more, which spreads the
+/// [`SHIFT_FRACTIONS`] of it and factorised once more, which spreads the
 /// wanted end of the spectrum (ν = 1/(λ − σ)) and takes a clustered
 /// spectrum (a large grid's many near-equal local modes) in a fraction of
 /// the steps. Should the shifted pencil not be positive definite (the
-/// rough factor was above the smallest), the shift is halved, and without
-/// one left below the smallest factor the unshifted pencil is run to the
-/// end.
+/// shift above the smallest factor), the next fraction is tried, and
+/// without one below the smallest factor the unshifted pencil is run to
+/// the end.
 fn shifted_lanczos(
     linear: &LinearFrame<'_>,
     kg: &SymSparse,
@@ -194,8 +192,8 @@ fn shifted_lanczos(
     let Some(&(estimate, _)) = rough.first() else {
         return Ok(Vec::new());
     };
-    let mut shift = SHIFT_FRACTION * estimate;
-    for _ in 0..SHIFT_ATTEMPTS {
+    for fraction in SHIFT_FRACTIONS {
+        let shift = fraction * estimate;
         let a = add(&linear.stiffness, kg, shift);
         if let Some(factor) = factorise_definite(&a)? {
             let pencil = Pencil {
@@ -205,13 +203,12 @@ fn shifted_lanczos(
             };
             return lanczos_restarted(&pencil, kg, modes, sizes, TOLERANCE);
         }
-        shift *= 0.5;
     }
     lanczos_restarted(&plain, kg, modes, sizes, TOLERANCE)
 }
 
 /// Lanczos on Op = A⁻¹·(−K_G) (A the shifted pencil), self-adjoint in the
-/// A inner product, with full reorthogonalisation (twice) and thick
+/// A inner product, with full reorthogonalisation (repeated when needed) and thick
 /// restarts; returns (λ = σ + 1/ν, vector) for the `modes` largest
 /// positive ν (the smallest λ above the shift σ), each converged to a
 /// residual of `tolerance`·ν.
@@ -266,6 +263,11 @@ fn lanczos_restarted(
         let mut kw: Vec<f64> = kg.mul_vec(&q[j]).into_iter().map(|v| -v).collect();
         let mut w = solve_with(pencil.factor, &kw)?;
         let mut column = vec![0.0; j + 1];
+        // A second pass only where the first cancelled most of w (its
+        // A-norm fell below 1/√2 of what it was: Daniel, Gragg, Kaufman
+        // and Stewart's criterion), since only then can round-off have
+        // left w short of orthogonal.
+        let mut before = dot(&w, &kw).max(0.0).sqrt();
         for _pass in 0..2 {
             for ((qi, kqi), ci) in q.iter().zip(&kq).zip(column.iter_mut()) {
                 let c = dot(&kw, qi);
@@ -273,6 +275,11 @@ fn lanczos_restarted(
                 kw.iter_mut().zip(kqi).for_each(|(a, b)| *a -= c * b);
                 *ci += c;
             }
+            let after = dot(&w, &kw).max(0.0).sqrt();
+            if after > std::f64::consts::FRAC_1_SQRT_2 * before {
+                break;
+            }
+            before = after;
         }
         for (i, c) in column.iter().enumerate() {
             h[i][j] = *c;
@@ -293,9 +300,6 @@ fn lanczos_restarted(
                     .iter()
                     .all(|&i| (b_eff * s[(j, i)]).abs() <= tolerance * mu[i]);
             if converged || exhausted {
-                if std::env::var("LAMELLA_DEBUG_LAMBDA").is_ok() {
-                    eprintln!("lanczos: {steps} steps, shift {}", pencil.shift);
-                }
                 return Ok(wanted
                     .iter()
                     .map(|&i| (pencil.shift + 1.0 / mu[i], combine(&q, &s, i)))
@@ -476,7 +480,11 @@ mod tests {
         let lambda = whole[0].0;
         for (sigma, definite) in [(0.99 * lambda, true), (1.01 * lambda, false)] {
             let a = add(&linear.stiffness, &kg, sigma);
-            assert_eq!(factorise_definite(&a).unwrap().is_some(), definite, "σ {sigma}");
+            assert_eq!(
+                factorise_definite(&a).unwrap().is_some(),
+                definite,
+                "σ {sigma}"
+            );
         }
     }
 

@@ -905,10 +905,10 @@ impl RigidGroups {
         }
         let mut node_of = vec![usize::MAX; n];
         let mut kept = Vec::new();
-        for i in 0..n {
+        for (i, new) in node_of.iter_mut().enumerate() {
             let r = root(&mut parent, i);
             if anchor_of[r] == Some(i) {
-                node_of[i] = kept.len();
+                *new = kept.len();
                 kept.push(i);
             }
         }
@@ -1430,7 +1430,10 @@ mod tests {
                     assert!(r1.station_mm > r0.station_mm);
                 }
                 // The chain's ends are at the first and last nodes' stations.
-                let total: f64 = mine.iter().map(|&b| m.beams[b].length_mm(&m.nodes_mm)).sum();
+                let total: f64 = mine
+                    .iter()
+                    .map(|&b| m.beams[b].length_mm(&m.nodes_mm))
+                    .sum();
                 let arc = st[st.len() - 1] - st[0];
                 assert!(
                     total <= arc + 1e-6 && total > arc * (1.0 - 1e-4),
@@ -1454,7 +1457,11 @@ mod tests {
             let mut v: Vec<DVec3> = m
                 .beams
                 .iter()
-                .flat_map(|b| (0..2).filter(move |&e| b.nodes[e] == j).map(|e| b.offsets_mm[e]))
+                .flat_map(|b| {
+                    (0..2)
+                        .filter(move |&e| b.nodes[e] == j)
+                        .map(|e| b.offsets_mm[e])
+                })
                 .collect();
             v.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
             v.dedup_by(|a, b| a.distance(*b) < 1e-9);
@@ -1579,7 +1586,11 @@ mod tests {
             let lens: Vec<f64> = m
                 .beams
                 .iter()
-                .flat_map(|b| (0..2).filter(move |&e| b.nodes[e] == j).map(|e| b.offsets_mm[e]))
+                .flat_map(|b| {
+                    (0..2)
+                        .filter(move |&e| b.nodes[e] == j)
+                        .map(|e| b.offsets_mm[e])
+                })
                 .map(|o| o.length())
                 .collect();
             assert!(!lens.is_empty());
