@@ -1,7 +1,8 @@
 //! The erected grid as a frame: will it carry its own weight, snow and wind?
 //!
 //! Every lamella is a chain of 3D beam elements on its own offset line,
-//! joints and shear blocks are springs, the strips' erection moments and
+//! joints and shear blocks tie them rigidly (releases are springs), the
+//! strips' erection moments and
 //! torques are the initial state; the solver runs linear statics, the
 //! critical load factor (buckling) and second order on that model.
 //!
@@ -16,6 +17,8 @@
 //!   factorisation, static solves, section forces, reactions, mechanisms;
 //! * [`buckling`]: the critical load factors and modes;
 //! * [`second_order`]: equilibrium on the imperfect, deformed geometry;
+//! * [`tension`]: statics with tension-only cables (bracing), their
+//!   taut set iterated;
 //! * [`verdict`]: cross-section and member checks of an upright strip;
 //! * [`analyse`]: every analysis of every combination, and the verdict;
 //! * [`stage`]: a network under a loads file, from model to verdict;
@@ -30,4 +33,5 @@ pub mod opensees;
 pub mod second_order;
 pub mod solve;
 pub mod stage;
+pub mod tension;
 pub mod verdict;

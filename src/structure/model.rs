@@ -113,6 +113,56 @@ pub struct Link {
     pub rotation_nmm_per_rad: [f64; 3],
 }
 
+/// A tension-only bar between two nodes: a bracing cable. While taut it
+/// carries N = T₀ + k·δ, δ its lengthening from the erected geometry and
+/// k = (E·A + T₀)/L (= E·A/L₀ over its unstressed length
+/// L₀ = L/(1 + T₀/(E·A))); where N would be negative it is slack and
+/// carries nothing. T₀ is the pretension it is cut and tensioned for: its
+/// force on the erected, unloaded geometry before the frame yields to it
+/// (the frame's own shortening then takes some of it back, which the
+/// analysis finds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cable {
+    /// Its two nodes.
+    pub nodes: [usize; 2],
+    /// Where it is fixed, from each node, global, mm (a fitting's point
+    /// beside the node, tied rigidly to it).
+    pub offsets_mm: [DVec3; 2],
+    /// Metallic area, mm².
+    pub area_mm2: f64,
+    /// Young's modulus of the cable, MPa.
+    pub e_mpa: f64,
+    /// Pretension T₀, N (≥ 0).
+    pub pretension_n: f64,
+}
+
+impl Cable {
+    /// Its two ends at node positions `nodes_mm`, mm.
+    pub fn ends_mm(&self, nodes_mm: &[DVec3]) -> [DVec3; 2] {
+        [
+            nodes_mm[self.nodes[0]] + self.offsets_mm[0],
+            nodes_mm[self.nodes[1]] + self.offsets_mm[1],
+        ]
+    }
+
+    /// Its length between its ends (the erected length L), mm.
+    pub fn length_mm(&self, nodes_mm: &[DVec3]) -> f64 {
+        let [a, b] = self.ends_mm(nodes_mm);
+        a.distance(b)
+    }
+
+    /// Its unstressed length L₀ = L/(1 + T₀/(E·A)), mm: what it is made
+    /// to between its fixing points.
+    pub fn unstressed_length_mm(&self, nodes_mm: &[DVec3]) -> f64 {
+        self.length_mm(nodes_mm) / (1.0 + self.pretension_n / (self.e_mpa * self.area_mm2))
+    }
+
+    /// Its axial stiffness while taut, k = E·A/L₀ = (E·A + T₀)/L, N/mm.
+    pub fn stiffness_n_per_mm(&self, nodes_mm: &[DVec3]) -> f64 {
+        (self.e_mpa * self.area_mm2 + self.pretension_n) / self.length_mm(nodes_mm)
+    }
+}
+
 /// A support: restrained global degrees of freedom of one node, and
 /// optionally a translation restrained along one oblique direction (a
 /// roller on an inclined bearing).
@@ -185,6 +235,8 @@ pub struct FrameModel {
     pub beams: Vec<Beam>,
     /// Zero-length springs.
     pub links: Vec<Link>,
+    /// Tension-only cables (bracing).
+    pub cables: Vec<Cable>,
     /// Supports.
     pub supports: Vec<Support>,
 }

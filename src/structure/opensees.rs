@@ -34,11 +34,21 @@
 //! search (`tests/tools/opensees_buckling.py`) imports the script and
 //! bisects on λ the definiteness of the tangent after one linear step.
 //!
+//! **Cables** (tension-only) are `Truss` elements of an `Elastic`
+//! material of modulus E + T₀/A with no stiffness in compression
+//! (`Eneg` 0), wrapped in an `InitStrainMaterial` of T₀/(E·A + T₀) when
+//! pretensioned, so the truss carries T₀ + (E·A + T₀)/L·δ while taut, as
+//! lamella's [`Cable`]. A fitting beside its node is an extra node on a
+//! `rigidLink('beam', …)` (constraints `Transformation`), its reaction
+//! added to the node's with its lever. With cables the analysis is
+//! `Newton` (the cables' state is found by iteration), else `Linear`.
+//!
 //! **Not exported.** The elements' erection state ([`Beam::initial`]):
 //! lamella's linear solve adds the geometric stiffness of its axial force,
 //! the OpenSees model has none, so compare models without one.
 //!
 //! [`Beam::initial`]: super::model::Beam::initial
+//! [`Cable`]: super::model::Cable
 //! [`element_frame`]: super::solve::element_frame
 
 use super::model::{FrameModel, LoadSet};
@@ -155,6 +165,17 @@ pub fn model_json(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, F
                    "rotation_nmm_per_rad": l.rotation_nmm_per_rad})
         })
         .collect();
+    let cables: Vec<Value> = model
+        .cables
+        .iter()
+        .map(|c| {
+            json!({"nodes": c.nodes,
+                   "offsets_mm": [v3(c.offsets_mm[0]), v3(c.offsets_mm[1])],
+                   "area_mm2": c.area_mm2, "e_mpa": c.e_mpa, "pretension_n": c.pretension_n,
+                   "length_mm": c.length_mm(&model.nodes_mm),
+                   "unstressed_length_mm": c.unstressed_length_mm(&model.nodes_mm)})
+        })
+        .collect();
     let supports: Vec<Value> = model
         .supports
         .iter()
@@ -189,6 +210,7 @@ pub fn model_json(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, F
         "sections": sections,
         "beams": beams,
         "links": links,
+        "cables": cables,
         "supports": supports,
         "roller_springs": rollers,
         "load_sets": sets,
@@ -381,6 +403,66 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
             nums(&perpendicular(r.along).to_array())
         );
     }
+    if !model.cables.is_empty() {
+        let _ = writeln!(
+            w,
+            "    # Cables: tension-only trusses, E' = E + T0/A with no stiffness in\n    \
+             # compression, pretensioned by an initial strain T0/(E·A + T0); a\n    \
+             # fitting beside its node is an extra node on a rigid link."
+        );
+    }
+    let mut fitting = n_nodes + p.rollers.len();
+    let mut fittings: Vec<(usize, usize, DVec3)> = Vec::new();
+    for c in &model.cables {
+        let mut ends = [0usize; 2];
+        for (end, (&node, offset)) in ends.iter_mut().zip(c.nodes.iter().zip(&c.offsets_mm)) {
+            if *offset == DVec3::ZERO {
+                *end = node + 1;
+            } else {
+                fitting += 1;
+                let at = model.nodes_mm[node] + *offset;
+                let _ = writeln!(w, "    ops.node({fitting}, {})", nums(&at.to_array()));
+                let _ = writeln!(w, "    ops.rigidLink('beam', {}, {fitting})", node + 1);
+                fittings.push((node + 1, fitting, *offset));
+                *end = fitting;
+            }
+        }
+        let ea = c.e_mpa * c.area_mm2;
+        material += 1;
+        let _ = writeln!(
+            w,
+            "    ops.uniaxialMaterial('Elastic', {material}, {}, 0.0, 0.0)",
+            num(c.e_mpa + c.pretension_n / c.area_mm2)
+        );
+        if c.pretension_n > 0.0 {
+            material += 1;
+            let _ = writeln!(
+                w,
+                "    ops.uniaxialMaterial('InitStrainMaterial', {material}, {}, {})",
+                material - 1,
+                num(c.pretension_n / (ea + c.pretension_n))
+            );
+        }
+        element += 1;
+        let _ = writeln!(
+            w,
+            "    ops.element('Truss', {element}, {}, {}, {}, {material})",
+            ends[0],
+            ends[1],
+            num(c.area_mm2)
+        );
+    }
+    let listed: Vec<String> = fittings
+        .iter()
+        .map(|(node, tag, o)| format!("({node}, {tag}, [{}])", nums(&o.to_array())))
+        .collect();
+    let _ = writeln!(
+        w,
+        "\n\n# (node tag, its fitting's node tag, the fitting's offset): the\n\
+         # fitting's reaction (its cable's pull) belongs to the node's.\n\
+         FITTINGS = [{}]",
+        listed.join(", ")
+    );
     for (i, l) in load_sets.iter().enumerate() {
         let _ = writeln!(
             w,
@@ -424,6 +506,16 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
     }
     let names: Vec<String> = (0..load_sets.len()).map(|i| format!("loads_{i}")).collect();
     let _ = writeln!(w, "\n\nLOAD_SETS = [{}]", names.join(", "));
+    // Tension-only cables make the analysis nonlinear (Newton until the
+    // cables' state settles) and fittings need multi-point constraints.
+    let (constraints, algorithm) = if model.cables.is_empty() {
+        ("'Plain'", "ops.algorithm('Linear')")
+    } else {
+        (
+            "'Transformation'",
+            "ops.test('NormDispIncr', 1e-10, 100)\n    ops.algorithm('Newton')",
+        )
+    };
     let _ = write!(
         w,
         r#"
@@ -431,10 +523,10 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
 def solve(apply):
     build()
     name = apply()
-    ops.constraints('Plain')
+    ops.constraints({constraints})
     ops.numberer('RCM')
     ops.system('UmfPack')
-    ops.algorithm('Linear')
+    {algorithm}
     ops.integrator('LoadControl', 1.0)
     ops.analysis('Static')
     if ops.analyze(1) != 0:
@@ -447,6 +539,11 @@ def solve(apply):
         for support, fixed in ROLLERS:
             if support == node + 1:
                 r = [a + b for a, b in zip(r, ops.nodeReaction(fixed))]
+        for held, tag, (ox, oy, oz) in FITTINGS:
+            if held == node + 1:
+                f = ops.nodeReaction(tag)
+                m = [oy * f[2] - oz * f[1], oz * f[0] - ox * f[2], ox * f[1] - oy * f[0]]
+                r = [r[k] + f[k] for k in range(3)] + [r[3 + k] + f[3 + k] + m[k] for k in range(3)]
         reactions.append({{'node': node, 'force_n': r[:3], 'moment_nmm': r[3:]}})
     return {{'name': name, 'displacements': displacements, 'reactions': reactions}}
 

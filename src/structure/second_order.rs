@@ -40,6 +40,11 @@ pub fn second_order(
     imperfection_mm: &[DVec3],
     tolerance: f64,
 ) -> Result<SecondOrderResult, FrameError> {
+    if !model.cables.is_empty() {
+        return Err(FrameError::Invalid(
+            "second order of a frame with tension-only cables is not built yet".into(),
+        ));
+    }
     let nodes: Vec<DVec3> = model
         .nodes_mm
         .iter()
@@ -85,7 +90,7 @@ pub fn second_order(
             })?;
         symbolic = Some(sym);
         let x = solve_refined(&factor, &kt, &p)?;
-        let result = assembly.results(model, loads, &x, Some(&total));
+        let result = assembly.results(model, loads, &x, Some(&total), &[]);
         let next = axial_forces(&result);
         let largest = next.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let change = next

@@ -171,6 +171,8 @@ pub struct StaticResult {
     /// Per beam element (load only: add the erection state with
     /// [`SectionForces::with_initial`]).
     pub beam_forces: Vec<BeamEndForces>,
+    /// Per cable: its force, N (its pretension included; 0 when slack).
+    pub cable_forces_n: Vec<f64>,
 }
 
 /// An element's local frame: rows are local x, y, z in global components.
@@ -581,6 +583,28 @@ pub fn validate(model: &FrameModel) -> Result<(), FrameError> {
             )));
         }
     }
+    for (i, c) in model.cables.iter().enumerate() {
+        if c.nodes.iter().any(|&v| v >= n) {
+            return Err(FrameError::Invalid(format!(
+                "cable {i} names a node that does not exist"
+            )));
+        }
+        if !(c.area_mm2.is_finite() && c.area_mm2 > 0.0 && c.e_mpa.is_finite() && c.e_mpa > 0.0) {
+            return Err(FrameError::Invalid(format!(
+                "cable {i}: E and A must be positive"
+            )));
+        }
+        if !(c.pretension_n.is_finite() && c.pretension_n >= 0.0) {
+            return Err(FrameError::Invalid(format!(
+                "cable {i}: the pretension must be finite and ≥ 0"
+            )));
+        }
+        if !(c.offsets_mm.iter().all(|o| o.is_finite())
+            && exceeds(c.length_mm(&model.nodes_mm), 1e-9))
+        {
+            return Err(FrameError::Invalid(format!("cable {i} has no length")));
+        }
+    }
     for s in &model.supports {
         if s.node >= n {
             return Err(FrameError::Invalid(format!(
@@ -639,6 +663,9 @@ pub struct Assembly {
     pub nodes_mm: Vec<DVec3>,
     /// Per beam: its rigid-offset transformation, if it has offsets.
     offsets: Vec<Option<Mat12>>,
+    /// Per cable: its unit axis (first end to second) and its stiffness
+    /// while taut, N/mm.
+    cable_axes: Vec<(DVec3, f64)>,
 }
 
 impl Assembly {
@@ -659,6 +686,14 @@ impl Assembly {
                 .beams
                 .iter()
                 .map(|b| offset_matrix(&b.offsets_mm))
+                .collect(),
+            cable_axes: model
+                .cables
+                .iter()
+                .map(|c| {
+                    let [a, b] = c.ends_mm(nodes_mm);
+                    ((b - a).normalize(), c.stiffness_n_per_mm(nodes_mm))
+                })
                 .collect(),
         })
     }
@@ -842,6 +877,87 @@ impl Assembly {
         }
     }
 
+    /// The taut cables' stiffness (12 × 12 per cable over its nodes'
+    /// unknowns, through its end offsets), as triplets.
+    pub(crate) fn cable_stiffness(&self, model: &FrameModel, taut: &[bool]) -> SymSparse {
+        let mut t = Vec::with_capacity(model.cables.len() * 78);
+        for (i, c) in model.cables.iter().enumerate() {
+            if !taut[i] {
+                continue;
+            }
+            let (e, k) = self.cable_axes[i];
+            let mut m = [[0.0; 12]; 12];
+            for p in 0..3 {
+                for q in 0..3 {
+                    let v = k * e[p] * e[q];
+                    m[p][q] = v;
+                    m[6 + p][6 + q] = v;
+                    m[p][6 + q] = -v;
+                    m[6 + p][q] = -v;
+                }
+            }
+            let d = self.node_dofs(c.nodes);
+            match offset_matrix(&c.offsets_mm) {
+                None => self.scatter(&mut t, &d, &m),
+                Some(h) => self.scatter(&mut t, &d, &sandwich(&h, &m)),
+            }
+        }
+        SymSparse::from_triplets(self.dofs.free, t)
+    }
+
+    /// The taut cables' pretensions as loads on their nodes: each pulls
+    /// its ends towards each other with T₀ (over the unknowns).
+    pub(crate) fn cable_pull(&self, model: &FrameModel, taut: &[bool]) -> Vec<f64> {
+        let mut p = vec![0.0; self.dofs.free];
+        for (i, c) in model.cables.iter().enumerate() {
+            if !taut[i] || c.pretension_n == 0.0 {
+                continue;
+            }
+            let (e, _) = self.cable_axes[i];
+            let f = e * c.pretension_n;
+            let mut end = [0.0; 12];
+            end[..3].copy_from_slice(&f.to_array());
+            end[6..9].copy_from_slice(&(-f).to_array());
+            let g = apply_ht(&offset_matrix(&c.offsets_mm), end);
+            for (k, &dof) in self.node_dofs(c.nodes).iter().enumerate() {
+                if dof != NONE {
+                    p[dof] += g[k];
+                }
+            }
+        }
+        p
+    }
+
+    /// Every cable's force were it taut, N: T₀ + k·δ, δ the lengthening of
+    /// its chord under the displacements `x` (over the unknowns).
+    pub(crate) fn cable_forces(&self, model: &FrameModel, x: &[f64]) -> Vec<f64> {
+        let displacements = self.expand(x);
+        model
+            .cables
+            .iter()
+            .zip(&self.cable_axes)
+            .map(|(c, &(e, k))| {
+                let mut u = [0.0; 12];
+                u[..6].copy_from_slice(&displacements[c.nodes[0]]);
+                u[6..].copy_from_slice(&displacements[c.nodes[1]]);
+                let u = apply_h(&offset_matrix(&c.offsets_mm), u);
+                let delta = e.dot(DVec3::new(u[6], u[7], u[8]) - DVec3::new(u[0], u[1], u[2]));
+                c.pretension_n + k * delta
+            })
+            .collect()
+    }
+
+    /// The unknowns of two nodes' 12 degrees of freedom (`NONE` where
+    /// fixed).
+    fn node_dofs(&self, nodes: [usize; 2]) -> [usize; 12] {
+        let mut d = [NONE; 12];
+        for k in 0..6 {
+            d[k] = self.dofs.index[nodes[0] * 6 + k];
+            d[6 + k] = self.dofs.index[nodes[1] * 6 + k];
+        }
+        d
+    }
+
     /// The load vector over the unknowns, and every element's local
     /// equivalent nodal loads.
     pub(crate) fn load_vector(
@@ -913,12 +1029,15 @@ impl Assembly {
 
     /// Section forces, reactions; `axial_n` adds each element's geometric
     /// stiffness to its end forces (second order).
+    /// `cable_forces_n`: every cable's force (0 when slack; empty
+    /// without cables).
     pub(crate) fn results(
         &self,
         model: &FrameModel,
         loads: &LoadSet,
         x: &[f64],
         axial_n: Option<&[f64]>,
+        cable_forces_n: &[f64],
     ) -> StaticResult {
         let displacements = self.expand(x);
         let (_, equivalent) = self.load_vector(model, loads);
@@ -985,6 +1104,23 @@ impl Assembly {
                 }
             }
         }
+        for ((c, &(e, _)), &n) in model
+            .cables
+            .iter()
+            .zip(&self.cable_axes)
+            .zip(cable_forces_n)
+        {
+            // The node holds its end of the cable against the cable's pull.
+            for (end, sign) in [(0, -1.0), (1, 1.0)] {
+                let f = e * (sign * n);
+                let m = c.offsets_mm[end].cross(f);
+                let node = c.nodes[end];
+                for k in 0..3 {
+                    internal[node][k] += f[k];
+                    internal[node][3 + k] += m[k];
+                }
+            }
+        }
         let mut applied = vec![[0.0; 6]; nn];
         for l in &loads.nodes {
             for k in 0..3 {
@@ -1010,6 +1146,7 @@ impl Assembly {
             displacements,
             reactions,
             beam_forces,
+            cable_forces_n: cable_forces_n.to_vec(),
         }
     }
 }
@@ -1171,6 +1308,11 @@ impl<'m> LinearFrame<'m> {
     /// Assembles and factorises `model`'s stiffness (with the geometric
     /// stiffness of its elements' initial axial forces).
     pub fn new(model: &'m FrameModel) -> Result<LinearFrame<'m>, FrameError> {
+        if !model.cables.is_empty() {
+            return Err(FrameError::Invalid(
+                "a frame with tension-only cables is not linear: solve it with tension::solve_tension_only".into(),
+            ));
+        }
         let assembly = Assembly::new(model, &model.nodes_mm)?;
         let initial_axial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
         let mut stiffness = assembly.stiffness(model);
@@ -1203,7 +1345,7 @@ impl<'m> LinearFrame<'m> {
         validate_loads(self.model, loads)?;
         let (p, _) = self.assembly.load_vector(self.model, loads);
         let x = solve_refined(&self.factor, &self.stiffness, &p)?;
-        Ok(self.assembly.results(self.model, loads, &x, None))
+        Ok(self.assembly.results(self.model, loads, &x, None, &[]))
     }
 }
 
@@ -1252,7 +1394,8 @@ pub(crate) fn add(a: &SymSparse, b: &SymSparse, s: f64) -> SymSparse {
 }
 
 /// The linear static solution of `model` under `loads` (one
-/// factorisation; use [`LinearFrame`] for several load sets).
+/// factorisation; use [`LinearFrame`] for several load sets; a model with
+/// tension-only cables is solved by `tension::solve_tension_only`).
 pub fn solve_static(model: &FrameModel, loads: &LoadSet) -> Result<StaticResult, FrameError> {
     LinearFrame::new(model)?.solve(loads)
 }

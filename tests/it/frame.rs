@@ -63,6 +63,7 @@ fn member(a: DVec3, b: DVec3, n: usize, z_axis: DVec3, section: Section) -> Fram
             })
             .collect(),
         links: vec![],
+        cables: vec![],
         supports: vec![],
     }
 }
@@ -343,6 +344,7 @@ fn arch(r: f64, alpha: f64, n: usize) -> FrameModel {
         sections: vec![strip()],
         beams,
         links: vec![],
+        cables: vec![],
         supports,
     }
 }
@@ -422,6 +424,7 @@ fn a_two_strip_grillage_shares_its_load_by_stiffness() {
             sections: vec![s.clone()],
             beams: vec![beam(0, 1), beam(1, 2), beam(3, centre_b), beam(centre_b, 4)],
             links,
+            cables: vec![],
             supports: vec![
                 support(0, [true, true, true, true, false, false]),
                 support(2, [false, true, true, false, false, false]),
@@ -532,6 +535,7 @@ fn loads_and_reactions_balance_on_a_space_frame() {
             translation_n_per_mm: [1e6; 3],
             rotation_nmm_per_rad: [1e9; 3],
         }],
+        cables: vec![],
         supports: vec![
             support(0, [true; 6]),
             pinned(1),
@@ -641,6 +645,7 @@ fn a_rigid_end_offset_acts_as_a_rigid_arm() {
         sections: vec![s.clone()],
         beams: vec![beam([0, 1], 0, [DVec3::ZERO, offset])],
         links: vec![],
+        cables: vec![],
         supports: vec![support(0, [true; 6])],
     };
     let with_arm = FrameModel {
@@ -651,6 +656,7 @@ fn a_rigid_end_offset_acts_as_a_rigid_arm() {
             beam([1, 2], 1, [DVec3::ZERO; 2]),
         ],
         links: vec![],
+        cables: vec![],
         supports: vec![support(0, [true; 6])],
     };
     let force = DVec3::new(30.0, 0.5, -2.0);

@@ -76,6 +76,7 @@ fn grid(tilted: bool) -> (FrameModel, LoadTargets) {
         }],
         beams,
         links: Vec::new(),
+        cables: vec![],
         supports: Vec::new(),
     };
     let targets = LoadTargets {

@@ -7,6 +7,7 @@ mod support;
 
 mod assembly;
 mod bounds;
+mod bracing;
 mod build;
 mod check;
 mod check_cli;

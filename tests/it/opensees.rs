@@ -13,11 +13,12 @@
 use crate::support::{scratch, tools};
 use glam::{DMat3, DVec3};
 use lamella::structure::model::{
-    Beam, ElementLoad, FrameModel, InitialForces, Link, LoadSet, NodeLoad, PressureLoad, Section,
-    Support,
+    Beam, Cable, ElementLoad, FrameModel, InitialForces, Link, LoadSet, NodeLoad, PressureLoad,
+    Section, Support,
 };
 use lamella::structure::opensees::{model_json, script};
 use lamella::structure::solve::solve_static;
+use lamella::structure::tension::solve_tension_only;
 use serde_json::Value;
 use std::process::Command;
 
@@ -60,6 +61,7 @@ fn member(a: DVec3, b: DVec3, n: usize, z_axis: DVec3) -> FrameModel {
         sections: vec![strip()],
         beams: (0..n).map(|i| beam(i, i + 1, z_axis)).collect(),
         links: vec![],
+        cables: vec![],
         supports: vec![],
     }
 }
@@ -137,6 +139,7 @@ fn grillage() -> (FrameModel, Vec<LoadSet>) {
             translation_n_per_mm: [1e9; 3],
             rotation_nmm_per_rad: [1e13; 3],
         }],
+        cables: vec![],
         supports: vec![
             support(0, [true, true, true, true, false, false]),
             support(2, [false, true, true, false, false, false]),
@@ -179,6 +182,7 @@ fn space_frame() -> (FrameModel, Vec<LoadSet>) {
             translation_n_per_mm: [1e6; 3],
             rotation_nmm_per_rad: [1e9; 3],
         }],
+        cables: vec![],
         supports: vec![
             support(0, [true; 6]),
             support(1, [true, true, true, false, false, false]),
@@ -404,7 +408,11 @@ fn compare(name: &str, model: &FrameModel, load_sets: &[LoadSet]) -> f64 {
     let mut worst: f64 = 0.0;
     for (set, loads) in sets.iter().zip(load_sets) {
         assert_eq!(set["name"], loads.name.as_str());
-        let ours = solve_static(model, loads).unwrap();
+        let ours = if model.cables.is_empty() {
+            solve_static(model, loads).unwrap()
+        } else {
+            solve_tension_only(model, loads).unwrap().result
+        };
         let theirs = set["displacements"].as_array().unwrap();
         assert_eq!(theirs.len(), model.nodes_mm.len());
         for part in [0..3, 3..6] {
@@ -525,6 +533,78 @@ fn opensees_agrees_on_a_dome_of_offset_strips_and_bolts() {
     }
     let (m, loads) = dome();
     compare("dome", &m, &loads);
+}
+
+/// A square portal of 1 m in the x–z plane braced by its two diagonal
+/// cables (6 mm² of 165 GPa, pretensioned to 1 kN), pinned at its feet and
+/// held in its plane, its corners free to turn in it; the cables fixed at
+/// `beside` from their nodes. Pushed sideways both ways by 5 kN (one
+/// diagonal slackens), and pressed down by 3 kN a corner (both stay taut).
+fn braced_portal(beside: DVec3) -> (FrameModel, Vec<LoadSet>) {
+    let a = 1000.0;
+    let bar = Section {
+        e_mpa: E,
+        g_mpa: G,
+        area_mm2: 700.0,
+        i_y_mm4: 5e4,
+        i_z_mm4: 5e4,
+        j_mm4: 1e5,
+    };
+    let cable = |i: usize, j: usize| Cable {
+        nodes: [i, j],
+        offsets_mm: [beside; 2],
+        area_mm2: 6.0,
+        e_mpa: 165_000.0,
+        pretension_n: 1000.0,
+    };
+    let m = FrameModel {
+        nodes_mm: vec![
+            DVec3::ZERO,
+            DVec3::new(a, 0.0, 0.0),
+            DVec3::new(a, 0.0, a),
+            DVec3::new(0.0, 0.0, a),
+        ],
+        sections: vec![bar],
+        beams: vec![
+            beam(0, 3, DVec3::Y),
+            beam(1, 2, DVec3::Y),
+            beam(3, 2, DVec3::Y),
+        ],
+        links: vec![],
+        cables: vec![cable(0, 2), cable(1, 3)],
+        supports: vec![
+            support(0, [true, true, true, true, false, true]),
+            support(1, [true, true, true, true, false, true]),
+            support(2, [false, true, false, true, false, true]),
+            support(3, [false, true, false, true, false, true]),
+        ],
+    };
+    let push = |name: &str, h: f64| node_load(name, 3, DVec3::new(h, 0.0, 0.0), DVec3::ZERO);
+    let mut down = node_load("down", 2, DVec3::new(0.0, 0.0, -3000.0), DVec3::ZERO);
+    down.nodes
+        .extend(node_load("", 3, DVec3::new(0.0, 0.0, -3000.0), DVec3::ZERO).nodes);
+    (m, vec![push("push", 5000.0), push("pull", -5000.0), down])
+}
+
+/// Tension-only cables, pretensioned, exported as OpenSees trusses of an
+/// elastic material with no stiffness in compression and an initial
+/// strain (solved by Newton): the same displacements, reactions and taut
+/// set as lamella's, with the cables at their nodes and on fittings
+/// beside them (rigid links).
+#[test]
+fn opensees_agrees_on_a_portal_braced_by_tension_only_cables() {
+    let (m, loads) = braced_portal(DVec3::ZERO);
+    // Pushed, one diagonal goes slack; pressed down, both stay taut.
+    let taut = |l: &LoadSet| solve_tension_only(&m, l).unwrap().taut;
+    assert_eq!(taut(&loads[0]), [true, false]);
+    assert_eq!(taut(&loads[1]), [false, true]);
+    assert_eq!(taut(&loads[2]), [true, true]);
+    if !have_opensees() {
+        return;
+    }
+    compare("braced-portal", &m, &loads);
+    let (m, loads) = braced_portal(DVec3::new(0.0, 15.0, 0.0));
+    compare("braced-portal-beside", &m, &loads);
 }
 
 /// A pinned (or fixed–free) strip of 1 m in `n` elements under a unit

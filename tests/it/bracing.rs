@@ -1,0 +1,234 @@
+//! Tension-only cables against hand solutions: a square frame braced by
+//! its two diagonals under a lateral load (one diagonal taut, one slack),
+//! the same frame under the diagonals' pretension alone (the frame's
+//! shortening takes part of it back), a frame that stands only on a
+//! cable the load slackens (a mechanism), and a cable's cut length.
+
+use glam::DVec3;
+use lamella::structure::model::{
+    Beam, Cable, FrameModel, InitialForces, LoadSet, NodeLoad, Section, Support,
+};
+use lamella::structure::solve::FrameError;
+use lamella::structure::tension::{solve_tension_only, unstressed_lengths_mm};
+use std::f64::consts::SQRT_2;
+
+const E: f64 = 210_000.0;
+/// The square's side, mm.
+const A: f64 = 1000.0;
+/// The members' area, mm².
+const A_MEMBER: f64 = 100.0;
+/// The cables' metallic area, mm², and modulus, MPa.
+const A_CABLE: f64 = 20.0;
+const E_CABLE: f64 = 165_000.0;
+
+/// A square frame in the x–z plane, nodes 0 (0, 0, 0), 1 (a, 0, 0),
+/// 2 (a, 0, a), 3 (0, 0, a); columns 0–3 and 1–2, the beam 3–2; pinned at
+/// 0 and 1; every node held out of its plane and in rotation, so the
+/// members act as bars (their bending, 1e-16 of their axial stiffness,
+/// is nothing beside it); the cables 0–2 and 1–3 with pretension `t0`.
+fn braced_square(t0: f64) -> FrameModel {
+    let member = Section {
+        e_mpa: E,
+        g_mpa: 81_000.0,
+        area_mm2: A_MEMBER,
+        i_y_mm4: 1e-9,
+        i_z_mm4: 1e-9,
+        j_mm4: 1.0,
+    };
+    let beam = |a: usize, b: usize| Beam {
+        nodes: [a, b],
+        section: 0,
+        z_axis: DVec3::Y,
+        initial: InitialForces::default(),
+        offsets_mm: [DVec3::ZERO; 2],
+    };
+    let cable = |a: usize, b: usize| Cable {
+        nodes: [a, b],
+        offsets_mm: [DVec3::ZERO; 2],
+        area_mm2: A_CABLE,
+        e_mpa: E_CABLE,
+        pretension_n: t0,
+    };
+    let held = |node: usize, pinned: bool| Support {
+        node,
+        fixed: [pinned, true, pinned, true, true, true],
+        along: None,
+    };
+    FrameModel {
+        nodes_mm: vec![
+            DVec3::ZERO,
+            DVec3::new(A, 0.0, 0.0),
+            DVec3::new(A, 0.0, A),
+            DVec3::new(0.0, 0.0, A),
+        ],
+        sections: vec![member],
+        beams: vec![beam(0, 3), beam(1, 2), beam(3, 2)],
+        links: vec![],
+        cables: vec![cable(0, 2), cable(1, 3)],
+        supports: vec![held(0, true), held(1, true), held(2, false), held(3, false)],
+    }
+}
+
+fn lateral(h: f64) -> LoadSet {
+    LoadSet {
+        name: "H".into(),
+        nodes: vec![NodeLoad {
+            node: 3,
+            force_n: DVec3::new(h, 0.0, 0.0),
+            moment_nmm: DVec3::ZERO,
+        }],
+        ..Default::default()
+    }
+}
+
+fn close(got: f64, want: f64, tol: f64, what: &str) {
+    assert!(
+        (got - want).abs() <= tol * want.abs().max(1e-9),
+        "{what}: {got} against {want}"
+    );
+}
+
+/// Pushed sideways at its top left corner, the square stretches the
+/// diagonal 0–2 and shortens 1–3. With 1–3 slack the frame is a
+/// determinate truss: at node 3 the beam takes −H, the column nothing; at
+/// node 2 the diagonal takes √2·H and the right column −H. The top's
+/// sway by virtual work: δ = H·a·(1/(E·A_m) + 2√2/(k_c·a) + 1/(E·A_m)),
+/// k_c = E·A_c/(√2·a) without pretension. Pushed the other way, the other
+/// diagonal takes it.
+#[test]
+fn one_diagonal_is_taut_and_the_other_slack_under_a_lateral_load() {
+    let h = 1000.0;
+    let m = braced_square(0.0);
+    let r = solve_tension_only(&m, &lateral(h)).expect("solves");
+    assert_eq!(r.taut, [true, false]);
+    close(r.result.cable_forces_n[0], SQRT_2 * h, 1e-9, "N 0–2");
+    assert_eq!(r.result.cable_forces_n[1], 0.0);
+    let k_c = E_CABLE * A_CABLE / (SQRT_2 * A);
+    let sway = h * A * (1.0 / (E * A_MEMBER) + 1.0 / (E * A_MEMBER))
+        + h * 2.0 * SQRT_2 / (k_c * SQRT_2 * A) * A;
+    close(
+        r.result.displacements[3][0],
+        sway,
+        1e-9,
+        "the sway at node 3",
+    );
+    // The beam in compression −H, the left column unloaded, the right
+    // one in compression −H.
+    let axial = |b: usize| r.result.beam_forces[b].middle.axial_n;
+    close(axial(2), -h, 1e-9, "the beam");
+    assert!(axial(0).abs() < 1e-6 * h, "the left column: {}", axial(0));
+    close(axial(1), -h, 1e-9, "the right column");
+    // The supports take the load back: Σ reactions = −H along x.
+    let rx: f64 = r.result.reactions.iter().map(|q| q.force_n.x).sum();
+    close(rx, -h, 1e-9, "Σ reactions x");
+    // A slack cable's chord is shorter than its unstressed length.
+    let [a, b] = m.cables[1].ends_mm(&m.nodes_mm);
+    let d = |n: usize| DVec3::from_slice(&r.result.displacements[n][..3]);
+    let chord = (b + d(3)).distance(a + d(1));
+    assert!(chord < m.cables[1].unstressed_length_mm(&m.nodes_mm));
+
+    let back = solve_tension_only(&m, &lateral(-h)).expect("solves");
+    assert_eq!(back.taut, [false, true]);
+    close(back.result.cable_forces_n[1], SQRT_2 * h, 1e-9, "N 1–3");
+
+    // Fixed 10 mm out of the plane (fittings beside the nodes) the cables
+    // carry the same; the nodes' held rotations take their moments, and
+    // the reactions balance the load in moment too.
+    let mut beside = braced_square(0.0);
+    for c in beside.cables.iter_mut() {
+        c.offsets_mm = [DVec3::new(0.0, 10.0, 0.0); 2];
+    }
+    let r = solve_tension_only(&beside, &lateral(h)).expect("solves");
+    close(r.result.cable_forces_n[0], SQRT_2 * h, 1e-9, "N 0–2 beside");
+    let about_origin: DVec3 = r
+        .result
+        .reactions
+        .iter()
+        .map(|q| q.moment_nmm + beside.nodes_mm[q.node].cross(q.force_n))
+        .sum::<DVec3>()
+        + beside.nodes_mm[3].cross(DVec3::new(h, 0.0, 0.0));
+    assert!(about_origin.length() < 1e-9 * h * A, "{about_origin}");
+    let turning: f64 = r
+        .result
+        .reactions
+        .iter()
+        .map(|q| q.moment_nmm.length())
+        .sum();
+    assert!(turning > 1.0, "the fittings' lever is felt: {turning}");
+}
+
+/// Pretension T₀ in both diagonals and no load: by symmetry node 3 moves
+/// (u, w) and node 2 (−u, w); the beam, the columns and the diagonals
+/// balance at node 3 with N_beam = N_column = −N_d/√2, and compatibility
+/// (the column shortens w, the beam 2u, each diagonal (w − u)/√2) gives
+/// N_d = T₀ / (1 + 3·k_c/(4·k_m)), k_m = E·A_m/a, k_c = (E·A_c + T₀)/(√2·a).
+/// A lateral load small enough to leave both taut then adds ±H/√2 to
+/// them, as two bars would share it.
+#[test]
+fn the_frame_takes_back_part_of_the_pretension() {
+    let t0 = 2000.0;
+    let m = braced_square(t0);
+    let r = solve_tension_only(&m, &LoadSet::default()).expect("solves");
+    assert_eq!(r.taut, [true, true]);
+    let k_m = E * A_MEMBER / A;
+    let k_c = (E_CABLE * A_CABLE + t0) / (SQRT_2 * A);
+    let n_d = t0 / (1.0 + 0.75 * k_c / k_m);
+    for n in &r.result.cable_forces_n {
+        close(*n, n_d, 1e-9, "N_d");
+    }
+    close(
+        r.result.beam_forces[2].middle.axial_n,
+        -n_d / SQRT_2,
+        1e-9,
+        "the beam",
+    );
+    // Every reaction balances the self-equilibrated pull: zero in sum.
+    let sum: DVec3 = r.result.reactions.iter().map(|q| q.force_n).sum();
+    assert!(sum.length() < 1e-9 * t0, "{sum}");
+
+    let h = 500.0;
+    let pushed = solve_tension_only(&m, &lateral(h)).expect("solves");
+    assert_eq!(pushed.taut, [true, true]);
+    let n = &pushed.result.cable_forces_n;
+    // Both taut: the diagonals share the shear; their difference is √2·H
+    // whatever the frame's stiffness (node 2's and node 3's horizontal
+    // balance), their sum what the pretension left plus the members'
+    // share.
+    close(n[0] - n[1], SQRT_2 * h, 1e-9, "N 0–2 − N 1–3");
+}
+
+/// Held only by its two bottom pins, the square needs a diagonal to
+/// stand: loaded so that the only cable goes slack, it is a mechanism,
+/// named by a node, not a singular-matrix panic.
+#[test]
+fn a_frame_that_stands_only_on_a_slack_cable_is_a_mechanism() {
+    let mut m = braced_square(0.0);
+    m.cables.remove(0);
+    match solve_tension_only(&m, &lateral(1000.0)) {
+        Err(FrameError::Mechanism { node, .. }) => assert!(node == 2 || node == 3, "{node}"),
+        other => panic!("{other:?}"),
+    }
+    // Pushed the other way it stands on it.
+    let r = solve_tension_only(&m, &lateral(-1000.0)).expect("solves");
+    assert_eq!(r.taut, [true]);
+}
+
+/// A cable 5 m between its fittings, 6 mm wire rope (A = 28.3 mm²,
+/// E = 165 GPa: E·A = 4,669,500 N), tensioned to 2 kN: cut to
+/// L₀ = 5000/(1 + 2000/4,669,500) = 4997.8594 mm.
+#[test]
+fn a_cables_cut_length_is_its_length_less_its_stretch() {
+    let m = FrameModel {
+        nodes_mm: vec![DVec3::ZERO, DVec3::new(3000.0, 4000.0, 0.0)],
+        cables: vec![Cable {
+            nodes: [0, 1],
+            offsets_mm: [DVec3::ZERO; 2],
+            area_mm2: 28.3,
+            e_mpa: 165_000.0,
+            pretension_n: 2000.0,
+        }],
+        ..Default::default()
+    };
+    let l0 = unstressed_lengths_mm(&m)[0];
+    assert!((l0 - 4997.8594).abs() < 1e-4, "{l0}");
+}
