@@ -195,7 +195,7 @@ fn shifted_lanczos(
     for fraction in SHIFT_FRACTIONS {
         let shift = fraction * estimate;
         let a = add(&linear.stiffness, kg, shift);
-        if let Some(factor) = factorise_definite(&a)? {
+        if let Some((factor, _)) = factorise_definite(&a, None)? {
             let pencil = Pencil {
                 a: &a,
                 factor: &factor,

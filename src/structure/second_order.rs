@@ -15,7 +15,8 @@
 
 use super::model::{FrameModel, LoadSet};
 use super::solve::{
-    add, axial_forces, factorise, solve_refined, Assembly, FrameError, StaticResult,
+    add, axial_forces, factorise, factorise_definite, solve_refined, Assembly, FrameError,
+    StaticResult,
 };
 use glam::DVec3;
 
@@ -81,13 +82,15 @@ pub fn second_order(
             symbolic = None;
             pattern = this;
         }
-        let (factor, sym) =
-            factorise(&kt, &assembly.dofs, symbolic.as_ref()).map_err(|e| match e {
-                FrameError::Mechanism { .. } if iteration > 1 => {
-                    FrameError::Unstable(loads.name.clone())
-                }
-                other => other,
-            })?;
+        // The first tangent is the model's own stiffness on the imperfect
+        // geometry: a mechanism there is named. Later ones only need to be
+        // definite: one that is not is the load above the critical one.
+        let (factor, sym) = if iteration == 1 {
+            factorise(&kt, &assembly.dofs, symbolic.as_ref())?
+        } else {
+            factorise_definite(&kt, symbolic.as_ref())?
+                .ok_or_else(|| FrameError::Unstable(loads.name.clone()))?
+        };
         symbolic = Some(sym);
         let x = solve_refined(&factor, &kt, &p)?;
         let result = assembly.results(model, loads, &x, Some(&total), &[]);

@@ -1207,16 +1207,24 @@ pub(crate) fn factorise(
 }
 
 /// Factorises `k` when it is positive definite (`None` when a pivot is not
-/// positive): for a matrix known to be nonsingular where it is definite,
-/// such as a stiffness shifted by part of its critical load.
-pub(crate) fn factorise_definite(k: &SymSparse) -> Result<Option<Factor>, FrameError> {
+/// positive), on `symbolic` when given, with no test for a near-null
+/// vector: for a matrix known to be nonsingular where it is definite,
+/// such as a stiffness shifted by part of its critical load, or a
+/// tangent stiffness once the model has passed that test.
+pub(crate) fn factorise_definite(
+    k: &SymSparse,
+    symbolic: Option<&SymbolicLlt<usize>>,
+) -> Result<Option<(Factor, SymbolicLlt<usize>)>, FrameError> {
     let a = k.to_faer()?;
-    let symbolic = SymbolicLlt::try_new(a.symbolic(), Side::Lower)
-        .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?;
+    let symbolic = match symbolic {
+        Some(s) => s.clone(),
+        None => SymbolicLlt::try_new(a.symbolic(), Side::Lower)
+            .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?,
+    };
     Ok(
-        Llt::try_new_with_symbolic(symbolic, a.as_ref(), Side::Lower)
+        Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
             .ok()
-            .map(|llt| Factor { llt }),
+            .map(|llt| (Factor { llt }, symbolic)),
     )
 }
 

@@ -503,6 +503,32 @@ fn second_order_amplifies_a_compressed_strips_bending_exactly() {
 }
 
 #[test]
+fn second_order_above_the_critical_load_is_unstable() {
+    // The same strip at 1.5 times Euler's load: the second tangent,
+    // stiffened by the first step's compression, is not definite.
+    let (l, n) = (1000.0, 16);
+    let ei = E * strip().i_z_mm4;
+    let mut m = member(DVec3::ZERO, DVec3::X * l, n, DVec3::Z, strip());
+    m.supports = vec![
+        support(0, [true, true, true, true, false, false]),
+        support(n, [false, true, true, false, false, false]),
+    ];
+    let loads = LoadSet {
+        name: "1.5 P_E".into(),
+        nodes: vec![NodeLoad {
+            node: n,
+            force_n: -DVec3::X * (1.5 * PI * PI * ei / (l * l)),
+            moment_nmm: DVec3::ZERO,
+        }],
+        ..Default::default()
+    };
+    match second_order(&m, &loads, &[], 1e-10) {
+        Err(FrameError::Unstable(name)) => assert_eq!(name, "1.5 P_E"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
 fn loads_and_reactions_balance_on_a_space_frame() {
     // A tripod of strips with a linked top and an inclined roller.
     let nodes = vec![
