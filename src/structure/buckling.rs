@@ -101,9 +101,15 @@ fn critical_factors_with(
     let model = linear.model();
     let first = linear.solve(loads)?;
     let axial = axial_forces(&first);
-    let kg = linear
+    let mut kg = linear
         .assembly
         .geometric_terms(model, &axial, Some(loads), terms);
+    if first.cable_forces_n.iter().any(|&n| n != 0.0) {
+        let cables = linear
+            .assembly
+            .cable_geometric(model, &first.cable_forces_n);
+        kg = add(&kg, &cables, 1.0);
+    }
     if modes == 0 || kg.entries.iter().all(|e| e.2 == 0.0) {
         return Ok(Vec::new());
     }
@@ -482,7 +488,7 @@ mod tests {
         for (sigma, definite) in [(0.99 * lambda, true), (1.01 * lambda, false)] {
             let a = add(&linear.stiffness, &kg, sigma);
             assert_eq!(
-                factorise_definite(&a).unwrap().is_some(),
+                factorise_definite(&a, None).unwrap().is_some(),
                 definite,
                 "σ {sigma}"
             );

@@ -905,6 +905,35 @@ impl Assembly {
         SymSparse::from_triplets(self.dofs.free, t)
     }
 
+    /// The geometric stiffness of cables under `forces_n` (tension
+    /// positive; 0 for slack ones): a taut string resists moving its ends
+    /// across its axis by N/L·(I − e·eᵀ).
+    pub(crate) fn cable_geometric(&self, model: &FrameModel, forces_n: &[f64]) -> SymSparse {
+        let mut t = Vec::with_capacity(model.cables.len() * 78);
+        for ((c, &(e, _)), &n) in model.cables.iter().zip(&self.cable_axes).zip(forces_n) {
+            if n == 0.0 {
+                continue;
+            }
+            let g = n / c.length_mm(&self.nodes_mm);
+            let mut m = [[0.0; 12]; 12];
+            for p in 0..3 {
+                for q in 0..3 {
+                    let v = g * (f64::from(u8::from(p == q)) - e[p] * e[q]);
+                    m[p][q] = v;
+                    m[6 + p][6 + q] = v;
+                    m[p][6 + q] = -v;
+                    m[6 + p][q] = -v;
+                }
+            }
+            let d = self.node_dofs(c.nodes);
+            match offset_matrix(&c.offsets_mm) {
+                None => self.scatter(&mut t, &d, &m),
+                Some(h) => self.scatter(&mut t, &d, &sandwich(&h, &m)),
+            }
+        }
+        SymSparse::from_triplets(self.dofs.free, t)
+    }
+
     /// The taut cables' pretensions as loads on their nodes: each pulls
     /// its ends towards each other with T₀ (over the unknowns).
     pub(crate) fn cable_pull(&self, model: &FrameModel, taut: &[bool]) -> Vec<f64> {
@@ -1310,6 +1339,10 @@ pub struct LinearFrame<'m> {
     pub(crate) stiffness: SymSparse,
     pub(crate) factor: Factor,
     initial_axial: Vec<f64>,
+    /// Per cable: taut (held so).
+    taut: Vec<bool>,
+    /// The taut cables' pretensions as loads, over the unknowns.
+    pull: Vec<f64>,
 }
 
 impl<'m> LinearFrame<'m> {
@@ -1321,6 +1354,25 @@ impl<'m> LinearFrame<'m> {
                 "a frame with tension-only cables is not linear: solve it with tension::solve_tension_only".into(),
             ));
         }
+        LinearFrame::with_cables(model, &[])
+    }
+
+    /// As [`LinearFrame::new`] with `model`'s cables held in the state
+    /// `taut` (one flag per cable): the taut ones are bars of their
+    /// stiffness pulling with their pretension, the slack ones are not
+    /// there. Linear for as long as that state holds (the state a
+    /// tension-only solve found for a load set).
+    pub fn with_cables(
+        model: &'m FrameModel,
+        taut: &[bool],
+    ) -> Result<LinearFrame<'m>, FrameError> {
+        if taut.len() != model.cables.len() {
+            return Err(FrameError::Invalid(format!(
+                "{} cable states for {} cables",
+                taut.len(),
+                model.cables.len()
+            )));
+        }
         let assembly = Assembly::new(model, &model.nodes_mm)?;
         let initial_axial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
         let mut stiffness = assembly.stiffness(model);
@@ -1328,13 +1380,19 @@ impl<'m> LinearFrame<'m> {
             let g = assembly.geometric(model, &initial_axial, None);
             stiffness = add(&stiffness, &g, 1.0);
         }
+        if !model.cables.is_empty() {
+            stiffness = add(&stiffness, &assembly.cable_stiffness(model, taut), 1.0);
+        }
         let (factor, _) = factorise(&stiffness, &assembly.dofs, None)?;
+        let pull = assembly.cable_pull(model, taut);
         Ok(LinearFrame {
             model,
             assembly,
             stiffness,
             factor,
             initial_axial,
+            taut: taut.to_vec(),
+            pull,
         })
     }
 
@@ -1351,9 +1409,17 @@ impl<'m> LinearFrame<'m> {
     /// The linear static solution under `loads`.
     pub fn solve(&self, loads: &LoadSet) -> Result<StaticResult, FrameError> {
         validate_loads(self.model, loads)?;
-        let (p, _) = self.assembly.load_vector(self.model, loads);
+        let (mut p, _) = self.assembly.load_vector(self.model, loads);
+        p.iter_mut().zip(&self.pull).for_each(|(a, b)| *a += b);
         let x = solve_refined(&self.factor, &self.stiffness, &p)?;
-        Ok(self.assembly.results(self.model, loads, &x, None, &[]))
+        let forces: Vec<f64> = self
+            .assembly
+            .cable_forces(self.model, &x)
+            .into_iter()
+            .zip(&self.taut)
+            .map(|(n, &t)| if t { n } else { 0.0 })
+            .collect();
+        Ok(self.assembly.results(self.model, loads, &x, None, &forces))
     }
 }
 

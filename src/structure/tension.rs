@@ -14,10 +14,16 @@
 //!
 //! A frame that needs a slack cable to stand is a mechanism without it,
 //! and is reported as one ([`FrameError::Mechanism`], naming the node).
+//!
+//! Buckling of a braced frame ([`critical_factors_braced`]) holds the
+//! cables in the state the load set leaves them (a linear frame in which
+//! the taut ones are bars, [`LinearFrame::with_cables`]); a taut cable's
+//! tension adds the geometric stiffness of a string, N/L·(I − e·eᵀ).
 
+use super::buckling::{critical_factors_of, BucklingMode};
 use super::model::{Cable, FrameModel, LoadSet};
 use super::solve::{
-    add, factorise, solve_refined, validate_loads, Assembly, FrameError, StaticResult,
+    add, factorise, solve_refined, validate_loads, Assembly, FrameError, LinearFrame, StaticResult,
 };
 
 /// Most active-set steps before giving up (a set that keeps changing).
@@ -80,6 +86,23 @@ pub fn solve_tension_only(
         what: format!("the cables' taut set under {}", loads.name),
         iterations: MAX_STEPS,
     })
+}
+
+/// The `modes` smallest critical load factors of `loads` on the braced
+/// `model`: its cables held in the state the tension-only solve finds
+/// under `loads` (taut ones as bars, slack ones absent), the geometric
+/// stiffness of the members' and the taut cables' forces under the load
+/// set scaled by λ. The pretension's share of those forces is scaled with
+/// the load, which is exact for a cable set that only the load tightens
+/// and slightly conservative for members the pretension compresses.
+pub fn critical_factors_braced(
+    model: &FrameModel,
+    loads: &LoadSet,
+    modes: usize,
+) -> Result<Vec<BucklingMode>, FrameError> {
+    let state = solve_tension_only(model, loads)?;
+    let linear = LinearFrame::with_cables(model, &state.taut)?;
+    critical_factors_of(&linear, loads, modes)
 }
 
 /// The unstressed length of each of `model`'s cables, mm

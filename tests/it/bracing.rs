@@ -232,3 +232,89 @@ fn a_cables_cut_length_is_its_length_less_its_stretch() {
     let l0 = unstressed_lengths_mm(&m)[0];
     assert!((l0 - 4997.8594).abs() < 1e-4, "{l0}");
 }
+
+/// A column of 1 m, fixed at its foot, pressed at its free top by 1 N,
+/// its weak axis (the steel strip's h·t³/12) bending along x: alone it
+/// buckles at π²·E·I/(4·L²) (fixed–free); a cable from its top to an
+/// anchor 1 m away along x (20 mm², pretensioned to 10 N) holds the top
+/// like a pin, and it buckles at 20.19·E·I/L² (fixed–pinned,
+/// (4.4934)² = 20.1907), the cable's stiffness (3.3e6 N per unit
+/// rotation of the column) being 5e4 times what that needs.
+#[test]
+fn a_cable_at_its_top_raises_a_columns_critical_load_to_the_pinned_one() {
+    use lamella::structure::buckling::critical_factors;
+    use lamella::structure::tension::critical_factors_braced;
+    let (l, n) = (1000.0, 16usize);
+    let (t, h) = (1.5, 50.0);
+    let strip = Section {
+        e_mpa: E,
+        g_mpa: 81_000.0,
+        area_mm2: t * h,
+        i_y_mm4: t * h * h * h / 12.0,
+        i_z_mm4: h * t * t * t / 12.0,
+        j_mm4: h * t * t * t / 3.0 * (1.0 - 0.63 * t / h),
+    };
+    let ei = E * strip.i_z_mm4;
+    let mut nodes: Vec<DVec3> = (0..=n)
+        .map(|i| DVec3::Z * (l * i as f64 / n as f64))
+        .collect();
+    nodes.push(DVec3::new(l, 0.0, l));
+    let beams = (0..n)
+        .map(|i| Beam {
+            nodes: [i, i + 1],
+            section: 0,
+            z_axis: DVec3::Y,
+            initial: InitialForces::default(),
+            offsets_mm: [DVec3::ZERO; 2],
+        })
+        .collect();
+    let mut m = FrameModel {
+        nodes_mm: nodes,
+        sections: vec![strip],
+        beams,
+        links: vec![],
+        cables: vec![Cable {
+            nodes: [n, n + 1],
+            offsets_mm: [DVec3::ZERO; 2],
+            area_mm2: A_CABLE,
+            e_mpa: E_CABLE,
+            pretension_n: 10.0,
+        }],
+        supports: vec![
+            Support {
+                node: 0,
+                fixed: [true; 6],
+                along: None,
+            },
+            Support {
+                node: n + 1,
+                fixed: [true; 6],
+                along: None,
+            },
+        ],
+    };
+    let press = LoadSet {
+        name: "P".into(),
+        nodes: vec![NodeLoad {
+            node: n,
+            force_n: DVec3::new(0.0, 0.0, -1.0),
+            moment_nmm: DVec3::ZERO,
+        }],
+        ..Default::default()
+    };
+    let braced = critical_factors_braced(&m, &press, 1).expect("braced");
+    close(
+        braced[0].factor,
+        20.1907 * ei / (l * l),
+        5e-3,
+        "fixed–pinned",
+    );
+    m.cables.clear();
+    let alone = critical_factors(&m, &press, 1).expect("alone");
+    close(
+        alone[0].factor,
+        std::f64::consts::PI.powi(2) * ei / (4.0 * l * l),
+        5e-3,
+        "fixed–free",
+    );
+}
