@@ -77,14 +77,20 @@ pub struct Beam {
     pub offsets_mm: [DVec3; 2],
 }
 
+/// The two ends of an element on `nodes` with rigid end `offsets_mm`, at
+/// node positions `nodes_mm`, mm.
+fn ends(nodes: [usize; 2], offsets_mm: &[DVec3; 2], nodes_mm: &[DVec3]) -> [DVec3; 2] {
+    [
+        nodes_mm[nodes[0]] + offsets_mm[0],
+        nodes_mm[nodes[1]] + offsets_mm[1],
+    ]
+}
+
 impl Beam {
     /// Its two ends (its nodes plus their offsets) at node positions
     /// `nodes_mm`, mm.
     pub fn ends_mm(&self, nodes_mm: &[DVec3]) -> [DVec3; 2] {
-        [
-            nodes_mm[self.nodes[0]] + self.offsets_mm[0],
-            nodes_mm[self.nodes[1]] + self.offsets_mm[1],
-        ]
+        ends(self.nodes, &self.offsets_mm, nodes_mm)
     }
 
     /// Its length between its ends at node positions `nodes_mm`, mm.
@@ -139,10 +145,7 @@ pub struct Cable {
 impl Cable {
     /// Its two ends at node positions `nodes_mm`, mm.
     pub fn ends_mm(&self, nodes_mm: &[DVec3]) -> [DVec3; 2] {
-        [
-            nodes_mm[self.nodes[0]] + self.offsets_mm[0],
-            nodes_mm[self.nodes[1]] + self.offsets_mm[1],
-        ]
+        ends(self.nodes, &self.offsets_mm, nodes_mm)
     }
 
     /// Its length between its ends (the erected length L), mm.

@@ -877,52 +877,49 @@ impl Assembly {
         }
     }
 
-    /// The taut cables' stiffness (12 × 12 per cable over its nodes'
-    /// unknowns, through its end offsets), as triplets.
+    /// The taut cables' stiffness k·e·eᵀ between their ends, as a matrix
+    /// over the unknowns.
     pub(crate) fn cable_stiffness(&self, model: &FrameModel, taut: &[bool]) -> SymSparse {
-        let mut t = Vec::with_capacity(model.cables.len() * 78);
-        for (i, c) in model.cables.iter().enumerate() {
-            if !taut[i] {
-                continue;
-            }
-            let (e, k) = self.cable_axes[i];
-            let mut m = [[0.0; 12]; 12];
-            for p in 0..3 {
-                for q in 0..3 {
-                    let v = k * e[p] * e[q];
-                    m[p][q] = v;
-                    m[6 + p][6 + q] = v;
-                    m[p][6 + q] = -v;
-                    m[6 + p][q] = -v;
-                }
-            }
-            let d = self.node_dofs(c.nodes);
-            match offset_matrix(&c.offsets_mm) {
-                None => self.scatter(&mut t, &d, &m),
-                Some(h) => self.scatter(&mut t, &d, &sandwich(&h, &m)),
-            }
-        }
-        SymSparse::from_triplets(self.dofs.free, t)
+        self.cable_matrix(model, |i, e| {
+            let k = self.cable_axes[i].1;
+            taut[i].then(|| std::array::from_fn(|p| std::array::from_fn(|q| k * e[p] * e[q])))
+        })
     }
 
     /// The geometric stiffness of cables under `forces_n` (tension
     /// positive; 0 for slack ones): a taut string resists moving its ends
     /// across its axis by N/L·(I − e·eᵀ).
     pub(crate) fn cable_geometric(&self, model: &FrameModel, forces_n: &[f64]) -> SymSparse {
+        self.cable_matrix(model, |i, e| {
+            let n = forces_n[i];
+            let g = n / model.cables[i].length_mm(&self.nodes_mm);
+            let unit = |p: usize, q: usize| if p == q { 1.0 } else { 0.0 };
+            (n != 0.0).then(|| {
+                std::array::from_fn(|p| std::array::from_fn(|q| g * (unit(p, q) - e[p] * e[q])))
+            })
+        })
+    }
+
+    /// Σ over cables of the two-end matrix [B −B; −B B] of the 3 × 3 block
+    /// B that `block(cable, its axis)` gives (None: none), on the ends'
+    /// translations, through the cable's end offsets.
+    fn cable_matrix(
+        &self,
+        model: &FrameModel,
+        block: impl Fn(usize, DVec3) -> Option<[[f64; 3]; 3]>,
+    ) -> SymSparse {
         let mut t = Vec::with_capacity(model.cables.len() * 78);
-        for ((c, &(e, _)), &n) in model.cables.iter().zip(&self.cable_axes).zip(forces_n) {
-            if n == 0.0 {
+        for (i, c) in model.cables.iter().enumerate() {
+            let Some(b) = block(i, self.cable_axes[i].0) else {
                 continue;
-            }
-            let g = n / c.length_mm(&self.nodes_mm);
+            };
             let mut m = [[0.0; 12]; 12];
             for p in 0..3 {
                 for q in 0..3 {
-                    let v = g * (f64::from(u8::from(p == q)) - e[p] * e[q]);
-                    m[p][q] = v;
-                    m[6 + p][6 + q] = v;
-                    m[p][6 + q] = -v;
-                    m[6 + p][q] = -v;
+                    m[p][q] = b[p][q];
+                    m[6 + p][6 + q] = b[p][q];
+                    m[p][6 + q] = -b[p][q];
+                    m[6 + p][q] = -b[p][q];
                 }
             }
             let d = self.node_dofs(c.nodes);
