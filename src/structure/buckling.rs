@@ -214,8 +214,8 @@ fn shifted_lanczos(
 }
 
 /// Lanczos on Op = A⁻¹·(−K_G) (A the shifted pencil), self-adjoint in the
-/// A inner product, with full reorthogonalisation (repeated when needed) and thick
-/// restarts; returns (λ = σ + 1/ν, vector) for the `modes` largest
+/// A inner product, with full reorthogonalisation (repeated when
+/// needed) and thick restarts; returns (λ = σ + 1/ν, vector) for the `modes` largest
 /// positive ν (the smallest λ above the shift σ), each converged to a
 /// residual of `tolerance`·ν.
 ///
@@ -237,12 +237,12 @@ fn lanczos_restarted(
     (basis_max, keep): (usize, usize),
     tolerance: f64,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
-    let ke = pencil.a;
+    let a = pencil.a;
     let n = kg.n;
     let basis_max = basis_max.min(n);
     let keep = keep.min(basis_max.saturating_sub(2));
     let dot = |x: &[f64], y: &[f64]| -> f64 { x.iter().zip(y).map(|(a, b)| a * b).sum() };
-    // A deterministic start: pseudo-random, K_e-normalised.
+    // A deterministic start: pseudo-random, A-normalised.
     let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
     let mut r: Vec<f64> = (0..n)
         .map(|_| {
@@ -252,20 +252,20 @@ fn lanczos_restarted(
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         })
         .collect();
-    let mut kr = ke.mul_vec(&r);
+    let mut kr = a.mul_vec(&r);
     let norm = dot(&kr, &r).sqrt();
     r.iter_mut().for_each(|v| *v /= norm);
     kr.iter_mut().for_each(|v| *v /= norm);
-    // The basis and K_e times it: K_e·w of a new direction w = K_e⁻¹·g is g
-    // itself, so no product with K_e is needed after the start.
+    // The basis and A times it: A·w of a new direction w = A⁻¹·g is g
+    // itself, so no product with A is needed after the start.
     let mut q: Vec<Vec<f64>> = vec![r];
     let mut kq: Vec<Vec<f64>> = vec![kr];
     // h[i][j] = ⟨q_i, Op·q_j⟩ over the basis (column j filled at step j).
     let mut h: Vec<Vec<f64>> = vec![vec![0.0; basis_max]; basis_max];
     for step in 0..MAX_ITERATIONS {
         let j = q.len() - 1;
-        // w = K_e⁻¹·(−K_G·q_j), then K_e-orthogonal to the basis (twice);
-        // the coefficients are column j of H.
+        // w = A⁻¹·(−K_G·q_j), then A-orthogonal to the basis; the
+        // coefficients are column j of H.
         let mut kw: Vec<f64> = kg.mul_vec(&q[j]).into_iter().map(|v| -v).collect();
         let mut w = solve_with(pencil.factor, &kw)?;
         let mut column = vec![0.0; j + 1];

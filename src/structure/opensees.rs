@@ -258,7 +258,8 @@ pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, Frame
          Usage: python3 {{this file}} results.json\n\n\
          Node tag = lamella node index + 1; beam i is element i + 1, link j element\n\
          {} + j; an inclined roller is a zeroLength spring to an extra fixed node.\n\
-         Each load set is a linear static analysis of a freshly built model; the\n\
+         Each load set is a static analysis of a freshly built model (linear, or\n\
+         Newton where tension-only cables are); the\n\
          results file holds every node's displacements and every supported node's\n\
          reaction (lamella's indices). The erection state is not modelled.\n\"\"\"",
         model.beams.len() + 1

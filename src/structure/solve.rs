@@ -1405,18 +1405,28 @@ impl<'m> LinearFrame<'m> {
 
     /// The linear static solution under `loads`.
     pub fn solve(&self, loads: &LoadSet) -> Result<StaticResult, FrameError> {
+        self.solve_with_cables(loads).map(|(result, _)| result)
+    }
+
+    /// [`LinearFrame::solve`], and every cable's force were it taut
+    /// (T₀ + k·δ, negative where the solution shortens it past its
+    /// unstressed length): what tells whether the cables' state holds.
+    pub(crate) fn solve_with_cables(
+        &self,
+        loads: &LoadSet,
+    ) -> Result<(StaticResult, Vec<f64>), FrameError> {
         validate_loads(self.model, loads)?;
         let (mut p, _) = self.assembly.load_vector(self.model, loads);
         p.iter_mut().zip(&self.pull).for_each(|(a, b)| *a += b);
         let x = solve_refined(&self.factor, &self.stiffness, &p)?;
-        let forces: Vec<f64> = self
-            .assembly
-            .cable_forces(self.model, &x)
-            .into_iter()
+        let would_be = self.assembly.cable_forces(self.model, &x);
+        let forces: Vec<f64> = would_be
+            .iter()
             .zip(&self.taut)
-            .map(|(n, &t)| if t { n } else { 0.0 })
+            .map(|(&n, &t)| if t { n } else { 0.0 })
             .collect();
-        Ok(self.assembly.results(self.model, loads, &x, None, &forces))
+        let result = self.assembly.results(self.model, loads, &x, None, &forces);
+        Ok((result, would_be))
     }
 }
 

@@ -8,7 +8,9 @@
 //! pretensions' pull; every cable whose force would be negative is slack
 //! in the next solve, and every slack cable whose chord has lengthened
 //! past its unstressed length is taut again; until the set repeats. Each
-//! step is a linear solve (a new factorisation), so the solution is exact
+//! step is a linear frame holding one state of the cables
+//! ([`LinearFrame::with_cables`]: a new factorisation), so the solution
+//! is exact
 //! for its active set: the slack cables are shorter than their unstressed
 //! length, the taut ones in tension.
 //!
@@ -21,10 +23,8 @@
 //! tension adds the geometric stiffness of a string, N/L·(I − e·eᵀ).
 
 use super::buckling::{critical_factors_of, BucklingMode};
-use super::model::{Cable, FrameModel, LoadSet};
-use super::solve::{
-    add, factorise, solve_refined, validate_loads, Assembly, FrameError, LinearFrame, StaticResult,
-};
+use super::model::{FrameModel, LoadSet};
+use super::solve::{FrameError, LinearFrame, StaticResult};
 
 /// Most active-set steps before giving up (a set that keeps changing).
 pub const MAX_STEPS: usize = 50;
@@ -47,38 +47,26 @@ pub fn solve_tension_only(
     model: &FrameModel,
     loads: &LoadSet,
 ) -> Result<TensionOnlyResult, FrameError> {
-    validate_loads(model, loads)?;
-    let assembly = Assembly::new(model, &model.nodes_mm)?;
-    let mut frame = assembly.stiffness(model);
-    let initial_axial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
-    if initial_axial.iter().any(|&n| n != 0.0) {
-        frame = add(
-            &frame,
-            &assembly.geometric(model, &initial_axial, None),
-            1.0,
-        );
-    }
-    let (p, _) = assembly.load_vector(model, loads);
+    settle(model, loads).map(|(_, state)| state)
+}
+
+/// The cables' state under `loads`, and the linear frame that holds it.
+fn settle<'m>(
+    model: &'m FrameModel,
+    loads: &LoadSet,
+) -> Result<(LinearFrame<'m>, TensionOnlyResult), FrameError> {
     let mut taut = vec![true; model.cables.len()];
     for step in 1..=MAX_STEPS {
-        let k = add(&frame, &assembly.cable_stiffness(model, &taut), 1.0);
-        let pull = assembly.cable_pull(model, &taut);
-        let rhs: Vec<f64> = p.iter().zip(&pull).map(|(a, b)| a + b).collect();
-        let (factor, _) = factorise(&k, &assembly.dofs, None)?;
-        let x = solve_refined(&factor, &k, &rhs)?;
-        let would_be = assembly.cable_forces(model, &x);
+        let linear = LinearFrame::with_cables(model, &taut)?;
+        let (result, would_be) = linear.solve_with_cables(loads)?;
         let next: Vec<bool> = would_be.iter().map(|&n| n > 0.0).collect();
         if next == taut {
-            let forces: Vec<f64> = would_be
-                .iter()
-                .zip(&taut)
-                .map(|(&n, &t)| if t { n } else { 0.0 })
-                .collect();
-            return Ok(TensionOnlyResult {
-                result: assembly.results(model, loads, &x, None, &forces),
+            let state = TensionOnlyResult {
+                result,
                 taut,
                 steps: step,
-            });
+            };
+            return Ok((linear, state));
         }
         taut = next;
     }
@@ -100,17 +88,6 @@ pub fn critical_factors_braced(
     loads: &LoadSet,
     modes: usize,
 ) -> Result<Vec<BucklingMode>, FrameError> {
-    let state = solve_tension_only(model, loads)?;
-    let linear = LinearFrame::with_cables(model, &state.taut)?;
+    let (linear, _) = settle(model, loads)?;
     critical_factors_of(&linear, loads, modes)
-}
-
-/// The unstressed length of each of `model`'s cables, mm
-/// ([`Cable::unstressed_length_mm`]).
-pub fn unstressed_lengths_mm(model: &FrameModel) -> Vec<f64> {
-    model
-        .cables
-        .iter()
-        .map(|c: &Cable| c.unstressed_length_mm(&model.nodes_mm))
-        .collect()
 }
