@@ -157,6 +157,9 @@ pub fn frame(done: &Done) -> ExitCode {
             g.strip, g.lamella, g.station_mm, g.check, g.utilisation, g.combination
         );
     }
+    if let Some(b) = &st.bracing {
+        bracing(b);
+    }
     println!("{}", st.verdict);
     wrote(done);
     if st.passes {
@@ -164,6 +167,44 @@ pub fn frame(done: &Done) -> ExitCode {
     } else {
         ExitCode::from(FAIL)
     }
+}
+
+/// The bracing's lines: what was chosen, how each figure moved, the cable.
+fn bracing(b: &lamella::plan::structure::PlanBracing) {
+    println!(
+        "bracing ({} layout, {} diagonals): {} cables of {} candidates, {} ⌀{} mm, pretension {:.2} kN, {:.1} m pin to pin ({:.1} m of wire)",
+        b.layout,
+        b.diagonals,
+        b.cables.len(),
+        b.candidates,
+        b.designation,
+        b.diameter_mm,
+        b.pretension_kn,
+        b.total_length_m,
+        b.total_wire_m
+    );
+    let show = |x: Option<f64>, d: usize| x.map_or("–".to_string(), |v| format!("{v:.d$}"));
+    let goal = |x: Option<f64>, sign: &str, d: usize| {
+        x.map_or("no target".to_string(), |v| {
+            format!("target {sign} {v:.d$}")
+        })
+    };
+    println!(
+        "  α_cr {} → {} ({}); deflection {} → {} mm ({}); utilisation {} → {} ({})",
+        show(b.before.alpha_cr, 2),
+        show(b.after.alpha_cr, 2),
+        goal(b.targets.alpha_cr, "≥", 2),
+        show(b.before.deflection_mm, 1),
+        show(b.after.deflection_mm, 1),
+        goal(b.targets.deflection_mm, "≤", 1),
+        show(b.before.utilisation, 2),
+        show(b.after.utilisation, 2),
+        goal(b.targets.utilisation, "≤", 2),
+    );
+    println!(
+        "  largest cable force {:.2} kN, F_Rd {:.2} kN",
+        b.max_force_kn, b.design_resistance_kn
+    );
 }
 
 /// `lamella nodes`.

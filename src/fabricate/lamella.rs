@@ -1363,6 +1363,7 @@ mod tests {
             },
             check: Default::default(),
             edge_joint: Default::default(),
+            bracing: None,
             stocks: Vec::new(),
         })
         .expect("a valid profile")

@@ -366,6 +366,87 @@ pub struct LoadSpec {
     pub factors: Factors,
     /// The SLS deflection limit.
     pub deflection: Deflection,
+    /// Diagonal cable bracing, when the file asks for it.
+    pub bracing: Option<BracingSpec>,
+}
+
+/// Which quads of the grid get diagonal cables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BracingLayout {
+    /// Every quad.
+    All,
+    /// Every other quad, as a chessboard's black squares.
+    Alternate,
+    /// The fewest diagonals that bring the grid to the targets, chosen
+    /// one by one by their effect.
+    Designed,
+}
+
+impl BracingLayout {
+    /// As the loads file writes it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            BracingLayout::All => "all",
+            BracingLayout::Alternate => "alternate",
+            BracingLayout::Designed => "designed",
+        }
+    }
+}
+
+/// One diagonal per braced quad, or both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Diagonals {
+    /// One, pretensioned so that it stays taut whichever way the load
+    /// shears the quad.
+    Single,
+    /// Both: a crossed pair, one of which the load tightens.
+    Crossed,
+}
+
+/// The pretension of every cable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pretension {
+    /// The least that keeps every cable taut under every combination.
+    Auto,
+    /// A given value, kN.
+    Kn(f64),
+}
+
+/// What a designed bracing must reach; `None` / `false`: not a target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BracingTargets {
+    /// The smallest α_cr of any ULS combination at least this.
+    pub alpha_cr: Option<f64>,
+    /// Every SLS deflection within the file's deflection limit.
+    pub deflection: bool,
+    /// Every ULS utilisation at most this.
+    pub utilisation: Option<f64>,
+}
+
+impl Default for BracingTargets {
+    /// α_cr ≥ 10 (EN 1993-1-1 §5.2.1(3): first order suffices),
+    /// the deflection limit, utilisation ≤ 1.
+    fn default() -> Self {
+        BracingTargets {
+            alpha_cr: Some(10.0),
+            deflection: true,
+            utilisation: Some(1.0),
+        }
+    }
+}
+
+/// The loads file's `bracing`: diagonal cables on the grid's quads (the
+/// cables themselves, their fittings and sizes are the profile's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BracingSpec {
+    /// Which quads.
+    pub layout: BracingLayout,
+    /// One diagonal or two per quad.
+    pub diagonals: Diagonals,
+    /// The cables' pretension.
+    pub pretension: Pretension,
+    /// What a designed layout must reach (the others are judged by it too).
+    pub targets: BracingTargets,
 }
 
 /// A field of a loads file that fails a check, and why.
@@ -455,6 +536,9 @@ impl LoadSpec {
             validate_support(s, i)?;
         }
         validate_factors(&self.factors)?;
+        if let Some(b) = &self.bracing {
+            validate_bracing(b)?;
+        }
         match self.deflection {
             Deflection::SpanOver(n) => {
                 finite("deflection.span_over", n)?;
@@ -474,6 +558,43 @@ impl LoadSpec {
         }
         Ok(())
     }
+}
+
+fn validate_bracing(b: &BracingSpec) -> Result<(), FieldError> {
+    if let Pretension::Kn(t) = b.pretension {
+        non_negative("bracing.pretension_kn", t)?;
+        bounded("bracing.pretension_kn", t)?;
+    }
+    let t = &b.targets;
+    if let Some(a) = t.alpha_cr {
+        finite("bracing.targets.alpha_cr", a)?;
+        if a <= 1.0 {
+            return fail(
+                "bracing.targets.alpha_cr",
+                format!("must be above 1 (the grid buckles at α_cr = 1), got {a}"),
+            );
+        }
+    }
+    if let Some(u) = t.utilisation {
+        finite("bracing.targets.utilisation", u)?;
+        if u <= 0.0 {
+            return fail(
+                "bracing.targets.utilisation",
+                format!("must be > 0, got {u}"),
+            );
+        }
+    }
+    if b.layout == BracingLayout::Designed
+        && t.alpha_cr.is_none()
+        && !t.deflection
+        && t.utilisation.is_none()
+    {
+        return fail(
+            "bracing.targets",
+            "sets no target for the designed layout: give alpha_cr, deflection or utilisation",
+        );
+    }
+    Ok(())
 }
 
 fn validate_case(c: &LoadCase, at: &dyn Fn(&str) -> String) -> Result<(), FieldError> {

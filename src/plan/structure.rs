@@ -51,9 +51,161 @@ pub struct PlanStructure {
     pub strips: Vec<PlanStripStructure>,
     /// Every support with its reaction under every combination.
     pub reactions: Vec<PlanReaction>,
+    /// The diagonal cables, when the loads file asks for them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bracing: Option<PlanBracing>,
     /// What the structure pages draw. Not in plan.json.
     #[serde(skip)]
     pub drawing: Option<StructureDrawing>,
+}
+
+/// The bracing: layout, cable, figures before and after, the schedule.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanBracing {
+    /// `all`, `alternate` or `designed`.
+    pub layout: String,
+    /// `single` or `crossed`.
+    pub diagonals: String,
+    /// The quads' diagonals it chose from.
+    pub candidates: usize,
+    /// The strand.
+    pub designation: String,
+    /// Its diameter, mm.
+    pub diameter_mm: f64,
+    /// Its design resistance F_Rd = F_uk/γ, kN (3 decimals).
+    pub design_resistance_kn: f64,
+    /// The largest cable force under a ULS combination, kN.
+    pub max_force_kn: f64,
+    /// Whether that exceeds F_Rd of the table's largest size.
+    pub overstressed: bool,
+    /// The pretension of every cable, kN.
+    pub pretension_kn: f64,
+    /// Σ of the pin-to-pin lengths, m (3 decimals).
+    pub total_length_m: f64,
+    /// Σ of the wires' cut lengths, m.
+    pub total_wire_m: f64,
+    /// The targets (absent: not a target).
+    pub targets: PlanFigures,
+    /// The unbraced grid's figures.
+    pub before: PlanFigures,
+    /// The braced grid's.
+    pub after: PlanFigures,
+    /// How the designed layout went: every cable added (and the target it
+    /// was added for) or removed, with the figures after it.
+    pub steps: Vec<PlanBracingStep>,
+    /// Every cable.
+    pub cables: Vec<PlanCable>,
+}
+
+/// α_cr, deflection, utilisation.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFigures {
+    /// The smallest ULS α_cr (4 decimals).
+    pub alpha_cr: Option<f64>,
+    /// The largest SLS translation, mm (4 decimals).
+    pub deflection_mm: Option<f64>,
+    /// The largest ULS utilisation (6 decimals).
+    pub utilisation: Option<f64>,
+}
+
+/// A step of a designed layout.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanBracingStep {
+    /// `add` or `remove`.
+    pub action: String,
+    /// The diagonal's joints, network node ids.
+    pub nodes: [String; 2],
+    /// The target it was added for.
+    pub target: Option<String>,
+    /// The figures after it (the design's model: cables held taut).
+    pub after: PlanFigures,
+}
+
+/// One cable of the schedule.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanCable {
+    /// `C1`, `C2`, …
+    pub id: String,
+    /// Its joints: the fixed terminal's, the turnbuckle's.
+    pub nodes: [String; 2],
+    /// Pin to pin in the erected grid, mm (2 decimals).
+    pub length_mm: f64,
+    /// The wire's unstressed cut length, mm (1 decimal).
+    pub wire_cut_mm: f64,
+    /// Pretension, kN.
+    pub pretension_kn: f64,
+    /// Largest ULS force, kN.
+    pub max_force_kn: f64,
+    /// The combinations it is slack under.
+    pub slack_in: Vec<String>,
+}
+
+impl PlanFigures {
+    fn of(m: &crate::structure::bracing::Measure) -> PlanFigures {
+        PlanFigures {
+            alpha_cr: m.alpha_cr.map(|a| round(a, 4)),
+            deflection_mm: m.deflection_mm.map(|d| round(d, 4)),
+            utilisation: m.utilisation.map(|u| round(u, 6)),
+        }
+    }
+}
+
+impl PlanBracing {
+    /// The plan section of a report's bracing.
+    pub fn of(report: &FrameReport) -> Option<PlanBracing> {
+        use crate::structure::bracing::{largest_uls_force_n, schedule};
+        let b = report.bracing.as_ref()?;
+        let d = &b.design;
+        let size = &b.profile.cable.sizes[d.size];
+        let rows = schedule(d, &report.built.model, &report.results, &b.profile);
+        let kn = |n: f64| round(n / 1000.0, 3);
+        let corners = |c: usize| d.candidates[c].corners.map(|n| n.to_string());
+        Some(PlanBracing {
+            layout: b.spec.layout.as_str().into(),
+            diagonals: match b.spec.diagonals {
+                crate::loads::Diagonals::Single => "single".into(),
+                crate::loads::Diagonals::Crossed => "crossed".into(),
+            },
+            candidates: d.candidates.len(),
+            designation: b.profile.cable.designation.clone(),
+            diameter_mm: size.diameter_mm,
+            design_resistance_kn: kn(size.design_resistance_n(b.profile.cable.partial_factor)),
+            max_force_kn: kn(largest_uls_force_n(&report.results)),
+            overstressed: d.overstressed,
+            pretension_kn: kn(d.pretension_n),
+            total_length_m: round(rows.iter().map(|r| r.length_mm).sum::<f64>() / 1000.0, 3),
+            total_wire_m: round(rows.iter().map(|r| r.wire_mm).sum::<f64>() / 1000.0, 3),
+            targets: PlanFigures {
+                alpha_cr: b.goals.alpha_cr,
+                deflection_mm: b.goals.deflection_mm.map(|x| round(x, 4)),
+                utilisation: b.goals.utilisation,
+            },
+            before: PlanFigures::of(&d.before),
+            after: PlanFigures::of(&d.after),
+            steps: d
+                .steps
+                .iter()
+                .map(|s| PlanBracingStep {
+                    action: if s.added { "add" } else { "remove" }.into(),
+                    nodes: corners(s.candidate),
+                    target: s.target.map(|t| t.as_str().to_string()),
+                    after: PlanFigures::of(&s.after),
+                })
+                .collect(),
+            cables: rows
+                .into_iter()
+                .map(|r| PlanCable {
+                    id: r.id,
+                    nodes: r.nodes,
+                    length_mm: round(r.length_mm, 2),
+                    wire_cut_mm: round(r.wire_mm, 1),
+                    pretension_kn: kn(r.pretension_n),
+                    max_force_kn: kn(r.max_force_n),
+                    slack_in: r.slack_in,
+                })
+                .collect(),
+        })
+    }
 }
 
 /// Counts of the frame model.
@@ -424,6 +576,7 @@ impl PlanStructure {
             combinations,
             strips,
             reactions,
+            bracing: PlanBracing::of(report),
             drawing: Some(drawing),
         }
     }

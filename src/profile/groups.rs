@@ -383,6 +383,7 @@ impl Profile {
             cutting: raw.cutting.clone(),
             check: raw.check.clone(),
             edge_joint: raw.edge_joint.clone(),
+            bracing: raw.bracing.clone(),
             stocks: raw.stocks.clone(),
         };
         p.stock_groups()

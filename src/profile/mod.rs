@@ -50,6 +50,8 @@ pub struct ProfileOf<S> {
     pub stud: Option<Stud>,
     /// Splice plates for strips longer than the stock, if any.
     pub splice: Option<Splice>,
+    /// Bracing cables and their fittings, or none.
+    pub bracing: Option<Bracing>,
     /// What the bought bolts are (property class); every field optional.
     pub hardware: Fasteners,
     /// What parts are cut from.
@@ -206,6 +208,91 @@ pub struct Fasteners {
 
 /// The bolt property classes the takeoff knows a tightening torque for.
 pub const BOLT_CLASSES: [&str; 2] = ["8.8", "10.9"];
+
+/// `bracing:` the cables that brace the grid's quads, and what fixes them
+/// (read as the file writes it; the structure stage designs with it).
+///
+/// A cable runs between two joints, fixed at each end to an eye plate
+/// under the node bolt, `fitting_offset_mm` from the node along the
+/// surface normal (on the side the normal points up to). Its assembly
+/// from pin to pin: a swaged fork terminal (`terminal_mm` from its pin to
+/// where the wire enters), the wire, and a turnbuckle at the other end
+/// (`turnbuckle.mid_length_mm` from its pin to the wire at the middle of
+/// its take-up `turnbuckle.take_up_mm`).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Bracing {
+    /// The strand.
+    pub cable: CableMaterial,
+    /// From the node along the surface normal to the cable's axis at the
+    /// eye plate, mm.
+    pub fitting_offset_mm: f64,
+    /// The eye plate under each node bolt that takes a cable (cut from
+    /// plate: a kit part).
+    pub eye_plate: EyePlate,
+    /// Pin to wire of the fixed end's swaged terminal, mm.
+    pub terminal_mm: f64,
+    /// The turnbuckle at the other end.
+    pub turnbuckle: Turnbuckle,
+}
+
+/// `bracing.cable:` the strand's modulus, safety factor and sizes.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CableMaterial {
+    /// What it is, for the takeoff.
+    pub designation: String,
+    /// The strand's modulus over its metallic area, MPa.
+    pub youngs_modulus_mpa: f64,
+    /// F_Rd = F_uk / this (EN 1993-1-11 §6.3: 1.5·γ_R).
+    pub partial_factor: f64,
+    /// The sizes, ascending by diameter (at least one).
+    pub sizes: Vec<CableSize>,
+}
+
+/// One size of `bracing.cable.sizes`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CableSize {
+    /// Nominal diameter, mm.
+    pub diameter_mm: f64,
+    /// Metallic area, mm².
+    pub area_mm2: f64,
+    /// Minimum breaking load F_uk, kN.
+    pub breaking_load_kn: f64,
+}
+
+impl CableSize {
+    /// The design resistance F_Rd = F_uk/γ, N.
+    pub fn design_resistance_n(&self, partial_factor: f64) -> f64 {
+        self.breaking_load_kn * 1000.0 / partial_factor
+    }
+}
+
+/// `bracing.eye_plate:` a flat plate under the node bolt, its hole on the
+/// bolt and a second hole for the cable's pin.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EyePlate {
+    /// Plate thickness, mm.
+    pub thickness_mm: f64,
+    /// Width, mm.
+    pub width_mm: f64,
+    /// Between the two holes' centres, mm.
+    pub hole_spacing_mm: f64,
+    /// The cable pin's hole, mm.
+    pub pin_hole_mm: f64,
+}
+
+/// `bracing.turnbuckle:` its length and take-up.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Turnbuckle {
+    /// Pin to the wire at the middle of the take-up, mm.
+    pub mid_length_mm: f64,
+    /// Total take-up (± half about the middle), mm.
+    pub take_up_mm: f64,
+}
 
 /// Plates joining strips longer than the stock.
 #[derive(Debug, Clone, PartialEq)]
@@ -504,6 +591,7 @@ impl Profile {
             shear_block: raw.shear_block,
             stud: raw.stud,
             splice: raw.splice,
+            bracing: raw.bracing,
             hardware: raw.hardware,
             stock: Stock::from(raw.stock),
             cutting: raw.cutting,

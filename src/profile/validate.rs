@@ -5,8 +5,8 @@
 //! file writes it (`lamella.thickness_mm`, `stock.sizes[1].width_mm`).
 
 use super::{
-    Bolt, Cutting, FieldError, Grain, Joint, JointSystem, Material, RawProfile, RawStock, Section,
-    ShearBlock, Splice, StockKind, StockSize, Stud, Washer,
+    Bolt, Bracing, Cutting, FieldError, Grain, Joint, JointSystem, Material, RawProfile, RawStock,
+    Section, ShearBlock, Splice, StockKind, StockSize, Stud, Washer,
 };
 
 /// What a check gives: nothing, or the field that fails and why.
@@ -32,6 +32,9 @@ pub fn profile(raw: &RawProfile) -> Check {
     }
     if let Some(s) = &raw.splice {
         splice(s)?;
+    }
+    if let Some(b) = &raw.bracing {
+        bracing(b)?;
     }
     if let Some(c) = &raw.hardware.bolt_class {
         if !super::BOLT_CLASSES.contains(&c.as_str()) {
@@ -340,6 +343,62 @@ fn splice(s: &Splice) -> Check {
         s.bolts_per_side,
         MAX_SPLICE_BOLTS_PER_SIDE,
     )
+}
+
+/// `bracing:` positive moduli and sizes, sizes ascending and each
+/// stronger than the last, an eye plate whose holes do not meet.
+fn bracing(b: &Bracing) -> Check {
+    let c = &b.cable;
+    not_blank("bracing.cable.designation", Some(&c.designation))?;
+    positive("bracing.cable.youngs_modulus_mpa", c.youngs_modulus_mpa)?;
+    positive("bracing.cable.partial_factor", c.partial_factor)?;
+    if c.partial_factor < 1.0 {
+        return fail(
+            "bracing.cable.partial_factor",
+            format!(
+                "must be at least 1 (EN 1993-1-11: 1.5·γ_R), got {}",
+                c.partial_factor
+            ),
+        );
+    }
+    if c.sizes.is_empty() {
+        return fail("bracing.cable.sizes", "lists no size: give at least one");
+    }
+    for (i, s) in c.sizes.iter().enumerate() {
+        let at = |f: &str| format!("bracing.cable.sizes[{i}].{f}");
+        positive(&at("diameter_mm"), s.diameter_mm)?;
+        positive(&at("area_mm2"), s.area_mm2)?;
+        positive(&at("breaking_load_kn"), s.breaking_load_kn)?;
+        if let Some(prev) = i.checked_sub(1).map(|j| c.sizes[j]) {
+            if s.diameter_mm <= prev.diameter_mm || s.breaking_load_kn <= prev.breaking_load_kn {
+                return fail(
+                    &at("diameter_mm"),
+                    "sizes must ascend: each thicker and stronger than the one before",
+                );
+            }
+        }
+    }
+    positive("bracing.fitting_offset_mm", b.fitting_offset_mm)?;
+    let e = &b.eye_plate;
+    positive("bracing.eye_plate.thickness_mm", e.thickness_mm)?;
+    positive("bracing.eye_plate.width_mm", e.width_mm)?;
+    positive("bracing.eye_plate.hole_spacing_mm", e.hole_spacing_mm)?;
+    positive("bracing.eye_plate.pin_hole_mm", e.pin_hole_mm)?;
+    if e.pin_hole_mm >= e.width_mm {
+        return fail(
+            "bracing.eye_plate.pin_hole_mm",
+            format!(
+                "must be less than the plate's width {} mm, got {}",
+                e.width_mm, e.pin_hole_mm
+            ),
+        );
+    }
+    non_negative("bracing.terminal_mm", b.terminal_mm)?;
+    positive(
+        "bracing.turnbuckle.mid_length_mm",
+        b.turnbuckle.mid_length_mm,
+    )?;
+    non_negative("bracing.turnbuckle.take_up_mm", b.turnbuckle.take_up_mm)
 }
 
 /// `stock:` the values every form may give, then the fields its form

@@ -8,6 +8,10 @@
 //! mode, scaled so that its largest translation is the imperfection
 //! amplitude, whose results replace the linear ones for that combination.
 //!
+//! A frame with tension-only cables is solved per combination by
+//! [`super::tension`]'s active set; its buckling and second order hold
+//! the cables as that solve leaves them.
+//!
 //! The verdict per lamella element and ULS combination: the cross-section
 //! and member checks of [`super::verdict`] on the section forces of the
 //! load plus the element's erection state ([`InitialForces`]), the larger
@@ -18,9 +22,12 @@
 //! its limit.
 
 use super::buckling::{critical_factors_of, BucklingMode};
-use super::model::{BeamRole, Combination, FrameModel, InitialForces, LimitState, LoadSet};
-use super::second_order::second_order;
+use super::model::{
+    BeamRole, CableState, Combination, FrameModel, InitialForces, LimitState, LoadSet,
+};
+use super::second_order::second_order_as;
 use super::solve::{FrameError, LinearFrame, Reaction, SectionForces, StaticResult};
+use super::tension::settle;
 use super::verdict::{member_check, section_stress, Code, Forces, Rectangle};
 use glam::DVec3;
 
@@ -50,6 +57,9 @@ pub struct Settings {
     pub imperfection_mm: f64,
     /// Relative tolerance of the second-order iteration.
     pub tolerance: f64,
+    /// Whether second order runs where α_cr < [`ALPHA_CR_LIMIT`] (the
+    /// verdict needs it; a bracing design's α_cr-only steps do not).
+    pub second_order: bool,
 }
 
 /// The element that governs a combination.
@@ -75,6 +85,8 @@ pub struct CombinationResult {
     pub displacements: Vec<[f64; 6]>,
     /// Support reactions, global.
     pub reactions: Vec<Reaction>,
+    /// Every cable's force, N (0: slack).
+    pub cable_forces_n: Vec<f64>,
     /// The sum of the applied loads, N.
     pub load_sum_n: DVec3,
     /// The largest translation of any node and that node.
@@ -101,32 +113,105 @@ impl CombinationResult {
 }
 
 /// Every combination's results.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct StructureResults {
     /// In the order of the combinations given.
     pub combinations: Vec<CombinationResult>,
 }
 
+impl StructureResults {
+    /// The largest ULS utilisation: its combination, element and value.
+    pub fn governing(&self) -> Option<(usize, usize, f64)> {
+        let mut best: Option<(usize, usize, f64)> = None;
+        for (c, r) in self.combinations.iter().enumerate() {
+            if let Some(g) = r.governing {
+                if best.is_none_or(|b| g.utilisation > b.2) {
+                    best = Some((c, g.beam, g.utilisation));
+                }
+            }
+        }
+        best
+    }
+
+    /// The smallest α_cr over the ULS combinations and its combination.
+    pub fn alpha_cr(&self) -> Option<(usize, f64)> {
+        self.combinations
+            .iter()
+            .enumerate()
+            .filter_map(|(c, r)| r.alpha_cr().map(|a| (c, a)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// The largest SLS translation: its combination, node and value.
+    pub fn deflection(&self) -> Option<(usize, usize, f64)> {
+        self.combinations
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.limit_state == LimitState::Serviceability)
+            .map(|(c, r)| (c, r.max_translation_node, r.max_translation_mm))
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+    }
+}
+
 /// Runs every analysis of every combination. `roles[i]` says what beam i
-/// is (`None`: a connecting piece).
+/// is (`None`: a connecting piece). Cables are tension-only.
 pub fn analyse(
     model: &FrameModel,
     roles: &[Option<BeamRole>],
     combinations: &[Combination],
     settings: &Settings,
 ) -> Result<StructureResults, FrameError> {
-    let linear = LinearFrame::new(model)?;
+    analyse_as(
+        model,
+        roles,
+        combinations,
+        settings,
+        CableState::TensionOnly,
+    )
+}
+
+/// [`analyse`] with the cables as `cables` says.
+pub fn analyse_as(
+    model: &FrameModel,
+    roles: &[Option<BeamRole>],
+    combinations: &[Combination],
+    settings: &Settings,
+    cables: CableState,
+) -> Result<StructureResults, FrameError> {
+    // Without cables, or with them held, one factorisation serves every
+    // combination; tension-only cables settle their state per combination.
+    let unbraced = if model.cables.is_empty() || cables == CableState::Held {
+        Some(LinearFrame::with_cables(
+            model,
+            &vec![true; model.cables.len()],
+        )?)
+    } else {
+        None
+    };
     let mut out = Vec::with_capacity(combinations.len());
     for combination in combinations {
-        let first = linear.solve(&combination.loads)?;
+        let braced;
+        let (linear, first) = match &unbraced {
+            Some(linear) => (linear, linear.solve(&combination.loads)?),
+            None => {
+                let state;
+                (braced, state) = settle(model, &combination.loads)?;
+                (&braced, state.result)
+            }
+        };
         let (mut result, mut buckling, mut iterations) = (first, Vec::new(), None);
         if combination.limit_state == LimitState::Ultimate {
-            buckling = critical_factors_of(&linear, &combination.loads, settings.modes)?;
+            buckling = critical_factors_of(linear, &combination.loads, settings.modes)?;
             if let Some(mode) = buckling.first() {
-                if mode.factor > 1.0 && mode.factor < ALPHA_CR_LIMIT {
+                if settings.second_order && mode.factor > 1.0 && mode.factor < ALPHA_CR_LIMIT {
                     let imperfection = imperfection_of(mode, settings.imperfection_mm);
-                    match second_order(model, &combination.loads, &imperfection, settings.tolerance)
-                    {
+                    match second_order_as(
+                        model,
+                        &combination.loads,
+                        &imperfection,
+                        settings.tolerance,
+                        cables,
+                    ) {
                         Ok(second) => {
                             iterations = Some(second.iterations);
                             result = second.result;
@@ -241,6 +326,7 @@ fn judge(
         limit_state: combination.limit_state,
         displacements: result.displacements,
         reactions: result.reactions,
+        cable_forces_n: result.cable_forces_n,
         load_sum_n,
         max_translation_mm,
         max_translation_node,

@@ -100,20 +100,51 @@ fn critical_factors_with(
 ) -> Result<Vec<BucklingMode>, FrameError> {
     let model = linear.model();
     let first = linear.solve(loads)?;
-    let axial = axial_forces(&first);
+    // The load's share: the pretension's state is in the stiffness.
+    let less = |total: Vec<f64>, pre: &[f64]| -> Vec<f64> {
+        if pre.is_empty() {
+            total
+        } else {
+            total.iter().zip(pre).map(|(a, b)| a - b).collect()
+        }
+    };
+    let axial = less(axial_forces(&first), &linear.pre_axial);
+    let cable_n = less(first.cable_forces_n, &linear.pre_cable_n);
     let mut kg = linear
         .assembly
         .geometric_terms(model, &axial, Some(loads), terms);
-    if first.cable_forces_n.iter().any(|&n| n != 0.0) {
-        let cables = linear
-            .assembly
-            .cable_geometric(model, &first.cable_forces_n);
-        kg = add(&kg, &cables, 1.0);
+    if cable_n.iter().any(|&n| n != 0.0) {
+        kg = add(
+            &kg,
+            &linear.assembly.cable_geometric_signed(model, &cable_n),
+            1.0,
+        );
     }
     if modes == 0 || kg.entries.iter().all(|e| e.2 == 0.0) {
         return Ok(Vec::new());
     }
-    let found = shifted_lanczos(linear, &kg, modes)?;
+    // The pretension's state stiffens (or softens) the frame the load
+    // then buckles.
+    let stiffened = match &linear.pre_geometric {
+        None => None,
+        Some(g) => {
+            let a = add(&linear.stiffness, g, 1.0);
+            match factorise_definite(&a, None)? {
+                Some((factor, _)) => Some((a, factor)),
+                None => {
+                    return Err(FrameError::Unstable(format!(
+                        "{}: the cables' pretension alone buckles the frame",
+                        loads.name
+                    )))
+                }
+            }
+        }
+    };
+    let (base, base_factor) = match &stiffened {
+        Some((a, f)) => (a, f),
+        None => (&linear.stiffness, &linear.factor),
+    };
+    let found = shifted_lanczos(base, base_factor, &kg, modes)?;
     Ok(found
         .into_iter()
         .map(|(factor, v)| BucklingMode {
@@ -184,14 +215,15 @@ struct Pencil<'a> {
 /// without one below the smallest factor the unshifted pencil is run to
 /// the end.
 fn shifted_lanczos(
-    linear: &LinearFrame<'_>,
+    stiffness: &SymSparse,
+    factor: &Factor,
     kg: &SymSparse,
     modes: usize,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
     let sizes = (basis_size(modes), kept(modes));
     let plain = Pencil {
-        a: &linear.stiffness,
-        factor: &linear.factor,
+        a: stiffness,
+        factor,
         shift: 0.0,
     };
     let rough = lanczos_restarted(&plain, kg, 1, sizes, PROBE_TOLERANCE)?;
@@ -200,7 +232,7 @@ fn shifted_lanczos(
     };
     for fraction in SHIFT_FRACTIONS {
         let shift = fraction * estimate;
-        let a = add(&linear.stiffness, kg, shift);
+        let a = add(stiffness, kg, shift);
         if let Some((factor, _)) = factorise_definite(&a, None)? {
             let pencil = Pencil {
                 a: &a,

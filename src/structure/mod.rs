@@ -19,12 +19,15 @@
 //! * [`second_order`]: equilibrium on the imperfect, deformed geometry;
 //! * [`tension`]: statics with tension-only cables (bracing), their
 //!   taut set iterated;
+//! * [`bracing`]: diagonal cables on the quads: candidates, layouts, the
+//!   designed layout, pretension and size;
 //! * [`verdict`]: cross-section and member checks of an upright strip;
 //! * [`analyse`]: every analysis of every combination, and the verdict;
 //! * [`stage`]: a network under a loads file, from model to verdict;
 //! * [`opensees`]: the model exported to OpenSeesPy, to check the solver.
 
 pub mod analyse;
+pub mod bracing;
 pub mod buckling;
 pub mod build;
 pub mod loads;

@@ -166,6 +166,17 @@ impl Cable {
     }
 }
 
+/// How an analysis treats a frame's cables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CableState {
+    /// As built: taut or slack as the load makes them (each load set
+    /// solved whole).
+    TensionOnly,
+    /// Held taut as bars, in compression too: what a cable pretensioned
+    /// enough to stay taut does, and linear (the bracing design's model).
+    Held,
+}
+
 /// A support: restrained global degrees of freedom of one node, and
 /// optionally a translation restrained along one oblique direction (a
 /// roller on an inclined bearing).

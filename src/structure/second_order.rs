@@ -7,13 +7,18 @@
 //! same; a new numeric one per step) and
 //! takes N_{k+1} from u. The iteration stops when no element's axial force
 //! changes by more than `tolerance` times the largest one (plus 1e-9 N).
+//! Tension-only cables start taut and each step holds the set the last
+//! step left taut (a cable whose force would be negative goes slack), with
+//! the string's geometric stiffness N/L·(I − e·eᵀ) of its last force; the
+//! iteration stops only when that set and the cables' forces have settled
+//! too.
 //! Under a load above the critical load the tangent stiffness is not
 //! positive definite: [`FrameError::Unstable`] names the load set. The
 //! section forces include the geometric stiffness' share (the P–Δ and
 //! P–δ moments), and the displacements are measured from the imperfect
 //! geometry.
 
-use super::model::{FrameModel, LoadSet};
+use super::model::{CableState, FrameModel, LoadSet};
 use super::solve::{
     add, axial_forces, factorise, factorise_definite, solve_refined, Assembly, FrameError,
     StaticResult,
@@ -34,18 +39,31 @@ pub struct SecondOrderResult {
 }
 
 /// Second order of `loads` on `model` with each node displaced by
-/// `imperfection_mm` (empty: none).
+/// `imperfection_mm` (empty: none), its cables tension-only.
 pub fn second_order(
     model: &FrameModel,
     loads: &LoadSet,
     imperfection_mm: &[DVec3],
     tolerance: f64,
 ) -> Result<SecondOrderResult, FrameError> {
-    if !model.cables.is_empty() {
-        return Err(FrameError::Invalid(
-            "second order of a frame with tension-only cables is not built yet".into(),
-        ));
-    }
+    second_order_as(
+        model,
+        loads,
+        imperfection_mm,
+        tolerance,
+        CableState::TensionOnly,
+    )
+}
+
+/// [`second_order`] with the cables as `cables` says: tension-only, or
+/// held taut as bars whatever their force.
+pub fn second_order_as(
+    model: &FrameModel,
+    loads: &LoadSet,
+    imperfection_mm: &[DVec3],
+    tolerance: f64,
+    cables: CableState,
+) -> Result<SecondOrderResult, FrameError> {
     let nodes: Vec<DVec3> = model
         .nodes_mm
         .iter()
@@ -66,7 +84,10 @@ pub fn second_order(
         }
     }
     let loads = &scaled;
-    let (p, _) = assembly.load_vector(model, loads);
+    let (p_loads, _) = assembly.load_vector(model, loads);
+    // Every cable starts taut; each step takes the set the last left.
+    let mut taut = vec![true; model.cables.len()];
+    let mut cable_n = vec![0.0; model.cables.len()];
     let mut symbolic = None;
     let mut pattern: Vec<(usize, usize)> = Vec::new();
     let mut axial_load = vec![0.0; model.beams.len()];
@@ -76,7 +97,14 @@ pub fn second_order(
             .zip(&axial_load)
             .map(|(a, b)| a + b)
             .collect();
-        let kt = add(&k, &assembly.geometric(model, &total, None), 1.0);
+        let mut kt = add(&k, &assembly.geometric(model, &total, None), 1.0);
+        let mut p = p_loads.clone();
+        if !model.cables.is_empty() {
+            kt = add(&kt, &assembly.cable_stiffness(model, &taut), 1.0);
+            kt = add(&kt, &assembly.cable_geometric(model, &cable_n), 1.0);
+            let pull = assembly.cable_pull(model, &taut);
+            p.iter_mut().zip(&pull).for_each(|(a, b)| *a += b);
+        }
         let this: Vec<(usize, usize)> = kt.entries.iter().map(|e| (e.0, e.1)).collect();
         if this != pattern {
             symbolic = None;
@@ -93,7 +121,24 @@ pub fn second_order(
         };
         symbolic = Some(sym);
         let x = solve_refined(&factor, &kt, &p)?;
-        let result = assembly.results(model, loads, &x, Some(&total), &[]);
+        let would_be = assembly.cable_forces(model, &x);
+        let forces: Vec<f64> = would_be
+            .iter()
+            .zip(&taut)
+            .map(|(&n, &t)| if t { n } else { 0.0 })
+            .collect();
+        let result = assembly.results(model, loads, &x, Some(&total), &forces);
+        let next_taut: Vec<bool> = match cables {
+            CableState::TensionOnly => would_be.iter().map(|&n| n > 0.0).collect(),
+            CableState::Held => taut.clone(),
+        };
+        let cables_settled = next_taut == taut
+            && forces
+                .iter()
+                .zip(&cable_n)
+                .all(|(a, b)| (a - b).abs() <= tolerance * a.abs().max(b.abs()) + 1e-9);
+        taut = next_taut;
+        cable_n = forces;
         let next = axial_forces(&result);
         let largest = next.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let change = next
@@ -101,7 +146,7 @@ pub fn second_order(
             .zip(&axial_load)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         axial_load = next;
-        if iteration > 1 && change <= tolerance * largest + 1e-9 {
+        if iteration > 1 && change <= tolerance * largest + 1e-9 && cables_settled {
             return Ok(SecondOrderResult {
                 result,
                 iterations: iteration,

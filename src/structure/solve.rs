@@ -888,8 +888,17 @@ impl Assembly {
 
     /// The geometric stiffness of cables under `forces_n` (tension
     /// positive; 0 for slack ones): a taut string resists moving its ends
-    /// across its axis by N/L·(I − e·eᵀ).
+    /// across its axis by N/L·(I − e·eᵀ). A cable never pushes: a
+    /// compressive force (a held cable whose pretension is left out, see
+    /// `CableState::Held`) adds nothing.
     pub(crate) fn cable_geometric(&self, model: &FrameModel, forces_n: &[f64]) -> SymSparse {
+        let taut: Vec<f64> = forces_n.iter().map(|&n| n.max(0.0)).collect();
+        self.cable_geometric_signed(model, &taut)
+    }
+
+    /// The string term N/L·(I − e·eᵀ) of force changes `forces_n`, either
+    /// sign (a load's share of a taut cable's force, which may lessen it).
+    pub(crate) fn cable_geometric_signed(&self, model: &FrameModel, forces_n: &[f64]) -> SymSparse {
         self.cable_matrix(model, |i, e| {
             let n = forces_n[i];
             let g = n / model.cables[i].length_mm(&self.nodes_mm);
@@ -1340,6 +1349,12 @@ pub struct LinearFrame<'m> {
     taut: Vec<bool>,
     /// The taut cables' pretensions as loads, over the unknowns.
     pull: Vec<f64>,
+    /// The members' axial forces under the pretension alone (empty: none).
+    pub(crate) pre_axial: Vec<f64>,
+    /// The cables' forces under the pretension alone (empty: none).
+    pub(crate) pre_cable_n: Vec<f64>,
+    /// The geometric stiffness of the pretension's state (None: none).
+    pub(crate) pre_geometric: Option<SymSparse>,
 }
 
 impl<'m> LinearFrame<'m> {
@@ -1382,6 +1397,29 @@ impl<'m> LinearFrame<'m> {
         }
         let (factor, _) = factorise(&stiffness, &assembly.dofs, None)?;
         let pull = assembly.cable_pull(model, taut);
+        // The pretension's own state (the frame under the cables' pull
+        // alone) is, like the erection state, a state the frame stands in
+        // before any load: a buckling analysis adds its geometric
+        // stiffness to the stiffness and scales only the load's share.
+        // The statics stay linear (as a frame program computes them).
+        let (mut pre_axial, mut pre_cable_n, mut pre_geometric) = (Vec::new(), Vec::new(), None);
+        if pull.iter().any(|&p| p != 0.0) {
+            let x = solve_refined(&factor, &stiffness, &pull)?;
+            let cable_n: Vec<f64> = assembly
+                .cable_forces(model, &x)
+                .iter()
+                .zip(taut)
+                .map(|(&n, &t)| if t { n } else { 0.0 })
+                .collect();
+            let state = assembly.results(model, &LoadSet::default(), &x, None, &cable_n);
+            pre_axial = axial_forces(&state);
+            pre_geometric = Some(add(
+                &assembly.geometric(model, &pre_axial, None),
+                &assembly.cable_geometric(model, &cable_n),
+                1.0,
+            ));
+            pre_cable_n = cable_n;
+        }
         Ok(LinearFrame {
             model,
             assembly,
@@ -1390,6 +1428,9 @@ impl<'m> LinearFrame<'m> {
             initial_axial,
             taut: taut.to_vec(),
             pull,
+            pre_axial,
+            pre_cable_n,
+            pre_geometric,
         })
     }
 

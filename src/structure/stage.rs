@@ -17,18 +17,19 @@
 //!   grid's span because the first mode of a grid is global).
 
 use super::analyse::{analyse, Settings, StructureResults};
+use super::bracing::{design, BracingDesign, Frame, Goals};
 use super::build::{build_frame, BuiltFrame, FrameOptions};
 use super::loads::{
     combinations, combine, deflection_limit_mm, deflection_span_mm, load_cases, supports,
 };
-use super::model::{Combination, LimitState, LoadSet};
+use super::model::{Combination, LoadSet};
 use super::verdict::{Code, Rectangle};
 use crate::analysis::Analysis;
 use crate::error::{Error, Result};
 use crate::fabricate::Kit;
-use crate::loads::{Action, LoadSpec};
+use crate::loads::{Action, BracingSpec, LoadSpec};
 use crate::network::Network;
-use crate::profile::{Grain, Profile};
+use crate::profile::{Bracing, Grain, Profile};
 
 /// Buckling modes computed per ULS combination.
 pub const MODES: usize = 6;
@@ -55,43 +56,41 @@ pub struct FrameReport {
     pub settings: Settings,
     /// The span the deflection limit and the imperfection refer to, mm.
     pub span_mm: f64,
-    /// Every combination's results.
+    /// Every combination's results (braced, when bracing was asked for).
     pub results: StructureResults,
+    /// The bracing, when the loads file asks for it (its model and
+    /// results are `built.model` and `results`).
+    pub bracing: Option<BracedReport>,
+}
+
+/// A bracing as the structure stage designed it.
+#[derive(Debug, Clone)]
+pub struct BracedReport {
+    /// What the loads file asked for.
+    pub spec: BracingSpec,
+    /// The targets.
+    pub goals: Goals,
+    /// The profile's cables and fittings.
+    pub profile: Bracing,
+    /// The layout, size, pretension and figures (its `model` and
+    /// `results` moved into the report's).
+    pub design: BracingDesign,
 }
 
 impl FrameReport {
     /// The largest ULS utilisation, its combination and element.
     pub fn governing(&self) -> Option<(usize, usize, f64)> {
-        let mut best: Option<(usize, usize, f64)> = None;
-        for (c, r) in self.results.combinations.iter().enumerate() {
-            if let Some(g) = r.governing {
-                if best.is_none_or(|b| g.utilisation > b.2) {
-                    best = Some((c, g.beam, g.utilisation));
-                }
-            }
-        }
-        best
+        self.results.governing()
     }
 
     /// The smallest α_cr over the ULS combinations and its combination.
     pub fn alpha_cr(&self) -> Option<(usize, f64)> {
-        self.results
-            .combinations
-            .iter()
-            .enumerate()
-            .filter_map(|(c, r)| r.alpha_cr().map(|a| (c, a)))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
+        self.results.alpha_cr()
     }
 
     /// The largest SLS translation, its combination and node.
     pub fn deflection(&self) -> Option<(usize, usize, f64)> {
-        self.results
-            .combinations
-            .iter()
-            .enumerate()
-            .filter(|(_, r)| r.limit_state == LimitState::Serviceability)
-            .map(|(c, r)| (c, r.max_translation_node, r.max_translation_mm))
-            .max_by(|a, b| a.2.total_cmp(&b.2))
+        self.results.deflection()
     }
 
     /// The one-line verdict: PASS or FAIL with α_cr, the governing
@@ -123,12 +122,25 @@ impl FrameReport {
         if results.iter().any(|r| r.second_order_iterations == Some(0)) {
             parts.push("second order did not converge".into());
         }
+        if let Some(b) = &self.bracing {
+            let d = &b.design;
+            let size = &b.profile.cable.sizes[d.size];
+            let force = super::bracing::largest_uls_force_n(&self.results) / 1000.0;
+            let resistance = size.design_resistance_n(b.profile.cable.partial_factor) / 1000.0;
+            let sign = if force <= resistance { "≤" } else { ">" };
+            parts.push(format!(
+                "{} cables ⌀{} mm, force {force:.2} kN {sign} {resistance:.2} kN",
+                d.chosen.len(),
+                size.diameter_mm
+            ));
+        }
         let verdict = if self.passes() { "PASS" } else { "FAIL" };
         format!("structure {verdict}: {}", parts.join(", "))
     }
 
     /// Whether the grid stands: every ULS utilisation ≤ 1, α_cr > 1 for
-    /// every ULS combination, every SLS deflection within the limit.
+    /// every ULS combination, every SLS deflection within the limit, every
+    /// cable within its design resistance.
     pub fn passes(&self) -> bool {
         let strength = self.governing().is_none_or(|g| g.2 <= 1.0);
         let stability = self.alpha_cr().is_none_or(|a| a.1 > 1.0)
@@ -140,7 +152,8 @@ impl FrameReport {
         let deflection = self
             .deflection()
             .is_none_or(|d| d.2 <= self.settings.deflection_limit_mm);
-        strength && stability && deflection
+        let cables = self.bracing.as_ref().is_none_or(|b| !b.design.overstressed);
+        strength && stability && deflection && cables
     }
 }
 
@@ -175,6 +188,7 @@ pub fn settings_of(profile: &Profile, deflection_limit_mm: f64, span_mm: f64) ->
         deflection_limit_mm,
         imperfection_mm: span_mm / IMPERFECTION_SPAN_OVER,
         tolerance: SECOND_ORDER_TOLERANCE,
+        second_order: true,
     }
 }
 
@@ -199,25 +213,41 @@ pub fn run(
     let span_mm = deflection_span_mm(&built.model, &built.model.supports);
     let limit = deflection_limit_mm(spec, &built.model, &built.model.supports);
     let settings = settings_of(profile, limit, span_mm);
-    let results = analyse(&built.model, &built.roles, &combinations, &settings).map_err(|e| {
-        let what = match &e {
-            super::solve::FrameError::Mechanism { node, dof } => {
-                let id = built
-                    .targets
-                    .node_ids
-                    .iter()
-                    .find(|(_, &m)| m == *node)
-                    .map(|(id, _)| format!("network node {id}"))
-                    .unwrap_or_else(|| format!("model node {node} (a lamella or connector node)"));
+    let named = |e| named_error(e, &built, spec);
+    let mut results =
+        analyse(&built.model, &built.roles, &combinations, &settings).map_err(named)?;
+    let mut bracing = None;
+    if let Some(bspec) = &spec.bracing {
+        let Some(brace) = &profile.bracing else {
+            return Err(Error::input(
+                &spec.source,
+                crate::error::Location::Field("bracing".into()),
                 format!(
-                    "the frame is a mechanism under its supports: {id} moves freely ({})",
-                    super::solve::DOF_NAMES[*dof]
-                )
-            }
-            other => other.to_string(),
+                    "asks for cables, but the profile {} has no `bracing` section (cable sizes and fittings)",
+                    profile.source.display()
+                ),
+            ));
         };
-        Error::input(&spec.source, crate::error::Location::File, what)
-    })?;
+        let goals = Goals::of(bspec, limit);
+        let frame = Frame {
+            net,
+            an,
+            model: &built.model,
+            roles: &built.roles,
+            combinations: &combinations,
+            settings: &settings,
+            node_ids: &built.targets.node_ids,
+        };
+        let mut design = design(&frame, bspec, &goals, brace, &results).map_err(named)?;
+        built.model = std::mem::take(&mut design.model);
+        results = std::mem::take(&mut design.results);
+        bracing = Some(BracedReport {
+            spec: *bspec,
+            goals,
+            profile: brace.clone(),
+            design,
+        });
+    }
     let cases = cases
         .into_iter()
         .zip(&spec.cases)
@@ -231,5 +261,28 @@ pub fn run(
         settings,
         span_mm,
         results,
+        bracing,
     })
+}
+
+/// A frame error as the loads file's error, a mechanism named by its
+/// network node.
+fn named_error(e: super::solve::FrameError, built: &BuiltFrame, spec: &LoadSpec) -> Error {
+    let what = match &e {
+        super::solve::FrameError::Mechanism { node, dof } => {
+            let id = built
+                .targets
+                .node_ids
+                .iter()
+                .find(|(_, &m)| m == *node)
+                .map(|(id, _)| format!("network node {id}"))
+                .unwrap_or_else(|| format!("model node {node} (a lamella or connector node)"));
+            format!(
+                "the frame is a mechanism under its supports: {id} moves freely ({})",
+                super::solve::DOF_NAMES[*dof]
+            )
+        }
+        other => other.to_string(),
+    };
+    Error::input(&spec.source, crate::error::Location::File, what)
 }

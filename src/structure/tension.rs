@@ -51,7 +51,7 @@ pub fn solve_tension_only(
 }
 
 /// The cables' state under `loads`, and the linear frame that holds it.
-fn settle<'m>(
+pub(crate) fn settle<'m>(
     model: &'m FrameModel,
     loads: &LoadSet,
 ) -> Result<(LinearFrame<'m>, TensionOnlyResult), FrameError> {

@@ -318,3 +318,88 @@ fn a_cable_at_its_top_raises_a_columns_critical_load_to_the_pinned_one() {
         "fixed–free",
     );
 }
+
+/// The shipped pavilion's frame under `loads` (a file in samples/loads),
+/// steel 1.5 mm: the structure stage's report and the network's analysis.
+fn pavilion(
+    loads: &str,
+) -> (
+    lamella::structure::stage::FrameReport,
+    lamella::analysis::Analysis,
+) {
+    use crate::support::root;
+    use lamella::analysis::lines::NetworkLines;
+    use lamella::analysis::{analyze, AnalysisOptions};
+    use lamella::fabricate::fabricate;
+    use lamella::formats::read::{loads_file, profile_file, read_network, ReadOptions};
+    let net = read_network(
+        &root().join("samples/enneper-4m.yaml"),
+        ReadOptions::default(),
+    )
+    .expect("network");
+    let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
+    let p = profile_file::load(&root().join("profiles/steel-1.5.yaml")).expect("profile");
+    let kit = fabricate(&net, &an, &p, None, NetworkLines::default()).expect("kit");
+    let spec = loads_file::load(&root().join("samples/loads").join(loads)).expect("loads");
+    let report = lamella::structure::stage::run(
+        &net,
+        &an,
+        &p,
+        &kit,
+        &spec,
+        &lamella::structure::build::FrameOptions::default(),
+    )
+    .expect("frame");
+    (report, an)
+}
+
+#[test]
+fn the_designed_bracing_meets_its_target_and_every_cable_is_needed() {
+    use lamella::loads::{BracingLayout, BracingSpec, Diagonals};
+    use lamella::structure::analyse::analyse;
+    use lamella::structure::bracing::layout;
+    use lamella::structure::model::LimitState;
+    let (report, _) = pavilion("pavilion-braced.yaml");
+    let b = report.bracing.as_ref().expect("bracing");
+    let limit = report.settings.deflection_limit_mm;
+    let d = &b.design;
+    // Unbraced, the pavilion deflects past its limit; braced, within it,
+    // measured with the cables tension-only as built.
+    let before = d.before.deflection_mm.expect("deflection");
+    let (_, _, after) = report.deflection().expect("deflection");
+    assert!(before > limit, "unbraced {before} mm ≤ {limit} mm");
+    assert!(after <= limit, "braced {after} mm > {limit} mm");
+    // Fewer cables than crossed pairs in every quad.
+    let all = layout(
+        &d.candidates,
+        &BracingSpec {
+            layout: BracingLayout::All,
+            ..b.spec
+        },
+    );
+    assert_eq!(b.spec.diagonals, Diagonals::Crossed);
+    assert!(
+        !d.chosen.is_empty() && d.chosen.len() * 10 < all.len(),
+        "{} cables chosen of {}",
+        d.chosen.len(),
+        all.len()
+    );
+    // Removing any one cable breaks the target (as built: tension-only).
+    let sls: Vec<_> = report
+        .combinations
+        .iter()
+        .filter(|c| c.limit_state == LimitState::Serviceability)
+        .cloned()
+        .collect();
+    for i in 0..report.built.model.cables.len() {
+        let mut model = report.built.model.clone();
+        model.cables.remove(i);
+        let results = analyse(&model, &report.built.roles, &sls, &report.settings).expect("solve");
+        let (_, _, without) = results.deflection().expect("deflection");
+        assert!(
+            without > limit,
+            "without cable {} the deflection is {without:.2} mm ≤ {limit:.2} mm",
+            i + 1
+        );
+    }
+}

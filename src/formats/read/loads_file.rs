@@ -20,12 +20,17 @@
 //!   - {at: boundary, kind: pinned}
 //! factors: {psi0_snow: 0.5}                  # EN 1990 defaults otherwise
 //! deflection: {span_over: 300}               # or {limit_mm: 20}
+//! bracing:                                   # optional: diagonal cables
+//!   layout: designed                         # or all, alternate
+//!   diagonals: single                        # or crossed
+//!   pretension_kn: auto                      # or a value
+//!   targets: {alpha_cr: 10, deflection: true, utilisation: 1.0}
 //! ```
 
 use crate::error::{Error, Location, Result};
 use crate::loads::{
-    Action, Deflection, Factors, FieldError, LineLoad, LoadCase, LoadSpec, PointLoad, Selection,
-    SupportKind, SupportSpec,
+    Action, BracingLayout, BracingSpec, BracingTargets, Deflection, Diagonals, Factors, FieldError,
+    LineLoad, LoadCase, LoadSpec, PointLoad, Pretension, Selection, SupportKind, SupportSpec,
 };
 use glam::DVec3;
 use serde::Deserialize;
@@ -54,6 +59,108 @@ pub struct LoadsFile {
     /// The SLS deflection limit; default span/300.
     #[serde(default)]
     pub deflection: DeflectionFile,
+    /// Diagonal cable bracing; none by default.
+    #[serde(default)]
+    pub bracing: Option<BracingFile>,
+}
+
+/// `bracing:` which quads get cables, and what a designed layout reaches.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BracingFile {
+    /// `all`, `alternate` or `designed`.
+    pub layout: LayoutFile,
+    /// `single` (default) or `crossed`.
+    #[serde(default)]
+    pub diagonals: Option<DiagonalsFile>,
+    /// kN, or `auto` (default): the least that keeps every cable taut.
+    #[serde(default)]
+    pub pretension_kn: Option<PretensionFile>,
+    /// The targets; default α_cr ≥ 10, the deflection limit,
+    /// utilisation ≤ 1. When given, only the targets it names.
+    #[serde(default)]
+    pub targets: Option<TargetsFile>,
+}
+
+/// `bracing.layout`.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum LayoutFile {
+    /// Every quad.
+    All,
+    /// Every other quad.
+    Alternate,
+    /// Chosen by the analysis.
+    Designed,
+}
+
+/// `bracing.diagonals`.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum DiagonalsFile {
+    /// One per quad.
+    Single,
+    /// Two per quad.
+    Crossed,
+}
+
+/// `bracing.pretension_kn`: a number or `auto`.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum PretensionFile {
+    /// kN.
+    Kn(f64),
+    /// `auto`.
+    Word(AutoWord),
+}
+
+/// The word `auto`.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum AutoWord {
+    /// Chosen by the analysis.
+    Auto,
+}
+
+/// `bracing.targets`.
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TargetsFile {
+    /// α_cr at least this.
+    #[serde(default)]
+    pub alpha_cr: Option<f64>,
+    /// Within the deflection limit.
+    #[serde(default)]
+    pub deflection: Option<bool>,
+    /// Utilisation at most this.
+    #[serde(default)]
+    pub utilisation: Option<f64>,
+}
+
+fn bracing(b: BracingFile) -> BracingSpec {
+    BracingSpec {
+        layout: match b.layout {
+            LayoutFile::All => BracingLayout::All,
+            LayoutFile::Alternate => BracingLayout::Alternate,
+            LayoutFile::Designed => BracingLayout::Designed,
+        },
+        diagonals: match b.diagonals {
+            None | Some(DiagonalsFile::Single) => Diagonals::Single,
+            Some(DiagonalsFile::Crossed) => Diagonals::Crossed,
+        },
+        pretension: match b.pretension_kn {
+            None | Some(PretensionFile::Word(AutoWord::Auto)) => Pretension::Auto,
+            Some(PretensionFile::Kn(t)) => Pretension::Kn(t),
+        },
+        targets: match b.targets {
+            None => BracingTargets::default(),
+            Some(t) => BracingTargets {
+                alpha_cr: t.alpha_cr,
+                deflection: t.deflection.unwrap_or(false),
+                utilisation: t.utilisation,
+            },
+        },
+    }
 }
 
 /// `cases[]:` one load case.
@@ -310,6 +417,7 @@ impl TryFrom<LoadsFile> for LoadSpec {
             supports,
             factors,
             deflection,
+            bracing: f.bracing.map(bracing),
         };
         spec.validate()?;
         Ok(spec)

@@ -111,6 +111,9 @@ pub struct ProfileFile {
     pub stud: Option<Stud>,
     /// Splice plates where a strip is longer than the stock, or none.
     pub splice: Option<Splice>,
+    /// Bracing cables and their fittings; optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bracing: Option<profile::Bracing>,
     /// The bought bolts' property class; optional.
     #[serde(default, skip_serializing_if = "Fasteners::is_empty")]
     pub hardware: Fasteners,
@@ -710,6 +713,7 @@ impl From<ProfileFile> for RawProfile {
             shear_block: f.shear_block.map(Into::into),
             stud: f.stud.map(Into::into),
             splice: f.splice.map(Into::into),
+            bracing: f.bracing,
             hardware: f.hardware.into(),
             stock: f.stock.into(),
             cutting: f.cutting.into(),
@@ -920,6 +924,7 @@ impl From<&Profile> for ProfileFile {
             shear_block: p.shear_block.as_ref().map(Into::into),
             stud: p.stud.as_ref().map(Into::into),
             splice: p.splice.as_ref().map(Into::into),
+            bracing: p.bracing.clone(),
             hardware: (&p.hardware).into(),
             stock: (&p.stock).into(),
             cutting: (&p.cutting).into(),
