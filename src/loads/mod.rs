@@ -74,6 +74,21 @@
 //! opening. Where all supports stand on one vertical (a cantilever), the
 //! span is twice the largest plan distance from the support to a node (the
 //! convention that makes a cantilever's limit l/150 for span/300).
+//!
+//! # Bracing
+//!
+//! An optional `bracing` section asks for diagonal cables on the grid's
+//! quads (the cables' sizes and fittings are the profile's `bracing`):
+//! `layout` `all` (every quad), `alternate` (every other quad, as a
+//! chessboard) or `designed` (the fewest that reach the targets, chosen by
+//! the analysis); `diagonals` `single` (default) or `crossed`;
+//! `pretension_kn` a value or `auto` (default: the least that keeps single
+//! diagonals taut under every combination, snug for crossed pairs);
+//! `targets` `alpha_cr` (the smallest ULS α_cr at least this),
+//! `deflection` (`true`: within the deflection limit above) and
+//! `utilisation` (every ULS utilisation at most this), by default all
+//! three (10, true, 1.0), and when given only those named. The structure
+//! stage's `bracing` module says how it designs them.
 
 use glam::DVec3;
 use std::path::PathBuf;

@@ -95,6 +95,31 @@ pub struct PlanBracing {
     pub steps: Vec<PlanBracingStep>,
     /// Every cable.
     pub cables: Vec<PlanCable>,
+    /// What fixes them (the profile's `bracing`).
+    pub fittings: PlanFittings,
+}
+
+/// The cables' fittings, mm.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlanFittings {
+    /// The cable's axis from the node along the surface normal.
+    pub offset_mm: f64,
+    /// Eye plates: one under the node bolt at each cable end.
+    pub eye_plates: usize,
+    /// Their thickness.
+    pub eye_plate_thickness_mm: f64,
+    /// Their width.
+    pub eye_plate_width_mm: f64,
+    /// Node bolt to the cable's pin.
+    pub eye_plate_hole_spacing_mm: f64,
+    /// The pin's hole.
+    pub pin_hole_mm: f64,
+    /// Swaged fork terminals (one per cable), pin to wire.
+    pub terminal_mm: f64,
+    /// Turnbuckles (one per cable), pin to wire at mid take-up.
+    pub turnbuckle_mid_mm: f64,
+    /// Their take-up, total.
+    pub take_up_mm: f64,
 }
 
 /// α_cr, deflection, utilisation.
@@ -192,6 +217,20 @@ impl PlanBracing {
                     after: PlanFigures::of(&s.after),
                 })
                 .collect(),
+            fittings: {
+                let f = &b.profile;
+                PlanFittings {
+                    offset_mm: f.fitting_offset_mm,
+                    eye_plates: 2 * rows.len(),
+                    eye_plate_thickness_mm: f.eye_plate.thickness_mm,
+                    eye_plate_width_mm: f.eye_plate.width_mm,
+                    eye_plate_hole_spacing_mm: f.eye_plate.hole_spacing_mm,
+                    pin_hole_mm: f.eye_plate.pin_hole_mm,
+                    terminal_mm: f.terminal_mm,
+                    turnbuckle_mid_mm: f.turnbuckle.mid_length_mm,
+                    take_up_mm: f.turnbuckle.take_up_mm,
+                }
+            },
             cables: rows
                 .into_iter()
                 .map(|r| PlanCable {
@@ -349,6 +388,8 @@ pub struct StructureDrawing {
     pub deflection: Option<(String, Vec<DVec3>)>,
     /// The ULS combination whose first mode is drawn, α_cr, the mode.
     pub mode: Option<(String, f64, Vec<DVec3>)>,
+    /// Every cable's pins (the schedule's order), mm.
+    pub cables: Vec<[DVec3; 2]>,
 }
 
 fn limit_state_name(l: LimitState) -> &'static str {
@@ -514,6 +555,11 @@ impl PlanStructure {
 
         let translation = |d: &[f64; 6]| DVec3::new(d[0], d[1], d[2]);
         let drawing = StructureDrawing {
+            cables: model
+                .cables
+                .iter()
+                .map(|c| c.ends_mm(&model.nodes_mm))
+                .collect(),
             nodes_mm: model.nodes_mm.clone(),
             elements: model
                 .beams

@@ -30,8 +30,11 @@
 //!   unit load along the node's displacement (an adjoint solve). Ties go
 //!   to the first candidate. When every target is met, the chosen cables
 //!   are tried for removal, last chosen first, each removed if the targets
-//!   still hold without it: so removing any one of those left breaks a
-//!   target (in the held model).
+//!   still hold without it; then, once sized and pretensioned, cable by
+//!   cable in the frame as built (tension-only): one of a crossed pair may
+//!   be all its quad needs. So removing any one cable left breaks a target.
+//!   A target that no step has brought nearer for [`STALL_STEPS`] steps
+//!   stops the design (the targets stay missed, and nothing is pruned).
 //!
 //! # Pretension and size
 //!

@@ -203,6 +203,18 @@ pub fn run(
     spec: &LoadSpec,
     opts: &FrameOptions,
 ) -> Result<FrameReport> {
+    let asked = match (&spec.bracing, &profile.bracing) {
+        (Some(b), Some(cables)) => Some((b, cables)),
+        (None, _) => None,
+        (Some(_), None) => return Err(Error::input(
+            &spec.source,
+            crate::error::Location::Field("bracing".into()),
+            format!(
+                "asks for cables, but the profile {} has no `bracing` section (cable sizes and fittings)",
+                profile.source.display()
+            ),
+        )),
+    };
     let mut built = build_frame(net, an, profile, kit, opts)?;
     built.model.supports = supports(spec, &built.model, &built.targets)?;
     let cases = load_cases(spec, &built.model, &built.targets)?;
@@ -217,17 +229,7 @@ pub fn run(
     let mut results =
         analyse(&built.model, &built.roles, &combinations, &settings).map_err(named)?;
     let mut bracing = None;
-    if let Some(bspec) = &spec.bracing {
-        let Some(brace) = &profile.bracing else {
-            return Err(Error::input(
-                &spec.source,
-                crate::error::Location::Field("bracing".into()),
-                format!(
-                    "asks for cables, but the profile {} has no `bracing` section (cable sizes and fittings)",
-                    profile.source.display()
-                ),
-            ));
-        };
+    if let Some((bspec, brace)) = asked {
         let goals = Goals::of(bspec, limit);
         let frame = Frame {
             net,

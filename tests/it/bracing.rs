@@ -321,7 +321,7 @@ fn a_cable_at_its_top_raises_a_columns_critical_load_to_the_pinned_one() {
 
 /// The shipped pavilion's frame under `loads` (a file in samples/loads),
 /// steel 1.5 mm: the structure stage's report and the network's analysis.
-fn pavilion(
+pub fn pavilion(
     loads: &str,
 ) -> (
     lamella::structure::stage::FrameReport,
@@ -402,4 +402,111 @@ fn the_designed_bracing_meets_its_target_and_every_cable_is_needed() {
             i + 1
         );
     }
+}
+
+/// The wire of a cable 1000 mm pin to pin with a 45-mm fork terminal and a
+/// turnbuckle 165 mm at mid take-up, 500 N of pretension on 4-mm strand
+/// (9.55 mm², 120 GPa): (1000 − 45 − 165)/(1 + 500/(120 000·9.55)) =
+/// 790/1.000 436 30 = 789.6555 mm, computed by hand.
+#[test]
+fn a_wires_cut_length_is_the_pin_length_less_its_fittings_and_stretch() {
+    use lamella::structure::bracing::wire_cut_length_mm;
+    let p = crate::support::profile("steel-1.5");
+    let brace = p.bracing.as_ref().expect("the steel profile's cables");
+    let four = brace.cable.sizes[1];
+    assert_eq!(four.diameter_mm, 4.0);
+    close(
+        wire_cut_length_mm(1000.0, brace, &four, 500.0),
+        789.6555,
+        1e-7,
+        "wire",
+    );
+}
+
+/// Every cable of the braced pavilion, measured from the analysis' own
+/// nodes (not the frame model's): its pins lie 30 mm above the joint along
+/// the surface normal (turned up) and 30 mm from the bolt towards the
+/// other end in the tangent plane; the schedule's pin-to-pin length and
+/// wire follow from them.
+#[test]
+fn the_braced_pavilions_cables_sit_on_their_eye_plates() {
+    use lamella::structure::bracing::schedule;
+    let (report, an) = pavilion("pavilion-braced.yaml");
+    let b = report.bracing.as_ref().expect("bracing");
+    let rows = schedule(&b.design, &report.built.model, &report.results, &b.profile);
+    assert_eq!(rows.len(), b.design.chosen.len());
+    let size = b.profile.cable.sizes[b.design.size];
+    for row in &rows {
+        let ends: Vec<_> = row
+            .nodes
+            .iter()
+            .map(|id| &an.topology.nodes[id.parse::<usize>().expect("a node id")])
+            .collect();
+        let pin = |i: usize| {
+            let (node, other) = (ends[i], ends[1 - i]);
+            let n = if node.normal_world.z < 0.0 {
+                -node.normal_world
+            } else {
+                node.normal_world
+            };
+            let d = other.position_world_mm - node.position_world_mm;
+            let t = (d - n * n.dot(d)).normalize();
+            node.position_world_mm + 30.0 * n + 30.0 * t
+        };
+        let length = pin(0).distance(pin(1));
+        close(row.length_mm, length, 1e-9, "pin to pin");
+        let stretch = 1.0 + row.pretension_n / (120_000.0 * size.area_mm2);
+        close(row.wire_mm, (length - 45.0 - 165.0) / stretch, 1e-9, "wire");
+    }
+}
+
+/// A loads file that asks for cables on a profile without any is refused
+/// in one line naming the loads file's field and the profile, and nothing
+/// is written; a profile whose cable sizes do not ascend, or whose factor
+/// is below 1, is refused naming the field.
+#[test]
+fn bracing_without_cables_or_with_a_bad_table_is_refused() {
+    use crate::support::{lamella, root, scratch};
+    let out = scratch("bracing-refused").join("out");
+    let (code, _, err) = lamella(&[
+        "frame",
+        root().join("samples/hypar-small.yaml").to_str().unwrap(),
+        "--profile",
+        root().join("profiles/poplar-ply-4.yaml").to_str().unwrap(),
+        "--loads",
+        root()
+            .join("samples/loads/pavilion-braced.yaml")
+            .to_str()
+            .unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1), "{err}");
+    let line = err.trim();
+    assert_eq!(line.lines().count(), 1, "{err}");
+    assert!(
+        line.contains("pavilion-braced.yaml")
+            && line.contains("bracing")
+            && line.contains("poplar-ply-4.yaml"),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing written");
+
+    let text = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap();
+    let refused = |from: &str, to: &str| {
+        assert!(text.contains(from), "{from}");
+        let bad = text.replacen(from, to, 1);
+        lamella::formats::read::profile_file::parse(&bad, std::path::Path::new("bad.yaml"))
+            .expect_err(to)
+            .to_string()
+    };
+    let e = refused("{diameter_mm: 4.0,", "{diameter_mm: 2.5,");
+    assert!(
+        e.contains("bracing.cable.sizes[1].diameter_mm") && e.contains("ascend"),
+        "{e}"
+    );
+    let e = refused("partial_factor: 1.5 ", "partial_factor: 0.9 ");
+    assert!(e.contains("bracing.cable.partial_factor"), "{e}");
+    let e = refused("pin_hole_mm: 6.5", "pin_hole_mm: 30.0");
+    assert!(e.contains("bracing.eye_plate.pin_hole_mm"), "{e}");
 }

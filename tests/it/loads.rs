@@ -786,3 +786,60 @@ cases:
         &[("ULS W-", u, vec![(0, 1.5)]), ("SLS W-", v, vec![(0, 1.0)])],
     );
 }
+
+// ------------------------------------------------------------ bracing
+
+#[test]
+fn a_bracing_section_reads_with_its_defaults() {
+    use lamella::loads::{BracingLayout, BracingTargets, Diagonals, Pretension};
+    assert_eq!(spec(GOOD).bracing, None, "no bracing unless asked for");
+    let s = spec(&format!("{GOOD}bracing:\n  layout: designed\n"));
+    let b = s.bracing.expect("bracing");
+    assert_eq!(b.layout, BracingLayout::Designed);
+    assert_eq!(b.diagonals, Diagonals::Single);
+    assert_eq!(b.pretension, Pretension::Auto);
+    assert_eq!(b.targets, BracingTargets::default());
+    assert_eq!(b.targets.alpha_cr, Some(10.0));
+    let s = spec(&format!(
+        "{GOOD}bracing:\n  layout: alternate\n  diagonals: crossed\n  pretension_kn: 1.5\n  targets: {{deflection: true}}\n"
+    ));
+    let b = s.bracing.expect("bracing");
+    assert_eq!(b.layout, BracingLayout::Alternate);
+    assert_eq!(b.diagonals, Diagonals::Crossed);
+    assert_eq!(b.pretension, Pretension::Kn(1.5));
+    assert_eq!(
+        b.targets,
+        BracingTargets {
+            alpha_cr: None,
+            deflection: true,
+            utilisation: None
+        },
+        "given targets are the only ones"
+    );
+}
+
+#[test]
+fn a_bad_bracing_section_is_refused_naming_its_field() {
+    let bracing = |body: &str| {
+        refused(
+            "deflection:\n  span_over: 300\n",
+            &format!("deflection:\n  span_over: 300\nbracing:\n{body}"),
+        )
+    };
+    let e = bracing("  layout: designed\n  targets: {alpha_cr: 0.8}\n");
+    assert!(
+        e.contains("bracing.targets.alpha_cr") && e.contains("above 1"),
+        "{e}"
+    );
+    let e = bracing("  layout: designed\n  targets: {deflection: false}\n");
+    assert!(
+        e.contains("bracing.targets") && e.contains("no target"),
+        "{e}"
+    );
+    let e = bracing("  layout: designed\n  pretension_kn: -2\n");
+    assert!(e.contains("bracing.pretension_kn"), "{e}");
+    let e = bracing("  layout: every\n");
+    assert!(e.contains("line") && e.contains("every"), "{e}");
+    let e = bracing("  layout: all\n  cables: 3\n");
+    assert!(e.contains("cables"), "{e}");
+}

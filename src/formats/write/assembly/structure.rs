@@ -49,6 +49,7 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
     pages.extend(deformed_page(st, d, frame));
     pages.push(utilisation_page(st, d, frame));
     pages.extend(mode_page(d, frame));
+    pages.extend(bracing_page(st, d, frame));
     pages.extend(reaction_pages(st, frame));
     pages
 }
@@ -297,9 +298,23 @@ fn summary_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Page
             )
         })
         .collect();
+    draw_down_to_frame(c, &COMBINATION_COLUMNS, x, top, frame, &rows);
+    page
+}
+
+/// The rows of a table from `top` down to the frame's bottom, and a line
+/// saying how many more plan.json has where they do not all fit.
+fn draw_down_to_frame(
+    c: &mut Canvas,
+    columns: &[Column],
+    x: f64,
+    top: f64,
+    frame: &Frame,
+    rows: &[Row],
+) {
     let room = ((top - frame.y0_mm - HEADER_MM) / ROW_MM).floor().max(0.0) as usize;
     let shown = rows.len().min(room);
-    draw_block(c, &COMBINATION_COLUMNS, x, top, &rows[..shown]);
+    draw_block(c, columns, x, top, &rows[..shown]);
     if shown < rows.len() {
         c.fill(BLACK);
         c.text(
@@ -311,7 +326,6 @@ fn summary_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Page
             &format!("… {} more in plan.json", rows.len() - shown),
         );
     }
-    page
 }
 
 /// The SLS deformed shape.
@@ -578,4 +592,158 @@ fn reaction_pages(st: &PlanStructure, frame: &Frame) -> Vec<Page> {
         &REACTION_COLUMNS,
         &rows,
     )
+}
+
+const CABLE_COLUMNS: [Column; 6] = [
+    ("cable", 12.0, Align::Left),
+    ("nodes", 20.0, Align::Left),
+    ("pin-pin mm", 18.0, Align::Right),
+    ("wire cut mm", 19.0, Align::Right),
+    ("T0 kN", 13.0, Align::Right),
+    ("max kN", 13.0, Align::Right),
+];
+
+/// The bracing plan: the grid with every cable and its id, the cable
+/// schedule, the strand, its fittings and how the figures moved.
+fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Option<Page> {
+    let b = st.bracing.as_ref()?;
+    let table_w: f64 = CABLE_COLUMNS.iter().map(|c| c.1).sum();
+    let mut page = Page::new(SECTION, "Structure: bracing plan and cable schedule", None);
+    let c = &mut page.canvas;
+    let view = View::fit(&d.nodes_mm, drawing_box(frame, table_w + 8.0));
+    c.stroke(GREY);
+    c.width(0.2);
+    draw_grid(c, d, &view, |n| d.nodes_mm[n]);
+    for (node, kind) in &d.supports {
+        support_symbol(c, view.map(d.nodes_mm[*node]), kind);
+    }
+    c.stroke(RED);
+    c.width(0.6);
+    for ([p, q], cable) in d.cables.iter().zip(&b.cables) {
+        let (a, z) = (view.map(*p), view.map(*q));
+        c.line(a, z);
+        c.fill(RED);
+        let mid = [0.5 * (a[0] + z[0]) + 1.0, 0.5 * (a[1] + z[1]) + 1.0];
+        c.text(mid, 6.0, true, Align::Left, 0.0, &cable.id);
+    }
+    let figures = |f: &crate::plan::structure::PlanFigures| {
+        format!(
+            "α_cr {}, deflection {} mm, utilisation {}",
+            f.alpha_cr.map_or("-".into(), |a| fixed(a, 2)),
+            f.deflection_mm.map_or("-".into(), |x| fixed(x, 1)),
+            f.utilisation.map_or("-".into(), |u| fixed(u, 2)),
+        )
+    };
+    notes(
+        c,
+        frame,
+        &[
+            format!(
+                "{} layout, {} diagonals: {} cables of {} candidates; unbraced {}; braced {}",
+                b.layout,
+                b.diagonals,
+                b.cables.len(),
+                b.candidates,
+                figures(&b.before),
+                figures(&b.after)
+            ),
+            "cables in red with their ids, on eye plates under the node bolts; axonometric, not to scale".into(),
+        ],
+    );
+    let x = frame.x1_mm - table_w;
+    let mut top = frame.y1_mm;
+    let text = |c: &mut Canvas, top: &mut f64, s: &str, bold: bool| {
+        c.fill(BLACK);
+        c.text([x, *top - 3.5], 8.0, bold, Align::Left, 0.0, s);
+        *top -= 5.0;
+    };
+    text(c, &mut top, "Cables", true);
+    text(
+        c,
+        &mut top,
+        &format!("{} dia. {} mm", b.designation, fixed(b.diameter_mm, 0)),
+        false,
+    );
+    text(
+        c,
+        &mut top,
+        &format!(
+            "F_Rd {} kN, largest force {} kN, pretension {} kN",
+            fixed(b.design_resistance_kn, 2),
+            fixed(b.max_force_kn, 2),
+            fixed(b.pretension_kn, 2)
+        ),
+        false,
+    );
+    text(
+        c,
+        &mut top,
+        &format!(
+            "{} m pin to pin, {} m of wire",
+            fixed(b.total_length_m, 2),
+            fixed(b.total_wire_m, 2)
+        ),
+        false,
+    );
+    text(
+        c,
+        &mut top,
+        "wire cut: pin to pin less terminal and turnbuckle at mid take-up, unstressed",
+        false,
+    );
+    let f = &b.fittings;
+    text(c, &mut top, "Fittings", true);
+    text(
+        c,
+        &mut top,
+        &format!(
+            "{} eye plates {} mm thick, {} mm wide, under the node bolt;",
+            f.eye_plates,
+            fixed(f.eye_plate_thickness_mm, 1),
+            fixed(f.eye_plate_width_mm, 0),
+        ),
+        false,
+    );
+    text(
+        c,
+        &mut top,
+        &format!(
+            "pin hole {} mm at {} mm from the bolt; cable axis {} mm above the node",
+            fixed(f.pin_hole_mm, 1),
+            fixed(f.eye_plate_hole_spacing_mm, 0),
+            fixed(f.offset_mm, 1),
+        ),
+        false,
+    );
+    text(
+        c,
+        &mut top,
+        &format!(
+            "fork terminal {} mm, turnbuckle {} mm at mid take-up (take-up {} mm)",
+            fixed(f.terminal_mm, 0),
+            fixed(f.turnbuckle_mid_mm, 0),
+            fixed(f.take_up_mm, 0)
+        ),
+        false,
+    );
+    top -= 2.0;
+    let rows: Vec<Row> = b
+        .cables
+        .iter()
+        .map(|k| {
+            (
+                vec![
+                    k.id.clone(),
+                    format!("{}-{}", k.nodes[0], k.nodes[1]),
+                    fixed(k.length_mm, 1),
+                    fixed(k.wire_cut_mm, 1),
+                    fixed(k.pretension_kn, 2),
+                    fixed(k.max_force_kn, 2),
+                ],
+                (k.max_force_kn > b.design_resistance_kn).then_some(RED),
+            )
+        })
+        .collect();
+    draw_down_to_frame(c, &CABLE_COLUMNS, x, top, frame, &rows);
+    Some(page)
 }
