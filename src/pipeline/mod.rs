@@ -375,6 +375,8 @@ impl Session {
                 crate::plan::add_flat(&mut plan, p, s);
             }
         }
+        // The structure first: the takeoff lists the bracing.
+        plan.structure = self.plan_structure();
         if let (Some(kit), Some(profile)) = (&self.kit, &self.profile) {
             crate::plan::add_parts(&mut plan, kit, profile);
             if let Some(nest) = &self.nest {
@@ -382,7 +384,6 @@ impl Session {
                 crate::plan::add_takeoff(&mut plan, kit, nest, profile);
             }
         }
-        plan.structure = self.plan_structure();
         Ok(plan)
     }
 

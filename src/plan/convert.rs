@@ -504,12 +504,11 @@ pub fn add_takeoff(
     nest: &crate::nest::Nest,
     profile: &Profile,
 ) {
-    plan.takeoff = Some(super::takeoff::takeoff(
-        &plan.network.name,
-        kit,
-        nest,
-        profile,
-    ));
+    let mut takeoff = super::takeoff::takeoff(&plan.network.name, kit, nest, profile);
+    if let Some(b) = plan.structure.as_ref().and_then(|s| s.bracing.as_ref()) {
+        takeoff.bracing = super::takeoff::bracing_lines(b);
+    }
+    plan.takeoff = Some(takeoff);
     let hardware = super::takeoff::hardware_lines(kit);
     let edge_nodes = kit.parts.iter().any(|p| {
         p.features

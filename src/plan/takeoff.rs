@@ -29,6 +29,10 @@ pub struct Takeoff {
     /// What is bought rather than cut: bolts by joint, nuts and plain
     /// washers by size (star washers and studs are parts).
     pub hardware: Vec<HardwareLine>,
+    /// The bracing, when the grid is braced: the wire by diameter (count
+    /// and total cut length), fork terminals, turnbuckles, eye plates.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub bracing: Vec<BracingLine>,
     /// Sums.
     pub totals: Totals,
 }
@@ -103,6 +107,77 @@ pub struct HardwareLine {
     /// Bolts: tightening torque, N·m, when the profile gives the property class.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub torque_nm: Option<f64>,
+}
+
+/// One line of the bracing.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct BracingLine {
+    /// `cable`, `fork terminal`, `turnbuckle`, `eye plate`.
+    pub item: String,
+    /// As ordered (the strand, with its diameter; the fittings by the
+    /// diameter they take).
+    pub designation: String,
+    /// How many.
+    pub count: u64,
+    /// Cables: Σ of the wires' cut lengths, mm (1 decimal).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_mm: Option<f64>,
+    /// `bought`, or `made` (eye plates, cut from plate).
+    pub source: String,
+}
+
+/// The bracing's lines: one cable line (every cable is one size), a fork
+/// terminal and a turnbuckle per cable, an eye plate at each end.
+pub fn bracing_lines(b: &crate::plan::structure::PlanBracing) -> Vec<BracingLine> {
+    let n = b.cables.len() as u64;
+    let d = &b.diameter_mm;
+    let f = &b.fittings;
+    let line = |item: &str, designation: String, count: u64, length_mm, source: &str| BracingLine {
+        item: item.into(),
+        designation,
+        count,
+        length_mm,
+        source: source.into(),
+    };
+    vec![
+        line(
+            "cable",
+            format!("{} {d} mm", b.designation),
+            n,
+            Some(round(b.cables.iter().map(|c| c.wire_cut_mm).sum(), 1)),
+            "bought",
+        ),
+        line(
+            "fork terminal",
+            format!(
+                "swaged fork for {d} mm strand, pin to wire {} mm",
+                f.terminal_mm
+            ),
+            n,
+            None,
+            "bought",
+        ),
+        line(
+            "turnbuckle",
+            format!(
+                "fork and swage for {d} mm strand, {} mm at mid take-up, take-up {} mm",
+                f.turnbuckle_mid_mm, f.take_up_mm
+            ),
+            n,
+            None,
+            "bought",
+        ),
+        line(
+            "eye plate",
+            format!(
+                "{} × {} mm plate, pin hole {} mm",
+                f.eye_plate_thickness_mm, f.eye_plate_width_mm, f.pin_hole_mm
+            ),
+            f.eye_plates as u64,
+            None,
+            "made",
+        ),
+    ]
 }
 
 /// The kit's bought hardware as lines, rounded.
@@ -256,6 +331,7 @@ pub fn takeoff(project: &str, kit: &Kit, nest: &Nest, profile: &Profile) -> Take
     Takeoff {
         project: project.into(),
         profile: profile.name.clone(),
+        bracing: Vec::new(),
         currency: stock_cost.and(profile.stock.currency.clone()),
         totals: Totals {
             pieces: parts.iter().map(|l| l.count).sum(),

@@ -422,6 +422,7 @@ fn a_plan_without_parts_is_an_error() {
         parts: vec![],
         stock: vec![],
         hardware: vec![],
+        bracing: vec![],
         totals: lamella::plan::takeoff::Totals {
             pieces: 0,
             lamella_length_m: 0.0,

@@ -458,6 +458,22 @@ fn the_braced_pavilions_cables_sit_on_their_eye_plates() {
         let stretch = 1.0 + row.pretension_n / (120_000.0 * size.area_mm2);
         close(row.wire_mm, (length - 45.0 - 165.0) / stretch, 1e-9, "wire");
     }
+    // The takeoff: the wire by its total cut length, a terminal and a
+    // turnbuckle per cable, an eye plate at each end.
+    let plan = lamella::plan::structure::PlanBracing::of(&report).expect("plan");
+    let lines = lamella::plan::takeoff::bracing_lines(&plan);
+    let count = |item: &str| lines.iter().find(|l| l.item == item).map(|l| l.count);
+    let n = rows.len() as u64;
+    assert_eq!(count("cable"), Some(n));
+    assert_eq!(count("fork terminal"), Some(n));
+    assert_eq!(count("turnbuckle"), Some(n));
+    assert_eq!(count("eye plate"), Some(2 * n));
+    let wire: f64 = rows.iter().map(|r| r.wire_mm).sum();
+    let listed = lines[0].length_mm.expect("the wire's length");
+    assert!(
+        (listed - wire).abs() <= 0.05 * n as f64 + 0.05,
+        "{listed} against {wire}"
+    );
 }
 
 /// A loads file that asks for cables on a profile without any is refused

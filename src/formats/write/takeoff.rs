@@ -36,7 +36,8 @@ struct Row<'a> {
     torque_nm: Option<f64>,
 }
 
-/// The takeoff as CSV: one header row, then parts, stock, hardware and a
+/// The takeoff as CSV: one header row, then parts, stock, hardware, the
+/// bracing (when braced) and a
 /// total row per section (made parts: pieces, length, area, mass; bought
 /// hardware: pieces; stock: pieces and cost).
 pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
@@ -82,6 +83,17 @@ pub fn to_csv(t: &Takeoff) -> std::result::Result<Vec<u8>, String> {
             grip_mm: h.grip_mm,
             source: "bought",
             torque_nm: h.torque_nm,
+            ..Default::default()
+        });
+    }
+    for b in &t.bracing {
+        rows.push(Row {
+            section: "bracing",
+            item: &b.item,
+            designation: &b.designation,
+            count: Some(b.count),
+            length_mm: b.length_mm,
+            source: &b.source,
             ..Default::default()
         });
     }
