@@ -663,35 +663,8 @@ pub fn design(
         }
         _ => (layout(&candidates, spec), Vec::new()),
     };
-    let mut last = None;
-    for (k, size) in sizes.iter().enumerate() {
-        let resistance_n = size.design_resistance_n(brace.cable.partial_factor);
-        let pretension_n = match spec.pretension {
-            Pretension::Kn(t) => t * 1000.0,
-            // A crossed pair needs no more than snug: the design relies on
-            // whichever of the two the load tightens.
-            Pretension::Auto if spec.diagonals == Diagonals::Crossed => {
-                snug(PRETENSION_FLOOR * resistance_n)
-            }
-            Pretension::Auto => {
-                let held = braced(frame, &candidates, &chosen, brace, size, 0.0);
-                auto_pretension(&held, frame.combinations, PRETENSION_FLOOR * resistance_n)?
-            }
-        };
-        let model = braced(frame, &candidates, &chosen, brace, size, pretension_n);
-        let results = analyse(&model, frame.roles, frame.combinations, frame.settings)?;
-        let largest = largest_uls_force_n(&results);
-        let holds = largest <= resistance_n;
-        last = Some((k, pretension_n, model, results));
-        if holds {
-            break;
-        }
-    }
-    let Some((size, pretension_n, mut model, mut results)) = last else {
-        return Err(FrameError::Invalid(
-            "the profile lists no cable size".into(),
-        ));
-    };
+    let (size, pretension_n, mut model, mut results) =
+        sized(frame, spec, brace, &candidates, &chosen, 0)?;
     let mut chosen = chosen;
     let mut steps = steps;
     if spec.layout == BracingLayout::Designed && goals.met(&Measure::of(&results)) {
@@ -718,6 +691,12 @@ pub fn design(
             results = analyse(&model, frame.roles, frame.combinations, frame.settings)?;
         }
     }
+    // Fewer cables may carry more each: size again from this size up.
+    let (mut size, mut pretension_n) = (size, pretension_n);
+    if largest_uls_force_n(&results) > sizes[size].design_resistance_n(brace.cable.partial_factor) {
+        (size, pretension_n, model, results) =
+            sized(frame, spec, brace, &candidates, &chosen, size)?;
+    }
     let overstressed =
         largest_uls_force_n(&results) > sizes[size].design_resistance_n(brace.cable.partial_factor);
     Ok(BracingDesign {
@@ -732,6 +711,44 @@ pub fn design(
         model,
         results,
     })
+}
+
+/// The cables on `chosen` sized: from the table's size `from` up, the
+/// first that takes the largest ULS force (else the largest), with its
+/// pretension; its index, the pretension, the model and its results
+/// (cables tension-only).
+fn sized(
+    frame: &Frame,
+    spec: &BracingSpec,
+    brace: &Bracing,
+    candidates: &[Diagonal],
+    chosen: &[usize],
+    from: usize,
+) -> Result<(usize, f64, FrameModel, StructureResults), FrameError> {
+    let mut last = None;
+    for (k, size) in brace.cable.sizes.iter().enumerate().skip(from) {
+        let resistance_n = size.design_resistance_n(brace.cable.partial_factor);
+        let pretension_n = match spec.pretension {
+            Pretension::Kn(t) => t * 1000.0,
+            // A crossed pair needs no more than snug: the design relies on
+            // whichever of the two the load tightens.
+            Pretension::Auto if spec.diagonals == Diagonals::Crossed => {
+                snug(PRETENSION_FLOOR * resistance_n)
+            }
+            Pretension::Auto => {
+                let held = braced(frame, candidates, chosen, brace, size, 0.0);
+                auto_pretension(&held, frame.combinations, PRETENSION_FLOOR * resistance_n)?
+            }
+        };
+        let model = braced(frame, candidates, chosen, brace, size, pretension_n);
+        let results = analyse(&model, frame.roles, frame.combinations, frame.settings)?;
+        let holds = largest_uls_force_n(&results) <= resistance_n;
+        last = Some((k, pretension_n, model, results));
+        if holds {
+            break;
+        }
+    }
+    last.ok_or_else(|| FrameError::Invalid("the profile lists no cable size".into()))
 }
 
 /// The largest cable force under any ULS combination, N.
