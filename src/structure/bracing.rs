@@ -15,9 +15,10 @@
 //! # Layouts
 //!
 //! * `all`: every quad; `alternate`: every other quad, as a chessboard's
-//!   black squares (by the quad's first A and B strip in file order);
-//!   with `single` diagonals the one from the corner of the lower A strip,
-//!   alternating with the A strip's parity; `crossed`: both;
+//!   black squares (coloured breadth first over the quads that share a
+//!   side); with `single` diagonals one per quad, its direction
+//!   alternating with the parity of the quad's first A strip in file
+//!   order; `crossed`: both;
 //! * `designed`: greedy. Starting from none, each step evaluates the
 //!   braced frame (every combination, cables held taut as bars: the
 //!   pretension keeps them so, [`CableState::Held`]), picks the target
@@ -115,21 +116,19 @@ pub fn diagonals(
     }
     let model_node = |id: usize| node_ids.get(&id.to_string()).copied();
     let mut out = Vec::new();
-    let quads = super::build::grid_cells(an)
+    let quads: Vec<Vec<usize>> = super::build::grid_cells(an)
         .into_iter()
-        .filter(|(corners, _)| corners.len() == 4);
-    for (quad, (corners, _)) in quads.enumerate() {
+        .filter(|(corners, _)| corners.len() == 4)
+        .map(|(corners, _)| corners)
+        .collect();
+    let colour = chessboard(&quads);
+    for (quad, corners) in quads.iter().enumerate() {
         let a_rank = corners
             .iter()
             .map(|&c| rank[topo.nodes[c].a])
             .min()
             .unwrap_or(0);
-        let b_rank = corners
-            .iter()
-            .map(|&c| rank[topo.nodes[c].b])
-            .min()
-            .unwrap_or(0);
-        let black = (a_rank + b_rank) % 2 == 0;
+        let black = colour[quad];
         for (which, (p, q)) in [(0, 2), (1, 3)].into_iter().enumerate() {
             let (Some(m), Some(n)) = (model_node(corners[p]), model_node(corners[q])) else {
                 continue;
@@ -148,6 +147,41 @@ pub fn diagonals(
         }
     }
     out
+}
+
+/// Each quad black or white, no two quads that share a side (two
+/// corners) alike where the grid allows: each connected patch coloured
+/// breadth first from its first quad, which is black.
+fn chessboard(quads: &[Vec<usize>]) -> Vec<bool> {
+    let mut by_side: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
+    for (q, corners) in quads.iter().enumerate() {
+        for k in 0..corners.len() {
+            let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+            by_side.entry((a.min(b), a.max(b))).or_default().push(q);
+        }
+    }
+    let mut colour: Vec<Option<bool>> = vec![None; quads.len()];
+    for start in 0..quads.len() {
+        if colour[start].is_some() {
+            continue;
+        }
+        colour[start] = Some(true);
+        let mut queue = std::collections::VecDeque::from([start]);
+        while let Some(q) = queue.pop_front() {
+            let c = colour[q].unwrap_or(true);
+            let corners = &quads[q];
+            for k in 0..corners.len() {
+                let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+                for &n in &by_side[&(a.min(b), a.max(b))] {
+                    if colour[n].is_none() {
+                        colour[n] = Some(!c);
+                        queue.push_back(n);
+                    }
+                }
+            }
+        }
+    }
+    colour.into_iter().map(|c| c.unwrap_or(true)).collect()
 }
 
 /// The candidates a layout takes outright (`designed`: none).

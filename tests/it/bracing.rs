@@ -378,6 +378,43 @@ fn the_designed_bracing_meets_its_target_and_every_cable_is_needed() {
         },
     );
     assert_eq!(b.spec.diagonals, Diagonals::Crossed);
+    // The patterns: every quad's two diagonals crossed, one single; the
+    // alternate quads a chessboard's (no two share a side), and at least
+    // nine in twenty of them.
+    let quads = d.candidates.iter().map(|c| c.quad).max().expect("quads") + 1;
+    assert_eq!(all.len(), 2 * quads);
+    let single = layout(
+        &d.candidates,
+        &BracingSpec {
+            layout: BracingLayout::All,
+            diagonals: Diagonals::Single,
+            ..b.spec
+        },
+    );
+    assert_eq!(single.len(), quads);
+    let alternate = layout(
+        &d.candidates,
+        &BracingSpec {
+            layout: BracingLayout::Alternate,
+            diagonals: Diagonals::Single,
+            ..b.spec
+        },
+    );
+    let corners_of = |q: usize| -> std::collections::BTreeSet<usize> {
+        d.candidates
+            .iter()
+            .filter(|c| c.quad == q)
+            .flat_map(|c| c.corners)
+            .collect()
+    };
+    let black: Vec<usize> = alternate.iter().map(|&i| d.candidates[i].quad).collect();
+    for (k, &p) in black.iter().enumerate() {
+        for &q in &black[k + 1..] {
+            let shared = corners_of(p).intersection(&corners_of(q)).count();
+            assert!(shared < 2, "quads {p} and {q} share a side");
+        }
+    }
+    assert!(20 * black.len() >= 9 * quads, "{} of {quads}", black.len());
     assert!(
         !d.chosen.is_empty() && d.chosen.len() * 10 < all.len(),
         "{} cables chosen of {}",
