@@ -319,9 +319,23 @@ fn a_cable_at_its_top_raises_a_columns_critical_load_to_the_pinned_one() {
     );
 }
 
+/// The shipped pavilion braced (samples/loads/pavilion-braced.yaml,
+/// steel 1.5 mm): the structure stage's report and the network's
+/// analysis, designed once for every test that reads it.
+pub fn braced_pavilion() -> &'static (
+    lamella::structure::stage::FrameReport,
+    lamella::analysis::Analysis,
+) {
+    static ONCE: std::sync::OnceLock<(
+        lamella::structure::stage::FrameReport,
+        lamella::analysis::Analysis,
+    )> = std::sync::OnceLock::new();
+    ONCE.get_or_init(|| pavilion("pavilion-braced.yaml"))
+}
+
 /// The shipped pavilion's frame under `loads` (a file in samples/loads),
 /// steel 1.5 mm: the structure stage's report and the network's analysis.
-pub fn pavilion(
+fn pavilion(
     loads: &str,
 ) -> (
     lamella::structure::stage::FrameReport,
@@ -359,7 +373,7 @@ fn the_designed_bracing_meets_its_target_and_every_cable_is_needed() {
     use lamella::structure::analyse::analyse;
     use lamella::structure::bracing::layout;
     use lamella::structure::model::LimitState;
-    let (report, _) = pavilion("pavilion-braced.yaml");
+    let (report, _) = braced_pavilion();
     let b = report.bracing.as_ref().expect("bracing");
     let limit = report.settings.deflection_limit_mm;
     let d = &b.design;
@@ -468,7 +482,7 @@ fn a_wires_cut_length_is_the_pin_length_less_its_fittings_and_stretch() {
 #[test]
 fn the_braced_pavilions_cables_sit_on_their_eye_plates() {
     use lamella::structure::bracing::schedule;
-    let (report, an) = pavilion("pavilion-braced.yaml");
+    let (report, an) = braced_pavilion();
     let b = report.bracing.as_ref().expect("bracing");
     let rows = schedule(&b.design, &report.built.model, &report.results, &b.profile);
     assert_eq!(rows.len(), b.design.chosen.len());
@@ -497,7 +511,7 @@ fn the_braced_pavilions_cables_sit_on_their_eye_plates() {
     }
     // The takeoff: the wire by its total cut length, a terminal and a
     // turnbuckle per cable, an eye plate at each end.
-    let plan = lamella::plan::structure::PlanBracing::of(&report).expect("plan");
+    let plan = lamella::plan::structure::PlanBracing::of(report).expect("plan");
     let lines = lamella::plan::takeoff::bracing_lines(&plan);
     let count = |item: &str| lines.iter().find(|l| l.item == item).map(|l| l.count);
     let n = rows.len() as u64;
@@ -562,4 +576,88 @@ fn bracing_without_cables_or_with_a_bad_table_is_refused() {
     assert!(e.contains("bracing.cable.partial_factor"), "{e}");
     let e = refused("pin_hole_mm: 6.5", "pin_hole_mm: 30.0");
     assert!(e.contains("bracing.eye_plate.pin_hole_mm"), "{e}");
+}
+
+/// The string term alone: a cantilever (fixed at its foot, 1 m, the 1.5 ×
+/// 50 mm strip about its weak axis) with a cable inside it from its top to
+/// its foot, pretensioned to T = 10 N (above the cantilever's own
+/// π²·E·I/(4·L²) = 7.3 N), under a dead load Q at the top. The cable is
+/// all pretension (E·A a billionth of the strip's), so the top carries a
+/// force that always points at the foot, T, and a dead one, λ·Q. With
+/// N = T + λ·Q, r = T/N, k² = N/(E·I), the deflection's equilibrium
+/// E·I·v'' + N·v = N·v_L − (T·v_L/L)·(L − x) with v(0) = v'(0) = 0 and
+/// v(L) = v_L gives (1 − r)·cos kL + r·sin(kL)/(kL) = 0, solved here by
+/// bisection (r = 1 gives kL = π, the pinned column; r = 0, kL = π/2).
+/// Without the cable's geometric stiffness T/L·(I − e·eᵀ) the pretension
+/// alone would buckle the strip.
+#[test]
+fn a_cable_pulling_a_columns_top_to_its_foot_holds_it_by_its_string_term() {
+    use lamella::structure::tension::critical_factors_braced;
+    let (l, n) = (1000.0, 16usize);
+    let (t, h) = (1.5, 50.0);
+    let strip = Section {
+        e_mpa: E,
+        g_mpa: 81_000.0,
+        area_mm2: t * h,
+        i_y_mm4: t * h * h * h / 12.0,
+        i_z_mm4: h * t * t * t / 12.0,
+        j_mm4: h * t * t * t / 3.0 * (1.0 - 0.63 * t / h),
+    };
+    let ei = E * strip.i_z_mm4;
+    let pretension = 10.0;
+    let m = FrameModel {
+        nodes_mm: (0..=n)
+            .map(|i| DVec3::Z * (l * i as f64 / n as f64))
+            .collect(),
+        sections: vec![strip],
+        beams: (0..n)
+            .map(|i| Beam {
+                nodes: [i, i + 1],
+                section: 0,
+                z_axis: DVec3::Y,
+                initial: InitialForces::default(),
+                offsets_mm: [DVec3::ZERO; 2],
+            })
+            .collect(),
+        links: vec![],
+        cables: vec![Cable {
+            nodes: [n, 0],
+            offsets_mm: [DVec3::ZERO; 2],
+            area_mm2: 1e-6,
+            e_mpa: 1000.0,
+            pretension_n: pretension,
+        }],
+        supports: vec![Support {
+            node: 0,
+            fixed: [true; 6],
+            along: None,
+        }],
+    };
+    let q = 1.0;
+    let press = LoadSet {
+        name: "Q".into(),
+        nodes: vec![NodeLoad {
+            node: n,
+            force_n: DVec3::new(0.0, 0.0, -q),
+            moment_nmm: DVec3::ZERO,
+        }],
+        ..Default::default()
+    };
+    let f = |nn: f64| {
+        let (r, kl) = (pretension / nn, (nn / ei).sqrt() * l);
+        (1.0 - r) * kl.cos() + r * kl.sin() / kl
+    };
+    let (mut lo, mut hi) = (pretension, std::f64::consts::PI.powi(2) * ei / (l * l));
+    assert!(f(lo) > 0.0 && f(hi) < 0.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let want = (0.5 * (lo + hi) - pretension) / q;
+    let got = critical_factors_braced(&m, &press, 1).expect("braced")[0].factor;
+    close(got, want, 1e-3, "λ");
 }

@@ -769,7 +769,7 @@ fn opensees_agrees_on_the_braced_enneper() {
     if !have_opensees() {
         return;
     }
-    let (report, _) = crate::bracing::pavilion("pavilion-braced.yaml");
+    let (report, _) = crate::bracing::braced_pavilion();
     let model = &report.built.model;
     assert!(!model.cables.is_empty());
     let cases: Vec<LoadSet> = report.cases.iter().map(|(set, _)| set.clone()).collect();
