@@ -506,7 +506,7 @@ pub fn add_takeoff(
 ) {
     let mut takeoff = super::takeoff::takeoff(&plan.network.name, kit, nest, profile);
     if let Some(b) = plan.structure.as_ref().and_then(|s| s.bracing.as_ref()) {
-        takeoff.bracing = super::takeoff::bracing_lines(b);
+        takeoff.bracing = b.takeoff_lines();
     }
     plan.takeoff = Some(takeoff);
     let hardware = super::takeoff::hardware_lines(kit);

@@ -11,6 +11,7 @@
 //! beside it and not written to plan.json.
 
 use super::convert::round;
+use super::takeoff::BracingLine;
 use crate::network::Network;
 use crate::structure::model::LimitState;
 use crate::structure::stage::FrameReport;
@@ -176,6 +177,63 @@ impl PlanFigures {
 }
 
 impl PlanBracing {
+    /// The takeoff's bracing lines: one cable line (every cable is one
+    /// size), a fork terminal and a turnbuckle per cable, an eye plate at
+    /// each end.
+    pub fn takeoff_lines(&self) -> Vec<BracingLine> {
+        let b = self;
+        let n = b.cables.len() as u64;
+        let d = &b.diameter_mm;
+        let f = &b.fittings;
+        let line =
+            |item: &str, designation: String, count: u64, length_mm, source: &str| BracingLine {
+                item: item.into(),
+                designation,
+                count,
+                length_mm,
+                source: source.into(),
+            };
+        vec![
+            line(
+                "cable",
+                format!("{} {d} mm", b.designation),
+                n,
+                Some(round(b.cables.iter().map(|c| c.wire_cut_mm).sum(), 1)),
+                "bought",
+            ),
+            line(
+                "fork terminal",
+                format!(
+                    "swaged fork for {d} mm strand, pin to wire {} mm",
+                    f.terminal_mm
+                ),
+                n,
+                None,
+                "bought",
+            ),
+            line(
+                "turnbuckle",
+                format!(
+                    "fork and swage for {d} mm strand, {} mm at mid take-up, take-up {} mm",
+                    f.turnbuckle_mid_mm, f.take_up_mm
+                ),
+                n,
+                None,
+                "bought",
+            ),
+            line(
+                "eye plate",
+                format!(
+                    "{} × {} mm plate, pin hole {} mm",
+                    f.eye_plate_thickness_mm, f.eye_plate_width_mm, f.pin_hole_mm
+                ),
+                f.eye_plates as u64,
+                None,
+                "made",
+            ),
+        ]
+    }
+
     /// The plan section of a report's bracing.
     pub fn of(report: &FrameReport) -> Option<PlanBracing> {
         use crate::structure::bracing::{largest_uls_force_n, schedule};

@@ -39,17 +39,24 @@
 //!
 //! # Pretension and size
 //!
-//! Designed with the table's smallest cable. Then, size by size, up
-//! the table: the pretension (`auto`) is the least that keeps every cable
-//! taut under every combination, found from the held model's forces
-//! N_c under each combination (no pretension) and every cable's force r_c
-//! per newton of a pretension in all of them (one more solve): T₀ =
-//! max(−N_c / r_c) × [`PRETENSION_MARGIN`], at least
-//! [`PRETENSION_FLOOR`] of the cable's design resistance (snug: a cable
-//! hangs visibly slack below that), rounded up to [`PRETENSION_STEP_N`].
-//! The frame is then analysed with its cables tension-only; the size
-//! holds when no cable's force under a ULS combination exceeds
-//! F_Rd = F_uk / γ (EN 1993-1-11 §6.3), else the next size is tried.
+//! Designed with the table's smallest cable (a crossed pair held as two
+//! bars of half its area each: under a shear of its quad one lengthens by
+//! what the other shortens, so the two halves are the one taut cable; a
+//! step analyses only the combinations its targets need, one buckling
+//! mode, second order only for a utilisation target). Then, size by size,
+//! up the table: the pretension (`auto`) of single diagonals is the least
+//! that keeps every cable taut under every combination, found from the
+//! held model's forces N_c under each combination (no pretension) and
+//! every cable's force r_c per newton of a pretension in all of them (one
+//! more solve): T₀ = max(−N_c / r_c) × [`PRETENSION_MARGIN`]; a crossed
+//! pair is snug (the design relies on the diagonal the load tightens);
+//! either at least [`PRETENSION_FLOOR`] of the cable's design resistance
+//! (a cable hangs visibly slack below that), rounded up to
+//! [`PRETENSION_STEP_N`]. The frame is then analysed with its cables
+//! tension-only; the size holds when no cable's force under a ULS
+//! combination exceeds F_Rd = F_uk / γ (EN 1993-1-11 §6.3), else the next
+//! size is tried; after the cable-by-cable pruning the remaining cables
+//! are sized again from there up.
 
 use super::analyse::{analyse, analyse_as, Settings, StructureResults};
 use super::model::{BeamRole, Cable, CableState, Combination, FrameModel, LoadSet, NodeLoad};

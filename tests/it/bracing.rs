@@ -512,7 +512,7 @@ fn the_braced_pavilions_cables_sit_on_their_eye_plates() {
     // The takeoff: the wire by its total cut length, a terminal and a
     // turnbuckle per cable, an eye plate at each end.
     let plan = lamella::plan::structure::PlanBracing::of(report).expect("plan");
-    let lines = lamella::plan::takeoff::bracing_lines(&plan);
+    let lines = plan.takeoff_lines();
     let count = |item: &str| lines.iter().find(|l| l.item == item).map(|l| l.count);
     let n = rows.len() as u64;
     assert_eq!(count("cable"), Some(n));
