@@ -245,15 +245,7 @@ fn a_cable_at_its_top_raises_a_columns_critical_load_to_the_pinned_one() {
     use lamella::structure::buckling::critical_factors;
     use lamella::structure::tension::critical_factors_braced;
     let (l, n) = (1000.0, 16usize);
-    let (t, h) = (1.5, 50.0);
-    let strip = Section {
-        e_mpa: E,
-        g_mpa: 81_000.0,
-        area_mm2: t * h,
-        i_y_mm4: t * h * h * h / 12.0,
-        i_z_mm4: h * t * t * t / 12.0,
-        j_mm4: h * t * t * t / 3.0 * (1.0 - 0.63 * t / h),
-    };
+    let strip = upright_strip();
     let ei = E * strip.i_z_mm4;
     let mut nodes: Vec<DVec3> = (0..=n)
         .map(|i| DVec3::Z * (l * i as f64 / n as f64))
@@ -317,6 +309,20 @@ fn a_cable_at_its_top_raises_a_columns_critical_load_to_the_pinned_one() {
         5e-3,
         "fixed–free",
     );
+}
+
+/// The 1.5 × 50 mm steel strip as a column's section (weak axis about
+/// local z).
+fn upright_strip() -> Section {
+    let (t, h) = (1.5, 50.0);
+    Section {
+        e_mpa: E,
+        g_mpa: 81_000.0,
+        area_mm2: t * h,
+        i_y_mm4: t * h * h * h / 12.0,
+        i_z_mm4: h * t * t * t / 12.0,
+        j_mm4: h * t * t * t / 3.0 * (1.0 - 0.63 * t / h),
+    }
 }
 
 /// The shipped pavilion braced (samples/loads/pavilion-braced.yaml,
@@ -594,15 +600,7 @@ fn bracing_without_cables_or_with_a_bad_table_is_refused() {
 fn a_cable_pulling_a_columns_top_to_its_foot_holds_it_by_its_string_term() {
     use lamella::structure::tension::critical_factors_braced;
     let (l, n) = (1000.0, 16usize);
-    let (t, h) = (1.5, 50.0);
-    let strip = Section {
-        e_mpa: E,
-        g_mpa: 81_000.0,
-        area_mm2: t * h,
-        i_y_mm4: t * h * h * h / 12.0,
-        i_z_mm4: h * t * t * t / 12.0,
-        j_mm4: h * t * t * t / 3.0 * (1.0 - 0.63 * t / h),
-    };
+    let strip = upright_strip();
     let ei = E * strip.i_z_mm4;
     let pretension = 10.0;
     let m = FrameModel {
