@@ -332,11 +332,13 @@ fn segment(s: &mut Vec<u8>, a: Vertex, b: Vertex, w: f64) {
     let (bx, by) = (num(b.x_mm), num(w - b.y_mm));
     let chord = (b.x_mm - a.x_mm).hypot(b.y_mm - a.y_mm);
     // Bulge b = tan(θ/4): radius = chord·(1 + b²)/(4|b|); more than a half
-    // turn when |b| > 1; counter-clockwise (b > 0) with y up is clockwise on
-    // screen, SVG's positive sweep.
+    // turn when |b| > 1. Counter-clockwise (b > 0) in the sheet's y-up
+    // frame stays counter-clockwise to the eye once y is flipped (the
+    // picture is not mirrored), and SVG's positive sweep (flag 1) is
+    // clockwise to the eye (angles grow with y down): so b > 0 is flag 0.
     let r = chord * (1.0 + a.bulge * a.bulge) / (4.0 * a.bulge.abs());
     let large = u8::from(a.bulge.abs() > 1.0);
-    let sweep = u8::from(a.bulge > 0.0);
+    let sweep = u8::from(a.bulge < 0.0);
     let _ = write!(s, " A{} {} 0 {large} {sweep} {bx} {by}", num(r), num(r));
 }
 
@@ -413,7 +415,8 @@ mod tests {
     }
 
     /// A half circle of radius 5 from (0, 0) to (10, 0) counter-clockwise
-    /// (bulge 1): radius 5, small arc flag 0, positive sweep.
+    /// (bulge 1): radius 5, small arc flag 0, negative sweep (it passes
+    /// below the chord, y up: (5, −5)).
     #[test]
     fn bulges_become_arcs() {
         let mut s = Vec::new();
@@ -423,6 +426,77 @@ mod tests {
             bulge,
         };
         segment(&mut s, v(0.0, 1.0), v(10.0, 0.0), 100.0);
-        assert_eq!(s, b" A5 5 0 0 1 10 100");
+        assert_eq!(s, b" A5 5 0 0 0 10 100");
+    }
+
+    /// Arcs land where the bulges put them, as an independent renderer
+    /// (resvg) draws them: a stadium 40 × 20 mm (y up, from (10, 10)),
+    /// fitted by lines and two counter-clockwise half circles, and the
+    /// same turned clockwise (negative bulges), filled: ink 3 mm inside
+    /// each end's tip, none 3 mm outside it, and none where an end arc
+    /// drawn on the wrong side of its chord would put it.
+    #[test]
+    fn arcs_render_on_the_side_their_bulge_gives() {
+        use crate::formats::write::arcs::fit_closed;
+        let (r, len, w) = (10.0, 20.0, 40.0);
+        let mut ring: Vec<[f64; 2]> = Vec::new();
+        for k in 0..=64 {
+            let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * f64::from(k) / 64.0;
+            ring.push([10.0 + r + len + r * a.cos(), 10.0 + r + r * a.sin()]);
+        }
+        for k in 0..=64 {
+            let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * f64::from(k) / 64.0;
+            ring.push([10.0 + r + r * a.cos(), 10.0 + r + r * a.sin()]);
+        }
+        for clockwise in [false, true] {
+            let pts: Vec<[f64; 2]> = if clockwise {
+                ring.iter().rev().copied().collect()
+            } else {
+                ring.clone()
+            };
+            let vertices = fit_closed(&pts, 0.01);
+            assert!(vertices.iter().any(|v| v.bulge != 0.0), "arcs fitted");
+            let mut s = Vec::new();
+            s.extend_from_slice(
+                br#"<svg xmlns="http://www.w3.org/2000/svg" width="60" height="40" viewBox="0 0 60 40">"#,
+            );
+            let mut body = Vec::new();
+            shape(
+                &mut body,
+                &Shape::Polyline {
+                    layer: Layer::CutOuter,
+                    closed: true,
+                    vertices,
+                },
+                w,
+            );
+            let body = String::from_utf8(body).expect("utf8").replace(
+                "<path ",
+                r##"<path fill="#000" "##,
+            );
+            s.extend_from_slice(body.as_bytes());
+            s.extend_from_slice(b"</svg>");
+            let text = String::from_utf8(s).expect("utf8");
+            let tree = resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default())
+                .expect("svg");
+            let mut pix = resvg::tiny_skia::Pixmap::new(600, 400).expect("pixmap");
+            resvg::render(
+                &tree,
+                resvg::tiny_skia::Transform::from_scale(10.0, 10.0),
+                &mut pix.as_mut(),
+            );
+            // Sheet mm (y up) to the 10 px/mm image (y down).
+            let ink = |x: f64, y: f64| {
+                pix.pixel((x * 10.0) as u32, ((w - y) * 10.0) as u32)
+                    .is_some_and(|p| p.alpha() > 0)
+            };
+            let (left, right, mid) = (10.0, 10.0 + 2.0 * r + len, 10.0 + r);
+            assert!(ink(left + 3.0, mid) && ink(right - 3.0, mid), "{text}");
+            assert!(!ink(left - 3.0, mid) && !ink(right + 3.0, mid), "{text}");
+            // An arc on the wrong side of its chord bulges into the
+            // straight part: 3 mm short of the far chord's middle, and
+            // outside the stadium beyond the ends' chords.
+            assert!(ink(left + r + 3.0, mid + 0.5 * r), "{text}");
+        }
     }
 }
