@@ -84,8 +84,13 @@ pub fn build(r: &BuildReport, quiet: bool) -> ExitCode {
     if let (Some(cost), Some(cur)) = (t.totals.stock_cost, &t.currency) {
         println!("stock cost: {cost:.2} {cur}");
     }
+    let item_w = t
+        .hardware
+        .iter()
+        .map(|h| h.item.chars().count())
+        .fold(17, usize::max);
     for h in &t.hardware {
-        println!("  {:<17} {:>8}  {}", h.item, h.count, h.designation);
+        println!("  {:<item_w$} {:>8}  {}", h.item, h.count, h.designation);
     }
     match &r.governing {
         Some(g) if r.passes() => println!(
@@ -183,6 +188,12 @@ fn bracing(b: &lamella::plan::structure::PlanBracing) {
         b.total_length_m,
         b.total_wire_m
     );
+    if b.too_short > 0 {
+        println!(
+            "  {} diagonals left out: pin to pin no longer than the fittings ({} mm terminal + {} mm turnbuckle)",
+            b.too_short, b.fittings.terminal_mm, b.fittings.turnbuckle_mid_mm
+        );
+    }
     let show = |x: Option<f64>, d: usize| x.map_or("–".to_string(), |v| format!("{v:.d$}"));
     let goal = |x: Option<f64>, sign: &str, d: usize| {
         x.map_or("no target".to_string(), |v| {
@@ -202,8 +213,8 @@ fn bracing(b: &lamella::plan::structure::PlanBracing) {
         goal(b.targets.utilisation, "≤", 2),
     );
     println!(
-        "  largest cable force {:.2} kN, F_Rd {:.2} kN",
-        b.max_force_kn, b.design_resistance_kn
+        "  largest cable force {:.2} kN, F_Rd {:.2} kN; eye plate F_Rd {:.2} kN",
+        b.max_force_kn, b.design_resistance_kn, b.fittings.eye_plate_resistance_kn
     );
 }
 

@@ -58,7 +58,7 @@ pub fn full_edge_grip_mm(profile: &Profile) -> f64 {
 /// lies on the highest (lowest) rebate floor, so the stack ends a band
 /// thickness past that floor. One lamella keeping its edge there holds
 /// the washer at the full height.
-pub fn edge_grips_mm(profile: &Profile, parts: &[Part], nodes: &[usize]) -> Vec<f64> {
+pub fn edge_grips_mm(profile: &Profile, parts: &[Part], nodes: &[usize]) -> Vec<(usize, f64)> {
     let (h, t) = (profile.section.height_mm, profile.section.thickness_mm);
     let full = full_edge_grip_mm(profile);
     let eps = 1e-9;
@@ -90,7 +90,7 @@ pub fn edge_grips_mm(profile: &Profile, parts: &[Part], nodes: &[usize]) -> Vec<
                 0.0
             };
             let grip = top - bottom;
-            (grip < full - eps).then_some(grip)
+            (grip < full - eps).then_some((*id, grip))
         })
         .collect()
 }
@@ -149,11 +149,26 @@ pub struct Counts {
     /// strip).
     pub edge_nodes: u64,
     /// The edge bolts' grips where a rebate leaves less than the full
-    /// stack, mm, one per such node (of the `edge_nodes`;
+    /// stack, mm, one per such node (of the `edge_nodes`, by node id;
     /// [`edge_grips_mm`]).
-    pub edge_rebate_grips_mm: Vec<f64>,
+    pub edge_rebate_grips_mm: Vec<(usize, f64)>,
     /// Splice plates joining edge band pieces.
     pub band_splice_plates: u64,
+    /// The bracing cables' eye plates stacked under bolts, one entry per
+    /// joint that has any ([`super::eye_plate`]).
+    pub eye_plates: Vec<EyePlateStack>,
+}
+
+/// Eye plates under one joint's bolt.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EyePlateStack {
+    /// The node, by id.
+    pub node: usize,
+    /// How many plates (cables ending there).
+    pub plates: u32,
+    /// Whether the bolt is an edge bolt (else the node bolt of an A×B
+    /// node).
+    pub at_edge: bool,
 }
 
 /// One kind of bolted joint: its bolt, grip, plain washers and count.
@@ -165,6 +180,54 @@ struct Joint {
     count: u64,
 }
 
+/// Bolts of one joint whose grips differ from node to node (`grips_mm`,
+/// one per bolt): one line per bolt length, each at the largest grip it
+/// takes (ascending); one line at the largest grip for a diameter that is
+/// no thread of the table (refused with the joint named below).
+fn by_length(
+    item: &'static str,
+    diameter_mm: f64,
+    plain_washers: u64,
+    mut grips_mm: Vec<f64>,
+) -> Vec<Joint> {
+    grips_mm.sort_by(f64::total_cmp);
+    let Some(th) = fasteners::thread(diameter_mm) else {
+        return grips_mm
+            .last()
+            .map(|&g| Joint {
+                item,
+                diameter_mm,
+                grip_mm: g,
+                plain_washers,
+                count: grips_mm.len() as u64,
+            })
+            .into_iter()
+            .collect();
+    };
+    let extra = plain_washers as f64 * th.washer_mm + th.nut_mm + 2.0 * th.pitch_mm;
+    let mut lines: Vec<(Option<f64>, Joint)> = Vec::new();
+    for g in grips_mm {
+        let length = fasteners::bolt_length_mm(th, g + extra);
+        match lines.last_mut() {
+            Some((l, j)) if *l == length => {
+                j.grip_mm = g;
+                j.count += 1;
+            }
+            _ => lines.push((
+                length,
+                Joint {
+                    item,
+                    diameter_mm,
+                    grip_mm: g,
+                    plain_washers,
+                    count: 1,
+                },
+            )),
+        }
+    }
+    lines.into_iter().map(|(_, j)| j).collect()
+}
+
 /// The hardware list of a kit for `profile`: the bolts by joint (node,
 /// shear block, splice, stud), then the nuts and the plain washers by
 /// size, ascending; lines with a zero count are left out.
@@ -174,19 +237,36 @@ pub fn hardware(profile: &Profile, n: Counts) -> Result<Vec<Hardware>> {
         profile.section.height_mm,
         profile.section.gap_mm,
     );
+    // Every eye plate under a bolt adds its thickness to the grip.
+    let eye_mm = profile
+        .bracing
+        .as_ref()
+        .map_or(0.0, |b| b.eye_plate.thickness_mm);
     let mut joints = Vec::new();
     if let Some(b) = &profile.node_bolt {
         let (stars, plain) = match &profile.washer {
             Some(w) => (f64::from(w.per_node) * w.thickness_mm, 0),
             None => (0.0, 2),
         };
+        let plated: Vec<f64> = n
+            .eye_plates
+            .iter()
+            .filter(|e| !e.at_edge)
+            .map(|e| h + stars + f64::from(e.plates) * eye_mm)
+            .collect();
         joints.push(Joint {
             item: "node bolt",
             diameter_mm: b.diameter_mm,
             grip_mm: h + stars,
             plain_washers: plain,
-            count: n.grid_nodes,
+            count: n.grid_nodes.saturating_sub(plated.len() as u64),
         });
+        joints.extend(by_length(
+            "node bolt under eye plates",
+            b.diameter_mm,
+            plain,
+            plated,
+        ));
     }
     if let Some(b) = &profile.shear_block {
         joints.push(Joint {
@@ -208,48 +288,35 @@ pub fn hardware(profile: &Profile, n: Counts) -> Result<Vec<Hardware>> {
     }
     if let Some(d) = profile.edge_bolt_mm() {
         let full = full_edge_grip_mm(profile);
-        let rebates = n.edge_rebate_grips_mm.len() as u64;
+        let rebate_of = |node: usize| {
+            n.edge_rebate_grips_mm
+                .iter()
+                .find(|r| r.0 == node)
+                .map(|r| r.1)
+        };
+        let stacks: Vec<&EyePlateStack> = n.eye_plates.iter().filter(|e| e.at_edge).collect();
+        let plated = |node: usize| stacks.iter().any(|e| e.node == node);
+        let rebated: Vec<f64> = n
+            .edge_rebate_grips_mm
+            .iter()
+            .filter(|r| !plated(r.0))
+            .map(|r| r.1)
+            .collect();
+        let under_plates: Vec<f64> = stacks
+            .iter()
+            .map(|e| rebate_of(e.node).unwrap_or(full) + f64::from(e.plates) * eye_mm)
+            .collect();
         joints.push(Joint {
             item: "edge bolt",
             diameter_mm: d,
             grip_mm: full,
             plain_washers: 2,
-            count: n.edge_nodes.saturating_sub(rebates),
+            count: n
+                .edge_nodes
+                .saturating_sub((rebated.len() + under_plates.len()) as u64),
         });
-        // At rebates: one line per bolt length, sized for the largest grip
-        // that takes it.
-        if let Some(th) = fasteners::thread(d) {
-            let washers = 2.0 * th.washer_mm;
-            let mut lines: Vec<(Option<f64>, f64, u64)> = Vec::new();
-            let mut grips = n.edge_rebate_grips_mm.clone();
-            grips.sort_by(f64::total_cmp);
-            for g in grips {
-                let length =
-                    fasteners::bolt_length_mm(th, g + washers + th.nut_mm + 2.0 * th.pitch_mm);
-                match lines.last_mut() {
-                    Some(l) if l.0 == length => {
-                        l.1 = g;
-                        l.2 += 1;
-                    }
-                    _ => lines.push((length, g, 1)),
-                }
-            }
-            joints.extend(lines.into_iter().map(|(_, g, count)| Joint {
-                item: "edge bolt at a rebate",
-                diameter_mm: d,
-                grip_mm: g,
-                plain_washers: 2,
-                count,
-            }));
-        } else {
-            joints.push(Joint {
-                item: "edge bolt at a rebate",
-                diameter_mm: d,
-                grip_mm: full,
-                plain_washers: 2,
-                count: rebates,
-            });
-        }
+        joints.extend(by_length("edge bolt at a rebate", d, 2, rebated));
+        joints.extend(by_length("edge bolt under eye plates", d, 2, under_plates));
     }
     if let Some(s) = &profile.splice {
         joints.push(Joint {
@@ -548,6 +615,83 @@ mod tests {
         );
     }
 
+    /// Eye plates (4 mm, steel profile) stack under their bolts: an M8
+    /// node bolt's grip 56 grows to 60 under one plate (needs 69.3, so
+    /// 70) and to 64 under two (73.3, so 80); an edge bolt's full grip 50
+    /// to 54 under one (with washers 1.6·2, nut 6.8 and pitches 2.5:
+    /// 66.5, so 70), and at a rebate of grip 25.45 to 29.45 (41.95, so
+    /// 45). The plain lines keep the nodes without plates; nuts and
+    /// washers count every bolt.
+    #[test]
+    fn eye_plates_lengthen_the_bolts_they_sit_under() {
+        let p = load("profiles/steel-1.5.yaml");
+        let stack = |node, plates, at_edge| EyePlateStack {
+            node,
+            plates,
+            at_edge,
+        };
+        let hw = hardware(
+            &p,
+            Counts {
+                grid_nodes: 10,
+                edge_nodes: 6,
+                edge_rebate_grips_mm: vec![(20, 25.45), (21, 25.45)],
+                eye_plates: vec![
+                    stack(1, 1, false),
+                    stack(2, 2, false),
+                    stack(3, 1, false),
+                    stack(20, 1, true),
+                    stack(22, 1, true),
+                ],
+                ..Counts::default()
+            },
+        )
+        .expect("hardware");
+        let lines: Vec<(&str, &str, u64, Option<f64>)> = hw
+            .iter()
+            .map(|h| (h.item.as_str(), h.designation.as_str(), h.count, h.grip_mm))
+            .collect();
+        assert_eq!(
+            lines,
+            vec![
+                ("node bolt", "M8 × 70 ISO 4017 8.8", 7, Some(56.0)),
+                (
+                    "node bolt under eye plates",
+                    "M8 × 70 ISO 4017 8.8",
+                    2,
+                    Some(60.0)
+                ),
+                (
+                    "node bolt under eye plates",
+                    "M8 × 80 ISO 4017 8.8",
+                    1,
+                    Some(64.0)
+                ),
+                ("edge bolt", "M8 × 65 ISO 4017 8.8", 3, Some(50.0)),
+                (
+                    "edge bolt at a rebate",
+                    "M8 × 40 ISO 4017 8.8",
+                    1,
+                    Some(25.45)
+                ),
+                (
+                    "edge bolt under eye plates",
+                    "M8 × 45 ISO 4017 8.8",
+                    1,
+                    Some(29.45)
+                ),
+                (
+                    "edge bolt under eye plates",
+                    "M8 × 70 ISO 4017 8.8",
+                    1,
+                    Some(54.0)
+                ),
+                ("nut", "M8 ISO 4032 8", 16, None),
+                ("plain washer", "M8 ISO 7089 200 HV", 12, None),
+            ]
+        );
+    }
+
     /// Edge bolts by hand on the steel profile: the full stack h = 50 with
     /// two M8 plain washers 1.6, nut 6.8 and two pitches 1.25 needs 62.5,
     /// so 65; at rebates a grip of 25.45 needs 37.95, so 40, and one of 30
@@ -559,7 +703,7 @@ mod tests {
             &p,
             Counts {
                 edge_nodes: 5,
-                edge_rebate_grips_mm: vec![25.45, 30.0, 25.45],
+                edge_rebate_grips_mm: vec![(1, 25.45), (2, 30.0), (3, 25.45)],
                 ..Counts::default()
             },
         )

@@ -10,6 +10,7 @@
 pub mod blocks;
 pub mod edge_strip;
 pub mod engrave;
+pub mod eye_plate;
 pub mod fasteners;
 pub mod font;
 pub mod hardware;
@@ -57,6 +58,20 @@ pub struct KitSummary {
     pub stud_bars: u32,
     /// Bolts, nuts and plain washers, counted (bought).
     pub hardware: Vec<hardware::Hardware>,
+    /// The joints the hardware is counted from.
+    pub joints: hardware::Counts,
+    /// The A×B nodes (ids) and the edge nodes with a bolt: where a bolt
+    /// can take a bracing cable's eye plate.
+    pub bolted_nodes: BoltedNodes,
+}
+
+/// The nodes whose joint has a bolt, by id, ascending.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BoltedNodes {
+    /// A×B nodes with a node bolt.
+    pub grid: Vec<usize>,
+    /// Edge nodes with an edge bolt.
+    pub edge: Vec<usize>,
 }
 
 /// Make every part of the network's A/B strips for `profile`.
@@ -175,23 +190,121 @@ pub fn fabricate(
     } else {
         Vec::new()
     };
-    summary.hardware = hardware::hardware(
-        profile,
-        hardware::Counts {
-            grid_nodes: grid.len() as u64,
-            shear_blocks: blocks as u64,
-            splice_plates: plates as u64,
-            studs: pieces(PartKind::Stud),
-            edge_nodes: bolted_edge_nodes.len() as u64,
-            edge_rebate_grips_mm: hardware::edge_grips_mm(profile, &parts, &bolted_edge_nodes),
-            band_splice_plates: band_plates as u64,
-        },
-    )?;
+    summary.joints = hardware::Counts {
+        grid_nodes: grid.len() as u64,
+        shear_blocks: blocks as u64,
+        splice_plates: plates as u64,
+        studs: pieces(PartKind::Stud),
+        edge_nodes: bolted_edge_nodes.len() as u64,
+        edge_rebate_grips_mm: hardware::edge_grips_mm(profile, &parts, &bolted_edge_nodes),
+        band_splice_plates: band_plates as u64,
+        eye_plates: Vec::new(),
+    };
+    summary.hardware = hardware::hardware(profile, summary.joints.clone())?;
+    let mut bolted_grid: Vec<usize> = match &profile.node_bolt {
+        Some(_) => grid.iter().map(|n| n.id).collect(),
+        None => Vec::new(),
+    };
+    let mut bolted_edge = bolted_edge_nodes;
+    bolted_grid.sort_unstable();
+    bolted_edge.sort_unstable();
+    bolted_edge.dedup();
+    summary.bolted_nodes = BoltedNodes {
+        grid: bolted_grid,
+        edge: bolted_edge,
+    };
     Ok(Kit {
         parts,
         summary,
         warnings,
     })
+}
+
+impl Kit {
+    /// Add the eye plates of bracing cables ending at `cable_ends` (node
+    /// ids, one per cable end; [`eye_plate`]): the parts (engraved), their
+    /// mass, and the longer bolts under their stacks. Each end must be at a
+    /// bolted joint: an A×B node with a node bolt or an edge node with an
+    /// edge bolt, else an error naming the node (`cable` names the cable
+    /// ending there, for the message). Replaces eye plates added before.
+    pub fn add_eye_plates(
+        &mut self,
+        profile: &Profile,
+        cable_ends: &[(usize, String)],
+    ) -> Result<()> {
+        self.parts.retain(|p| p.kind != PartKind::EyePlate);
+        self.summary.joints.eye_plates.clear();
+        let Some(brace) = &profile.bracing else {
+            return Ok(());
+        };
+        let bolted = &self.summary.bolted_nodes;
+        let mut stacks: std::collections::BTreeMap<usize, (u32, bool)> = Default::default();
+        for (node, cable) in cable_ends {
+            let at_edge = if bolted.grid.binary_search(node).is_ok() {
+                false
+            } else if bolted.edge.binary_search(node).is_ok() {
+                true
+            } else {
+                return Err(crate::error::Error::fabrication_part(
+                    &profile.source,
+                    &format!("eye plate of cable {cable}"),
+                    format!(
+                        "node {node} has no bolt to take the eye plate \
+                         (an A×B node needs node_bolt; an edge node a bolted edge joint)"
+                    ),
+                ));
+            };
+            let e = stacks.entry(*node).or_insert((0, at_edge));
+            e.0 += 1;
+        }
+        // Eye plates by the bolt's diameter (the node bolt's, the edge
+        // bolt's).
+        let mut by_bolt: Vec<(f64, u32)> = Vec::new();
+        for &(plates, at_edge) in stacks.values() {
+            let d = if at_edge {
+                profile.edge_bolt_diameter_mm()
+            } else {
+                profile.node_bolt.as_ref().map(|b| b.diameter_mm)
+            }
+            .unwrap_or(0.0);
+            match by_bolt.iter_mut().find(|b| b.0 == d) {
+                Some(b) => b.1 += plates,
+                None => by_bolt.push((d, plates)),
+            }
+        }
+        by_bolt.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let clearance = profile.edge_bolt_clearance_mm();
+        let mut plates: Vec<Part> = by_bolt
+            .iter()
+            .map(|&(d, n)| eye_plate::eye_plate_part(&brace.eye_plate, d, clearance, n))
+            .collect();
+        let cut = profile.cutting.kerf_mm + profile.cutting.part_spacing_mm;
+        self.warnings.extend(engrave::engrave_all(&mut plates, cut));
+        for p in &plates {
+            debug_assert_eq!(invariants::check_part(p, cut), Ok(()), "part {}", p.id);
+        }
+        self.parts.extend(plates);
+        self.summary.joints.eye_plates = stacks
+            .iter()
+            .map(|(&node, &(plates, at_edge))| hardware::EyePlateStack {
+                node,
+                plates,
+                at_edge,
+            })
+            .collect();
+        let (joints, bolted, stud_bars) = (
+            self.summary.joints.clone(),
+            self.summary.bolted_nodes.clone(),
+            self.summary.stud_bars,
+        );
+        let hardware = hardware::hardware(profile, joints.clone())?;
+        self.summary = summarise(&self.parts, profile);
+        self.summary.stud_bars = stud_bars;
+        self.summary.hardware = hardware;
+        self.summary.joints = joints;
+        self.summary.bolted_nodes = bolted;
+        Ok(())
+    }
 }
 
 /// A rectangular part with round holes (its `hole` features).
@@ -257,6 +370,7 @@ pub fn part_thickness_mm(kind: PartKind, profile: &Profile) -> f64 {
     match kind {
         PartKind::ShearBlock | PartKind::Stud => profile.section.gap_mm,
         PartKind::Washer => profile.washer.as_ref().map_or(0.0, |w| w.thickness_mm),
+        PartKind::EyePlate => profile.piece_thickness_mm(crate::profile::Piece::EyePlate),
         _ => profile.section.thickness_mm,
     }
 }

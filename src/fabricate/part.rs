@@ -25,6 +25,8 @@ pub enum PartKind {
     SplicePlate,
     /// A boundary band, unrolled flat.
     EdgeStrip,
+    /// A plate under a node bolt that a bracing cable is pinned to.
+    EyePlate,
 }
 
 impl PartKind {
@@ -37,6 +39,7 @@ impl PartKind {
             PartKind::Stud => "stud",
             PartKind::SplicePlate => "splice_plate",
             PartKind::EdgeStrip => "edge_strip",
+            PartKind::EyePlate => "eye_plate",
         }
     }
 }
@@ -53,6 +56,7 @@ impl PartKind {
             PartKind::Stud => Piece::Stud,
             PartKind::SplicePlate => Piece::SplicePlate,
             PartKind::EdgeStrip => Piece::EdgeBand,
+            PartKind::EyePlate => Piece::EyePlate,
         }
     }
 }
@@ -111,6 +115,8 @@ pub enum HoleUse {
     Splice,
     /// Where a lamella ends on an edge strip.
     EdgeNode,
+    /// An eye plate's hole for a cable terminal's pin.
+    CablePin,
 }
 
 /// A slot or hole of a part, located in the part's frame.

@@ -274,6 +274,7 @@ pub fn build(
             r.structure = Some(StructureVerdict { passes, verdict });
             return Ok(r);
         }
+        session.add_eye_plates()?;
         the_plan.structure = session.plan_structure();
         structure = Some((
             StructureVerdict { passes, verdict },

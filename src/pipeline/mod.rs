@@ -273,18 +273,35 @@ impl Session {
             else {
                 return Err(not_run(&self.inputs, "the loads file"));
             };
-            self.frame = Some(crate::structure::stage::run(
+            let report = crate::structure::stage::run(
                 &self.network,
                 an,
                 profile,
                 kit,
                 spec,
                 &FrameOptions::default(),
-            )?);
+            )?;
+            self.frame = Some(report);
         }
         self.frame
             .as_ref()
             .ok_or_else(|| not_run(&self.inputs, "the frame"))
+    }
+
+    /// Add the bracing cables' eye plates to the kit, once the frame is
+    /// analysed and braced ([`Kit::add_eye_plates`]): they are cut and
+    /// nested with the rest, and their bolts are longer. The frame's
+    /// self-weight was taken without them.
+    pub fn add_eye_plates(&mut self) -> Result<()> {
+        let (Some(report), Some(kit), Some(profile)) =
+            (&self.frame, self.kit.as_mut(), &self.profile)
+        else {
+            return Ok(());
+        };
+        if let Some(b) = &report.bracing {
+            kit.add_eye_plates(profile, &b.design.cable_ends())?;
+        }
+        Ok(())
     }
 
     /// The frame's report, once analysed.

@@ -572,6 +572,7 @@ fn plan_part(p: &crate::fabricate::part::Part) -> PlanPart {
                     HoleUse::ShearBlock => PlanHoleUse::ShearBlock,
                     HoleUse::Splice => PlanHoleUse::Splice,
                     HoleUse::EdgeNode => PlanHoleUse::EdgeNode,
+                    HoleUse::CablePin => PlanHoleUse::CablePin,
                 }),
                 node: f.node,
                 crossing: f.crossing.clone(),

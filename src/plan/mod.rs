@@ -528,6 +528,8 @@ pub enum PlanHoleUse {
     Splice,
     /// `edge_node`: where a lamella ends on an edge strip.
     EdgeNode,
+    /// `cable_pin`: an eye plate's hole for a bracing cable's pin.
+    CablePin,
 }
 
 /// The edge a slot is cut from, as plan.json names it.

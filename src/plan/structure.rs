@@ -69,6 +69,8 @@ pub struct PlanBracing {
     pub diagonals: String,
     /// The quads' diagonals it chose from.
     pub candidates: usize,
+    /// Diagonals left out, no longer pin to pin than a cable's fittings.
+    pub too_short: usize,
     /// The strand.
     pub designation: String,
     /// Its diameter, mm.
@@ -115,6 +117,9 @@ pub struct PlanFittings {
     pub eye_plate_hole_spacing_mm: f64,
     /// The pin's hole.
     pub pin_hole_mm: f64,
+    /// The eye plate's design resistance to its cable's pull, kN (EN
+    /// 1993-1-8 Table 3.9; 3 decimals).
+    pub eye_plate_resistance_kn: f64,
     /// Swaged fork terminals (one per cable), pin to wire.
     pub terminal_mm: f64,
     /// Turnbuckles (one per cable), pin to wire at mid take-up.
@@ -178,8 +183,8 @@ impl PlanFigures {
 
 impl PlanBracing {
     /// The takeoff's bracing lines: one cable line (every cable is one
-    /// size), a fork terminal and a turnbuckle per cable, an eye plate at
-    /// each end.
+    /// size), a fork terminal and a turnbuckle per cable (the eye plates
+    /// are parts, cut and nested: the takeoff's part lines).
     pub fn takeoff_lines(&self) -> Vec<BracingLine> {
         let b = self;
         let n = b.cables.len() as u64;
@@ -221,16 +226,6 @@ impl PlanBracing {
                 None,
                 "bought",
             ),
-            line(
-                "eye plate",
-                format!(
-                    "{} × {} mm plate, pin hole {} mm",
-                    f.eye_plate_thickness_mm, f.eye_plate_width_mm, f.pin_hole_mm
-                ),
-                f.eye_plates as u64,
-                None,
-                "made",
-            ),
         ]
     }
 
@@ -250,6 +245,7 @@ impl PlanBracing {
                 crate::loads::Diagonals::Crossed => "crossed".into(),
             },
             candidates: d.candidates.len(),
+            too_short: d.too_short,
             designation: b.profile.cable.designation.clone(),
             diameter_mm: size.diameter_mm,
             design_resistance_kn: kn(size.design_resistance_n(b.profile.cable.partial_factor)),
@@ -284,6 +280,7 @@ impl PlanBracing {
                     eye_plate_width_mm: f.eye_plate.width_mm,
                     eye_plate_hole_spacing_mm: f.eye_plate.hole_spacing_mm,
                     pin_hole_mm: f.eye_plate.pin_hole_mm,
+                    eye_plate_resistance_kn: kn(b.eye_plate_resistance_n),
                     terminal_mm: f.terminal_mm,
                     turnbuckle_mid_mm: f.turnbuckle.mid_length_mm,
                     take_up_mm: f.turnbuckle.take_up_mm,

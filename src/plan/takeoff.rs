@@ -30,7 +30,8 @@ pub struct Takeoff {
     /// washers by size (star washers and studs are parts).
     pub hardware: Vec<HardwareLine>,
     /// The bracing, when the grid is braced: the wire by diameter (count
-    /// and total cut length), fork terminals, turnbuckles, eye plates.
+    /// and total cut length), fork terminals, turnbuckles (the eye plates
+    /// are parts).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub bracing: Vec<BracingLine>,
     /// Sums.
@@ -112,7 +113,7 @@ pub struct HardwareLine {
 /// One line of the bracing.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct BracingLine {
-    /// `cable`, `fork terminal`, `turnbuckle`, `eye plate`.
+    /// `cable`, `fork terminal`, `turnbuckle`.
     pub item: String,
     /// As ordered (the strand, with its diameter; the fittings by the
     /// diameter they take).
@@ -122,7 +123,7 @@ pub struct BracingLine {
     /// Cables: Σ of the wires' cut lengths, mm (1 decimal).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub length_mm: Option<f64>,
-    /// `bought`, or `made` (eye plates, cut from plate).
+    /// `bought`.
     pub source: String,
 }
 

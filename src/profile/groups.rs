@@ -10,6 +10,7 @@
 //! | edge band, splice plate | `lamella.thickness_mm` | the lamellas' |
 //! | star washer | `washer.thickness_mm` | the lamella stock's sizes |
 //! | shear block | `lamella.gap_mm` (it fills the gap) | the lamella stock's sizes |
+//! | eye plate (bracing) | `bracing.eye_plate.thickness_mm` | the lamella stock's sizes |
 //! | stud | bar `gap × gap`, `stud.bar_length_mm` long | that bar |
 //!
 //! The material is the profile's (`material.name`) unless `stocks.<piece>`
@@ -39,18 +40,21 @@ pub enum Piece {
     Washer,
     /// A shear block.
     ShearBlock,
+    /// A bracing cable's eye plate.
+    EyePlate,
     /// A stud, sawn from bar.
     Stud,
 }
 
 impl Piece {
     /// Every piece, in the order groups are formed.
-    pub const ALL: [Piece; 6] = [
+    pub const ALL: [Piece; 7] = [
         Piece::Lamella,
         Piece::EdgeBand,
         Piece::SplicePlate,
         Piece::Washer,
         Piece::ShearBlock,
+        Piece::EyePlate,
         Piece::Stud,
     ];
 
@@ -62,6 +66,7 @@ impl Piece {
             Piece::SplicePlate => "splice",
             Piece::Washer => "washer",
             Piece::ShearBlock => "shear_block",
+            Piece::EyePlate => "eye_plate",
             Piece::Stud => "stud",
         }
     }
@@ -74,6 +79,7 @@ impl Piece {
             Piece::SplicePlate => "splice-plate",
             Piece::Washer => "washer",
             Piece::ShearBlock => "shear-block",
+            Piece::EyePlate => "eye-plate",
             Piece::Stud => "stud",
         }
     }
@@ -190,6 +196,7 @@ impl<S> super::ProfileOf<S> {
             Piece::ShearBlock => self.shear_block.is_some(),
             Piece::Stud => self.stud.is_some(),
             Piece::SplicePlate => self.splice.is_some(),
+            Piece::EyePlate => self.bracing.is_some(),
             Piece::Lamella | Piece::EdgeBand => true,
         }
     }
@@ -201,6 +208,10 @@ impl<S> super::ProfileOf<S> {
             Piece::Lamella | Piece::EdgeBand | Piece::SplicePlate => self.section.thickness_mm,
             Piece::Washer => self.washer.as_ref().map_or(0.0, |w| w.thickness_mm),
             Piece::ShearBlock | Piece::Stud => self.section.gap_mm,
+            Piece::EyePlate => self
+                .bracing
+                .as_ref()
+                .map_or(0.0, |b| b.eye_plate.thickness_mm),
         }
     }
 

@@ -282,6 +282,40 @@ pub struct EyePlate {
     pub hole_spacing_mm: f64,
     /// The cable pin's hole, mm.
     pub pin_hole_mm: f64,
+    /// The plate's yield strength f_y, MPa: by default the profile's
+    /// material's characteristic strength (a steel profile; a timber one
+    /// must give it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_mpa: Option<f64>,
+}
+
+/// γ_M0 of an eye plate (EN 1993-1-1 §6.1, the recommended value).
+pub const EYE_PLATE_GAMMA_M0: f64 = 1.0;
+
+impl<S> ProfileOf<S> {
+    /// The eye plates' yield strength, MPa: `bracing.eye_plate.yield_mpa`,
+    /// else the material's characteristic strength where it is steel (no
+    /// grain); `None` without bracing, or for timber without one.
+    pub fn eye_plate_yield_mpa(&self) -> Option<f64> {
+        let e = &self.bracing.as_ref()?.eye_plate;
+        e.yield_mpa.or(match self.material.grain {
+            Grain::None => Some(self.material.characteristic_strength_mpa),
+            Grain::AlongStrip => None,
+        })
+    }
+
+    /// The eye plate's design resistance to its cable's pull, N
+    /// ([`crate::fabricate::eye_plate::pin_resistance_n`]); `None` without
+    /// bracing.
+    pub fn eye_plate_resistance_n(&self) -> Option<f64> {
+        let e = &self.bracing.as_ref()?.eye_plate;
+        let fy = self.eye_plate_yield_mpa()?;
+        Some(crate::fabricate::eye_plate::pin_resistance_n(
+            e,
+            fy,
+            EYE_PLATE_GAMMA_M0,
+        ))
+    }
 }
 
 /// `bracing.turnbuckle:` its length and take-up.

@@ -35,6 +35,28 @@ pub fn profile(raw: &RawProfile) -> Check {
     }
     if let Some(b) = &raw.bracing {
         bracing(b)?;
+        // The eye plate goes under the node bolt (and the edge bolt).
+        let Some(bolt) = &raw.node_bolt else {
+            return fail(
+                "bracing",
+                "needs node_bolt: each cable's eye plate is held under the node bolt",
+            );
+        };
+        let edge_mm = raw.edge_joint.bolt_diameter_mm.unwrap_or(bolt.diameter_mm);
+        eye_plate_holes(
+            &b.eye_plate,
+            bolt.diameter_mm.max(edge_mm) + bolt.hole_clearance_mm,
+        )?;
+        match b.eye_plate.yield_mpa {
+            Some(fy) => positive("bracing.eye_plate.yield_mpa", fy)?,
+            None if raw.material.grain == Grain::AlongStrip => {
+                return fail(
+                    "bracing.eye_plate.yield_mpa",
+                    "is needed: the eye plates are steel, the profile's material is timber",
+                )
+            }
+            None => {}
+        }
     }
     if let Some(c) = &raw.hardware.bolt_class {
         if !super::BOLT_CLASSES.contains(&c.as_str()) {
@@ -401,6 +423,32 @@ fn bracing(b: &Bracing) -> Check {
     non_negative("bracing.turnbuckle.take_up_mm", b.turnbuckle.take_up_mm)
 }
 
+/// An eye plate's bolt hole (`bolt_hole_mm`, the widest bolt's with its
+/// clearance) inside its width, clear of the pin's hole.
+fn eye_plate_holes(e: &super::EyePlate, bolt_hole_mm: f64) -> Check {
+    if bolt_hole_mm >= e.width_mm {
+        return fail(
+            "bracing.eye_plate.width_mm",
+            format!(
+                "must be more than the bolt's {bolt_hole_mm} mm hole, got {}",
+                e.width_mm
+            ),
+        );
+    }
+    let touch_mm = 0.5 * (bolt_hole_mm + e.pin_hole_mm);
+    if e.hole_spacing_mm <= touch_mm {
+        return fail(
+            "bracing.eye_plate.hole_spacing_mm",
+            format!(
+                "the {bolt_hole_mm} mm bolt hole and the {} mm pin hole meet: \
+                 the spacing must be more than {touch_mm} mm, got {}",
+                e.pin_hole_mm, e.hole_spacing_mm
+            ),
+        );
+    }
+    Ok(())
+}
+
 /// `stock:` the values every form may give, then the fields its form
 /// needs and allows ([`sheet`] or [`coil`]).
 fn stock(st: &RawStock, height_mm: f64) -> Check {
@@ -631,7 +679,10 @@ fn stocks(raw: &RawProfile) -> Check {
                 format!(
                     "the profile makes no {}s (its `{}:` section is null)",
                     e.piece.role().replace('-', " "),
-                    e.piece.key()
+                    match e.piece {
+                        super::Piece::EyePlate => "bracing",
+                        p => p.key(),
+                    }
                 ),
             );
         }

@@ -361,8 +361,12 @@ pub struct Frame<'a> {
 /// A bracing designed and sized.
 #[derive(Debug, Clone)]
 pub struct BracingDesign {
-    /// The candidates.
+    /// The candidates: every quad's diagonals long enough for a cable's
+    /// fittings ([`fittings_length_mm`]).
     pub candidates: Vec<Diagonal>,
+    /// Diagonals left out: pin to pin no longer than the fittings (the
+    /// terminal and the turnbuckle at mid take-up), so no wire between.
+    pub too_short: usize,
     /// The chosen ones, ascending, one cable each (the model's cables).
     pub chosen: Vec<usize>,
     /// The designed layout's steps (empty for a pattern).
@@ -381,6 +385,27 @@ pub struct BracingDesign {
     pub before: Measure,
     /// The braced figures.
     pub after: Measure,
+}
+
+impl BracingDesign {
+    /// Every cable's id: `C1`, `C2`, … in the order of the model's cables.
+    pub fn cable_id(index: usize) -> String {
+        format!("C{}", index + 1)
+    }
+
+    /// Both ends of every cable, (network node id, cable id), cable by
+    /// cable: where the eye plates go.
+    pub fn cable_ends(&self) -> Vec<(usize, String)> {
+        self.chosen
+            .iter()
+            .enumerate()
+            .flat_map(|(i, &d)| {
+                self.candidates[d]
+                    .corners
+                    .map(|n| (n, BracingDesign::cable_id(i)))
+            })
+            .collect()
+    }
 }
 
 /// `frame.model` with the cables on `chosen` of size `size`, pretension
@@ -696,8 +721,14 @@ pub fn design(
     brace: &Bracing,
     unbraced: &StructureResults,
 ) -> Result<BracingDesign, FrameError> {
-    let candidates = diagonals(frame.net, frame.an, frame.node_ids);
     let sizes = &brace.cable.sizes;
+    let (candidates, too_short): (Vec<Diagonal>, Vec<Diagonal>) =
+        diagonals(frame.net, frame.an, frame.node_ids)
+            .into_iter()
+            .partition(|d| {
+                let c = cable_on(d, frame.an, frame.model, brace, &sizes[0], 0.0);
+                c.length_mm(&frame.model.nodes_mm) > fittings_length_mm(brace)
+            });
     let (chosen, steps) = match spec.layout {
         BracingLayout::Designed => {
             design_layout(frame, &candidates, spec, goals, brace, &sizes[0])?
@@ -742,6 +773,7 @@ pub fn design(
         largest_uls_force_n(&results) > sizes[size].design_resistance_n(brace.cable.partial_factor);
     Ok(BracingDesign {
         candidates,
+        too_short: too_short.len(),
         chosen,
         steps,
         size,
@@ -822,6 +854,13 @@ pub struct CableRow {
     pub slack_in: Vec<String>,
 }
 
+/// A cable's fittings from pin to pin, mm: the fixed end's terminal and
+/// the turnbuckle at the middle of its take-up. A diagonal no longer than
+/// this leaves no wire between them: it takes no cable.
+pub fn fittings_length_mm(brace: &Bracing) -> f64 {
+    brace.terminal_mm + brace.turnbuckle.mid_length_mm
+}
+
 /// The wire's unstressed cut length between its swaged terminal and the
 /// turnbuckle, mm: the pin-to-pin length `length_mm` less the fixed
 /// terminal and the turnbuckle at the middle of its take-up, over
@@ -833,7 +872,7 @@ pub fn wire_cut_length_mm(
     pretension_n: f64,
 ) -> f64 {
     let strain = pretension_n / (brace.cable.youngs_modulus_mpa * size.area_mm2);
-    (length_mm - brace.terminal_mm - brace.turnbuckle.mid_length_mm) / (1.0 + strain)
+    (length_mm - fittings_length_mm(brace)) / (1.0 + strain)
 }
 
 /// Every cable of `design` on its `model` (the braced model) with its
@@ -857,7 +896,7 @@ pub fn schedule(
                 .iter()
                 .filter(|r| r.limit_state == super::model::LimitState::Ultimate);
             CableRow {
-                id: format!("C{}", i + 1),
+                id: BracingDesign::cable_id(i),
                 nodes: design.candidates[d].corners.map(|n| n.to_string()),
                 length_mm,
                 wire_mm: wire_cut_length_mm(length_mm, brace, size, c.pretension_n),

@@ -75,6 +75,17 @@ pub struct BracedReport {
     /// The layout, size, pretension and figures (its `model` and
     /// `results` moved into the report's).
     pub design: BracingDesign,
+    /// The eye plates' design resistance to a cable's pull, N
+    /// ([`Profile::eye_plate_resistance_n`]).
+    pub eye_plate_resistance_n: f64,
+}
+
+impl BracedReport {
+    /// Whether every cable and eye plate carries its largest ULS force
+    /// (`force_n`).
+    pub fn holds(&self, force_n: f64) -> bool {
+        !self.design.overstressed && force_n <= self.eye_plate_resistance_n
+    }
 }
 
 impl FrameReport {
@@ -128,8 +139,11 @@ impl FrameReport {
             let force = super::bracing::largest_uls_force_n(&self.results) / 1000.0;
             let resistance = size.design_resistance_n(b.profile.cable.partial_factor) / 1000.0;
             let sign = if force <= resistance { "≤" } else { ">" };
+            let plate = b.eye_plate_resistance_n / 1000.0;
+            let plate_sign = if force <= plate { "≤" } else { ">" };
             parts.push(format!(
-                "{} cables ⌀{} mm, force {force:.2} kN {sign} {resistance:.2} kN",
+                "{} cables ⌀{} mm, force {force:.2} kN {sign} {resistance:.2} kN, \
+                 eye plate {plate_sign} {plate:.2} kN",
                 d.chosen.len(),
                 size.diameter_mm
             ));
@@ -140,7 +154,7 @@ impl FrameReport {
 
     /// Whether the grid stands: every ULS utilisation ≤ 1, α_cr > 1 for
     /// every ULS combination, every SLS deflection within the limit, every
-    /// cable within its design resistance.
+    /// cable and its eye plates within their design resistance.
     pub fn passes(&self) -> bool {
         let strength = self.governing().is_none_or(|g| g.2 <= 1.0);
         let stability = self.alpha_cr().is_none_or(|a| a.1 > 1.0)
@@ -152,7 +166,10 @@ impl FrameReport {
         let deflection = self
             .deflection()
             .is_none_or(|d| d.2 <= self.settings.deflection_limit_mm);
-        let cables = self.bracing.as_ref().is_none_or(|b| !b.design.overstressed);
+        let cables = self
+            .bracing
+            .as_ref()
+            .is_none_or(|b| b.holds(super::bracing::largest_uls_force_n(&self.results)));
         strength && stability && deflection && cables
     }
 }
@@ -248,6 +265,7 @@ pub fn run(
             goals,
             profile: brace.clone(),
             design,
+            eye_plate_resistance_n: profile.eye_plate_resistance_n().unwrap_or(0.0),
         });
     }
     let cases = cases

@@ -149,6 +149,9 @@ pub struct Stocks {
     /// Shear blocks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shear_block: Option<PieceStock>,
+    /// Bracing cables' eye plates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eye_plate: Option<PieceStock>,
     /// Studs (bars).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stud: Option<PieceStock>,
@@ -262,6 +265,7 @@ impl Stocks {
             (Piece::SplicePlate, self.splice),
             (Piece::Washer, self.washer),
             (Piece::ShearBlock, self.shear_block),
+            (Piece::EyePlate, self.eye_plate),
             (Piece::Stud, self.stud),
         ]
         .into_iter()
@@ -282,6 +286,7 @@ impl Stocks {
             splice: get(Piece::SplicePlate),
             washer: get(Piece::Washer),
             shear_block: get(Piece::ShearBlock),
+            eye_plate: get(Piece::EyePlate),
             stud: get(Piece::Stud),
         }
     }

@@ -470,15 +470,14 @@ mod tests {
                 },
                 w,
             );
-            let body = String::from_utf8(body).expect("utf8").replace(
-                "<path ",
-                r##"<path fill="#000" "##,
-            );
+            let body = String::from_utf8(body)
+                .expect("utf8")
+                .replace("<path ", r##"<path fill="#000" "##);
             s.extend_from_slice(body.as_bytes());
             s.extend_from_slice(b"</svg>");
             let text = String::from_utf8(s).expect("utf8");
-            let tree = resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default())
-                .expect("svg");
+            let tree =
+                resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default()).expect("svg");
             let mut pix = resvg::tiny_skia::Pixmap::new(600, 400).expect("pixmap");
             resvg::render(
                 &tree,

@@ -708,9 +708,10 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
         c,
         &mut top,
         &format!(
-            "pin hole {} mm at {} mm from the bolt; cable axis {} mm above the node",
+            "pin hole {} mm at {} mm from the bolt, F_Rd {} kN (EN 1993-1-8 Table 3.9); axis {} mm above the node",
             fixed(f.pin_hole_mm, 1),
             fixed(f.eye_plate_hole_spacing_mm, 0),
+            fixed(f.eye_plate_resistance_kn, 2),
             fixed(f.offset_mm, 1),
         ),
         false,
