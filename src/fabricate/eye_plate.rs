@@ -98,27 +98,6 @@ pub fn eye_plate_part(
     }
 }
 
-/// What is left of the plate between a hole of `hole_mm` and the plate's
-/// rim, mm: w/2 − d/2 every way round (the rim is concentric with both
-/// holes at the ends, and w/2 from their centres at the sides).
-pub fn ligament_mm(plate: &EyePlate, hole_mm: f64) -> f64 {
-    0.5 * (plate.width_mm - hole_mm)
-}
-
-/// The eye plate's design resistance to its cable's pull, N, by the pin
-/// connection geometry of EN 1993-1-8 Table 3.9 (type A, thickness t
-/// given): the plate carries F_Ed where the rim beyond the pin hole
-/// (along the pull) is a ≥ F_Ed·γ_M0/(2·t·f_y) + 2·d₀/3 and beside it
-/// c ≥ F_Ed·γ_M0/(2·t·f_y) + d₀/3; both are the ligament a = c = (w − d₀)/2
-/// here, so F_Rd = 2·t·f_y/γ_M0 · (a − 2·d₀/3). The pin's own shear and
-/// bending are the terminal's rating, not the plate's. Zero when the
-/// ligament is too small for any pull.
-pub fn pin_resistance_n(plate: &EyePlate, yield_mpa: f64, gamma_m0: f64) -> f64 {
-    let d0 = plate.pin_hole_mm;
-    let a = ligament_mm(plate, d0);
-    (2.0 * plate.thickness_mm * yield_mpa / gamma_m0 * (a - 2.0 * d0 / 3.0)).max(0.0)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -181,13 +160,13 @@ mod tests {
         assert_eq!(eye_plate_id(10.0), "EP10");
     }
 
-    /// EN 1993-1-8 Table 3.9 by hand: 4 mm S355 plate 24 mm wide, 6.5 mm
+    /// EN 1993-1-8 Table 3.9 by hand ([`EyePlate::pin_resistance_n`]): 4 mm S355 plate 24 mm wide, 6.5 mm
     /// pin hole: a = (24 − 6.5)/2 = 8.75, a − 2·6.5/3 = 4.4167, F_Rd =
     /// 2·4·355·4.4167 = 12 543 N. A 3 mm rim beside a 12 mm hole leaves
     /// nothing: 0.
     #[test]
     fn pin_resistance_by_hand() {
-        let f = pin_resistance_n(&plate(), 355.0, 1.0);
+        let f = plate().pin_resistance_n(355.0, 1.0);
         assert!((f - 2.0 * 4.0 * 355.0 * (8.75 - 13.0 / 3.0)).abs() < 1e-9);
         assert!((f - 12_543.33).abs() < 0.01, "{f}");
         let thin = EyePlate {
@@ -195,6 +174,6 @@ mod tests {
             pin_hole_mm: 12.0,
             ..plate()
         };
-        assert_eq!(pin_resistance_n(&thin, 355.0, 1.0), 0.0);
+        assert_eq!(thin.pin_resistance_n(355.0, 1.0), 0.0);
     }
 }

@@ -117,6 +117,10 @@ pub struct PlanFittings {
     pub eye_plate_hole_spacing_mm: f64,
     /// The pin's hole.
     pub pin_hole_mm: f64,
+    /// The node bolt's hole in the plate (the bolt and its clearance).
+    pub bolt_hole_mm: f64,
+    /// The eye plates' part id on the node bolt (`EP8`).
+    pub eye_plate_part: String,
     /// The eye plate's design resistance to its cable's pull, kN (EN
     /// 1993-1-8 Table 3.9; 3 decimals).
     pub eye_plate_resistance_kn: f64,
@@ -280,6 +284,8 @@ impl PlanBracing {
                     eye_plate_width_mm: f.eye_plate.width_mm,
                     eye_plate_hole_spacing_mm: f.eye_plate.hole_spacing_mm,
                     pin_hole_mm: f.eye_plate.pin_hole_mm,
+                    bolt_hole_mm: b.eye_plate_bolt_hole_mm,
+                    eye_plate_part: b.eye_plate_id.clone(),
                     eye_plate_resistance_kn: kn(b.eye_plate_resistance_n),
                     terminal_mm: f.terminal_mm,
                     turnbuckle_mid_mm: f.turnbuckle.mid_length_mm,
@@ -445,6 +451,9 @@ pub struct StructureDrawing {
     pub mode: Option<(String, f64, Vec<DVec3>)>,
     /// Every cable's pins (the schedule's order), mm.
     pub cables: Vec<[DVec3; 2]>,
+    /// The eye plate's outline in its own frame (bolt hole at (w/2, w/2)),
+    /// mm, when braced ([`crate::fabricate::eye_plate::eye_plate_outline`]).
+    pub eye_plate_mm: Vec<[f64; 2]>,
 }
 
 fn limit_state_name(l: LimitState) -> &'static str {
@@ -610,6 +619,16 @@ impl PlanStructure {
 
         let translation = |d: &[f64; 6]| DVec3::new(d[0], d[1], d[2]);
         let drawing = StructureDrawing {
+            eye_plate_mm: report
+                .bracing
+                .as_ref()
+                .map(|b| {
+                    crate::fabricate::eye_plate::eye_plate_outline(&b.profile.eye_plate)
+                        .into_iter()
+                        .map(|p| [p.x, p.y])
+                        .collect()
+                })
+                .unwrap_or_default(),
             cables: model
                 .cables
                 .iter()

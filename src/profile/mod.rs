@@ -289,6 +289,29 @@ pub struct EyePlate {
     pub yield_mpa: Option<f64>,
 }
 
+impl EyePlate {
+    /// What is left of the plate between a hole of `hole_mm` and its
+    /// rim, mm: w/2 − d/2 every way round (the plate's ends are half
+    /// circles about its holes, its sides w/2 from their centres).
+    pub fn ligament_mm(&self, hole_mm: f64) -> f64 {
+        0.5 * (self.width_mm - hole_mm)
+    }
+
+    /// Its design resistance to its cable's pull, N, by the pin
+    /// connection geometry of EN 1993-1-8 Table 3.9 (type A, thickness t
+    /// given): the plate carries F_Ed where the rim beyond the pin hole
+    /// (along the pull) is a ≥ F_Ed·γ_M0/(2·t·f_y) + 2·d₀/3 and beside it
+    /// c ≥ F_Ed·γ_M0/(2·t·f_y) + d₀/3; both are the ligament a = c =
+    /// (w − d₀)/2 here, so F_Rd = 2·t·f_y/γ_M0 · (a − 2·d₀/3). The pin's
+    /// own shear and bending are the terminal's rating, not the plate's.
+    /// Zero when the ligament is too small for any pull.
+    pub fn pin_resistance_n(&self, yield_mpa: f64, gamma_m0: f64) -> f64 {
+        let d0 = self.pin_hole_mm;
+        let a = self.ligament_mm(d0);
+        (2.0 * self.thickness_mm * yield_mpa / gamma_m0 * (a - 2.0 * d0 / 3.0)).max(0.0)
+    }
+}
+
 /// γ_M0 of an eye plate (EN 1993-1-1 §6.1, the recommended value).
 pub const EYE_PLATE_GAMMA_M0: f64 = 1.0;
 
@@ -305,16 +328,10 @@ impl<S> ProfileOf<S> {
     }
 
     /// The eye plate's design resistance to its cable's pull, N
-    /// ([`crate::fabricate::eye_plate::pin_resistance_n`]); `None` without
-    /// bracing.
+    /// ([`EyePlate::pin_resistance_n`]); `None` without bracing.
     pub fn eye_plate_resistance_n(&self) -> Option<f64> {
         let e = &self.bracing.as_ref()?.eye_plate;
-        let fy = self.eye_plate_yield_mpa()?;
-        Some(crate::fabricate::eye_plate::pin_resistance_n(
-            e,
-            fy,
-            EYE_PLATE_GAMMA_M0,
-        ))
+        Some(e.pin_resistance_n(self.eye_plate_yield_mpa()?, EYE_PLATE_GAMMA_M0))
     }
 }
 

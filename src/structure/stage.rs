@@ -78,6 +78,10 @@ pub struct BracedReport {
     /// The eye plates' design resistance to a cable's pull, N
     /// ([`Profile::eye_plate_resistance_n`]).
     pub eye_plate_resistance_n: f64,
+    /// The node bolt's hole in an eye plate, mm (bolt and clearance).
+    pub eye_plate_bolt_hole_mm: f64,
+    /// The eye plates' part id on the node bolt (`EP8`).
+    pub eye_plate_id: String,
 }
 
 impl BracedReport {
@@ -266,6 +270,13 @@ pub fn run(
             profile: brace.clone(),
             design,
             eye_plate_resistance_n: profile.eye_plate_resistance_n().unwrap_or(0.0),
+            eye_plate_id: crate::fabricate::eye_plate::eye_plate_id(
+                profile.node_bolt.as_ref().map_or(0.0, |b| b.diameter_mm),
+            ),
+            eye_plate_bolt_hole_mm: profile
+                .node_bolt
+                .as_ref()
+                .map_or(0.0, |b| b.diameter_mm + b.hole_clearance_mm),
         });
     }
     let cases = cases

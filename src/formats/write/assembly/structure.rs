@@ -603,6 +603,63 @@ const CABLE_COLUMNS: [Column; 6] = [
     ("max kN", 13.0, Align::Right),
 ];
 
+/// The eye plate drawn full size (on the A3 sheet) at (`x`, `top`) (its outline, the bolt's
+/// and the pin's holes, their centre line), with its measures beside it;
+/// returns the y below it.
+fn eye_plate_detail(
+    c: &mut Canvas,
+    f: &crate::plan::structure::PlanFittings,
+    d: &StructureDrawing,
+    x: f64,
+    top: f64,
+) -> f64 {
+    let (w, s) = (f.eye_plate_width_mm, f.eye_plate_hole_spacing_mm);
+    let (x0, y0) = (x + 2.0, top - 2.0 - w);
+    c.stroke(BLACK);
+    c.width(0.3);
+    let outline: Vec<[f64; 2]> = d
+        .eye_plate_mm
+        .iter()
+        .map(|p| [x0 + p[0], y0 + p[1]])
+        .collect();
+    c.polyline(&outline, true);
+    let mid = 0.5 * w;
+    c.circle([x0 + mid, y0 + mid], 0.5 * f.bolt_hole_mm, false);
+    c.circle([x0 + mid + s, y0 + mid], 0.5 * f.pin_hole_mm, false);
+    c.stroke(GREY);
+    c.width(0.15);
+    c.dash(true);
+    c.line([x0 - 1.0, y0 + mid], [x0 + s + w + 1.0, y0 + mid]);
+    c.dash(false);
+    c.fill(BLACK);
+    let tx = x0 + s + w + 4.0;
+    let lines = [
+        format!(
+            "{} at 1:1 (A3): {} × {} mm",
+            f.eye_plate_part,
+            fixed(s + w, 0),
+            fixed(w, 0)
+        ),
+        format!(
+            "holes {} and {} mm",
+            fixed(f.bolt_hole_mm, 1),
+            fixed(f.pin_hole_mm, 1)
+        ),
+        format!("{} mm apart; nested as a part", fixed(s, 0)),
+    ];
+    for (i, l) in lines.iter().enumerate() {
+        c.text(
+            [tx, top - 6.0 - 4.0 * i as f64],
+            7.0,
+            false,
+            Align::Left,
+            0.0,
+            l,
+        );
+    }
+    top - 4.0 - w
+}
+
 /// The bracing plan: the grid with every cable and its id, the cable
 /// schedule, the strand, its fittings and how the figures moved.
 fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Option<Page> {
@@ -697,10 +754,10 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
         c,
         &mut top,
         &format!(
-            "{} eye plates {} mm thick, {} mm wide, under the node bolt;",
+            "{} eye plates ({}), {} mm thick, under the node bolts;",
             f.eye_plates,
+            f.eye_plate_part,
             fixed(f.eye_plate_thickness_mm, 1),
-            fixed(f.eye_plate_width_mm, 0),
         ),
         false,
     );
@@ -708,12 +765,15 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
         c,
         &mut top,
         &format!(
-            "pin hole {} mm at {} mm from the bolt, F_Rd {} kN (EN 1993-1-8 Table 3.9); axis {} mm above the node",
-            fixed(f.pin_hole_mm, 1),
-            fixed(f.eye_plate_hole_spacing_mm, 0),
+            "pin hole F_Rd {} kN (EN 1993-1-8 Table 3.9);",
             fixed(f.eye_plate_resistance_kn, 2),
-            fixed(f.offset_mm, 1),
         ),
+        false,
+    );
+    text(
+        c,
+        &mut top,
+        &format!("cable axis {} mm above the node", fixed(f.offset_mm, 1)),
         false,
     );
     text(
@@ -727,6 +787,7 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
         ),
         false,
     );
+    top = eye_plate_detail(c, f, d, x, top);
     top -= 2.0;
     let rows: Vec<Row> = b
         .cables
