@@ -883,3 +883,88 @@ fn after(line: &str, key: &str) -> f64 {
         .and_then(|w| w.parse().ok())
         .unwrap_or_else(|| panic!("a number after {key} in {line}"))
 }
+
+/// A schedule longer than the bracing page goes on: the Enneper pavilion
+/// with every other quad crossed (140 cables) built to assembly.pdf, read
+/// back by pypdf. The bracing page shows the first rows and says how many
+/// more follow; the continuation pages list exactly those, `C{k}` from
+/// the next to the last cable, each once, with the strand's diameter.
+#[test]
+fn a_long_cable_schedule_continues_on_pages_of_its_own() {
+    use crate::support::{lamella, root, scratch, tools::read_pdf};
+    let dir = scratch("long-schedule");
+    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
+    let loads = dir.join("alternate.yaml");
+    std::fs::write(
+        &loads,
+        text.replace("layout: designed", "layout: alternate"),
+    )
+    .unwrap();
+    let out = dir.join("kit");
+    let (code, stdout, err) = lamella(&[
+        "build",
+        "samples/enneper-4m.yaml",
+        "--profile",
+        "profiles/steel-1.5.yaml",
+        "--loads",
+        loads.to_str().unwrap(),
+        "--allow-overstress",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{stdout}{err}");
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    let n = plan["structure"]["bracing"]["cables"]
+        .as_array()
+        .unwrap()
+        .len();
+    assert_eq!(n, 140);
+    let Some(pdf) = read_pdf(&out.join("assembly.pdf")) else {
+        return;
+    };
+    let texts: Vec<&str> = pdf["page"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["text"].as_str().unwrap_or_default())
+        .collect();
+    let plan_page = texts
+        .iter()
+        .position(|t| t.contains("Structure: bracing plan and cable schedule"))
+        .expect("the bracing page");
+    let note = texts[plan_page]
+        .lines()
+        .find(|l| l.contains("more on the next pages"))
+        .expect("the note");
+    let more: usize = note
+        .trim_start_matches('…')
+        .split_whitespace()
+        .next()
+        .and_then(|w| w.parse().ok())
+        .unwrap_or_else(|| panic!("{note}"));
+    assert!(more > 0 && more < n, "{note}");
+    let shown = n - more;
+    // The continuation pages follow the bracing page.
+    let mut ids: Vec<String> = Vec::new();
+    for t in texts[plan_page + 1..]
+        .iter()
+        .take_while(|t| t.contains("Structure: cable schedule, continued"))
+    {
+        for line in t.lines() {
+            let mut words = line.split_whitespace();
+            if let (Some(id), Some(_nodes), Some(dia)) = (words.next(), words.next(), words.next())
+            {
+                if id.starts_with('C') && id[1..].parse::<usize>().is_ok() {
+                    assert_eq!(dia, "3", "{line}");
+                    ids.push(id.to_string());
+                }
+            }
+        }
+    }
+    let want: Vec<String> = (shown + 1..=n).map(|k| format!("C{k}")).collect();
+    let mut sorted = ids.clone();
+    sorted.sort_by_key(|s| s[1..].parse::<usize>().unwrap());
+    assert_eq!(sorted, want, "every remaining cable once");
+}

@@ -49,7 +49,7 @@ pub fn pages(plan: &Plan, frame: &Frame) -> Vec<Page> {
     pages.extend(deformed_page(st, d, frame));
     pages.push(utilisation_page(st, d, frame));
     pages.extend(mode_page(d, frame));
-    pages.extend(bracing_page(st, d, frame));
+    pages.extend(bracing_pages(st, d, frame));
     pages.extend(reaction_pages(st, frame));
     pages
 }
@@ -298,7 +298,15 @@ fn summary_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Page
             )
         })
         .collect();
-    draw_down_to_frame(c, &COMBINATION_COLUMNS, x, top, frame, &rows);
+    draw_down_to_frame(
+        c,
+        &COMBINATION_COLUMNS,
+        x,
+        top,
+        frame,
+        &rows,
+        "in plan.json",
+    );
     page
 }
 
@@ -311,8 +319,12 @@ fn draw_down_to_frame(
     top: f64,
     frame: &Frame,
     rows: &[Row],
-) {
-    let room = ((top - frame.y0_mm - HEADER_MM) / ROW_MM).floor().max(0.0) as usize;
+    rest: &str,
+) -> usize {
+    // The last line under the table says where the rest are.
+    let room = ((top - frame.y0_mm - HEADER_MM - 5.0) / ROW_MM)
+        .floor()
+        .max(0.0) as usize;
     let shown = rows.len().min(room);
     draw_block(c, columns, x, top, &rows[..shown]);
     if shown < rows.len() {
@@ -323,9 +335,10 @@ fn draw_down_to_frame(
             false,
             Align::Left,
             0.0,
-            &format!("… {} more in plan.json", rows.len() - shown),
+            &format!("… {} more {rest}", rows.len() - shown),
         );
     }
+    shown
 }
 
 /// The SLS deformed shape.
@@ -594,18 +607,19 @@ fn reaction_pages(st: &PlanStructure, frame: &Frame) -> Vec<Page> {
     )
 }
 
-const CABLE_COLUMNS: [Column; 6] = [
+const CABLE_COLUMNS: [Column; 7] = [
     ("cable", 12.0, Align::Left),
     ("nodes", 20.0, Align::Left),
+    ("dia mm", 11.0, Align::Right),
     ("pin-pin mm", 18.0, Align::Right),
     ("wire cut mm", 19.0, Align::Right),
     ("T0 kN", 13.0, Align::Right),
     ("max kN", 13.0, Align::Right),
 ];
 
-/// The eye plate drawn full size (on the A3 sheet) at (`x`, `top`) (its outline, the bolt's
-/// and the pin's holes, their centre line), with its measures beside it;
-/// returns the y below it.
+/// The eye plate drawn full size (on the A3 sheet) at (`x`, `top`): its
+/// outline, the bolt's and the pin's holes, their centre line, with its
+/// measures beside it; returns the y below it.
 fn eye_plate_detail(
     c: &mut Canvas,
     f: &crate::plan::structure::PlanFittings,
@@ -661,9 +675,12 @@ fn eye_plate_detail(
 }
 
 /// The bracing plan: the grid with every cable and its id, the cable
-/// schedule, the strand, its fittings and how the figures moved.
-fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Option<Page> {
-    let b = st.bracing.as_ref()?;
+/// schedule (continued on pages of its own where it does not fit), the
+/// strand, its fittings and how the figures moved.
+fn bracing_pages(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Vec<Page> {
+    let Some(b) = st.bracing.as_ref() else {
+        return Vec::new();
+    };
     let table_w: f64 = CABLE_COLUMNS.iter().map(|c| c.1).sum();
     let mut page = Page::new(SECTION, "Structure: bracing plan and cable schedule", None);
     let c = &mut page.canvas;
@@ -680,7 +697,12 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
         let (a, z) = (view.map(*p), view.map(*q));
         c.line(a, z);
         c.fill(RED);
-        let mid = [0.5 * (a[0] + z[0]) + 1.0, 0.5 * (a[1] + z[1]) + 1.0];
+        // A third of the way from its fixed end: a crossed pair's ids
+        // do not meet at the crossing.
+        let mid = [
+            a[0] + (z[0] - a[0]) / 3.0 + 1.0,
+            a[1] + (z[1] - a[1]) / 3.0 + 1.0,
+        ];
         c.text(mid, 6.0, true, Align::Left, 0.0, &cable.id);
     }
     let figures = |f: &crate::plan::structure::PlanFigures| {
@@ -797,6 +819,7 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
                 vec![
                     k.id.clone(),
                     format!("{}-{}", k.nodes[0], k.nodes[1]),
+                    fixed(b.diameter_mm, 0),
                     fixed(k.length_mm, 1),
                     fixed(k.wire_cut_mm, 1),
                     fixed(k.pretension_kn, 2),
@@ -806,6 +829,17 @@ fn bracing_page(st: &PlanStructure, d: &StructureDrawing, frame: &Frame) -> Opti
             )
         })
         .collect();
-    draw_down_to_frame(c, &CABLE_COLUMNS, x, top, frame, &rows);
-    Some(page)
+    let shown = draw_down_to_frame(c, &CABLE_COLUMNS, x, top, frame, &rows, "on the next pages");
+    // The rest of the schedule, whole, on pages of its own.
+    let mut pages = vec![page];
+    if shown < rows.len() {
+        pages.extend(table_pages(
+            frame,
+            SECTION,
+            "Structure: cable schedule, continued",
+            &CABLE_COLUMNS,
+            &rows[shown..],
+        ));
+    }
+    pages
 }
