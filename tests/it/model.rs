@@ -502,3 +502,96 @@ fn the_page_draws_the_grid_and_picks_a_strip() {
         "{line}"
     );
 }
+
+/// A braced grid's cables in the model: the small hypar on the steel
+/// profile with every other quad crossed. The `cables` node lists the
+/// plan's cable ids; each cable is a square rod (8 vertices) of the
+/// strand's diameter whose axis runs pin to pin: its length is the
+/// schedule's, and each end lies 30 mm up the normal and 30 mm along the
+/// tangent plane from its joint's node in plan.json, so √(30² + 30²) =
+/// 42.43 mm from it. The model passes the glTF-Validator.
+#[test]
+fn a_braced_grids_cables_are_in_the_model_pin_to_pin() {
+    let dir = scratch("cables");
+    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
+    let loads = dir.join("alternate.yaml");
+    std::fs::write(
+        &loads,
+        text.replace("layout: designed", "layout: alternate"),
+    )
+    .unwrap();
+    let out = dir.join("kit");
+    let (code, stdout, err) = lamella(&[
+        "build",
+        "samples/hypar-small.yaml",
+        "--profile",
+        "profiles/steel-1.5.yaml",
+        "--loads",
+        loads.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{stdout}{err}");
+    let plan = plan_json(&out);
+    let bracing = &plan["structure"]["bracing"];
+    let cables = bracing["cables"].as_array().expect("cables");
+    let nodes: std::collections::BTreeMap<String, [f64; 3]> = plan["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| (n["id"].to_string(), xyz(&n["position_mm"])))
+        .collect();
+    let glb = read_glb(&out.join("model.glb"));
+    let node = glb.child("cables");
+    let ids: Vec<&str> = node["extras"]["ids"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    let want: Vec<&str> = cables.iter().map(|c| c["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, want);
+    let pos: Vec<[f64; 3]> = glb
+        .vec3(&glb.primitive(node)["attributes"]["POSITION"])
+        .into_iter()
+        .map(|p| glb.to_network_mm(p))
+        .collect();
+    assert_eq!(pos.len(), 8 * cables.len());
+    let dist = |a: [f64; 3], b: [f64; 3]| {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    };
+    let mean = |ps: &[[f64; 3]]| {
+        let n = ps.len() as f64;
+        [0, 1, 2].map(|k| ps.iter().map(|p| p[k]).sum::<f64>() / n)
+    };
+    let d = bracing["diameter_mm"].as_f64().unwrap();
+    for (c, rod) in cables.iter().zip(pos.chunks(8)) {
+        // Vertex k's bit 0 is the end along the axis, bits 1 and 2 across.
+        let start: Vec<[f64; 3]> = (0..8).filter(|k| k & 1 == 0).map(|k| rod[k]).collect();
+        let end: Vec<[f64; 3]> = (0..8).filter(|k| k & 1 == 1).map(|k| rod[k]).collect();
+        let (a, b) = (mean(&start), mean(&end));
+        let length = c["length_mm"].as_f64().unwrap();
+        assert!((dist(a, b) - length).abs() < 0.01, "{c}: {}", dist(a, b));
+        assert!((dist(rod[0], rod[2]) - d).abs() < 1e-3, "{c}");
+        let joints = c["nodes"].as_array().unwrap();
+        for (pin, joint) in [a, b].into_iter().zip(joints) {
+            let at = nodes[&joint.as_str().unwrap().to_string()];
+            let off = dist(pin, at);
+            assert!((off - 30.0 * 2f64.sqrt()).abs() < 0.01, "{c}: {off}");
+        }
+    }
+    if let Some(script) = validator() {
+        let o = Command::new("node")
+            .arg(&script)
+            .arg(out.join("model.glb"))
+            .output()
+            .expect("run node");
+        let r: Value = serde_json::from_slice(&o.stdout).expect("report");
+        assert_eq!(
+            (r["errors"].as_u64(), r["warnings"].as_u64()),
+            (Some(0), Some(0)),
+            "{r}"
+        );
+    }
+}

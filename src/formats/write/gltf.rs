@@ -13,7 +13,9 @@
 //!   edges where the parts have them), `extras` {id, family, material,
 //!   utilisation, length_mm, lamellas}; a node `washers` (star washers,
 //!   two crossed bars on top of and below each node), `studs` (two-level
-//!   joints), and `nodes` (every node as a point, in plan order).
+//!   joints), `cables` (a braced grid's cables pin to pin, square rods of
+//!   the strand's diameter, `extras` {kind, ids, diameter_mm}), and
+//!   `nodes` (every node as a point, in plan order).
 //! * **Colours**: `COLOR_0` by the elastic check's utilisation of each
 //!   lamella ([`UTILISATION_STOPS`], linear between stops; above 1 purple;
 //!   unchecked grey).
@@ -46,6 +48,8 @@ pub const UNCHECKED: [u8; 3] = [170, 170, 170];
 pub const EDGE: [u8; 3] = [110, 110, 120];
 /// The colour of washers and studs.
 pub const HARDWARE: [u8; 3] = [60, 60, 66];
+/// The colour of bracing cables.
+pub const CABLE: [u8; 3] = [200, 30, 30];
 
 /// The colour of a utilisation (None: unchecked).
 pub fn utilisation_colour(u: Option<f64>) -> [u8; 3] {
@@ -576,6 +580,48 @@ pub fn to_glb(plan: &Plan) -> Result<Vec<u8>, String> {
             }
             meshes.push(bin.mesh(&geo, name, 1, false, 4));
             nodes.push(json!({"name": name, "mesh": meshes.len() - 1, "extras": {"kind": name}}));
+            children.push(nodes.len() - 1);
+        }
+    }
+    // A braced grid's cables, pin to pin, as square rods of the strand's
+    // diameter (erected only: no flat state).
+    if let (Some(st), Some(b)) = (
+        plan.structure.as_ref(),
+        plan.structure.as_ref().and_then(|s| s.bracing.as_ref()),
+    ) {
+        let ends = st.drawing.as_ref().map_or(&[][..], |d| &d.cables[..]);
+        let mut geo = Geo::default();
+        for [p, q] in ends {
+            let (p, q) = ([p.x, p.y, p.z], [q.x, q.y, q.z]);
+            let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+            let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if length == 0.0 {
+                continue;
+            }
+            let u = normalized(d);
+            let up = if u[2].abs() < 0.9 {
+                [0.0, 0.0, 1.0]
+            } else {
+                [1.0, 0.0, 0.0]
+            };
+            let v = normalized(cross(u, up));
+            let w = cross(u, v);
+            let r = 0.5 * b.diameter_mm;
+            geo.cuboid(
+                add(p, d, 0.5),
+                [(u, 0.5 * length), (v, r), (w, r)],
+                c,
+                CABLE,
+            );
+        }
+        if !geo.pos.is_empty() {
+            meshes.push(bin.mesh(&geo, "cables", 1, false, 4));
+            let ids: Vec<&str> = b.cables.iter().map(|k| k.id.as_str()).collect();
+            nodes.push(json!({
+                "name": "cables",
+                "mesh": meshes.len() - 1,
+                "extras": {"kind": "cables", "ids": ids, "diameter_mm": b.diameter_mm}
+            }));
             children.push(nodes.len() - 1);
         }
     }
