@@ -684,28 +684,12 @@ fn a_cable_pulling_a_columns_top_to_its_foot_holds_it_by_its_string_term() {
 /// are were left out, and said so).
 #[test]
 fn a_braced_build_cuts_and_nests_its_eye_plates() {
-    use crate::support::{lamella, root, scratch};
-    let dir = scratch("eye-plates");
-    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
-    assert!(text.contains("layout: designed"));
-    let loads = dir.join("alternate.yaml");
-    std::fs::write(
-        &loads,
-        text.replace("layout: designed", "layout: alternate"),
-    )
-    .unwrap();
-    let out = dir.join("kit");
-    let (code, stdout, err) = lamella(&[
-        "build",
-        "samples/hypar-small.yaml",
-        "--profile",
-        "profiles/steel-1.5.yaml",
-        "--loads",
-        loads.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, Some(0), "{stdout}{err}");
+    let out = braced_build(
+        &crate::support::scratch("eye-plates"),
+        "hypar-small",
+        "alternate",
+        &[],
+    );
     let read = |f: &str| -> serde_json::Value {
         serde_json::from_str(&std::fs::read_to_string(out.join(f)).expect(f)).expect(f)
     };
@@ -891,29 +875,13 @@ fn after(line: &str, key: &str) -> f64 {
 /// the next to the last cable, each once, with the strand's diameter.
 #[test]
 fn a_long_cable_schedule_continues_on_pages_of_its_own() {
-    use crate::support::{lamella, root, scratch, tools::read_pdf};
-    let dir = scratch("long-schedule");
-    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
-    let loads = dir.join("alternate.yaml");
-    std::fs::write(
-        &loads,
-        text.replace("layout: designed", "layout: alternate"),
-    )
-    .unwrap();
-    let out = dir.join("kit");
-    let (code, stdout, err) = lamella(&[
-        "build",
-        "samples/enneper-4m.yaml",
-        "--profile",
-        "profiles/steel-1.5.yaml",
-        "--loads",
-        loads.to_str().unwrap(),
-        "--allow-overstress",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, Some(0), "{stdout}{err}");
+    use crate::support::{scratch, tools::read_pdf};
+    let out = braced_build(
+        &scratch("long-schedule"),
+        "enneper-4m",
+        "alternate",
+        &["--allow-overstress"],
+    );
     let plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
     let n = plan["structure"]["bracing"]["cables"]
@@ -967,4 +935,41 @@ fn a_long_cable_schedule_continues_on_pages_of_its_own() {
     let mut sorted = ids.clone();
     sorted.sort_by_key(|s| s[1..].parse::<usize>().unwrap());
     assert_eq!(sorted, want, "every remaining cable once");
+}
+
+/// The pavilion's loads braced with `layout` (samples/loads/pavilion-braced.yaml,
+/// its `layout: designed` replaced) built on `sample` with the steel
+/// profile into `dir`/kit, with `extra` arguments; the kit folder.
+pub fn braced_build(
+    dir: &std::path::Path,
+    sample: &str,
+    layout: &str,
+    extra: &[&str],
+) -> std::path::PathBuf {
+    use crate::support::{lamella, root};
+    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
+    assert!(text.contains("layout: designed"));
+    let loads = dir.join(format!("{layout}.yaml"));
+    std::fs::write(
+        &loads,
+        text.replace("layout: designed", &format!("layout: {layout}")),
+    )
+    .unwrap();
+    let out = dir.join("kit");
+    let sample = format!("samples/{sample}.yaml");
+    let mut args = vec![
+        "build",
+        &sample,
+        "--profile",
+        "profiles/steel-1.5.yaml",
+        "--loads",
+        loads.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let (code, stdout, err) = lamella(&args);
+    assert_eq!(code, Some(0), "{stdout}{err}");
+    out
 }

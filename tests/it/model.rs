@@ -512,27 +512,7 @@ fn the_page_draws_the_grid_and_picks_a_strip() {
 /// 42.43 mm from it. The model passes the glTF-Validator.
 #[test]
 fn a_braced_grids_cables_are_in_the_model_pin_to_pin() {
-    let dir = scratch("cables");
-    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
-    let loads = dir.join("alternate.yaml");
-    std::fs::write(
-        &loads,
-        text.replace("layout: designed", "layout: alternate"),
-    )
-    .unwrap();
-    let out = dir.join("kit");
-    let (code, stdout, err) = lamella(&[
-        "build",
-        "samples/hypar-small.yaml",
-        "--profile",
-        "profiles/steel-1.5.yaml",
-        "--loads",
-        loads.to_str().unwrap(),
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, Some(0), "{stdout}{err}");
+    let out = crate::bracing::braced_build(&scratch("cables"), "hypar-small", "alternate", &[]);
     let plan = plan_json(&out);
     let bracing = &plan["structure"]["bracing"];
     let cables = bracing["cables"].as_array().expect("cables");
