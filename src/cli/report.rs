@@ -194,6 +194,12 @@ fn bracing(b: &lamella::plan::structure::PlanBracing) {
             b.too_short, b.fittings.terminal_mm, b.fittings.turnbuckle_mid_mm
         );
     }
+    if b.no_bolt > 0 {
+        println!(
+            "  {} diagonals left out: they end at an edge joint without a bolt for the eye plate",
+            b.no_bolt
+        );
+    }
     let show = |x: Option<f64>, d: usize| x.map_or("–".to_string(), |v| format!("{v:.d$}"));
     let goal = |x: Option<f64>, sign: &str, d: usize| {
         x.map_or("no target".to_string(), |v| {

@@ -71,6 +71,8 @@ pub struct PlanBracing {
     pub candidates: usize,
     /// Diagonals left out, no longer pin to pin than a cable's fittings.
     pub too_short: usize,
+    /// Diagonals left out, ending at an edge joint without a bolt.
+    pub no_bolt: usize,
     /// The strand.
     pub designation: String,
     /// Its diameter, mm.
@@ -250,6 +252,7 @@ impl PlanBracing {
             },
             candidates: d.candidates.len(),
             too_short: d.too_short,
+            no_bolt: d.no_bolt,
             designation: b.profile.cable.designation.clone(),
             diameter_mm: size.diameter_mm,
             design_resistance_kn: kn(size.design_resistance_n(b.profile.cable.partial_factor)),

@@ -356,6 +356,9 @@ pub struct Frame<'a> {
     pub settings: &'a Settings,
     /// Network node id → model node.
     pub node_ids: &'a BTreeMap<String, usize>,
+    /// Whether the edge joints have a bolt (an eye plate needs one; the
+    /// A×B nodes always have the node bolt a braced profile must give).
+    pub edge_bolted: bool,
 }
 
 /// A bracing designed and sized.
@@ -367,6 +370,9 @@ pub struct BracingDesign {
     /// Diagonals left out: pin to pin no longer than the fittings (the
     /// terminal and the turnbuckle at mid take-up), so no wire between.
     pub too_short: usize,
+    /// Diagonals left out: ending at an edge joint without a bolt to hold
+    /// an eye plate.
+    pub no_bolt: usize,
     /// The chosen ones, ascending, one cable each (the model's cables).
     pub chosen: Vec<usize>,
     /// The designed layout's steps (empty for a pattern).
@@ -722,13 +728,15 @@ pub fn design(
     unbraced: &StructureResults,
 ) -> Result<BracingDesign, FrameError> {
     let sizes = &brace.cable.sizes;
-    let (candidates, too_short): (Vec<Diagonal>, Vec<Diagonal>) =
+    let (bolted, no_bolt): (Vec<Diagonal>, Vec<Diagonal>) =
         diagonals(frame.net, frame.an, frame.node_ids)
             .into_iter()
-            .partition(|d| {
-                let c = cable_on(d, frame.an, frame.model, brace, &sizes[0], 0.0);
-                c.length_mm(&frame.model.nodes_mm) > fittings_length_mm(brace)
-            });
+            .partition(|d| frame.edge_bolted || !d.corners.iter().any(|&n| at_edge(frame.an, n)));
+    let (candidates, too_short): (Vec<Diagonal>, Vec<Diagonal>) =
+        bolted.into_iter().partition(|d| {
+            let c = cable_on(d, frame.an, frame.model, brace, &sizes[0], 0.0);
+            c.length_mm(&frame.model.nodes_mm) > fittings_length_mm(brace)
+        });
     let (chosen, steps) = match spec.layout {
         BracingLayout::Designed => {
             design_layout(frame, &candidates, spec, goals, brace, &sizes[0])?
@@ -774,6 +782,7 @@ pub fn design(
     Ok(BracingDesign {
         candidates,
         too_short: too_short.len(),
+        no_bolt: no_bolt.len(),
         chosen,
         steps,
         size,
@@ -852,6 +861,15 @@ pub struct CableRow {
     pub max_force_n: f64,
     /// The combinations under which it is slack.
     pub slack_in: Vec<String>,
+}
+
+/// Whether topology node `n` is an edge node (not an A×B crossing).
+fn at_edge(an: &Analysis, n: usize) -> bool {
+    let family = |s: usize| an.strips.get(s).map(|s| s.family);
+    an.topology
+        .nodes
+        .get(n)
+        .is_some_and(|node| family(node.a) != Some(Family::A) || family(node.b) != Some(Family::B))
 }
 
 /// A cable's fittings from pin to pin, mm: the fixed end's terminal and

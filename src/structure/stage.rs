@@ -260,6 +260,7 @@ pub fn run(
             combinations: &combinations,
             settings: &settings,
             node_ids: &built.targets.node_ids,
+            edge_bolted: profile.edge_bolt_mm().is_some(),
         };
         let mut design = design(&frame, bspec, &goals, brace, &results).map_err(named)?;
         built.model = std::mem::take(&mut design.model);

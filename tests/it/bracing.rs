@@ -973,3 +973,78 @@ pub fn braced_build(
     assert_eq!(code, Some(0), "{stdout}{err}");
     out
 }
+
+/// Cables end only where a bolt can hold their eye plates: with the steel
+/// profile's edge joints made slots (`edge_joint: {kind: slot}`: no edge
+/// bolt), no cable of the Enneper pavilion's alternate layout ends at an
+/// edge node, and the diagonals that would have are counted as left out;
+/// with the bolted edges of the shipped profile some do, and none is left
+/// out for that.
+#[test]
+fn cables_end_only_at_bolted_joints() {
+    use crate::support::{lamella, root, scratch};
+    let dir = scratch("slot-edges");
+    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
+    let loads = dir.join("alternate.yaml");
+    std::fs::write(
+        &loads,
+        text.replace("layout: designed", "layout: alternate"),
+    )
+    .unwrap();
+    let profile = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap();
+    assert!(!profile.contains("edge_joint"));
+    let slots = dir.join("steel-slots.yaml");
+    std::fs::write(&slots, format!("{profile}\nedge_joint:\n  kind: slot\n")).unwrap();
+    let run = |profile: &str, name: &str| {
+        let out = dir.join(name);
+        let (code, stdout, err) = lamella(&[
+            "frame",
+            "samples/enneper-4m.yaml",
+            "--profile",
+            profile,
+            "--loads",
+            loads.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(matches!(code, Some(0) | Some(3)), "{stdout}{err}");
+        let plan: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+        (plan, stdout)
+    };
+    let edge_nodes = |plan: &serde_json::Value| -> std::collections::BTreeSet<String> {
+        plan["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|n| {
+                !(n["a"].as_str().unwrap().starts_with('A')
+                    && n["b"].as_str().unwrap().starts_with('B'))
+            })
+            .map(|n| n["id"].to_string())
+            .collect()
+    };
+    let ends_at_edge = |plan: &serde_json::Value| {
+        let edge = edge_nodes(plan);
+        plan["structure"]["bracing"]["cables"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|c| c["nodes"].as_array().unwrap().clone())
+            .filter(|n| edge.contains(n.as_str().unwrap()))
+            .count()
+    };
+    let (bolted, _) = run("profiles/steel-1.5.yaml", "bolted");
+    assert_eq!(bolted["structure"]["bracing"]["no_bolt"].as_u64(), Some(0));
+    assert!(ends_at_edge(&bolted) > 0, "the bolted edges take cables");
+    let (slotted, stdout) = run(slots.to_str().unwrap(), "slots");
+    let left = slotted["structure"]["bracing"]["no_bolt"].as_u64().unwrap();
+    assert!(left > 0);
+    assert_eq!(ends_at_edge(&slotted), 0);
+    assert!(
+        stdout.contains(&format!(
+            "{left} diagonals left out: they end at an edge joint without a bolt"
+        )),
+        "{stdout}"
+    );
+}
