@@ -232,6 +232,16 @@ impl Kit {
         profile: &Profile,
         cable_ends: &[(usize, String)],
     ) -> Result<()> {
+        // Plates added before go, with their engraving warnings (which
+        // start with the part's id).
+        let old: Vec<String> = self
+            .parts
+            .iter()
+            .filter(|p| p.kind == PartKind::EyePlate)
+            .map(|p| format!("{}:", p.id))
+            .collect();
+        self.warnings
+            .retain(|w| !old.iter().any(|id| w.starts_with(id.as_str())));
         self.parts.retain(|p| p.kind != PartKind::EyePlate);
         self.summary.joints.eye_plates.clear();
         let Some(brace) = &profile.bracing else {

@@ -817,9 +817,7 @@ fn a_braced_build_cuts_and_nests_its_eye_plates() {
 fn a_thin_eye_plate_fails_the_verdict() {
     use crate::support::{lamella, root, scratch};
     let dir = scratch("thin-eye-plate");
-    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
-    let loads = dir.join("all.yaml");
-    std::fs::write(&loads, text.replace("layout: designed", "layout: all")).unwrap();
+    let loads = braced_loads(&dir, "all");
     let profile = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap();
     let run = |thickness: &str| {
         let p = dir.join(format!("steel-{thickness}.yaml"));
@@ -937,17 +935,12 @@ fn a_long_cable_schedule_continues_on_pages_of_its_own() {
     assert_eq!(sorted, want, "every remaining cable once");
 }
 
-/// The pavilion's loads braced with `layout` (samples/loads/pavilion-braced.yaml,
-/// its `layout: designed` replaced) built on `sample` with the steel
-/// profile into `dir`/kit, with `extra` arguments; the kit folder.
-pub fn braced_build(
-    dir: &std::path::Path,
-    sample: &str,
-    layout: &str,
-    extra: &[&str],
-) -> std::path::PathBuf {
-    use crate::support::{lamella, root};
-    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
+/// The pavilion's loads braced with `layout`: samples/loads/pavilion-braced.yaml
+/// with its `layout: designed` replaced, written to `dir`/`layout`.yaml.
+pub fn braced_loads(dir: &std::path::Path, layout: &str) -> std::path::PathBuf {
+    let text =
+        std::fs::read_to_string(crate::support::root().join("samples/loads/pavilion-braced.yaml"))
+            .unwrap();
     assert!(text.contains("layout: designed"));
     let loads = dir.join(format!("{layout}.yaml"));
     std::fs::write(
@@ -955,6 +948,19 @@ pub fn braced_build(
         text.replace("layout: designed", &format!("layout: {layout}")),
     )
     .unwrap();
+    loads
+}
+
+/// [`braced_loads`] built on `sample` with the steel profile into
+/// `dir`/kit, with `extra` arguments; the kit folder.
+pub fn braced_build(
+    dir: &std::path::Path,
+    sample: &str,
+    layout: &str,
+    extra: &[&str],
+) -> std::path::PathBuf {
+    use crate::support::lamella;
+    let loads = braced_loads(dir, layout);
     let out = dir.join("kit");
     let sample = format!("samples/{sample}.yaml");
     let mut args = vec![
@@ -984,13 +990,7 @@ pub fn braced_build(
 fn cables_end_only_at_bolted_joints() {
     use crate::support::{lamella, root, scratch};
     let dir = scratch("slot-edges");
-    let text = std::fs::read_to_string(root().join("samples/loads/pavilion-braced.yaml")).unwrap();
-    let loads = dir.join("alternate.yaml");
-    std::fs::write(
-        &loads,
-        text.replace("layout: designed", "layout: alternate"),
-    )
-    .unwrap();
+    let loads = braced_loads(&dir, "alternate");
     let profile = std::fs::read_to_string(root().join("profiles/steel-1.5.yaml")).unwrap();
     assert!(!profile.contains("edge_joint"));
     let slots = dir.join("steel-slots.yaml");

@@ -585,10 +585,11 @@ pub fn to_glb(plan: &Plan) -> Result<Vec<u8>, String> {
     }
     // A braced grid's cables, pin to pin, as square rods of the strand's
     // diameter (erected only: no flat state).
-    if let (Some(st), Some(b)) = (
-        plan.structure.as_ref(),
-        plan.structure.as_ref().and_then(|s| s.bracing.as_ref()),
-    ) {
+    if let Some((st, b)) = plan
+        .structure
+        .as_ref()
+        .and_then(|st| Some((st, st.bracing.as_ref()?)))
+    {
         let ends = st.drawing.as_ref().map_or(&[][..], |d| &d.cables[..]);
         let mut geo = Geo::default();
         for [p, q] in ends {
