@@ -24,7 +24,7 @@
 
 use super::model::{FrameModel, LoadSet};
 use super::solve::{
-    add, axial_forces, factorise_definite, solve_with, Assembly, Factor, FrameError,
+    add, axial_forces, factorise_definite, solve_with, Assembly, Dofs, Factor, FrameError,
     GeometricTerms, LinearFrame, SymSparse,
 };
 use faer::{Mat, Side};
@@ -120,7 +120,7 @@ fn critical_factors_with(
             1.0,
         );
     }
-    if modes == 0 || kg.entries.iter().all(|e| e.2 == 0.0) {
+    if modes == 0 || kg.values.iter().all(|&v| v == 0.0) {
         return Ok(Vec::new());
     }
     // The pretension's state stiffens (or softens) the frame the load
@@ -129,8 +129,8 @@ fn critical_factors_with(
         None => None,
         Some(g) => {
             let a = add(&linear.stiffness, g, 1.0);
-            match factorise_definite(&a, None)? {
-                Some((factor, _)) => Some((a, factor)),
+            match factorise_definite(&a, &linear.assembly.dofs)? {
+                Some(factor) => Some((a, factor)),
                 // The pretension alone buckles the frame: no load can
                 // be added, α_cr = 0 (the mode is not computed).
                 None => {
@@ -146,7 +146,7 @@ fn critical_factors_with(
         Some((a, f)) => (a, f),
         None => (&linear.stiffness, &linear.factor),
     };
-    let found = shifted_lanczos(base, base_factor, &kg, modes)?;
+    let found = shifted_lanczos(base, base_factor, &kg, &linear.assembly.dofs, modes)?;
     Ok(found
         .into_iter()
         .map(|(factor, v)| BucklingMode {
@@ -220,6 +220,7 @@ fn shifted_lanczos(
     stiffness: &SymSparse,
     factor: &Factor,
     kg: &SymSparse,
+    dofs: &Dofs,
     modes: usize,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
     let sizes = (basis_size(modes), kept(modes));
@@ -235,7 +236,7 @@ fn shifted_lanczos(
     for fraction in SHIFT_FRACTIONS {
         let shift = fraction * estimate;
         let a = add(stiffness, kg, shift);
-        if let Some((factor, _)) = factorise_definite(&a, None)? {
+        if let Some(factor) = factorise_definite(&a, dofs)? {
             let pencil = Pencil {
                 a: &a,
                 factor: &factor,
@@ -502,7 +503,9 @@ mod tests {
         };
         let restarted = lanczos_restarted(&plain, &kg, 6, (14, 8), TOLERANCE).unwrap();
         let whole = lanczos_restarted(&plain, &kg, 6, (MAX_ITERATIONS, 0), TOLERANCE).unwrap();
-        let shifted = shifted_lanczos(&linear.stiffness, &linear.factor, &kg, 6).unwrap();
+        let shifted =
+            shifted_lanczos(&linear.stiffness, &linear.factor, &kg, &linear.assembly.dofs, 6)
+                .unwrap();
         assert_eq!(restarted.len(), 6);
         assert_eq!(whole.len(), 6);
         assert_eq!(shifted.len(), 6);
@@ -522,7 +525,9 @@ mod tests {
         for (sigma, definite) in [(0.99 * lambda, true), (1.01 * lambda, false)] {
             let a = add(&linear.stiffness, &kg, sigma);
             assert_eq!(
-                factorise_definite(&a, None).unwrap().is_some(),
+                factorise_definite(&a, &linear.assembly.dofs)
+                    .unwrap()
+                    .is_some(),
                 definite,
                 "σ {sigma}"
             );

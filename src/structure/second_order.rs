@@ -88,8 +88,6 @@ pub fn second_order_as(
     // Every cable starts taut; each step takes the set the last left.
     let mut taut = vec![true; model.cables.len()];
     let mut cable_n = vec![0.0; model.cables.len()];
-    let mut symbolic = None;
-    let mut pattern: Vec<(usize, usize)> = Vec::new();
     let mut axial_load = vec![0.0; model.beams.len()];
     for iteration in 1..=MAX_ITERATIONS {
         let total: Vec<f64> = initial
@@ -105,21 +103,15 @@ pub fn second_order_as(
             let pull = assembly.cable_pull(model, &taut);
             p.iter_mut().zip(&pull).for_each(|(a, b)| *a += b);
         }
-        let this: Vec<(usize, usize)> = kt.entries.iter().map(|e| (e.0, e.1)).collect();
-        if this != pattern {
-            symbolic = None;
-            pattern = this;
-        }
         // The first tangent is the model's own stiffness on the imperfect
         // geometry: a mechanism there is named. Later ones only need to be
         // definite: one that is not is the load above the critical one.
-        let (factor, sym) = if iteration == 1 {
-            factorise(&kt, &assembly.dofs, symbolic.as_ref())?
+        let factor = if iteration == 1 {
+            factorise(&kt, &assembly.dofs)?
         } else {
-            factorise_definite(&kt, symbolic.as_ref())?
+            factorise_definite(&kt, &assembly.dofs)?
                 .ok_or_else(|| FrameError::Unstable(loads.name.clone()))?
         };
-        symbolic = Some(sym);
         let x = solve_refined(&factor, &kt, &p)?;
         let would_be = assembly.cable_forces(model, &x);
         let forces: Vec<f64> = would_be

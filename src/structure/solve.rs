@@ -31,10 +31,15 @@
 //! named, never a singular-matrix panic.
 
 use super::model::{Beam, FrameModel, InitialForces, LoadSet, Section, DOF_PER_NODE};
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, Mat, MatMut, Par, Side};
+use std::sync::{Arc, Mutex};
 use glam::{DMat3, DVec3};
 
 /// A roller's inclined restraint: a spring of this many times the largest
@@ -434,12 +439,26 @@ fn uniform_nodal_loads(q: DVec3, l: f64) -> [f64; 12] {
 
 const NONE: usize = usize::MAX;
 
-/// A symmetric sparse matrix as merged lower-triangle entries.
+/// The sparsity pattern of a symmetric matrix's lower triangle, by
+/// columns.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct Pattern {
+    /// Column j's entries are `start[j]..start[j + 1]` (n + 1 of them).
+    pub start: Vec<usize>,
+    /// Their rows, ascending within a column, each at least the column.
+    pub rows: Vec<usize>,
+}
+
+/// A symmetric sparse matrix: its lower triangle in compressed columns.
+/// Matrices of one model share their pattern (every element scatters its
+/// whole block, zeros included), so a sum is a sum of values and one
+/// symbolic factorisation serves them all.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SymSparse {
     pub n: usize,
-    /// (row, col, value) with row ≥ col, sorted by (col, row), merged.
-    pub entries: Vec<(usize, usize, f64)>,
+    pub pattern: Arc<Pattern>,
+    /// One per entry of the pattern.
+    pub values: Vec<f64>,
     /// The diagonal without support penalties, which scales the
     /// mechanism test (a penalty would make its node's other directions
     /// look free); `None`: the diagonal itself.
@@ -447,41 +466,71 @@ pub(crate) struct SymSparse {
 }
 
 impl SymSparse {
-    fn from_triplets(n: usize, mut t: Vec<(usize, usize, f64)>) -> Self {
-        t.sort_unstable_by_key(|&(i, j, _)| (j, i));
-        let mut entries: Vec<(usize, usize, f64)> = Vec::with_capacity(t.len() / 2);
+    /// The matrix of (row, column, value) triplets with row ≥ column,
+    /// duplicates summed: sorted by column in one counting pass, then
+    /// each column by row.
+    fn from_triplets(n: usize, t: Vec<(usize, usize, f64)>) -> Self {
+        let mut first = vec![0usize; n + 1];
+        for &(_, j, _) in &t {
+            first[j + 1] += 1;
+        }
+        for j in 0..n {
+            first[j + 1] += first[j];
+        }
+        let mut slot = first.clone();
+        let mut by_column = vec![(0usize, 0.0f64); t.len()];
         for (i, j, v) in t {
-            match entries.last_mut() {
-                Some(last) if last.0 == i && last.1 == j => last.2 += v,
-                _ => entries.push((i, j, v)),
+            by_column[slot[j]] = (i, v);
+            slot[j] += 1;
+        }
+        let mut start = Vec::with_capacity(n + 1);
+        start.push(0);
+        let mut rows = Vec::with_capacity(by_column.len() / 2);
+        let mut values = Vec::with_capacity(by_column.len() / 2);
+        for j in 0..n {
+            let column = &mut by_column[first[j]..first[j + 1]];
+            column.sort_unstable_by_key(|e| e.0);
+            let begin = rows.len();
+            for &(i, v) in column.iter() {
+                if rows.len() > begin && rows[rows.len() - 1] == i {
+                    *values.last_mut().unwrap() += v;
+                } else {
+                    rows.push(i);
+                    values.push(v);
+                }
             }
+            start.push(rows.len());
         }
         SymSparse {
             n,
-            entries,
+            pattern: Arc::new(Pattern { start, rows }),
+            values,
             scaling: None,
         }
     }
 
-    pub(crate) fn to_faer(&self) -> Result<SparseColMat<usize, f64>, FrameError> {
-        let t: Vec<Triplet<usize, usize, f64>> = self
-            .entries
-            .iter()
-            .map(|&(i, j, v)| Triplet::new(i, j, v))
-            .collect();
-        SparseColMat::try_new_from_triplets(self.n, self.n, &t)
-            .map_err(|e| FrameError::Invalid(format!("sparse assembly: {e:?}")))
+    /// Every stored entry (row, column, value), row ≥ column.
+    pub(crate) fn entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        let p = &*self.pattern;
+        (0..self.n).flat_map(move |j| {
+            (p.start[j]..p.start[j + 1]).map(move |k| (p.rows[k], j, self.values[k]))
+        })
+    }
+
+    /// The lower triangle as faer's matrix (no copy).
+    pub(crate) fn to_faer(&self) -> Result<SparseColMatRef<'_, usize, f64>, FrameError> {
+        let p = &*self.pattern;
+        let symbolic = SymbolicSparseColMatRef::new_checked(self.n, self.n, &p.start, None, &p.rows);
+        Ok(SparseColMatRef::new(symbolic, &self.values))
     }
 
     /// y = A·x for every column of x.
     pub(crate) fn mul(&self, x: &Mat<f64>) -> Mat<f64> {
         let mut y = Mat::<f64>::zeros(self.n, x.ncols());
         for c in 0..x.ncols() {
-            for &(i, j, v) in &self.entries {
-                y[(i, c)] += v * x[(j, c)];
-                if i != j {
-                    y[(j, c)] += v * x[(i, c)];
-                }
+            let column: Vec<f64> = (0..self.n).map(|i| x[(i, c)]).collect();
+            for (i, v) in self.mul_vec(&column).into_iter().enumerate() {
+                y[(i, c)] = v;
             }
         }
         y
@@ -489,24 +538,63 @@ impl SymSparse {
 
     /// y = A·x.
     pub(crate) fn mul_vec(&self, x: &[f64]) -> Vec<f64> {
+        let p = &*self.pattern;
         let mut y = vec![0.0; self.n];
-        for &(i, j, v) in &self.entries {
-            y[i] += v * x[j];
-            if i != j {
-                y[j] += v * x[i];
+        for j in 0..self.n {
+            let xj = x[j];
+            let mut sum = 0.0;
+            for k in p.start[j]..p.start[j + 1] {
+                let (i, v) = (p.rows[k], self.values[k]);
+                y[i] += v * xj;
+                if i != j {
+                    sum += v * x[i];
+                }
             }
+            y[j] += sum;
         }
         y
     }
 
     pub(crate) fn diagonal(&self) -> Vec<f64> {
-        let mut d = vec![0.0; self.n];
-        for &(i, j, v) in &self.entries {
-            if i == j {
-                d[i] += v;
+        let p = &*self.pattern;
+        (0..self.n)
+            .map(|j| {
+                let k = p.start[j];
+                if k < p.start[j + 1] && p.rows[k] == j {
+                    self.values[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
+    /// A ← A + s·diag(d).
+    fn add_to_diagonal(&mut self, s: f64, d: &[f64]) {
+        let p = self.pattern.clone();
+        for j in 0..self.n {
+            let k = p.start[j];
+            if k < p.start[j + 1] && p.rows[k] == j {
+                self.values[k] += s * d[j];
             }
         }
-        d
+    }
+
+    /// Whether every entry of `other` has a place in this pattern.
+    fn holds(&self, other: &SymSparse) -> bool {
+        if Arc::ptr_eq(&self.pattern, &other.pattern) {
+            return true;
+        }
+        let (a, b) = (&*self.pattern, &*other.pattern);
+        (0..self.n).all(|j| {
+            let mut k = a.start[j];
+            (b.start[j]..b.start[j + 1]).all(|m| {
+                while k < a.start[j + 1] && a.rows[k] < b.rows[m] {
+                    k += 1;
+                }
+                k < a.start[j + 1] && a.rows[k] == b.rows[m]
+            })
+        })
     }
 }
 
@@ -518,6 +606,10 @@ pub struct Dofs {
     pub index: Vec<usize>,
     /// Number of unknowns.
     pub free: usize,
+    /// The last symbolic factorisation and the pattern it is of: every
+    /// matrix of one model has the same pattern, so the ordering and the
+    /// factor's structure are computed once (shared by clones).
+    symbolic: Arc<Mutex<Option<(Arc<Pattern>, Symbolic)>>>,
 }
 
 impl Dofs {
@@ -543,7 +635,32 @@ impl Dofs {
                 }
             })
             .collect();
-        Dofs { index, free }
+        Dofs {
+            index,
+            free,
+            symbolic: Arc::default(),
+        }
+    }
+
+    /// The symbolic factorisation of `a`: the one kept when `a` has its
+    /// pattern, else a new one (approximate minimum degree), kept.
+    fn symbolic_of(&self, a: &SymSparse) -> Result<Symbolic, FrameError> {
+        let mut kept = self.symbolic.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((pattern, symbolic)) = &*kept {
+            if Arc::ptr_eq(pattern, &a.pattern) || **pattern == *a.pattern {
+                return Ok(symbolic.clone());
+            }
+        }
+        let symbolic = factorize_symbolic_cholesky(
+            a.to_faer()?.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map(Arc::new)
+        .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?;
+        *kept = Some((a.pattern.clone(), symbolic.clone()));
+        Ok(symbolic)
     }
 }
 
@@ -722,12 +839,12 @@ impl Assembly {
                 continue;
             }
             for b in 0..12 {
+                // Zeros too: every matrix of the model then has the
+                // same pattern (one symbolic factorisation for all).
                 if d[b] == NONE || d[b] > d[a] {
                     continue;
                 }
-                if k[a][b] != 0.0 {
-                    t.push((d[a], d[b], k[a][b]));
-                }
+                t.push((d[a], d[b], k[a][b]));
             }
         }
     }
@@ -774,7 +891,7 @@ impl Assembly {
             .collect();
         if !inclined.is_empty() {
             let diagonal = sym.diagonal();
-            let mut extra = std::mem::take(&mut sym.entries);
+            let mut extra: Vec<(usize, usize, f64)> = sym.entries().collect();
             for s in inclined {
                 let a = s.along.unwrap_or(DVec3::Z).normalize();
                 let own = (0..3)
@@ -1188,53 +1305,176 @@ impl Assembly {
 
 /// A factorised stiffness.
 pub(crate) struct Factor {
-    pub llt: Llt<usize, f64>,
+    symbolic: Symbolic,
+    values: Vec<f64>,
+}
+
+/// A factorisation's structure: the elimination order and the factor's
+/// pattern, shared by every matrix of the same pattern.
+pub(crate) type Symbolic = Arc<SymbolicCholesky<usize>>;
+
+impl Factor {
+    /// x ← A⁻¹·x for every column of x.
+    pub(crate) fn solve_in_place(&self, mut x: MatMut<'_, f64>) {
+        let (n, p) = (x.nrows(), x.ncols());
+        if p == 0 {
+            return;
+        }
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.symbolic.raw() else {
+            let llt = LltRef::new(&self.symbolic, &self.values);
+            let mut memory =
+                MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(p, Par::Seq));
+            llt.solve_in_place_with_conj(Conj::No, x, Par::Seq, MemStack::new(&mut memory));
+            return;
+        };
+        // Permuted into the factor's order, the p values of a row side by
+        // side, so each entry of L is read once for every right-hand side.
+        let mut y = vec![0.0; n * p];
+        let (forward, inverse) = match self.symbolic.perm() {
+            Some(perm) => {
+                let (f, i) = perm.arrays();
+                (Some(f), Some(i))
+            }
+            None => (None, None),
+        };
+        for c in 0..p {
+            let column = x.as_ref().col(c);
+            for i in 0..n {
+                let from = forward.map_or(i, |f| f[i]);
+                y[i * p + c] = column[from];
+            }
+        }
+        supernodal_solve(supernodal, &self.values, &mut y, p);
+        for c in 0..p {
+            let mut column = x.as_mut().col_mut(c);
+            for i in 0..n {
+                let at = inverse.map_or(i, |v| v[i]);
+                column[i] = y[at * p + c];
+            }
+        }
+    }
+}
+
+/// L·Lᵀ·y = b in place (b and y row-interleaved, `p` per row) on a
+/// supernodal factor: forward by columns of L, then backward by dot
+/// products with them; every supernode a dense block of its columns'
+/// rows (the diagonal block, then the rows below), column-major.
+fn supernodal_solve(
+    symbolic: &SymbolicSupernodalCholesky<usize>,
+    values: &[f64],
+    y: &mut [f64],
+    p: usize,
+) {
+    let supernodes = symbolic.n_supernodes();
+    let begin = symbolic.supernode_begin();
+    let end = symbolic.supernode_end();
+    let value_start = symbolic.col_ptr_for_val();
+    let row_start = symbolic.col_ptr_for_row_idx();
+    let rows = symbolic.row_idx();
+    let mut acc = vec![0.0; p];
+    for s in 0..supernodes {
+        let (c0, width) = (begin[s], end[s] - begin[s]);
+        let below = &rows[row_start[s]..row_start[s + 1]];
+        let height = width + below.len();
+        let block = &values[value_start[s]..value_start[s + 1]];
+        for k in 0..width {
+            let column = &block[k * height..(k + 1) * height];
+            let col = c0 + k;
+            let d = 1.0 / column[k];
+            let (head, tail) = y.split_at_mut((col + 1) * p);
+            let xk = &mut head[col * p..];
+            xk.iter_mut().for_each(|v| *v *= d);
+            for i in k + 1..width {
+                let l = column[i];
+                let row = &mut tail[(c0 + i - col - 1) * p..][..p];
+                row.iter_mut().zip(xk.iter()).for_each(|(r, x)| *r -= l * x);
+            }
+            for (idx, &r) in below.iter().enumerate() {
+                let l = column[width + idx];
+                let row = &mut tail[(r - col - 1) * p..][..p];
+                row.iter_mut().zip(xk.iter()).for_each(|(r, x)| *r -= l * x);
+            }
+        }
+    }
+    for s in (0..supernodes).rev() {
+        let (c0, width) = (begin[s], end[s] - begin[s]);
+        let below = &rows[row_start[s]..row_start[s + 1]];
+        let height = width + below.len();
+        let block = &values[value_start[s]..value_start[s + 1]];
+        for k in (0..width).rev() {
+            let column = &block[k * height..(k + 1) * height];
+            let col = c0 + k;
+            acc.copy_from_slice(&y[col * p..(col + 1) * p]);
+            for i in k + 1..width {
+                let l = column[i];
+                let row = &y[(c0 + i) * p..][..p];
+                acc.iter_mut().zip(row).for_each(|(a, x)| *a -= l * x);
+            }
+            for (idx, &r) in below.iter().enumerate() {
+                let l = column[width + idx];
+                let row = &y[r * p..][..p];
+                acc.iter_mut().zip(row).for_each(|(a, x)| *a -= l * x);
+            }
+            let d = 1.0 / column[k];
+            y[col * p..(col + 1) * p]
+                .iter_mut()
+                .zip(&acc)
+                .for_each(|(v, a)| *v = a * d);
+        }
+    }
+}
+
+/// The numeric factor of `a` on `symbolic`; `None` when a pivot is not
+/// positive.
+fn numeric(symbolic: &Symbolic, a: &SymSparse) -> Result<Option<Factor>, FrameError> {
+    let mut values = vec![0.0; symbolic.len_val()];
+    let mut memory = MemBuffer::new(
+        symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+    );
+    let ok = symbolic
+        .factorize_numeric_llt(
+            &mut values,
+            a.to_faer()?,
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut memory),
+            Default::default(),
+        )
+        .is_ok();
+    Ok(ok.then(|| Factor {
+        symbolic: symbolic.clone(),
+        values,
+    }))
 }
 
 /// Factorises `k`; a failure or a near-null vector is reported as a
 /// mechanism naming the node.
-pub(crate) fn factorise(
-    k: &SymSparse,
-    dofs: &Dofs,
-    symbolic: Option<&SymbolicLlt<usize>>,
-) -> Result<(Factor, SymbolicLlt<usize>), FrameError> {
+pub(crate) fn factorise(k: &SymSparse, dofs: &Dofs) -> Result<Factor, FrameError> {
     let diag = k.scaling.clone().unwrap_or_else(|| k.diagonal());
     if let Some(i) = diag.iter().position(|&d| !exceeds(d, 0.0)) {
         let (node, dof) = node_of(dofs, i);
         return Err(FrameError::Mechanism { node, dof });
     }
-    let a = k.to_faer()?;
-    let symbolic = match symbolic {
-        Some(s) => s.clone(),
-        None => SymbolicLlt::try_new(a.symbolic(), Side::Lower)
-            .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?,
-    };
-    match Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower) {
-        Ok(llt) => {
-            let factor = Factor { llt };
+    let symbolic = dofs.symbolic_of(k)?;
+    match numeric(&symbolic, k)? {
+        Some(factor) => {
             if let Some(unknown) = near_null(k, &diag, &factor) {
                 let (node, dof) = node_of(dofs, unknown);
                 return Err(FrameError::Mechanism { node, dof });
             }
-            Ok((factor, symbolic))
+            Ok(factor)
         }
-        Err(_) => {
+        None => {
             // Regularise by a tiny multiple of the diagonal to find the
             // null vector by inverse iteration.
             let mut reg = k.clone();
-            for e in reg.entries.iter_mut() {
-                if e.0 == e.1 {
-                    e.2 += 1e-9 * diag[e.0];
-                }
-            }
-            let ra = reg.to_faer()?;
-            let llt =
-                Llt::try_new_with_symbolic(symbolic, ra.as_ref(), Side::Lower).map_err(|_| {
-                    let i = (0..diag.len()).next().unwrap_or(0);
-                    let (node, dof) = node_of(dofs, i);
-                    FrameError::Mechanism { node, dof }
-                })?;
-            let v = inverse_iteration(&reg, &diag, &Factor { llt }, 6).1;
+            reg.add_to_diagonal(1e-9, &diag);
+            let factor = numeric(&symbolic, &reg)?.ok_or_else(|| {
+                let (node, dof) = node_of(dofs, 0);
+                FrameError::Mechanism { node, dof }
+            })?;
+            let v = inverse_iteration(&reg, &diag, &factor, 6).1;
             let (node, dof) = dominant(dofs, &v);
             Err(FrameError::Mechanism { node, dof })
         }
@@ -1242,25 +1482,13 @@ pub(crate) fn factorise(
 }
 
 /// Factorises `k` when it is positive definite (`None` when a pivot is not
-/// positive), on `symbolic` when given, with no test for a near-null
-/// vector: for a matrix known to be nonsingular where it is definite,
-/// such as a stiffness shifted by part of its critical load, or a
-/// tangent stiffness once the model has passed that test.
-pub(crate) fn factorise_definite(
-    k: &SymSparse,
-    symbolic: Option<&SymbolicLlt<usize>>,
-) -> Result<Option<(Factor, SymbolicLlt<usize>)>, FrameError> {
-    let a = k.to_faer()?;
-    let symbolic = match symbolic {
-        Some(s) => s.clone(),
-        None => SymbolicLlt::try_new(a.symbolic(), Side::Lower)
-            .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?,
-    };
-    Ok(
-        Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
-            .ok()
-            .map(|llt| (Factor { llt }, symbolic)),
-    )
+/// positive), with no test for a near-null vector: for a matrix known to
+/// be nonsingular where it is definite, such as a stiffness shifted by
+/// part of its critical load, or a tangent stiffness once the model has
+/// passed that test.
+pub(crate) fn factorise_definite(k: &SymSparse, dofs: &Dofs) -> Result<Option<Factor>, FrameError> {
+    let symbolic = dofs.symbolic_of(k)?;
+    numeric(&symbolic, k)
 }
 
 fn node_of(dofs: &Dofs, unknown: usize) -> (usize, usize) {
@@ -1303,7 +1531,7 @@ fn inverse_iteration(
         for i in 0..n {
             x[(i, 0)] *= diag[i];
         }
-        factor.llt.solve_in_place(x.as_mut());
+        factor.solve_in_place(x.as_mut());
         let norm = (0..n)
             .map(|i| diag[i] * x[(i, 0)] * x[(i, 0)])
             .sum::<f64>()
@@ -1395,7 +1623,7 @@ impl<'m> LinearFrame<'m> {
         if !model.cables.is_empty() {
             stiffness = add(&stiffness, &assembly.cable_stiffness(model, taut), 1.0);
         }
-        let (factor, _) = factorise(&stiffness, &assembly.dofs, None)?;
+        let factor = factorise(&stiffness, &assembly.dofs)?;
         let pull = assembly.cable_pull(model, taut);
         // The pretension's own state (the frame under the cables' pull
         // alone) is, like the erection state, a state the frame stands in
@@ -1476,7 +1704,7 @@ pub(crate) fn solve_with(factor: &Factor, p: &[f64]) -> Result<Vec<f64>, FrameEr
     for (i, v) in p.iter().enumerate() {
         x[(i, 0)] = *v;
     }
-    factor.llt.solve_in_place(x.as_mut());
+    factor.solve_in_place(x.as_mut());
     let out: Vec<f64> = (0..p.len()).map(|i| x[(i, 0)]).collect();
     if out.iter().any(|v| !v.is_finite()) {
         return Err(FrameError::Unstable(
@@ -1506,13 +1734,48 @@ pub(crate) fn solve_refined(
     Ok(x)
 }
 
-/// a + s·b.
+/// a + s·b, on a's pattern when it holds b's (one model's matrices).
 pub(crate) fn add(a: &SymSparse, b: &SymSparse, s: f64) -> SymSparse {
-    let mut t = a.entries.clone();
-    t.extend(b.entries.iter().map(|&(i, j, v)| (i, j, s * v)));
-    let mut sum = SymSparse::from_triplets(a.n, t);
+    let mut sum = if a.holds(b) {
+        let mut sum = a.clone();
+        accumulate(&mut sum, b, s);
+        sum
+    } else if b.holds(a) {
+        let mut sum = b.clone();
+        sum.values.iter_mut().for_each(|v| *v *= s);
+        accumulate(&mut sum, a, 1.0);
+        sum
+    } else {
+        let t: Vec<(usize, usize, f64)> = a
+            .entries()
+            .chain(b.entries().map(|(i, j, v)| (i, j, s * v)))
+            .collect();
+        SymSparse::from_triplets(a.n, t)
+    };
     sum.scaling = a.scaling.clone();
     sum
+}
+
+/// target += s·source, where target's pattern holds source's.
+fn accumulate(target: &mut SymSparse, source: &SymSparse, s: f64) {
+    if Arc::ptr_eq(&target.pattern, &source.pattern) {
+        target
+            .values
+            .iter_mut()
+            .zip(&source.values)
+            .for_each(|(x, y)| *x += s * y);
+        return;
+    }
+    let (pa, pb) = (&*target.pattern, &*source.pattern);
+    for j in 0..target.n {
+        let mut k = pa.start[j];
+        for m in pb.start[j]..pb.start[j + 1] {
+            while pa.rows[k] < pb.rows[m] {
+                k += 1;
+            }
+            target.values[k] += s * source.values[m];
+        }
+    }
 }
 
 /// The linear static solution of `model` under `loads` (one
@@ -1530,3 +1793,4 @@ pub fn axial_forces(result: &StaticResult) -> Vec<f64> {
         .map(|f| 0.5 * (f.start.axial_n + f.end.axial_n))
         .collect()
 }
+
