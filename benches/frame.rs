@@ -151,8 +151,9 @@ fn measure(path: &Path) {
     let t = Instant::now();
     let mut governing = 0;
     let mut largest = 0.0;
-    for (i, c) in combos.iter().enumerate() {
-        let r = linear.solve(&c.loads).expect("static");
+    let sets: Vec<&lamella::structure::model::LoadSet> = combos.iter().map(|c| &c.loads).collect();
+    let results = linear.solve_all(&sets).expect("static");
+    for (i, (c, r)) in combos.iter().zip(&results).enumerate() {
         let moved = r
             .displacements
             .iter()

@@ -188,11 +188,25 @@ pub fn analyse_as(
     } else {
         None
     };
+    // The unbraced statics all at once (one pass of the factor for many).
+    let mut statics = match &unbraced {
+        Some(linear) => {
+            let sets: Vec<&LoadSet> = combinations.iter().map(|c| &c.loads).collect();
+            linear.solve_all(&sets)?
+        }
+        None => Vec::new(),
+    }
+    .into_iter();
     let mut out = Vec::with_capacity(combinations.len());
     for combination in combinations {
         let braced;
         let (linear, first) = match &unbraced {
-            Some(linear) => (linear, linear.solve(&combination.loads)?),
+            Some(linear) => (
+                linear,
+                statics
+                    .next()
+                    .ok_or_else(|| FrameError::Invalid("a static solution is missing".into()))?,
+            ),
             None => {
                 let state;
                 (braced, state) = settle(model, &combination.loads)?;

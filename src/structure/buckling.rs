@@ -503,9 +503,14 @@ mod tests {
         };
         let restarted = lanczos_restarted(&plain, &kg, 6, (14, 8), TOLERANCE).unwrap();
         let whole = lanczos_restarted(&plain, &kg, 6, (MAX_ITERATIONS, 0), TOLERANCE).unwrap();
-        let shifted =
-            shifted_lanczos(&linear.stiffness, &linear.factor, &kg, &linear.assembly.dofs, 6)
-                .unwrap();
+        let shifted = shifted_lanczos(
+            &linear.stiffness,
+            &linear.factor,
+            &kg,
+            &linear.assembly.dofs,
+            6,
+        )
+        .unwrap();
         assert_eq!(restarted.len(), 6);
         assert_eq!(whole.len(), 6);
         assert_eq!(shifted.len(), 6);

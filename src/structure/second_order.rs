@@ -3,9 +3,8 @@
 //! force (load plus erection), iterated until the axial forces settle.
 //!
 //! Each step solves (K + K_G(N_k))·u = P on the imperfect geometry
-//! (the symbolic factorisation is reused while the pattern stays the
-//! same; a new numeric one per step) and
-//! takes N_{k+1} from u. The iteration stops when no element's axial force
+//! (the model's one symbolic factorisation, a new numeric one per step)
+//! and takes N_{k+1} from u. The iteration stops when no element's axial force
 //! changes by more than `tolerance` times the largest one (plus 1e-9 N).
 //! Tension-only cables start taut and each step holds the set the last
 //! step left taut (a cable whose force would be negative goes slack), with
