@@ -51,7 +51,7 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, MatRef, Par, Side};
 use glam::{DMat3, DVec3};
 use std::sync::{Arc, Mutex};
 
@@ -452,6 +452,9 @@ fn uniform_nodal_loads(q: DVec3, l: f64) -> [f64; 12] {
 
 const NONE: usize = usize::MAX;
 
+/// Below this many unknowns the block operations stay on one thread.
+pub(crate) const PARALLEL_ROWS: usize = 20_000;
+
 /// The sparsity pattern of a symmetric matrix's lower triangle, by
 /// columns.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -541,14 +544,49 @@ impl SymSparse {
 
     /// y = A·x for every column of x.
     pub(crate) fn mul(&self, x: &Mat<f64>) -> Mat<f64> {
-        let mut y = Mat::<f64>::zeros(self.n, x.ncols());
-        for c in 0..x.ncols() {
-            let column: Vec<f64> = (0..self.n).map(|i| x[(i, c)]).collect();
-            for (i, v) in self.mul_vec(&column).into_iter().enumerate() {
-                y[(i, c)] = v;
+        self.mul_block(x.as_ref())
+    }
+
+    /// Y = A·X for a block of columns, A read once: the columns side by
+    /// side per row, the matrix's columns split between two threads.
+    pub(crate) fn mul_block(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let (n, p) = (self.n, x.ncols());
+        let mut rows = vec![0.0; n * p];
+        for c in 0..p {
+            for (i, v) in x.col(c).iter().enumerate() {
+                rows[i * p + c] = *v;
             }
         }
-        y
+        let part = |columns: std::ops::Range<usize>| -> Vec<f64> {
+            let pattern = &*self.pattern;
+            let mut y = vec![0.0; n * p];
+            let mut sum = vec![0.0; p];
+            for j in columns {
+                sum.iter_mut().for_each(|v| *v = 0.0);
+                let xj = &rows[j * p..(j + 1) * p];
+                for k in pattern.start[j]..pattern.start[j + 1] {
+                    let (i, v) = (pattern.rows[k], self.values[k]);
+                    let yi = &mut y[i * p..(i + 1) * p];
+                    yi.iter_mut().zip(xj).for_each(|(a, b)| *a += v * b);
+                    if i != j {
+                        let xi = &rows[i * p..(i + 1) * p];
+                        sum.iter_mut().zip(xi).for_each(|(a, b)| *a += v * b);
+                    }
+                }
+                y[j * p..(j + 1) * p]
+                    .iter_mut()
+                    .zip(&sum)
+                    .for_each(|(a, b)| *a += b);
+            }
+            y
+        };
+        let y = if n >= PARALLEL_ROWS {
+            let (a, b) = rayon::join(|| part(0..n / 2), || part(n / 2..n));
+            a.into_iter().zip(b).map(|(a, b)| a + b).collect()
+        } else {
+            part(0..n)
+        };
+        Mat::from_fn(n, p, |i, c| y[i * p + c])
     }
 
     /// y = A·x.
@@ -1332,8 +1370,20 @@ pub(crate) struct Factor {
 pub(crate) type Symbolic = Arc<SymbolicCholesky<usize>>;
 
 impl Factor {
-    /// x ← A⁻¹·x for every column of x.
-    pub(crate) fn solve_in_place(&self, mut x: MatMut<'_, f64>) {
+    /// x ← A⁻¹·x for every column of x; two or more columns are shared
+    /// between two threads.
+    pub(crate) fn solve_in_place(&self, x: MatMut<'_, f64>) {
+        let p = x.ncols();
+        if p >= 2 && x.nrows() >= PARALLEL_ROWS {
+            let (left, right) = x.split_at_col_mut(p / 2);
+            rayon::join(|| self.solve_columns(left), || self.solve_columns(right));
+        } else {
+            self.solve_columns(x);
+        }
+    }
+
+    /// [`Factor::solve_in_place`] on this thread.
+    fn solve_columns(&self, mut x: MatMut<'_, f64>) {
         let p = x.ncols();
         if p == 0 {
             return;
