@@ -43,7 +43,7 @@ pub const PROBE_TOLERANCE: f64 = 1e-2;
 /// factor): the nearer, the more the wanted end is spread.
 pub const SHIFT_FRACTIONS: [f64; 3] = [0.98, 0.9, 0.5];
 
-/// Most Lanczos steps (solves), over all restarts.
+/// Most Lanczos vectors (solved for), over all restarts.
 pub const MAX_ITERATIONS: usize = 3000;
 
 /// A buckling mode.
@@ -254,23 +254,25 @@ fn shifted_lanczos(
 /// positive ν (the smallest λ above the shift σ), each converged to a
 /// residual of `tolerance`·ν.
 ///
-/// The basis grows by blocks of up to [`BLOCK`] vectors: one solve with
-/// that many right-hand sides (each entry of the factor read once for all
-/// of them, the columns shared between two threads) and one product with
-/// K_G per block, where a single-vector Lanczos reads the factor and the
-/// basis once per vector. Each new block W = A⁻¹·(−K_G·Q_j) is made
-/// A-orthogonal to the basis by classical Gram–Schmidt twice (the
-/// coefficients C = Vᵀ·A·W are column block j of the projected operator
-/// H = Vᵀ·A·Op·V), then A-orthonormal within itself through the
-/// eigen-decomposition of its Gram matrix G = Wᵀ·A·W = U·Λ·Uᵀ
-/// (Q_{j+1} = W·U·Λ^-½, W = Q_{j+1}·B with B = Λ^½·Uᵀ; directions with
-/// a negligible Λ are dropped: the Krylov space is exhausted there). The
-/// Ritz pair (ν_i, V·s_i) of H has the residual Q_{j+1}·B·s_i, whose
-/// A-norm is |B·s_i| over s_i's last block. When the basis reaches
-/// `basis_max` vectors, it is cut to the `keep` Ritz vectors of largest
-/// positive ν (the wanted ones and a margin) and the new block, with
-/// H = diag(ν) bordered by B·s_i (Wu & Simon's thick restart), so every
-/// step costs O(basis·n) however many a clustered spectrum needs.
+/// The basis V grows by blocks of `block` vectors ([`BLOCK`]: one): a
+/// block W = A⁻¹·(−K_G·Q_j) is one solve of that many right-hand sides.
+/// A·V is kept beside V, and A·W is −K_G·Q_j itself (the solve is
+/// backward stable, where a product with A, stiff joints beside slender
+/// strips, would lose digits). W is made A-orthogonal to the basis by
+/// classical Gram–Schmidt through matrix products (C = Vᵀ·A·W, then
+/// W −= V·C and A·W −= A·V·C), a second time where the first cancelled
+/// most of a column; the sum of the C is column block j of the projected
+/// operator H = Vᵀ·A·Op·V. The block is then made A-orthonormal within
+/// itself through the eigen-decomposition of its Gram matrix
+/// G = Wᵀ·A·W = U·Λ·Uᵀ (Q_{j+1} = W·U·Λ^-½, W = Q_{j+1}·B with
+/// B = Λ^½·Uᵀ; directions with a negligible Λ are dropped: the Krylov
+/// space is exhausted there). The Ritz pair (ν_i, V·s_i) of H has the
+/// residual Q_{j+1}·B·s_i, whose A-norm is |B·s_i| over s_i's last block.
+/// When the basis reaches `basis_max` vectors, it is cut to the `keep`
+/// Ritz vectors of largest positive ν (the wanted ones and a margin) and
+/// the new block, with H = diag(ν) bordered by B·s_i (Wu & Simon's thick
+/// restart), so every step costs O(basis·n) however many a clustered
+/// spectrum needs.
 fn lanczos_restarted(
     pencil: &Pencil<'_>,
     kg: &SymSparse,
