@@ -21,7 +21,7 @@
 //! (α_cr ≤ 1) or second order does not converge, or a deflection exceeds
 //! its limit.
 
-use super::buckling::{critical_factors_of, BucklingMode};
+use super::buckling::{critical_factors_given, BucklingMode};
 use super::model::{
     BeamRole, CableState, Combination, FrameModel, InitialForces, LimitState, LoadSet,
 };
@@ -215,7 +215,7 @@ pub fn analyse_as(
         };
         let (mut result, mut buckling, mut iterations) = (first, Vec::new(), None);
         if combination.limit_state == LimitState::Ultimate {
-            buckling = critical_factors_of(linear, &combination.loads, settings.modes)?;
+            buckling = critical_factors_given(linear, &combination.loads, &result, settings.modes)?;
             if let Some(mode) = buckling.first() {
                 if settings.second_order && mode.factor > 1.0 && mode.factor < ALPHA_CR_LIMIT {
                     let imperfection = imperfection_of(mode, settings.imperfection_mm);

@@ -25,7 +25,7 @@
 use super::model::{FrameModel, LoadSet};
 use super::solve::{
     add, axial_forces, factorise_definite, Assembly, Dofs, Factor, FrameError, GeometricTerms,
-    LinearFrame, SymSparse, PARALLEL_ROWS,
+    LinearFrame, StaticResult, SymSparse, PARALLEL_ROWS,
 };
 use faer::{Mat, MatMut, MatRef, Side};
 
@@ -74,7 +74,19 @@ pub fn critical_factors_of(
     loads: &LoadSet,
     modes: usize,
 ) -> Result<Vec<BucklingMode>, FrameError> {
-    critical_factors_with(linear, loads, modes, GeometricTerms::Full)
+    let first = linear.solve(loads)?;
+    critical_factors_given(linear, loads, &first, modes)
+}
+
+/// As [`critical_factors_of`], given the static solution `first` of
+/// `loads` on `linear` (the analysis has it already).
+pub fn critical_factors_given(
+    linear: &LinearFrame<'_>,
+    loads: &LoadSet,
+    first: &StaticResult,
+    modes: usize,
+) -> Result<Vec<BucklingMode>, FrameError> {
+    critical_factors_with(linear, loads, first, modes, GeometricTerms::Full)
 }
 
 /// As [`critical_factors`] with the flexural geometric terms only (no
@@ -89,17 +101,18 @@ pub fn critical_factors_flexural(
     modes: usize,
 ) -> Result<Vec<BucklingMode>, FrameError> {
     let linear = LinearFrame::new(model)?;
-    critical_factors_with(&linear, loads, modes, GeometricTerms::Flexural)
+    let first = linear.solve(loads)?;
+    critical_factors_with(&linear, loads, &first, modes, GeometricTerms::Flexural)
 }
 
 fn critical_factors_with(
     linear: &LinearFrame<'_>,
     loads: &LoadSet,
+    first: &StaticResult,
     modes: usize,
     terms: GeometricTerms,
 ) -> Result<Vec<BucklingMode>, FrameError> {
     let model = linear.model();
-    let first = linear.solve(loads)?;
     // The load's share: the pretension's state is in the stiffness.
     let less = |total: Vec<f64>, pre: &[f64]| -> Vec<f64> {
         if pre.is_empty() {
@@ -108,8 +121,8 @@ fn critical_factors_with(
             total.iter().zip(pre).map(|(a, b)| a - b).collect()
         }
     };
-    let axial = less(axial_forces(&first), &linear.pre_axial);
-    let cable_n = less(first.cable_forces_n, &linear.pre_cable_n);
+    let axial = less(axial_forces(first), &linear.pre_axial);
+    let cable_n = less(first.cable_forces_n.clone(), &linear.pre_cable_n);
     let mut kg = linear
         .assembly
         .geometric_terms(model, &axial, Some(loads), terms);
@@ -360,8 +373,9 @@ fn lanczos_restarted(
         let (next, a_next, b) = a_orthonormal(&w, &aw, scale);
         vectors += current.len();
         let (mu, s) = ritz_values(&h, size)?;
-        // A-norm of the residual of Ritz pair i: |B·s_i(last block)|.
-        let residual = |i: usize| -> f64 {
+        // B·s_i over the last block: the residual's coordinates in the
+        // next block (its A-norm is their length).
+        let coupling = |i: usize| -> Vec<f64> {
             (0..b.nrows())
                 .map(|r| {
                     current
@@ -369,11 +383,10 @@ fn lanczos_restarted(
                         .enumerate()
                         .map(|(k, row)| b[(r, k)] * s[(row, i)])
                         .sum::<f64>()
-                        .powi(2)
                 })
-                .sum::<f64>()
-                .sqrt()
+                .collect()
         };
+        let residual = |i: usize| -> f64 { coupling(i).iter().map(|x| x * x).sum::<f64>().sqrt() };
         let wanted = wanted_of(&mu, modes);
         let exhausted = next.ncols() == 0 || size + next.ncols() > n;
         // Enough vectors that a missing mode would have shown (at least
@@ -403,20 +416,7 @@ fn lanczos_restarted(
             }
             let ritz = basis * &picked;
             let a_ritz = a_basis * &picked;
-            let couplings: Vec<Vec<f64>> = keep_ids
-                .iter()
-                .map(|&i| {
-                    (0..grown)
-                        .map(|r| {
-                            current
-                                .clone()
-                                .enumerate()
-                                .map(|(k, row)| b[(r, k)] * s[(row, i)])
-                                .sum()
-                        })
-                        .collect()
-                })
-                .collect();
+            let couplings: Vec<Vec<f64>> = keep_ids.iter().map(|&i| coupling(i)).collect();
             v.as_mut().subcols_mut(0, kept).copy_from(ritz.as_ref());
             av.as_mut().subcols_mut(0, kept).copy_from(a_ritz.as_ref());
             h.fill(0.0);

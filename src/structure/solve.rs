@@ -542,11 +542,6 @@ impl SymSparse {
         Ok(SparseColMatRef::new(symbolic, &self.values))
     }
 
-    /// y = A·x for every column of x.
-    pub(crate) fn mul(&self, x: &Mat<f64>) -> Mat<f64> {
-        self.mul_block(x.as_ref())
-    }
-
     /// Y = A·X for a block of columns, A read once: the columns side by
     /// side per row, the matrix's columns split between two threads.
     pub(crate) fn mul_block(&self, x: MatRef<'_, f64>) -> Mat<f64> {
@@ -587,25 +582,6 @@ impl SymSparse {
             part(0..n)
         };
         Mat::from_fn(n, p, |i, c| y[i * p + c])
-    }
-
-    /// y = A·x.
-    pub(crate) fn mul_vec(&self, x: &[f64]) -> Vec<f64> {
-        let p = &*self.pattern;
-        let mut y = vec![0.0; self.n];
-        for j in 0..self.n {
-            let xj = x[j];
-            let mut sum = 0.0;
-            for k in p.start[j]..p.start[j + 1] {
-                let (i, v) = (p.rows[k], self.values[k]);
-                y[i] += v * xj;
-                if i != j {
-                    sum += v * x[i];
-                }
-            }
-            y[j] += sum;
-        }
-        y
     }
 
     pub(crate) fn diagonal(&self) -> Vec<f64> {
@@ -1635,7 +1611,7 @@ fn inverse_iteration(
         for i in 0..n {
             x[(i, 0)] /= norm;
         }
-        let kx = k.mul(&x);
+        let kx = k.mul_block(x.as_ref());
         lambda = (0..n).map(|i| x[(i, 0)] * kx[(i, 0)]).sum::<f64>();
     }
     let scaled: Vec<f64> = (0..n).map(|i| x[(i, 0)] * diag[i].sqrt()).collect();
@@ -1773,6 +1749,30 @@ impl<'m> LinearFrame<'m> {
     /// [`LinearFrame::solve`] for every load set at once (one pass of the
     /// factor per eight of them).
     pub fn solve_all(&self, loads: &[&LoadSet]) -> Result<Vec<StaticResult>, FrameError> {
+        Ok(self
+            .solve_all_with_cables(loads)?
+            .into_iter()
+            .map(|(result, _)| result)
+            .collect())
+    }
+
+    /// [`LinearFrame::solve`], and every cable's force were it taut
+    /// (T₀ + k·δ, negative where the solution shortens it past its
+    /// unstressed length): what tells whether the cables' state holds.
+    pub(crate) fn solve_with_cables(
+        &self,
+        loads: &LoadSet,
+    ) -> Result<(StaticResult, Vec<f64>), FrameError> {
+        self.solve_all_with_cables(&[loads])?
+            .pop()
+            .ok_or_else(|| FrameError::Invalid("a static solution is missing".into()))
+    }
+
+    /// [`LinearFrame::solve_with_cables`] for every load set at once.
+    fn solve_all_with_cables(
+        &self,
+        loads: &[&LoadSet],
+    ) -> Result<Vec<(StaticResult, Vec<f64>)>, FrameError> {
         let n = self.stiffness.n;
         let mut p = Mat::<f64>::zeros(n, loads.len());
         for (c, set) in loads.iter().enumerate() {
@@ -1783,58 +1783,22 @@ impl<'m> LinearFrame<'m> {
             }
         }
         let x = solve_refined_all(&self.factor, &self.stiffness, &p)?;
-        loads
+        Ok(loads
             .iter()
             .enumerate()
             .map(|(c, set)| {
-                let x: Vec<f64> = (0..n).map(|i| x[(i, c)]).collect();
-                let forces: Vec<f64> = self
-                    .assembly
-                    .cable_forces(self.model, &x)
+                let x: Vec<f64> = x.col(c).iter().copied().collect();
+                let would_be = self.assembly.cable_forces(self.model, &x);
+                let forces: Vec<f64> = would_be
                     .iter()
                     .zip(&self.taut)
                     .map(|(&f, &t)| if t { f } else { 0.0 })
                     .collect();
-                Ok(self.assembly.results(self.model, set, &x, None, &forces))
+                let result = self.assembly.results(self.model, set, &x, None, &forces);
+                (result, would_be)
             })
-            .collect()
+            .collect())
     }
-
-    /// [`LinearFrame::solve`], and every cable's force were it taut
-    /// (T₀ + k·δ, negative where the solution shortens it past its
-    /// unstressed length): what tells whether the cables' state holds.
-    pub(crate) fn solve_with_cables(
-        &self,
-        loads: &LoadSet,
-    ) -> Result<(StaticResult, Vec<f64>), FrameError> {
-        validate_loads(self.model, loads)?;
-        let (mut p, _) = self.assembly.load_vector(self.model, loads);
-        p.iter_mut().zip(&self.pull).for_each(|(a, b)| *a += b);
-        let x = solve_refined(&self.factor, &self.stiffness, &p)?;
-        let would_be = self.assembly.cable_forces(self.model, &x);
-        let forces: Vec<f64> = would_be
-            .iter()
-            .zip(&self.taut)
-            .map(|(&n, &t)| if t { n } else { 0.0 })
-            .collect();
-        let result = self.assembly.results(self.model, loads, &x, None, &forces);
-        Ok((result, would_be))
-    }
-}
-
-pub(crate) fn solve_with(factor: &Factor, p: &[f64]) -> Result<Vec<f64>, FrameError> {
-    let mut x = Mat::<f64>::zeros(p.len(), 1);
-    for (i, v) in p.iter().enumerate() {
-        x[(i, 0)] = *v;
-    }
-    factor.solve_in_place(x.as_mut());
-    let out: Vec<f64> = (0..p.len()).map(|i| x[(i, 0)]).collect();
-    if out.iter().any(|v| !v.is_finite()) {
-        return Err(FrameError::Unstable(
-            "a solve gave non-finite displacements".into(),
-        ));
-    }
-    Ok(out)
 }
 
 /// Solves k·x = p with the factor of k and two steps of iterative
@@ -1847,14 +1811,8 @@ pub(crate) fn solve_refined(
     k: &SymSparse,
     p: &[f64],
 ) -> Result<Vec<f64>, FrameError> {
-    let mut x = solve_with(factor, p)?;
-    for _ in 0..2 {
-        let kx = k.mul_vec(&x);
-        let r: Vec<f64> = p.iter().zip(&kx).map(|(a, b)| a - b).collect();
-        let dx = solve_with(factor, &r)?;
-        x.iter_mut().zip(&dx).for_each(|(a, b)| *a += b);
-    }
-    Ok(x)
+    let x = solve_refined_all(factor, k, &Mat::from_fn(p.len(), 1, |i, _| p[i]))?;
+    Ok(x.col(0).iter().copied().collect())
 }
 
 /// [`solve_refined`] for every column of `p`.
@@ -1866,7 +1824,7 @@ pub(crate) fn solve_refined_all(
     let mut x = p.clone();
     factor.solve_in_place(x.as_mut());
     for _ in 0..2 {
-        let mut r = p - k.mul(&x);
+        let mut r = p - k.mul_block(x.as_ref());
         factor.solve_in_place(r.as_mut());
         x += r;
     }
@@ -1997,7 +1955,8 @@ mod tests {
         assert_eq!(a.pattern.rows, vec![0, 2, 1, 2, 2]);
         assert_eq!(a.values, vec![4.0, 1.5, 3.0, -1.0, 5.0]);
         // y = A·x against the dense product by hand.
-        let y = a.mul_vec(&[1.0, 2.0, 3.0]);
+        let y = a.mul_block(Mat::from_fn(3, 1, |i, _| (i + 1) as f64).as_ref());
+        let y: Vec<f64> = y.col(0).iter().copied().collect();
         assert_eq!(y, vec![4.0 + 4.5, 6.0 - 3.0, 1.5 - 2.0 + 15.0]);
         assert_eq!(a.diagonal(), vec![4.0, 3.0, 5.0]);
     }
@@ -2047,7 +2006,7 @@ mod tests {
             let b = Mat::<f64>::from_fn(k.n, p, |i, j| ((i * 7 + j * 13) % 17) as f64 - 8.0);
             let mut x = b.clone();
             factor.solve_in_place(x.as_mut());
-            let r = &b - k.mul(&x);
+            let r = &b - k.mul_block(x.as_ref());
             for c in 0..p {
                 let worst = r.col(c).iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 assert!(worst < 1e-10, "{p} sides, column {c}: residual {worst:e}");
