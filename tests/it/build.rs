@@ -590,6 +590,25 @@ fn ezdxf_audit(out: &Path) {
 
 /// [`ezdxf_audit`] on the DXF files of `folders` of a kit only.
 fn ezdxf_audit_of(out: &Path, folders: &[&str]) {
+    ezdxf_audit_files(&dxf_files_of(out, folders));
+}
+
+/// The DXF files of `folders` of a kit, sorted.
+fn dxf_files_of(out: &Path, folders: &[&str]) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = folders
+        .iter()
+        .flat_map(|d| std::fs::read_dir(out.join(d)).expect("folder"))
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dxf"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// `tests/tools/audit_dxf.py` on `files`, in one Python process (it
+/// names each file with a problem).
+fn ezdxf_audit_files(files: &[PathBuf]) {
     if !tools::present(
         tools::runs("python3", &["-c", "import ezdxf"]),
         "LAMELLA_REQUIRE_EZDXF",
@@ -599,17 +618,9 @@ fn ezdxf_audit_of(out: &Path, folders: &[&str]) {
     ) {
         return;
     }
-    let mut files: Vec<PathBuf> = folders
-        .iter()
-        .flat_map(|d| std::fs::read_dir(out.join(d)).expect("folder"))
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "dxf"))
-        .collect();
-    files.sort();
     let o = Command::new("python3")
         .arg(root().join("tests/tools/audit_dxf.py"))
-        .args(&files)
+        .args(files)
         .output()
         .expect("python3");
     assert!(
@@ -763,6 +774,7 @@ fn every_shipped_build_passes_both_readers() {
     let refused = crate::readme::refused(&readme);
     let mut built = 0;
     let mut parts_audited = std::collections::BTreeSet::new();
+    let mut to_audit = Vec::new();
     let samples: Vec<PathBuf> = shipped_networks()
         .iter()
         .map(|n| root().join("samples").join(format!("{n}.yaml")))
@@ -791,10 +803,12 @@ fn every_shipped_build_passes_both_readers() {
                 continue;
             }
             ok(&o);
+            // Every kit's sheets, and one kit's parts per profile, audited
+            // together after the builds (one Python process).
             if parts_audited.insert(profile) {
-                ezdxf_audit(&out);
+                to_audit.extend(dxf_files_of(&out, &["sheets", "parts"]));
             } else {
-                ezdxf_audit_of(&out, &["sheets"]);
+                to_audit.extend(dxf_files_of(&out, &["sheets"]));
             }
             let c = dxf_matches_plan_within(&out, ARC_TOL_MM);
             assert!(c.checked > 0, "{name} {profile}");
@@ -802,6 +816,7 @@ fn every_shipped_build_passes_both_readers() {
         }
     }
     assert!(built >= 20, "{built} builds");
+    ezdxf_audit_files(&to_audit);
 }
 
 /// The pavilion's edge bands: arcs bring their outlines' vertices down

@@ -8,14 +8,25 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
+use std::sync::Mutex;
 
 /// Whether `program ARGS…` runs and succeeds (a tool's `--version`, or
-/// `python3 -c "import M"`).
+/// `python3 -c "import M"`): asked once per test process (an import of
+/// ezdxf alone takes most of a second, and the tests ask dozens of
+/// times).
 pub fn runs(program: &str, args: &[&str]) -> bool {
-    Command::new(program)
-        .args(args)
-        .output()
-        .is_ok_and(|o| o.status.success())
+    static ASKED: Mutex<BTreeMap<Vec<String>, bool>> = Mutex::new(BTreeMap::new());
+    let key: Vec<String> = std::iter::once(program)
+        .chain(args.iter().copied())
+        .map(str::to_owned)
+        .collect();
+    let mut asked = ASKED.lock().unwrap_or_else(|e| e.into_inner());
+    *asked.entry(key).or_insert_with(|| {
+        Command::new(program)
+            .args(args)
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
 }
 
 /// Whether a tool the test needs is there (`have`); when it is not, fails
