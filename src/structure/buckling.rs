@@ -523,26 +523,99 @@ fn a_norms(w: &Mat<f64>, aw: &Mat<f64>) -> Vec<f64> {
         .collect()
 }
 
-/// Xᵀ·Y, the rows split between two threads.
-fn transpose_times(x: MatRef<'_, f64>, y: MatRef<'_, f64>) -> Mat<f64> {
-    let n = x.nrows();
-    if n < PARALLEL_ROWS {
-        return x.transpose() * y;
-    }
-    let half = n / 2;
-    let (top, bottom) = rayon::join(
-        || x.subrows(0, half).transpose() * y.subrows(0, half),
-        || x.subrows(half, n - half).transpose() * y.subrows(half, n - half),
-    );
-    top + bottom
+/// Rows per pass of [`transpose_times`] and [`subtract_product`]: a pass
+/// keeps its rows of the few columns it updates or reads for every basis
+/// vector in the first-level cache, so the basis is read once per product.
+const ROWS_PER_PASS: usize = 512;
+
+/// The columns of a matrix whose columns are contiguous (a `Mat` and its
+/// column ranges), as slices.
+fn columns(m: MatRef<'_, f64>) -> Vec<&[f64]> {
+    m.col_iter()
+        .map(|c| {
+            c.try_as_col_major()
+                .expect("columns are contiguous")
+                .as_slice()
+        })
+        .collect()
 }
 
-/// W ← W − X·C, the rows split between two threads.
+/// Σ a_i·b_i in four running sums.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut s = [0.0f64; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = a4
+        .remainder()
+        .iter()
+        .zip(b4.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in a4.zip(b4) {
+        for l in 0..4 {
+            s[l] += x[l] * y[l];
+        }
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + tail
+}
+
+/// Xᵀ·Y (Y of a few columns) in passes of [`ROWS_PER_PASS`] rows, the
+/// rows split between two threads.
+fn transpose_times(x: MatRef<'_, f64>, y: MatRef<'_, f64>) -> Mat<f64> {
+    let (n, k, p) = (x.nrows(), x.ncols(), y.ncols());
+    let (xs, ys) = (columns(x), columns(y));
+    let rows = |range: std::ops::Range<usize>| -> Vec<f64> {
+        let mut out = vec![0.0; k * p];
+        let mut start = range.start;
+        while start < range.end {
+            let end = (start + ROWS_PER_PASS).min(range.end);
+            for (c, yc) in ys.iter().enumerate() {
+                let yc = &yc[start..end];
+                for (i, xi) in xs.iter().enumerate() {
+                    out[c * k + i] += dot(&xi[start..end], yc);
+                }
+            }
+            start = end;
+        }
+        out
+    };
+    let out = if n < PARALLEL_ROWS {
+        rows(0..n)
+    } else {
+        let (top, bottom) = rayon::join(|| rows(0..n / 2), || rows(n / 2..n));
+        top.iter().zip(&bottom).map(|(a, b)| a + b).collect()
+    };
+    Mat::from_fn(k, p, |i, c| out[c * k + i])
+}
+
+/// W ← W − X·C (W of a few columns) in passes of [`ROWS_PER_PASS`] rows,
+/// the rows split between two threads.
 fn subtract_product(w: MatMut<'_, f64>, x: MatRef<'_, f64>, c: MatRef<'_, f64>) {
     let n = w.nrows();
-    let update = |mut w: MatMut<'_, f64>, x: MatRef<'_, f64>| {
-        let product = x * c;
-        w -= &product;
+    let update = |w: MatMut<'_, f64>, x: MatRef<'_, f64>| {
+        let xs = columns(x);
+        let mut ws: Vec<&mut [f64]> = w
+            .col_iter_mut()
+            .map(|col| {
+                col.try_as_col_major_mut()
+                    .expect("columns are contiguous")
+                    .as_slice_mut()
+            })
+            .collect();
+        let rows = xs.first().map_or(0, |x| x.len());
+        let mut start = 0;
+        while start < rows {
+            let end = (start + ROWS_PER_PASS).min(rows);
+            for (j, wj) in ws.iter_mut().enumerate() {
+                let wj = &mut wj[start..end];
+                for (i, xi) in xs.iter().enumerate() {
+                    let a = c[(i, j)];
+                    wj.iter_mut()
+                        .zip(&xi[start..end])
+                        .for_each(|(w, x)| *w -= a * x);
+                }
+            }
+            start = end;
+        }
     };
     if n < PARALLEL_ROWS {
         update(w, x);
