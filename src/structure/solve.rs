@@ -2136,11 +2136,7 @@ mod tests {
     #[test]
     fn supernodal_solves_any_number_of_right_hand_sides() {
         let k = grid_matrix(24, 6);
-        let dofs = Dofs {
-            index: (0..k.n).collect(),
-            free: k.n,
-            symbolic: Arc::default(),
-        };
+        let dofs = all_free(k.n);
         let factor = factorise_definite(&k, &dofs).unwrap().unwrap();
         assert!(
             matches!(factor.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
@@ -2163,6 +2159,15 @@ mod tests {
         assert!(Arc::ptr_eq(&again.symbolic, &factor.symbolic));
     }
 
+    /// Every one of `n` unknowns free, no symbolic factorisation kept yet.
+    fn all_free(n: usize) -> Dofs {
+        Dofs {
+            index: (0..n).collect(),
+            free: n,
+            symbolic: Arc::default(),
+        }
+    }
+
     /// A backward-stable solve is not refined (the refined solution is
     /// the plain one, bit for bit); a solve on the factor of a matrix 0.1 %
     /// off is, and refinement takes its backward error from above 1e-4 to
@@ -2170,11 +2175,7 @@ mod tests {
     #[test]
     fn only_a_solve_that_is_not_backward_stable_is_refined() {
         let k = grid_matrix(24, 6);
-        let dofs = Dofs {
-            index: (0..k.n).collect(),
-            free: k.n,
-            symbolic: Arc::default(),
-        };
+        let dofs = all_free(k.n);
         let b = Mat::<f64>::from_fn(k.n, 3, |i, j| ((i * 7 + j * 13) % 17) as f64 - 8.0);
         let exact = factorise_definite(&k, &dofs).unwrap().unwrap();
         let mut plain = b.clone();
