@@ -34,7 +34,7 @@ use lamella_synth as synth;
 use lamella::formats::read::{self as io, loads_file};
 use lamella::pipeline::{Inputs, Session};
 use lamella::structure::analyse::imperfection_of;
-use lamella::structure::buckling::critical_factors_of;
+use lamella::structure::buckling::critical_factors_given;
 use lamella::structure::build::{build_frame, FrameOptions};
 use lamella::structure::loads::{combinations, combine, deflection_span_mm, load_cases, supports};
 use lamella::structure::model::{Combination, LimitState};
@@ -170,7 +170,9 @@ fn measure(path: &Path) {
     if !static_only {
         let loads = &combos[governing].loads;
         let t = Instant::now();
-        let modes = critical_factors_of(&linear, loads, MODES).expect("α_cr");
+        // On the combination's static result, as the stage does.
+        let modes =
+            critical_factors_given(&linear, loads, &results[governing], MODES).expect("α_cr");
         alpha_s = t.elapsed().as_secs_f64();
         alpha = modes.first().map_or(f64::NAN, |m| m.factor);
         if let Some(first) = modes.first() {

@@ -14,8 +14,10 @@
 //! first, and the wanted end is the largest positive μ. That run stops
 //! once the first factor is known roughly; the pencil is then shifted to
 //! 0.98 of it (A = K_e + σ·K_G, factorised once more, ν = 1/(λ − σ)) and
-//! the wanted modes are found on it: the shift spreads a clustered wanted
-//! end (a large grid's many near-equal local modes) apart from the rest.
+//! the wanted modes are found on it, two vectors per step (a symmetric
+//! grid's modes come in pairs of near-equal factors): the shift spreads a
+//! clustered wanted end (a large grid's many near-equal local modes)
+//! apart from the rest.
 //! Eigenvalues of either sign appear (λ < 0: buckling under the reversed
 //! load, members in tension); the m smallest positive λ are kept. A Ritz
 //! pair is converged when its residual |β_j·s_j| is below [`TOLERANCE`]·μ
@@ -35,8 +37,16 @@ use faer::{Mat, MatMut, MatRef, Side};
 /// steps for no visible digit (the pavilion: 85–160 steps at 1e-6).
 pub const TOLERANCE: f64 = 1e-6;
 
-/// Relative residual of the rough first factor the shift is taken from.
-pub const PROBE_TOLERANCE: f64 = 1e-2;
+/// Relative residual of the rough first factor the shift is taken from:
+/// with |r| ≤ 0.02·θ some μ lies within 2 % of the Ritz value θ, and θ is
+/// below the largest μ₁ (Lanczos approaches the end of the spectrum from
+/// inside), so where that μ is μ₁ the shift 0.98/θ ([`SHIFT_FRACTIONS`])
+/// is below λ₁ = 1/μ₁ (0.98 · 1.02 < 1). Where it is not, the shifted
+/// pencil is not positive definite and the next fraction is tried. At
+/// 1e-2 the 100 × 100 benchmark grid took 43 rough steps in place of 20
+/// (the residual stalls near 1.1e-2 for 20 steps), for a shift further
+/// from λ₁.
+pub const PROBE_TOLERANCE: f64 = 0.02;
 
 /// The shift as a fraction of the rough first factor, tried in turn until
 /// the shifted pencil is positive definite (the shift below the smallest
@@ -240,6 +250,7 @@ fn shifted_lanczos(
     modes: usize,
 ) -> Result<Vec<(f64, Vec<f64>)>, FrameError> {
     let sizes = (basis_size(modes), kept(modes), BLOCK);
+    let paired = (basis_size(modes), kept(modes), SHIFTED_BLOCK);
     let plain = Pencil {
         stiffness,
         factor,
@@ -259,10 +270,10 @@ fn shifted_lanczos(
                 factor: &factor,
                 shift,
             };
-            return lanczos_restarted(&pencil, kg, modes, sizes, TOLERANCE);
+            return lanczos_restarted(&pencil, kg, modes, paired, TOLERANCE);
         }
     }
-    lanczos_restarted(&plain, kg, modes, sizes, TOLERANCE)
+    lanczos_restarted(&plain, kg, modes, paired, TOLERANCE)
 }
 
 /// Block Lanczos on Op = A⁻¹·(−K_G) (A the shifted pencil), self-adjoint
@@ -271,7 +282,8 @@ fn shifted_lanczos(
 /// positive ν (the smallest λ above the shift σ), each converged to a
 /// residual of `tolerance`·ν.
 ///
-/// The basis V grows by blocks of `block` vectors ([`BLOCK`]: one): a
+/// The basis V grows by blocks of `block` vectors ([`BLOCK`],
+/// [`SHIFTED_BLOCK`]): a
 /// block W = A⁻¹·(−K_G·Q_j) is one solve of that many right-hand sides.
 /// A·V is kept beside V, and A·W is −K_G·Q_j itself (the solve is
 /// backward stable, where a product with A, stiff joints beside slender
@@ -456,14 +468,24 @@ fn lanczos_restarted(
     })
 }
 
-/// Vectors per block of [`lanczos_restarted`]: one. Blocks of more share
-/// the reads of the factor and the basis between their vectors (a solve
-/// of eight right-hand sides costs about four of one), but on the
-/// benchmark's grids the clustered spectrum then needs far more vectors
-/// (at 40 × 40 curves: 29 + 53 with one, 56 + 62 with two, 116 + 84 with
-/// four, 208 + 128 with eight in a basis of 120) and the analysis took
-/// longer with every block size tried.
+/// Vectors per block of [`lanczos_restarted`] on the unshifted pencil
+/// (the rough first factor): one. Blocks of more share the reads of the
+/// factor and the basis between their vectors (a solve of two right-hand
+/// sides costs about one of one at 100 × 100, eight about four), but the
+/// rough run wants one mode, and the benchmark's 40 × 40 grid took 29
+/// vectors with one, 58 with two and 124 with four, each run longer.
 pub const BLOCK: usize = 1;
+
+/// Vectors per block on the shifted pencil: two. A symmetric grid's modes
+/// come in pairs of near-equal factors (the benchmark's Enneper grids,
+/// with their fourfold symmetry: 0.195411223 and 0.195411257 at 40 × 40),
+/// and one vector's Krylov space holds one direction of such a pair: the
+/// other appears only as round-off brings it in, many steps on. A block
+/// of two holds both from the start. On the 40 × 40 grid the six modes
+/// took 54 vectors one by one, 64 two by two (32 solves) in 0.7 of the
+/// time, 96 three or four at a time; the 100 × 100 grid 93 against 102,
+/// 14.3 s against 10.8 s.
+pub const SHIFTED_BLOCK: usize = 2;
 
 /// Q, A·Q and B with W = Q·B, Q A-orthonormal (given A·W): from the Gram
 /// matrix G = Wᵀ·A·W = U·Λ·Uᵀ, Q = W·U·Λ^-½ and B = Λ^½·Uᵀ, keeping the
