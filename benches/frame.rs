@@ -37,8 +37,8 @@ use lamella::structure::analyse::imperfection_of;
 use lamella::structure::buckling::critical_factors_given;
 use lamella::structure::build::{build_frame, FrameOptions};
 use lamella::structure::loads::{combinations, combine, deflection_span_mm, load_cases, supports};
-use lamella::structure::model::{Combination, LimitState};
-use lamella::structure::second_order::second_order;
+use lamella::structure::model::{CableState, Combination, LimitState};
+use lamella::structure::second_order::second_order_of;
 use lamella::structure::solve::LinearFrame;
 use lamella::structure::stage::{IMPERFECTION_SPAN_OVER, MODES, SECOND_ORDER_TOLERANCE};
 use std::path::Path;
@@ -180,7 +180,13 @@ fn measure(path: &Path) {
             let t = Instant::now();
             let imperfection = imperfection_of(first, span / IMPERFECTION_SPAN_OVER);
             // Not converging is a result too (the grid fails); its time counts.
-            let _ = second_order(model, loads, &imperfection, SECOND_ORDER_TOLERANCE);
+            let _ = second_order_of(
+                &linear,
+                loads,
+                &imperfection,
+                SECOND_ORDER_TOLERANCE,
+                CableState::TensionOnly,
+            );
             second_s = t.elapsed().as_secs_f64();
         }
     }

@@ -25,7 +25,7 @@ use super::buckling::{critical_factors_given, BucklingMode};
 use super::model::{
     BeamRole, CableState, Combination, FrameModel, InitialForces, LimitState, LoadSet,
 };
-use super::second_order::second_order_as;
+use super::second_order::second_order_of;
 use super::solve::{FrameError, LinearFrame, Reaction, SectionForces, StaticResult};
 use super::tension::settle;
 use super::verdict::{member_check, section_stress, Code, Forces, Rectangle};
@@ -219,8 +219,8 @@ pub fn analyse_as(
             if let Some(mode) = buckling.first() {
                 if settings.second_order && mode.factor > 1.0 && mode.factor < ALPHA_CR_LIMIT {
                     let imperfection = imperfection_of(mode, settings.imperfection_mm);
-                    match second_order_as(
-                        model,
+                    match second_order_of(
+                        linear,
                         &combination.loads,
                         &imperfection,
                         settings.tolerance,
