@@ -7,9 +7,10 @@
 //! **Method.** Shift-invert Lanczos: with K_e = K + K_G,0 factorised
 //! once (sparse Cholesky), the operator Op = K_e⁻¹·(−K_G) is self-adjoint
 //! in the K_e inner product and its eigenvalues are μ = 1/λ; Lanczos in
-//! that inner product (one solve per step, full reorthogonalisation,
-//! repeated where the first pass cancels most of the vector, so no
-//! spurious copies; the basis thick-restarted at a fixed
+//! that inner product (one solve per step, the new vector's cosine with
+//! every basis vector computed and every one above 1e-9 taken out, so the
+//! basis stays semi-orthogonal and no spurious copies appear; the basis
+//! thick-restarted at a fixed
 //! size, so every step costs the same) finds both ends of the spectrum
 //! first, and the wanted end is the largest positive μ. That run stops
 //! once the first factor is known roughly; the pencil is then shifted to
@@ -278,21 +279,22 @@ fn shifted_lanczos(
 }
 
 /// Block Lanczos on Op = A⁻¹·(−K_G) (A the shifted pencil), self-adjoint
-/// in the A inner product, with full reorthogonalisation and thick
+/// in the A inner product, with selective reorthogonalisation and thick
 /// restarts; returns (λ = σ + 1/ν, vector) for the `modes` largest
 /// positive ν (the smallest λ above the shift σ), each converged to a
 /// residual of `tolerance`·ν.
 ///
 /// The basis V grows by blocks of `block` vectors ([`BLOCK`],
-/// [`SHIFTED_BLOCK`]): a
-/// block W = A⁻¹·(−K_G·Q_j) is one solve of that many right-hand sides.
+/// [`SHIFTED_BLOCK`]): a block W = A⁻¹·(−K_G·Q_j) is one solve of that
+/// many right-hand sides.
 /// A·V is kept beside V, and A·W is −K_G·Q_j itself (the solve is
 /// backward stable, where a product with A, stiff joints beside slender
 /// strips, would lose digits). W is made A-orthogonal to the basis by
 /// classical Gram–Schmidt through matrix products (C = Vᵀ·A·W, then
-/// W −= V·C and A·W −= A·V·C), a second time where the first cancelled
-/// most of a column; the sum of the C is column block j of the projected
-/// operator H = Vᵀ·A·Op·V. The block is then made A-orthonormal within
+/// W −= V_S·C_S and A·W −= (A·V)_S·C_S over the basis vectors S whose
+/// cosine with W exceeds [`SEMI_ORTHOGONAL`]), a second time where the
+/// first cancelled all but [`CANCELLED`] of a column; the sum of the C_S
+/// is column block j of the projected operator H = Vᵀ·A·Op·V. The block is then made A-orthonormal within
 /// itself through the eigen-decomposition of its Gram matrix
 /// G = Wᵀ·A·W = U·Λ·Uᵀ (Q_{j+1} = W·U·Λ^-½, W = Q_{j+1}·B with
 /// B = Λ^½·Uᵀ; directions with a negligible Λ are dropped: the Krylov
@@ -356,7 +358,7 @@ fn lanczos_restarted(
                 "a solve gave non-finite displacements".into(),
             ));
         }
-        // Twice A-orthogonal to the basis (classical Gram–Schmidt), A·W
+        // A-orthogonal to the basis (classical Gram–Schmidt), A·W
         // carried along from A·V: the solve is backward stable, so −K_G·Q_j
         // is W's A-image to round-off, where a product with A (stiff joints
         // beside slender strips) would lose digits. C is H's column block.

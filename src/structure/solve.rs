@@ -25,8 +25,9 @@
 //! of [`PENALTY`] times its node's largest translational stiffness along it.
 //!
 //! **Sparse algebra.** Matrices are lower triangles in compressed columns
-//! ([`SymSparse`]); every element scatters its whole 12 × 12 block, zeros
-//! included, so the stiffness, the geometric stiffness, a shifted pencil
+//! ([`SymSparse`]); every element adds its whole 12 × 12 block, zeros
+//! included, at places found once per model ([`ScatterPlan`]: no
+//! triplets to sort), so the stiffness, the geometric stiffness, a shifted pencil
 //! and a tangent of one model share one pattern, their sums add values,
 //! and one symbolic factorisation (faer's approximate minimum degree
 //! ordering and supernodal structure) is computed per model and kept in
