@@ -260,7 +260,10 @@ fn shifted_lanczos(
         factor,
         shift: 0.0,
     };
+    // Room for the shifted run's wider blocks from the start: the rough
+    // run's space is then the shifted run's, allocated once.
     let mut space = Space::default();
+    space.fit(kg.n, paired.0.min(kg.n) + paired.2);
     let rough = lanczos_restarted(&plain, kg, 1, sizes, PROBE_TOLERANCE, &mut space)?;
     let Some(&(estimate, _)) = rough.first() else {
         return Ok(Vec::new());
