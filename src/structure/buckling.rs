@@ -819,14 +819,7 @@ mod tests {
     /// A fixed–free column of `n` elements, 1 m, the steel strip's
     /// section; the compressive tip load of 100 N.
     fn cantilever(n: usize) -> (FrameModel, LoadSet) {
-        let section = Section {
-            e_mpa: 210_000.0,
-            g_mpa: 81_000.0,
-            area_mm2: 75.0,
-            i_y_mm4: 15_625.0,
-            i_z_mm4: 14.0625,
-            j_mm4: 52.0,
-        };
+        let section = Section::steel_strip();
         let length_mm = 1000.0;
         let model = FrameModel {
             nodes_mm: (0..=n)

@@ -328,3 +328,18 @@ pub struct LoadTargets {
     /// node), model node indices, ascending.
     pub boundary_nodes: Vec<usize>,
 }
+
+#[cfg(test)]
+impl Section {
+    /// The steel prototype's strip, 1.5 × 50 mm, for unit tests.
+    pub(crate) fn steel_strip() -> Section {
+        Section {
+            e_mpa: 210_000.0,
+            g_mpa: 81_000.0,
+            area_mm2: 75.0,
+            i_y_mm4: 15_625.0,
+            i_z_mm4: 14.0625,
+            j_mm4: 52.0,
+        }
+    }
+}

@@ -103,7 +103,7 @@ fn iterate(
     tolerance: f64,
     cables: CableState,
 ) -> Result<SecondOrderResult, FrameError> {
-    let nodes = assembly.nodes_mm.clone();
+    let nodes = &assembly.nodes_mm;
     let k = assembly.stiffness(model);
     let initial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
     // The imperfect elements carry the same total load as the perfect ones.
@@ -111,7 +111,7 @@ fn iterate(
     for l in scaled.beams.iter_mut() {
         let beam = &model.beams[l.beam];
         let perfect = beam.length_mm(&model.nodes_mm);
-        let imperfect = beam.length_mm(&nodes);
+        let imperfect = beam.length_mm(nodes);
         if imperfect > 0.0 {
             l.force_n_per_mm *= perfect / imperfect;
         }

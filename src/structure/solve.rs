@@ -1068,41 +1068,54 @@ impl Assembly {
     /// Frames of `model`'s elements at `nodes_mm`.
     pub fn new(model: &FrameModel, nodes_mm: &[DVec3]) -> Result<Assembly, FrameError> {
         validate(model)?;
-        let frames = model
-            .beams
-            .iter()
-            .enumerate()
-            .map(|(i, b)| element_frame(nodes_mm, i, b))
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(Assembly {
+        Assembly {
             dofs: Dofs::of(model),
-            frames,
-            nodes_mm: nodes_mm.to_vec(),
+            frames: Vec::new(),
+            nodes_mm: Vec::new(),
             offsets: model
                 .beams
                 .iter()
                 .map(|b| offset_matrix(&b.offsets_mm))
                 .collect(),
-            cable_axes: model
-                .cables
-                .iter()
-                .map(|c| {
-                    let [a, b] = c.ends_mm(nodes_mm);
-                    ((b - a).normalize(), c.stiffness_n_per_mm(nodes_mm))
-                })
-                .collect(),
+            cable_axes: Vec::new(),
             plan: OnceLock::new(),
-        })
+        }
+        .at(model, nodes_mm)
     }
 
     /// The same model's assembly at `nodes_mm` (an imperfect geometry):
-    /// its unknowns, kept symbolic factorisation and scatter plan shared,
-    /// its element frames and cables' axes taken anew.
+    /// its unknowns, offsets, kept symbolic factorisation and scatter plan
+    /// shared, its element frames and cables' axes taken anew.
     pub fn moved(&self, model: &FrameModel, nodes_mm: &[DVec3]) -> Result<Assembly, FrameError> {
-        let mut moved = Assembly::new(model, nodes_mm)?;
-        moved.dofs = self.dofs.clone();
-        moved.plan = self.plan.clone();
-        Ok(moved)
+        Assembly {
+            dofs: self.dofs.clone(),
+            frames: Vec::new(),
+            nodes_mm: Vec::new(),
+            offsets: self.offsets.clone(),
+            cable_axes: Vec::new(),
+            plan: self.plan.clone(),
+        }
+        .at(model, nodes_mm)
+    }
+
+    /// The element frames and cables' axes of `model` at `nodes_mm`.
+    fn at(mut self, model: &FrameModel, nodes_mm: &[DVec3]) -> Result<Assembly, FrameError> {
+        self.frames = model
+            .beams
+            .iter()
+            .enumerate()
+            .map(|(i, b)| element_frame(nodes_mm, i, b))
+            .collect::<Result<Vec<_>, _>>()?;
+        self.cable_axes = model
+            .cables
+            .iter()
+            .map(|c| {
+                let [a, b] = c.ends_mm(nodes_mm);
+                ((b - a).normalize(), c.stiffness_n_per_mm(nodes_mm))
+            })
+            .collect();
+        self.nodes_mm = nodes_mm.to_vec();
+        Ok(self)
     }
 
     /// The model's scatter plan (made once).
@@ -2302,14 +2315,7 @@ mod tests {
     /// fixed support, an inclined roller, and pressures on two beams.
     fn plan_model() -> (FrameModel, LoadSet) {
         use super::super::model::{Link, PressureLoad, Support};
-        let section = Section {
-            e_mpa: 210_000.0,
-            g_mpa: 81_000.0,
-            area_mm2: 75.0,
-            i_y_mm4: 15_625.0,
-            i_z_mm4: 14.0625,
-            j_mm4: 52.0,
-        };
+        let section = Section::steel_strip();
         let nodes_mm = vec![
             DVec3::new(0.0, 0.0, 0.0),
             DVec3::new(1000.0, 0.0, 100.0),
