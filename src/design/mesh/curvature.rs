@@ -8,14 +8,17 @@
 //! counter-clockwise triangles point to), its coordinates divided by the
 //! neighbourhood's radius for conditioning, and a height function (a
 //! polynomial of degree 3 or 4: 10 or 15 coefficients) is fitted by least
-//! squares (the normal equations, [`least_squares`]). The fit is repeated
+//! squares (the normal equations, [`Cholesky`]). The fit is repeated
 //! once in the frame of the fitted normal. The shape operator of the
 //! fitted graph at the vertex gives k1 ≥ k2 and the principal directions.
 //!
-//! Cost. A quartic over 120 vertices is some 19,000 multiply-adds per fit
-//! (the Gram matrix's upper triangle in 4 × 4 blocks summed in registers),
-//! two fits per vertex. Each thread keeps its buffers (neighbourhood,
-//! points, rows) from vertex to vertex, so no fit allocates. The degree
+//! Cost. The normal equations of a polynomial fit are sums of the points'
+//! power sums Σ xᵃyᵇ and Σ z·xᵃyᵇ ([`Moments`]): a quartic over 120
+//! vertices is 60 sums of 120 products (7,200 multiply-adds) where its Gram
+//! matrix had 136 entries (16,300), a cubic 38 sums where it had 66, and a
+//! minimal surface's basis takes its entries from the same sums; two fits
+//! per vertex. Each thread keeps its buffers (neighbourhood, points,
+//! columns of powers) from vertex to vertex, so no fit allocates. The degree
 //! and the neighbourhood's size are decided once per mesh, from the jets
 //! of at most [`DECISION_SAMPLE`] vertices. Where the neighbourhoods are
 //! large (fine meshes, [`SHARED_MIN_POINTS`]), jets are fitted at a
@@ -521,12 +524,12 @@ struct Scratch {
     rows: FitRows,
 }
 
-/// The buffers of one fit: the points in the fit's frame, the rows of
-/// monomials and the rows the QR works on.
+/// The buffers of one fit: the points in the fit's frame, their columns
+/// of powers ([`Moments::of`]) and the rows the QR works on.
 #[derive(Default)]
 struct FitRows {
     local: Vec<DVec3>,
-    monomials: Vec<Row>,
+    powers: Vec<f64>,
     work: Vec<Row>,
 }
 
@@ -748,8 +751,8 @@ fn jet(
     if rel.len() < unknowns(degree) {
         return None;
     }
-    let first = fit(rel, n0, degree, Basis::General, rows)?.normal();
-    let second = fit(rel, first, degree, basis, rows)?;
+    let first = fit(rel, n0, degree, Basis::General, rows, false)?.normal();
+    let second = fit(rel, first, degree, basis, rows, true)?;
     Some((
         VertexJet {
             curvature: second.curvature(),
@@ -805,7 +808,16 @@ struct Fit {
 
 /// Fit a degree-`degree` height function over the tangent plane of `n` to
 /// the points `rel` (relative to the vertex); None when rank deficient.
-fn fit(rel: &[DVec3], n: DVec3, degree: usize, basis: Basis, rows: &mut FitRows) -> Option<Fit> {
+/// `residual`: sum the residual over the points (else `residual_mm` is
+/// NaN: the first of a vertex's two fits gives only its normal).
+fn fit(
+    rel: &[DVec3],
+    n: DVec3,
+    degree: usize,
+    basis: Basis,
+    rows: &mut FitRows,
+    residual: bool,
+) -> Option<Fit> {
     let e1 = n.any_orthonormal_vector();
     let e2 = n.cross(e1);
     let scale = rel
@@ -817,25 +829,14 @@ fn fit(rel: &[DVec3], n: DVec3, degree: usize, basis: Basis, rows: &mut FitRows)
     }
     let minimal = basis != Basis::General && degree == 3;
     let cubic_only = basis == Basis::Minimal;
-    let (m, k) = (
-        rel.len(),
-        if minimal {
-            if cubic_only {
-                MINIMAL_CUBIC_UNKNOWNS
-            } else {
-                MINIMAL_UNKNOWNS
-            }
-        } else {
-            unknowns(degree)
-        },
-    );
-    let FitRows {
-        local,
-        monomials: a0,
-        work: a,
-    } = rows;
-    local.clear();
-    local.extend(
+    let terms: &[Term] = match (minimal, cubic_only) {
+        (true, true) => &MINIMAL_TERMS[..MINIMAL_CUBIC_UNKNOWNS],
+        (true, false) => &MINIMAL_TERMS[..],
+        (false, _) => &GENERAL_TERMS[..unknowns(degree)],
+    };
+    let (m, k) = (rel.len(), terms.len());
+    rows.local.clear();
+    rows.local.extend(
         rel.iter()
             .map(|q| DVec3::new(q.dot(e1), q.dot(e2), q.dot(n)) / scale),
     );
@@ -844,45 +845,37 @@ fn fit(rel: &[DVec3], n: DVec3, degree: usize, basis: Basis, rows: &mut FitRows)
     } else {
         1
     };
-    let mono = |q: &DVec3| {
-        let mut full = [0.0; MAX_UNKNOWNS];
-        if minimal {
-            minimal_monomials(q.x, q.y, &mut full[..MINIMAL_UNKNOWNS]);
-        } else {
-            monomials(q.x, q.y, &mut full[..k]);
+    let top = terms
+        .iter()
+        .flat_map(|t| t.iter().map(|&(_, a, b)| a + b))
+        .max()
+        .unwrap_or(0);
+    let moments = Moments::of(&rows.local, top, &mut rows.powers);
+    let gram = moments.gram(terms);
+    let solution = match Cholesky::of(&gram, k) {
+        Some(l) => {
+            // The quartic part of a minimal graph is harmonic but for a
+            // term the quadratic part fixes ([`minimal_monomials`]):
+            // fitted by fixed-point iteration from zero.
+            let mut particular = (0.0, 0.0);
+            let mut coef = [0.0; MAX_UNKNOWNS];
+            for pass in 0..passes_needed {
+                coef = l.solve(&moments.right_hand_side(terms, particular));
+                if pass + 1 < passes_needed {
+                    particular = particular_term(&coef);
+                }
+            }
+            let rss = if residual {
+                residual_sum(&rows.local, &coef[..k], minimal, particular)
+            } else {
+                f64::NAN
+            };
+            (coef, rss, l.inverse_diagonal())
         }
-        row_of(&full[..k])
+        // Nearly dependent columns ([`Cholesky`]): a QR on the rows.
+        None => fit_by_qr(rows, k, minimal, passes_needed)?,
     };
-    // One pass fits the rows as built; more start each from a copy.
-    let rows_of = if passes_needed > 1 { &mut *a0 } else { &mut *a };
-    rows_of.clear();
-    rows_of.extend(local.iter().map(mono));
-    // The quartic part of a minimal graph is harmonic but for a term the
-    // quadratic part fixes ([`minimal_monomials`]): fitted by fixed-point
-    // iteration from zero.
-    let mut particular = (0.0, 0.0);
-    let mut passes = passes_needed;
-    let (coef, rss, diag) = loop {
-        if passes_needed > 1 {
-            a.clear();
-            a.extend_from_slice(a0);
-        }
-        for (row, q) in a.iter_mut().zip(local.iter()) {
-            let (x2, y2) = (q.x * q.x, q.y * q.y);
-            row[k / LANES][k % LANES] =
-                q.z - particular.0 * (x2 * x2 - y2 * y2) - particular.1 * x2 * q.x * q.y;
-        }
-        let sol = least_squares(a, k)?;
-        passes -= 1;
-        if passes == 0 {
-            break sol;
-        }
-        // r = f_xx = 2a₃, s = f_xy = a₄: P = A/24 (x⁴ − y⁴) + B/6 x³y with
-        // A = 2r(r² + s²), B = 2s(r² + s²).
-        let (r, s) = (2.0 * sol.0[3], sol.0[4]);
-        let g = r * r + s * s;
-        particular = (2.0 * r * g / 24.0, 2.0 * s * g / 6.0);
-    };
+    let (coef, rss, diag) = solution;
     let (coef, diag, len) = if minimal {
         let mut full = ([0.0; MAX_UNKNOWNS], [0.0; MAX_UNKNOWNS]);
         full.0[..10].copy_from_slice(&minimal_to_full(&coef[..k]));
@@ -906,6 +899,314 @@ fn fit(rel: &[DVec3], n: DVec3, degree: usize, basis: Basis, rows: &mut FitRows)
         len,
         residual_mm,
     })
+}
+
+/// The particular quartic term of a minimal graph from its quadratic
+/// part: r = f_xx = 2a₃, s = f_xy = a₄, P = A/24 (x⁴ − y⁴) + B/6 x³y with
+/// A = 2r(r² + s²), B = 2s(r² + s²); returned as the coefficients of
+/// (x⁴ − y⁴, x³y).
+fn particular_term(coef: &[f64]) -> (f64, f64) {
+    let (r, s) = (2.0 * coef[3], coef[4]);
+    let g = r * r + s * s;
+    (2.0 * r * g / 24.0, 2.0 * s * g / 6.0)
+}
+
+/// A point's height less the particular term.
+fn height_less(q: &DVec3, particular: (f64, f64)) -> f64 {
+    let (x2, y2) = (q.x * q.x, q.y * q.y);
+    q.z - particular.0 * (x2 * x2 - y2 * y2) - particular.1 * x2 * q.x * q.y
+}
+
+/// The basis functions' values at (x, y), `minimal` in a minimal
+/// surface's basis, into the first `out.len()` entries.
+fn basis_values(x: f64, y: f64, minimal: bool, out: &mut [f64]) {
+    if minimal {
+        let mut all = [0.0; MINIMAL_UNKNOWNS];
+        minimal_monomials(x, y, &mut all);
+        out.copy_from_slice(&all[..out.len()]);
+    } else {
+        monomials(x, y, out);
+    }
+}
+
+/// The residual sum of squares of the fit `coef` over the points.
+fn residual_sum(local: &[DVec3], coef: &[f64], minimal: bool, particular: (f64, f64)) -> f64 {
+    let mut values = [0.0; MAX_UNKNOWNS];
+    let values = &mut values[..coef.len()];
+    local
+        .iter()
+        .map(|q| {
+            basis_values(q.x, q.y, minimal, values);
+            let fitted: f64 = values.iter().zip(coef).map(|(v, c)| v * c).sum();
+            (height_less(q, particular) - fitted).powi(2)
+        })
+        .sum()
+}
+
+/// The least squares by Householder QR on the rows ([`least_squares_qr`]),
+/// with the minimal quartic's particular term iterated as in [`fit`].
+fn fit_by_qr(
+    rows: &mut FitRows,
+    k: usize,
+    minimal: bool,
+    passes: usize,
+) -> Option<([f64; MAX_UNKNOWNS], f64, [f64; MAX_UNKNOWNS])> {
+    let FitRows { local, work, .. } = rows;
+    let mut particular = (0.0, 0.0);
+    // The unknowns' columns and the right-hand side's.
+    let mut values = [0.0; MAX_UNKNOWNS + 1];
+    for pass in 0..passes {
+        work.clear();
+        work.extend(local.iter().map(|q| {
+            basis_values(q.x, q.y, minimal, &mut values[..k]);
+            values[k] = height_less(q, particular);
+            row_of(&values[..=k])
+        }));
+        let solution = least_squares_qr(work, k)?;
+        if pass + 1 == passes {
+            return Some(solution);
+        }
+        particular = particular_term(&solution.0);
+    }
+    None
+}
+
+/// A basis function as a sum of monomials (coefficient, power of x, power
+/// of y).
+type Term = &'static [(f64, usize, usize)];
+
+/// [`monomials`] as terms.
+const GENERAL_TERMS: [Term; 15] = [
+    &[(1.0, 0, 0)],
+    &[(1.0, 1, 0)],
+    &[(1.0, 0, 1)],
+    &[(1.0, 2, 0)],
+    &[(1.0, 1, 1)],
+    &[(1.0, 0, 2)],
+    &[(1.0, 3, 0)],
+    &[(1.0, 2, 1)],
+    &[(1.0, 1, 2)],
+    &[(1.0, 0, 3)],
+    &[(1.0, 4, 0)],
+    &[(1.0, 3, 1)],
+    &[(1.0, 2, 2)],
+    &[(1.0, 1, 3)],
+    &[(1.0, 0, 4)],
+];
+
+/// [`minimal_monomials`] as terms.
+const MINIMAL_TERMS: [Term; MINIMAL_UNKNOWNS] = [
+    &[(1.0, 0, 0)],
+    &[(1.0, 1, 0)],
+    &[(1.0, 0, 1)],
+    &[(1.0, 2, 0), (-1.0, 0, 2)],
+    &[(1.0, 1, 1)],
+    &[(1.0, 3, 0), (-3.0, 1, 2)],
+    &[(1.0, 0, 3), (-3.0, 2, 1)],
+    &[(1.0, 4, 0), (-6.0, 2, 2), (1.0, 0, 4)],
+    &[(4.0, 3, 1), (-4.0, 1, 3)],
+];
+
+/// Highest power of x or y in the moments ([`Moments`]): twice a quartic's.
+const MOMENT_DEGREE: usize = 8;
+
+/// The power sums of a fit's points (x, y, z in the fit's scaled frame):
+/// `xy[a][b]` = Σ xᵃ·yᵇ for a + b ≤ 2·top, `z[a][b]` = Σ z·xᵃ·yᵇ for
+/// a + b ≤ top. The normal equations of any basis of polynomials of
+/// degree ≤ top are sums of these: a Gram entry of two monomials is one
+/// power sum, so a cubic's 66 entries (with its right-hand side) are 38
+/// sums, a quartic's 136 are 60, and a minimal basis's come from the same
+/// sums. Each sum runs over the points once in order, in four
+/// interleaved partial sums (vector lanes).
+struct Moments {
+    xy: [[f64; MOMENT_DEGREE + 1]; MOMENT_DEGREE + 1],
+    z: [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1],
+}
+
+/// The highest degree of a fitted polynomial (a quartic).
+const MAX_DEGREE: usize = 4;
+
+impl Moments {
+    /// The power sums of `local`'s points up to the degree `top`
+    /// (`powers` a buffer for their columns of powers).
+    fn of(local: &[DVec3], top: usize, powers: &mut Vec<f64>) -> Moments {
+        debug_assert!(top <= MAX_DEGREE);
+        let m = local.len();
+        let (nx, nz) = (2 * top + 1, top + 1);
+        // Columns: x⁰…, y⁰…, then z·x⁰…, each over the points in order.
+        powers.clear();
+        powers.resize((2 * nx + nz) * m, 0.0);
+        let (xs, rest) = powers.split_at_mut(nx * m);
+        let (ys, zs) = rest.split_at_mut(nx * m);
+        let mut columns = [xs.chunks_exact_mut(m), ys.chunks_exact_mut(m)];
+        for (axis, cols) in columns.iter_mut().enumerate() {
+            let mut previous: &mut [f64] = cols.next().unwrap_or_default();
+            previous.fill(1.0);
+            for column in cols {
+                for ((c, p), q) in column.iter_mut().zip(previous.iter()).zip(local) {
+                    *c = p * q[axis];
+                }
+                previous = column;
+            }
+        }
+        for (a, column) in zs.chunks_exact_mut(m).enumerate() {
+            for ((c, x), q) in column.iter_mut().zip(&xs[a * m..]).zip(local) {
+                *c = q.z * x;
+            }
+        }
+        let mut moments = Moments {
+            xy: [[0.0; MOMENT_DEGREE + 1]; MOMENT_DEGREE + 1],
+            z: [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1],
+        };
+        for a in 0..nx {
+            for b in 0..nx - a {
+                moments.xy[a][b] = dot(&xs[a * m..(a + 1) * m], &ys[b * m..(b + 1) * m]);
+            }
+        }
+        for a in 0..nz {
+            for b in 0..nz - a {
+                moments.z[a][b] = dot(&zs[a * m..(a + 1) * m], &ys[b * m..(b + 1) * m]);
+            }
+        }
+        moments
+    }
+
+    /// Σ p·q over the points for two basis functions.
+    fn product(&self, p: Term, q: Term) -> f64 {
+        let mut s = 0.0;
+        for &(c, a, b) in p {
+            for &(d, e, f) in q {
+                s += c * d * self.xy[a + e][b + f];
+            }
+        }
+        s
+    }
+
+    /// The Gram matrix AᵀA of the basis `terms` (the upper triangle,
+    /// mirrored).
+    fn gram(&self, terms: &[Term]) -> [[f64; MAX_UNKNOWNS]; MAX_UNKNOWNS] {
+        let mut g = [[0.0; MAX_UNKNOWNS]; MAX_UNKNOWNS];
+        for (i, &p) in terms.iter().enumerate() {
+            for (j, &q) in terms.iter().enumerate().skip(i) {
+                g[i][j] = self.product(p, q);
+                g[j][i] = g[i][j];
+            }
+        }
+        g
+    }
+
+    /// Aᵀb for the heights less the particular term `particular` (the
+    /// coefficients of x⁴ − y⁴ and x³y, [`particular_term`]).
+    fn right_hand_side(&self, terms: &[Term], particular: (f64, f64)) -> [f64; MAX_UNKNOWNS] {
+        let mut rhs = [0.0; MAX_UNKNOWNS];
+        for (r, &p) in rhs.iter_mut().zip(terms) {
+            for &(c, a, b) in p {
+                let mut s = self.z[a][b];
+                if particular != (0.0, 0.0) {
+                    s -= particular.0 * (self.xy[a + 4][b] - self.xy[a][b + 4])
+                        + particular.1 * self.xy[a + 3][b + 1];
+                }
+                *r += c * s;
+            }
+        }
+        rhs
+    }
+}
+
+/// Σ aᵢ·bᵢ in four interleaved partial sums (vector lanes), added
+/// pairwise, then the remainder.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ac
+        .remainder()
+        .iter()
+        .zip(bc.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    let mut acc = [0.0; 4];
+    for (x, y) in ac.zip(bc) {
+        for l in 0..4 {
+            acc[l] += x[l] * y[l];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// A Cholesky factor L (lower, row r in `l[r]`) of a k × k Gram matrix
+/// AᵀA: the least squares min |A x − b| by the normal equations, AᵀA and
+/// Aᵀb summed from the points' power sums ([`Moments`]).
+///
+/// The normal equations take a third of a Householder QR's multiply-adds
+/// and are accurate where they are used: they lose the condition number of
+/// AᵀA (scaled to a unit diagonal) times the rounding unit, and a Cholesky
+/// pivot tells it (each pivot over its column's squared norm is the
+/// squared sine of the column's angle to the span of those before). Where
+/// some pivot is below [`GRAM_PIVOT`] of its column, the QR
+/// ([`least_squares_qr`]) solves on the rows instead ([`fit_by_qr`]). The
+/// scaled monomials are well conditioned over most neighbourhoods (the
+/// smallest relative pivot measured 1.6e-5 on the jittered sphere,
+/// cylinder and Enneper test meshes and the shipped films' and mesh's,
+/// 1.7e-8 on the catenoid's); a neighbourhood wedged in a corner of the
+/// mesh, its points on one side of the vertex, is nearly dependent (pivots
+/// to 4e-12, 10 fits on the 25,921-vertex Enneper test mesh of shared
+/// jets), and there the QR solves.
+struct Cholesky {
+    l: [[f64; MAX_UNKNOWNS]; MAX_UNKNOWNS],
+    k: usize,
+}
+
+impl Cholesky {
+    /// G = L·Lᵀ; None where a pivot is below [`GRAM_PIVOT`] of its
+    /// column's squared norm ([`Cholesky`]).
+    fn of(g: &[[f64; MAX_UNKNOWNS]; MAX_UNKNOWNS], k: usize) -> Option<Cholesky> {
+        let mut l = [[0.0; MAX_UNKNOWNS]; MAX_UNKNOWNS];
+        for j in 0..k {
+            let d = g[j][j] - (0..j).map(|c| l[j][c] * l[j][c]).sum::<f64>();
+            if d.is_nan() || d <= GRAM_PIVOT * g[j][j] {
+                return None;
+            }
+            let ljj = d.sqrt();
+            l[j][j] = ljj;
+            for r in j + 1..k {
+                let s: f64 = (0..j).map(|c| l[r][c] * l[j][c]).sum();
+                l[r][j] = (g[j][r] - s) / ljj;
+            }
+        }
+        Some(Cholesky { l, k })
+    }
+
+    /// x with L·Lᵀ·x = rhs.
+    fn solve(&self, rhs: &[f64; MAX_UNKNOWNS]) -> [f64; MAX_UNKNOWNS] {
+        let (l, k) = (&self.l, self.k);
+        let mut y = [0.0; MAX_UNKNOWNS];
+        for r in 0..k {
+            let s: f64 = (0..r).map(|c| l[r][c] * y[c]).sum();
+            y[r] = (rhs[r] - s) / l[r][r];
+        }
+        let mut x = [0.0; MAX_UNKNOWNS];
+        for r in (0..k).rev() {
+            let s: f64 = (r + 1..k).map(|c| l[c][r] * x[c]).sum();
+            x[r] = (y[r] - s) / l[r][r];
+        }
+        x
+    }
+
+    /// The diagonal of (AᵀA)⁻¹ = L⁻ᵀL⁻¹: the squared column norms of L⁻¹
+    /// (column `col` of L⁻¹ in `linv`, nonzero from row col down).
+    fn inverse_diagonal(&self) -> [f64; MAX_UNKNOWNS] {
+        let (l, k) = (&self.l, self.k);
+        let mut diag = [0.0; MAX_UNKNOWNS];
+        for (col, d) in diag.iter_mut().enumerate().take(k) {
+            let mut linv = [0.0; MAX_UNKNOWNS];
+            for r in col..k {
+                let e = if r == col { 1.0 } else { 0.0 };
+                let s: f64 = (col..r).map(|c| l[r][c] * linv[c]).sum();
+                linv[r] = (e - s) / l[r][r];
+            }
+            *d = linv[col..k].iter().map(|v| v * v).sum();
+        }
+        diag
+    }
 }
 
 impl Fit {
@@ -1019,99 +1320,9 @@ impl Fit {
     }
 }
 
-/// Least squares min |A x − b|: row i of `a` holds the k unknowns'
-/// coefficients in columns 0..k and b_i in column k (m ≥ k rows; may be
-/// overwritten). Returns x, the residual sum of squares and the diagonal
-/// of (AᵀA)⁻¹; None when A's columns are (numerically) dependent.
-///
-/// By the normal equations (a Cholesky factor of AᵀA, the residuals summed
-/// from the rows), a third of a Householder QR's multiply-adds, where they
-/// are accurate: they lose the condition number of AᵀA (scaled to a unit
-/// diagonal) times the rounding unit, and a Cholesky pivot tells it (each
-/// pivot over its column's squared norm is the squared sine of the
-/// column's angle to the span of those before). Where some pivot is below
-/// [`GRAM_PIVOT`] of its column, the QR ([`least_squares_qr`]) solves
-/// instead. The scaled monomials are well conditioned over most
-/// neighbourhoods (the smallest relative pivot measured 1.6e-5 on the
-/// jittered sphere, cylinder and Enneper test meshes and the shipped
-/// films' and mesh's, 1.7e-8 on the catenoid's); a neighbourhood wedged
-/// in a corner of the mesh, its points on one side of the vertex, is
-/// nearly dependent (pivots to 4e-12, 10 fits on the 25,921-vertex
-/// Enneper test mesh of shared jets), and there the QR solves.
-fn least_squares(
-    a: &mut [Row],
-    k: usize,
-) -> Option<([f64; MAX_UNKNOWNS], f64, [f64; MAX_UNKNOWNS])> {
-    match normal_equations(a, k) {
-        Some(solution) => Some(solution),
-        None => least_squares_qr(a, k),
-    }
-}
-
-/// The normal equations' solution ([`least_squares`]), None where a
-/// Cholesky pivot is below [`GRAM_PIVOT`] of its column's squared norm.
-fn normal_equations(
-    a: &[Row],
-    k: usize,
-) -> Option<([f64; MAX_UNKNOWNS], f64, [f64; MAX_UNKNOWNS])> {
-    debug_assert!(k < LANES * CHUNKS && a.len() >= k);
-    let g = match (k + 1).div_ceil(LANES) {
-        1 => gram::<1>(a),
-        2 => gram::<2>(a),
-        3 => gram::<3>(a),
-        _ => gram::<CHUNKS>(a),
-    };
-    let gg = |r: usize, c: usize| at(&g[r], c);
-    // G = L·Lᵀ, L lower, row r of L in l[r].
-    let mut l = [[0.0; MAX_UNKNOWNS]; MAX_UNKNOWNS];
-    for j in 0..k {
-        let d = gg(j, j) - (0..j).map(|c| l[j][c] * l[j][c]).sum::<f64>();
-        if d.is_nan() || d <= GRAM_PIVOT * gg(j, j) {
-            return None;
-        }
-        let ljj = d.sqrt();
-        l[j][j] = ljj;
-        for r in j + 1..k {
-            let s: f64 = (0..j).map(|c| l[r][c] * l[j][c]).sum();
-            l[r][j] = (gg(j, r) - s) / ljj;
-        }
-    }
-    // L y = Aᵀb, Lᵀ x = y.
-    let mut y = [0.0; MAX_UNKNOWNS];
-    for r in 0..k {
-        let s: f64 = (0..r).map(|c| l[r][c] * y[c]).sum();
-        y[r] = (gg(r, k) - s) / l[r][r];
-    }
-    let mut x = [0.0; MAX_UNKNOWNS];
-    for r in (0..k).rev() {
-        let s: f64 = (r + 1..k).map(|c| l[c][r] * x[c]).sum();
-        x[r] = (y[r] - s) / l[r][r];
-    }
-    let rss = a
-        .iter()
-        .map(|row| {
-            let fitted: f64 = (0..k).map(|c| at(row, c) * x[c]).sum();
-            (at(row, k) - fitted).powi(2)
-        })
-        .sum();
-    // (AᵀA)⁻¹ = L⁻ᵀL⁻¹: its diagonal is the squared column norms of L⁻¹
-    // (column `col` of L⁻¹ in linv[col], nonzero from row col down).
-    let mut diag = [0.0; MAX_UNKNOWNS];
-    for (col, d) in diag.iter_mut().enumerate().take(k) {
-        let mut linv = [0.0; MAX_UNKNOWNS];
-        for r in col..k {
-            let e = if r == col { 1.0 } else { 0.0 };
-            let s: f64 = (col..r).map(|c| l[r][c] * linv[c]).sum();
-            linv[r] = (e - s) / l[r][r];
-        }
-        *d = linv[col..k].iter().map(|v| v * v).sum();
-    }
-    Some((x, rss, diag))
-}
-
 /// The smallest Cholesky pivot of a jet's Gram matrix, relative to its
 /// column's squared norm, that the normal equations accept
-/// ([`least_squares`]): they then lose at most about 1e-8 of the
+/// ([`Cholesky`]): they then lose at most about 1e-8 of the
 /// coefficients (a column within 1e-4 in angle of the span of those before
 /// it), against the rounding's 1e-5 and more.
 const GRAM_PIVOT: f64 = 1e-8;
@@ -1234,31 +1445,6 @@ fn reflect<const FIRST: usize, const END: usize>(a: &mut [Row], j: usize, alpha:
     } else {
         a[j + 1..].iter().map(|row| row[nc][nl] * row[nc][nl]).sum()
     }
-}
-
-/// The upper triangle of the Gram matrix of the rows' first `CH` chunks
-/// (row c of it in element c; the entries left of the diagonal block are
-/// not summed), in 4 × 4 blocks, each summed over all rows in registers.
-fn gram<const CH: usize>(a: &[Row]) -> [Row; LANES * CHUNKS] {
-    let mut g = [[[0.0; LANES]; CHUNKS]; LANES * CHUNKS];
-    for bi in 0..CH {
-        for bj in bi..CH {
-            let mut tile = [[0.0f64; LANES]; LANES];
-            for row in a {
-                let (left, right) = (&row[bi], &row[bj]);
-                for ci in 0..LANES {
-                    let x = left[ci];
-                    for l in 0..LANES {
-                        tile[ci][l] += x * right[l];
-                    }
-                }
-            }
-            for (ci, t) in tile.into_iter().enumerate() {
-                g[bi * LANES + ci][bj] = t;
-            }
-        }
-    }
-    g
 }
 
 #[cfg(test)]
@@ -1696,6 +1882,80 @@ mod tests {
             assert!(shared.0[b] <= 1.1 * own.0[b], "largest k error {b}");
             assert!(shared.1[b] <= 1.1 * own.1[b], "largest normal error {b}");
             assert!(shared.2[b] <= 1.1 * own.2[b], "rms k error {b}");
+        }
+    }
+
+    /// The normal equations from power sums ([`Moments`], the bases as
+    /// [`GENERAL_TERMS`] and [`MINIMAL_TERMS`]) give the coefficients,
+    /// residual and variances of a Householder QR on the rows of
+    /// [`monomials`] and [`minimal_monomials`], for every basis and degree,
+    /// the minimal quartic's particular term iterated alike.
+    #[test]
+    fn power_sums_solve_as_the_qr_on_the_rows() {
+        // A lopsided, irregular neighbourhood (a rim's) of a minimal
+        // graph's jet with noise: z = 0.3(x² − y²) + 0.2xy + cubic + quartic.
+        let mut state = 7u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let rel: Vec<DVec3> = (0..140)
+            .map(|i| {
+                let (r, t) = (
+                    if i == 0 { 0.0 } else { 80.0 * next().sqrt() },
+                    4.0 * next(),
+                );
+                let (x, y) = (r * t.cos(), r * t.sin());
+                let (u, v) = (x / 100.0, y / 100.0);
+                let z = 0.3 * (u * u - v * v)
+                    + 0.2 * u * v
+                    + 0.05 * (u * u * u - 3.0 * u * v * v)
+                    + 0.02 * u.powi(4)
+                    + 1e-4 * (next() - 0.5);
+                DVec3::new(x, y, 100.0 * z)
+            })
+            .collect();
+        let n = DVec3::new(0.05, -0.03, 1.0).normalize();
+        let mut rows = FitRows::default();
+        for (degree, basis, k, passes) in [
+            (3, Basis::General, 10, 1),
+            (4, Basis::General, 15, 1),
+            (2, Basis::General, 6, 1),
+            (3, Basis::Minimal, MINIMAL_CUBIC_UNKNOWNS, 1),
+            (3, Basis::MinimalQuartic, MINIMAL_UNKNOWNS, MINIMAL_PASSES),
+        ] {
+            let by_sums = fit(&rel, n, degree, basis, &mut rows, true).expect("fits");
+            let minimal = basis != Basis::General;
+            let (coef, rss, diag) = fit_by_qr(&mut rows, k, minimal, passes).expect("fits");
+            let (coef, diag) = if minimal {
+                (
+                    minimal_to_full(&coef[..k]).to_vec(),
+                    minimal_to_full_variance(&diag[..k]).to_vec(),
+                )
+            } else {
+                (coef[..k].to_vec(), diag[..k].to_vec())
+            };
+            let size = coef.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+            for (i, (a, b)) in by_sums.coef.iter().zip(&coef).enumerate() {
+                assert!(
+                    (a - b).abs() <= 1e-10 * size,
+                    "{basis:?} {degree}: coefficient {i} {a} against {b}"
+                );
+            }
+            for (i, (a, b)) in by_sums.diag.iter().zip(&diag).enumerate() {
+                assert!(
+                    (a - b).abs() <= 1e-8 * b.abs(),
+                    "{basis:?} {degree}: variance {i} {a} against {b}"
+                );
+            }
+            let residual_mm = (rss / (rel.len() - k) as f64).sqrt() * by_sums.scale;
+            assert!(
+                (by_sums.residual_mm - residual_mm).abs() <= 1e-6 * residual_mm,
+                "{basis:?} {degree}: residual {} against {residual_mm}",
+                by_sums.residual_mm
+            );
         }
     }
 

@@ -38,6 +38,7 @@
 use crate::design::mesh::TriMesh;
 use crate::geom::surface::{Curvature, Surface, SurfaceJet};
 use glam::{DMat3, DVec2, DVec3};
+use rayon::prelude::*;
 
 /// A mesh with a chart and curvature tensors, as a surface.
 #[derive(Debug, Clone)]
@@ -366,7 +367,8 @@ const PATCH_MAX_RINGS: usize = 6;
 /// Fit every vertex's cubic chart patch to the vertices of its rings (two,
 /// more at the rim until [`PATCH_MIN_NEIGHBOURS`]), by least squares through
 /// the vertex itself, weighted (1 − ½ r²/ρ²) (ρ the neighbourhood's chart
-/// radius), on Δ scaled by ρ.
+/// radius), on Δ scaled by ρ. The vertices in parallel, each patch its
+/// own vertex's alone (the same for any number of threads).
 fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch> {
     let nv = mesh.positions_mm.len();
     let mut ring: Vec<Vec<u32>> = vec![Vec::new(); nv];
@@ -381,9 +383,18 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
         r.sort_unstable();
         r.dedup();
     }
-    let mut visited = crate::geom::mesh::VisitMarks::new(nv);
+    // Each thread keeps its visit marks and lists from vertex to vertex.
+    let scratch = || {
+        (
+            crate::geom::mesh::VisitMarks::new(nv),
+            Vec::<u32>::new(),
+            Vec::<u32>::new(),
+            Vec::<u32>::new(),
+        )
+    };
     (0..nv)
-        .map(|i| {
+        .into_par_iter()
+        .map_init(scratch, |(visited, seen, frontier, next), i| {
             let q0 = uv[i];
             let longest = ring[i]
                 .iter()
@@ -391,16 +402,18 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
                 .fold(0.0, f64::max)
                 .max(1e-9);
             let radius = SUPPORT_EDGES * longest;
-            let mut seen = vec![i as u32];
+            seen.clear();
+            seen.push(i as u32);
             visited.clear();
             visited.insert(i as u32);
-            let mut frontier = vec![i as u32];
+            frontier.clear();
+            frontier.push(i as u32);
             for depth in 0..PATCH_MAX_RINGS {
                 if depth >= 2 && seen.len() > min_neighbours {
                     break;
                 }
-                let mut next = Vec::new();
-                for &v in &frontier {
+                next.clear();
+                for &v in frontier.iter() {
                     for &w in &ring[v as usize] {
                         if visited.insert(w) {
                             seen.push(w);
@@ -408,7 +421,7 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
                         }
                     }
                 }
-                frontier = next;
+                std::mem::swap(frontier, next);
             }
             let x = mesh.positions_mm[i];
             let scale = seen
