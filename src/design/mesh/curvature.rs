@@ -63,7 +63,9 @@
 //! unknowns where the neighbourhood lies all around the vertex, a quartic
 //! of 9 where it reaches the boundary. There the neighbourhood is
 //! lopsided and a general cubic extrapolates the quartic truncation into
-//! the curvature; known structure, not more data, removes it.
+//! the curvature; known structure, not more data, removes it. Where the
+//! neighbourhood lies all around the vertex, the first fit (which gives
+//! the frame) is made over its nearest three rings only ([`jet`]).
 //!
 //! The [`Curvature`] returned per vertex is expressed in its own principal
 //! frame: `first = [1, 0, 1]` and `second = [k1, 0, k2]` are the fundamental
@@ -488,8 +490,7 @@ fn jets_over(
 /// The most unknowns of a jet (a quartic's 15).
 const MAX_UNKNOWNS: usize = 15;
 
-/// Columns processed together in the QR's and the Gram matrix's inner
-/// loops (vector lanes).
+/// Columns processed together in the QR's inner loops (vector lanes).
 const LANES: usize = 4;
 
 /// Chunks of [`LANES`] columns in a least-squares row: room for the
