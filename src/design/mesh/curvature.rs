@@ -14,8 +14,9 @@
 //!
 //! Cost. The normal equations of a polynomial fit are sums of the points'
 //! power sums Σ xᵃyᵇ and Σ z·xᵃyᵇ ([`Moments`]): a quartic over 120
-//! vertices is 60 sums of 120 products (7,200 multiply-adds) where its Gram
-//! matrix had 136 entries (16,300), a cubic 38 sums where it had 66, and a
+//! vertices is 60 sums of 120 products (7,200 multiply-adds, and 2,800
+//! multiplies for the columns of powers) where its Gram matrix had 136
+//! entries (16,300 multiply-adds), a cubic 38 sums where it had 66, and a
 //! minimal surface's basis takes its entries from the same sums; two fits
 //! per vertex. Each thread keeps its buffers (neighbourhood, points,
 //! columns of powers) from vertex to vertex, so no fit allocates. The degree
@@ -28,7 +29,8 @@
 //! a Householder QR per fit (dev profile, two cores loaded 2.5 times
 //! over); unloaded, 5.3 s with the QR's dot products fused, 3.0 s by the
 //! normal equations, 0.82 s fitting one vertex in 8.4, 0.42–0.53 s
-//! deciding from 8,192 vertices in place of 32,768.
+//! deciding from 8,192 vertices in place of 32,768, 0.24 s from power
+//! sums.
 //!
 //! Accuracy, and how the fit is chosen ([`vertex_jets`]). Two errors enter
 //! the curvature. Truncation: a degree-d jet over a neighbourhood of radius
@@ -419,8 +421,9 @@ pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> V
 /// As [`vertex_jets_over`] for a minimal surface (a form-found film): the
 /// jets are fitted in the basis of a minimal graph's Taylor expansion
 /// ([`minimal_monomials`]: harmonic quadratic and cubic parts, a quartic
-/// part harmonic but for the term the quadratic part fixes), 9 unknowns
-/// in place of a general cubic's 10. What the film is known to be is not
+/// part harmonic but for the term the quadratic part fixes): 7 unknowns
+/// inside the film, 9 where the neighbourhood reaches its rim, in place of
+/// a general cubic's 10. What the film is known to be is not
 /// left to the data: at the rim, where the neighbourhood lies on one side,
 /// a general cubic extrapolates its quartic truncation into the curvature
 /// and bent the traced lines near their ends by up to 1e-5 /mm.
@@ -526,7 +529,8 @@ struct Scratch {
 }
 
 /// The buffers of one fit: the points in the fit's frame, their columns
-/// of powers ([`Moments::of`]) and the rows the QR works on.
+/// of powers ([`Moments::of`]), the residuals ([`residual_sum`]) and the
+/// rows the QR works on.
 #[derive(Default)]
 struct FitRows {
     local: Vec<DVec3>,
@@ -665,7 +669,9 @@ fn monomials(x: f64, y: f64, out: &mut [f64]) {
     out.copy_from_slice(&all[..out.len()]);
 }
 
-/// The vertices within `rings` rings of `v` (v first), in breadth-first order.
+/// Add the next ring of the neighbourhood `hood` (v first, breadth-first
+/// order; `frontier`: where its last ring starts); false when there is
+/// none.
 fn grow(
     topo: &Topology,
     hood: &mut Vec<u32>,
@@ -759,8 +765,9 @@ fn fit_vertex(
 
 /// The degree-`degree` jet over the points `rel` (relative to the vertex),
 /// its gain ([`fit_vertex`]) and its polynomial: fitted over the tangent
-/// plane of `n0` to the first `frame_points` points (a general cubic, for
-/// its normal only), then to all of them over the fitted normal's tangent
+/// plane of `n0` to the first `frame_points` points (a general jet of the
+/// same degree, for its normal only; to all of them where those do not
+/// determine it), then to all of them over the fitted normal's tangent
 /// plane in `basis`; None when rank deficient.
 ///
 /// A minimal surface's basis holds the tilt terms x and y, so the second
@@ -787,9 +794,11 @@ fn jet(
         return None;
     }
     let framed = &rel[..frame_points.clamp(unknowns(degree), rel.len())];
-    let first = fit(framed, n0, degree, Basis::General, rows, false)
-        .or_else(|| fit(rel, n0, degree, Basis::General, rows, false))?
-        .normal();
+    let frame = match fit(framed, n0, degree, Basis::General, rows, false) {
+        None if framed.len() < rel.len() => fit(rel, n0, degree, Basis::General, rows, false),
+        frame => frame,
+    };
+    let first = frame?.normal();
     let second = fit(rel, first, degree, basis, rows, true)?;
     Some((
         VertexJet {
@@ -993,6 +1002,8 @@ fn residual_sum(
     }
     residuals.clear();
     residuals.extend_from_slice(column(zs, m, 0));
+    // The particular term is a quartic's ([`MINIMAL_PASSES`]).
+    debug_assert!(particular == (0.0, 0.0) || top >= 4);
     let mut subtract = |f: f64, a: usize, b: usize| {
         for ((r, x), y) in residuals
             .iter_mut()
@@ -1093,6 +1104,8 @@ const MOMENT_DEGREE: usize = 8;
 struct Moments {
     xy: [[f64; MOMENT_DEGREE + 1]; MOMENT_DEGREE + 1],
     z: [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1],
+    /// The degree summed up to.
+    top: usize,
 }
 
 /// The highest degree of a fitted polynomial (a quartic).
@@ -1129,6 +1142,7 @@ impl Moments {
         let mut moments = Moments {
             xy: [[0.0; MOMENT_DEGREE + 1]; MOMENT_DEGREE + 1],
             z: [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1],
+            top,
         };
         for a in 0..nx {
             for b in 0..nx - a {
@@ -1170,6 +1184,8 @@ impl Moments {
     /// Aᵀb for the heights less the particular term `particular` (the
     /// coefficients of x⁴ − y⁴ and x³y, [`particular_term`]).
     fn right_hand_side(&self, terms: &[Term], particular: (f64, f64)) -> [f64; MAX_UNKNOWNS] {
+        // The particular term is a quartic's: its sums reach degree 8.
+        debug_assert!(particular == (0.0, 0.0) || self.top >= 4);
         let mut rhs = [0.0; MAX_UNKNOWNS];
         for (r, &p) in rhs.iter_mut().zip(terms) {
             for &(c, a, b) in p {
@@ -2000,6 +2016,22 @@ mod tests {
         ] {
             let by_sums = fit(&rel, n, degree, basis, &mut rows, true).expect("fits");
             let minimal = basis != Basis::General;
+            // The power sums' path, not the QR, solved it.
+            let terms = if minimal {
+                &MINIMAL_TERMS[..k]
+            } else {
+                &GENERAL_TERMS[..k]
+            };
+            let top = if basis == Basis::MinimalQuartic {
+                4
+            } else {
+                degree
+            };
+            let sums = Moments::of(&rows.local, top, &mut Vec::new());
+            assert!(
+                Cholesky::of(&sums.gram(terms), k).is_some(),
+                "{basis:?} {degree}"
+            );
             let (coef, rss, diag) = fit_by_qr(&mut rows, k, minimal, passes).expect("fits");
             let (coef, diag) = if minimal {
                 (
@@ -2060,7 +2092,9 @@ mod tests {
             let jets = vertex_jets_minimal(mesh, &topo, 120);
             // The catenoid r = c·cosh(z/c) through the rings, by bisection;
             // its principal curvatures ±1/(c·cosh²(z/c)).
-            let (mut lo, mut hi) = (1.0f64, 1000.0f64);
+            // c·cosh(h/c) rises with c above h/1.1997 (t·tanh t = 1 there);
+            // the catenoid through the rings is that branch's.
+            let (mut lo, mut hi) = (h / 1.1997, 1000.0f64);
             for _ in 0..200 {
                 let c = 0.5 * (lo + hi);
                 if c * (h / c).cosh() > 1000.0 {
