@@ -30,6 +30,7 @@ use super::solve::{
     add, axial_forces, factorise_definite, Assembly, Dofs, Factor, FrameError, GeometricTerms,
     LinearFrame, StaticResult, SymSparse, PARALLEL_ROWS,
 };
+use crate::geom::dot;
 use faer::{Mat, MatMut, MatRef, Side};
 
 /// Relative residual of every wanted Ritz pair at convergence: the
@@ -650,24 +651,6 @@ fn columns(m: MatRef<'_, f64>) -> Vec<&[f64]> {
                 .as_slice()
         })
         .collect()
-}
-
-/// Σ a_i·b_i in four running sums.
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut s = [0.0f64; 4];
-    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = a4
-        .remainder()
-        .iter()
-        .zip(b4.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in a4.zip(b4) {
-        for l in 0..4 {
-            s[l] += x[l] * y[l];
-        }
-    }
-    (s[0] + s[1]) + (s[2] + s[3]) + tail
 }
 
 /// Xᵀ·Y (Y of a few columns) in passes of [`ROWS_PER_PASS`] rows, the

@@ -78,6 +78,7 @@
 
 use super::topology::Topology;
 use super::TriMesh;
+use crate::geom::dot;
 use crate::geom::surface::{curvature_of, Curvature, SurfaceJet};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -855,15 +856,16 @@ struct Fit {
 
 /// Fit a degree-`degree` height function over the tangent plane of `n` to
 /// the points `rel` (relative to the vertex); None when rank deficient.
-/// `residual`: sum the residual over the points (else `residual_mm` is
-/// NaN: the first of a vertex's two fits gives only its normal).
+/// `judged`: also the residual and the coefficients' variances (else
+/// `residual_mm` and `diag` are NaN: the first of a vertex's two fits
+/// gives only its normal).
 fn fit(
     rel: &[DVec3],
     n: DVec3,
     degree: usize,
     basis: Basis,
     rows: &mut FitRows,
-    residual: bool,
+    judged: bool,
 ) -> Option<Fit> {
     let e1 = n.any_orthonormal_vector();
     let e2 = n.cross(e1);
@@ -912,12 +914,12 @@ fn fit(
                     particular = particular_term(&coef);
                 }
             }
-            let rss = if residual {
-                residual_sum(rows, top, terms, &coef[..k], particular)
+            if judged {
+                let rss = residual_sum(rows, top, terms, &coef[..k], particular);
+                (coef, rss, l.inverse_diagonal())
             } else {
-                f64::NAN
-            };
-            (coef, rss, l.inverse_diagonal())
+                (coef, f64::NAN, [f64::NAN; MAX_UNKNOWNS])
+            }
         }
         // Nearly dependent columns ([`Cholesky`]): a QR on the rows.
         None => fit_by_qr(rows, k, minimal, passes_needed)?,
@@ -1199,25 +1201,6 @@ impl Moments {
         }
         rhs
     }
-}
-
-/// Σ aᵢ·bᵢ in four interleaved partial sums (vector lanes), added
-/// pairwise, then the remainder.
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = ac
-        .remainder()
-        .iter()
-        .zip(bc.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    let mut acc = [0.0; 4];
-    for (x, y) in ac.zip(bc) {
-        for l in 0..4 {
-            acc[l] += x[l] * y[l];
-        }
-    }
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// A Cholesky factor L (lower, row r in `l[r]`) of a k × k Gram matrix
