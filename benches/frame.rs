@@ -152,15 +152,20 @@ fn measure(path: &Path) {
     let mut governing = 0;
     let mut largest = 0.0;
     let sets: Vec<&lamella::structure::model::LoadSet> = combos.iter().map(|c| &c.loads).collect();
-    let results = linear.solve_all(&sets).expect("static");
-    for (i, (c, r)) in combos.iter().zip(&results).enumerate() {
+    // As the stage: every combination solved at once, then each one's
+    // section forces and reactions made in turn (the governing ULS
+    // combination's kept for α_cr).
+    let statics = linear.solve_each(&sets).expect("static");
+    let mut kept = None;
+    for (i, c) in combos.iter().enumerate() {
+        let r = statics.result(i);
         let moved = r
             .displacements
             .iter()
             .map(|d| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt())
             .fold(0.0, f64::max);
         if c.limit_state == LimitState::Ultimate && moved > largest {
-            (governing, largest) = (i, moved);
+            (governing, largest, kept) = (i, moved, Some(r));
         }
     }
     let static_s = t.elapsed().as_secs_f64();
@@ -172,7 +177,8 @@ fn measure(path: &Path) {
         let t = Instant::now();
         // On the combination's static result, as the stage does.
         let modes =
-            critical_factors_given(&linear, loads, &results[governing], MODES).expect("α_cr");
+            critical_factors_given(&linear, loads, kept.as_ref().expect("a ULS result"), MODES)
+                .expect("α_cr");
         alpha_s = t.elapsed().as_secs_f64();
         alpha = modes.first().map_or(f64::NAN, |m| m.factor);
         if let Some(first) = modes.first() {

@@ -188,26 +188,19 @@ pub fn analyse_as(
     } else {
         None
     };
-    // The unbraced statics all at once (one pass of the factor for many).
-    let mut statics = match &unbraced {
-        Some(linear) => {
-            let sets: Vec<&LoadSet> = combinations.iter().map(|c| &c.loads).collect();
-            linear.solve_all(&sets)?
-        }
-        None => Vec::new(),
-    }
-    .into_iter();
+    // The unbraced statics all at once (one pass of the factor for many),
+    // each combination's section forces made as it is judged.
+    let sets: Vec<&LoadSet> = combinations.iter().map(|c| &c.loads).collect();
+    let statics = match &unbraced {
+        Some(linear) => Some(linear.solve_each(&sets)?),
+        None => None,
+    };
     let mut out = Vec::with_capacity(combinations.len());
-    for combination in combinations {
+    for (index, combination) in combinations.iter().enumerate() {
         let braced;
-        let (linear, first) = match &unbraced {
-            Some(linear) => (
-                linear,
-                statics
-                    .next()
-                    .ok_or_else(|| FrameError::Invalid("a static solution is missing".into()))?,
-            ),
-            None => {
+        let (linear, first) = match (&unbraced, &statics) {
+            (Some(linear), Some(statics)) => (linear, statics.result(index)),
+            _ => {
                 let state;
                 (braced, state) = settle(model, &combination.loads)?;
                 (&braced, state.result)

@@ -457,6 +457,10 @@ const NONE: usize = usize::MAX;
 /// Below this many unknowns the block operations stay on one thread.
 pub(crate) const PARALLEL_ROWS: usize = 20_000;
 
+/// Elements per task when a result's section forces are shared between
+/// the threads.
+const PARALLEL_BEAMS: usize = 4096;
+
 /// A product's groups of columns, (first, width): eights, then at most one
 /// group each of four, two and one.
 fn column_groups(columns: usize) -> Vec<(usize, usize)> {
@@ -590,28 +594,15 @@ impl SymSparse {
         y
     }
 
-    /// A·X and |A|·|X| (entry by entry: the scale of A·X's rounding),
-    /// column by column, A read once per column for both. Not in groups
-    /// as [`SymSparse::mul_block`]: the 19 combinations' residuals at
-    /// 100 × 100 curves took 1.66 s in groups of eight (each row's 16
-    /// sums, 97 MB per thread, reached in the pattern's scattered order),
-    /// 0.56 s one by one, and at 40 × 40 0.126 s against 0.073 s.
-    pub(crate) fn mul_block_and_abs(&self, x: MatRef<'_, f64>) -> (Mat<f64>, Mat<f64>) {
-        let mut y = Mat::<f64>::zeros(self.n, x.ncols());
-        let mut y_abs = Mat::<f64>::zeros(self.n, x.ncols());
-        for c in 0..x.ncols() {
-            let sums = self.mul_column_and_abs(x.subcols(c, 1));
-            for (i, [v, a]) in sums.into_iter().enumerate() {
-                y[(i, c)] = v;
-                y_abs[(i, c)] = a;
-            }
-        }
-        (y, y_abs)
-    }
-
-    /// A·x and |A|·|x| for one column x, each row's two values side by
-    /// side, the columns of A split between two threads above
-    /// [`PARALLEL_ROWS`] (as [`SymSparse::mul_group`]).
+    /// A·x and |A|·|x| (entry by entry: the scale of A·x's rounding) for
+    /// one column x, each row's two values side by side, A read once for
+    /// both, the columns of A split between two threads above
+    /// [`PARALLEL_ROWS`] (as [`SymSparse::mul_group`]). One column at a
+    /// time, not in groups as [`SymSparse::mul_block`]: the 19
+    /// combinations' residuals at 100 × 100 curves took 1.66 s in groups
+    /// of eight (each row's 16 sums, 97 MB per thread, reached in the
+    /// pattern's scattered order), 0.56 s one by one, and at 40 × 40
+    /// 0.126 s against 0.073 s.
     fn mul_column_and_abs(&self, x: MatRef<'_, f64>) -> Vec<[f64; 2]> {
         let n = self.n;
         let rows: Vec<[f64; 2]> = (0..n).map(|i| [x[(i, 0)], x[(i, 0)].abs()]).collect();
@@ -937,8 +928,10 @@ pub struct Assembly {
     /// The node positions the frames were taken at (imperfect geometry in
     /// second order).
     pub nodes_mm: Vec<DVec3>,
-    /// Per beam: its rigid-offset transformation, if it has offsets.
-    offsets: Vec<Option<Mat12>>,
+    /// Per beam: its rigid end offsets (its transformation made where
+    /// used: 48 bytes a beam where the 12 × 12 matrix held 1,160, 180 MB
+    /// at 100 × 100 curves).
+    offsets: Vec<[DVec3; 2]>,
     /// Per cable: its unit axis (first end to second) and its stiffness
     /// while taut, N/mm.
     cable_axes: Vec<(DVec3, f64)>,
@@ -1072,11 +1065,7 @@ impl Assembly {
             dofs: Dofs::of(model),
             frames: Vec::new(),
             nodes_mm: Vec::new(),
-            offsets: model
-                .beams
-                .iter()
-                .map(|b| offset_matrix(&b.offsets_mm))
-                .collect(),
+            offsets: model.beams.iter().map(|b| b.offsets_mm).collect(),
             cable_axes: Vec::new(),
             plan: OnceLock::new(),
         }
@@ -1118,6 +1107,11 @@ impl Assembly {
         Ok(self)
     }
 
+    /// Beam i's rigid-offset transformation, if it has offsets.
+    fn offset(&self, i: usize) -> Option<Mat12> {
+        offset_matrix(&self.offsets[i])
+    }
+
     /// The model's scatter plan (made once).
     fn plan(&self, model: &FrameModel) -> Arc<ScatterPlan> {
         self.plan
@@ -1143,7 +1137,7 @@ impl Assembly {
             let blocks: Vec<Option<Mat12>> = (start..end)
                 .into_par_iter()
                 .map(|i| {
-                    matrix(i).map(|k| match &self.offsets[i] {
+                    matrix(i).map(|k| match &self.offset(i) {
                         None => k,
                         Some(h) => sandwich(h, &k),
                     })
@@ -1342,7 +1336,7 @@ impl Assembly {
                     sym[a][c] = 0.5 * (k[a][c] + k[c][a]);
                 }
             }
-            let k = match &self.offsets[p.beam] {
+            let k = match &self.offset(p.beam) {
                 None => sym,
                 Some(h) => sandwich(h, &sym),
             };
@@ -1507,7 +1501,7 @@ impl Assembly {
                 continue;
             }
             let g = apply_ht(
-                &self.offsets[i],
+                &self.offset(i),
                 globalise(&self.frames[i].rotation, &equivalent[i]),
             );
             for k in 0..6 {
@@ -1556,16 +1550,15 @@ impl Assembly {
         for l in &loads.pressures {
             local_q[l.beam].z += l.n_per_mm;
         }
-        let nn = model.nodes_mm.len();
-        let mut internal = vec![[0.0; 6]; nn];
-        let mut beam_forces = Vec::with_capacity(model.beams.len());
-        for (i, b) in model.beams.iter().enumerate() {
+        // Each element's end forces, local (N, N·mm), on either core.
+        let local_end_forces = |i: usize| -> [f64; 12] {
+            let b = &model.beams[i];
             let f = &self.frames[i];
             let s = &model.sections[b.section];
             let mut ug = [0.0; 12];
             ug[..6].copy_from_slice(&displacements[b.nodes[0]]);
             ug[6..].copy_from_slice(&displacements[b.nodes[1]]);
-            let ul = localise(&f.rotation, &apply_h(&self.offsets[i], ug));
+            let ul = localise(&f.rotation, &apply_h(&self.offset(i), ug));
             let mut k = local_stiffness(s, f.length_mm);
             if let Some(n) = axial_n {
                 let kg = local_geometric(s, f.length_mm, n[i]);
@@ -1579,22 +1572,46 @@ impl Assembly {
             for a in 0..12 {
                 fl[a] = (0..12).map(|c| k[a][c] * ul[c]).sum::<f64>() - equivalent[i][a];
             }
-            let g = apply_ht(&self.offsets[i], globalise(&f.rotation, &fl));
+            fl
+        };
+        let beam_forces: Vec<BeamEndForces> = (0..model.beams.len())
+            .into_par_iter()
+            .with_min_len(PARALLEL_BEAMS)
+            .map(|i| {
+                let fl = local_end_forces(i);
+                let v3 = |o: usize| DVec3::new(fl[o], fl[o + 1], fl[o + 2]);
+                let (f0, m0) = (-v3(0), -v3(3));
+                let h = 0.5 * self.frames[i].length_mm;
+                let q = local_q[i];
+                let fm = f0 - q * h;
+                let mm = m0 - DVec3::X.cross(f0 * h - q * (0.5 * h * h));
+                BeamEndForces {
+                    start: SectionForces::from_vectors(f0, m0),
+                    middle: SectionForces::from_vectors(fm, mm),
+                    end: SectionForces::from_vectors(v3(6), v3(9)),
+                }
+            })
+            .collect();
+        // The nodes' internal forces, where the reactions read them: at
+        // the supported nodes only, from the elements reaching them.
+        let nn = model.nodes_mm.len();
+        let mut supported = vec![false; nn];
+        for s in &model.supports {
+            supported[s.node] = true;
+        }
+        let mut internal = vec![[0.0; 6]; nn];
+        for (i, b) in model.beams.iter().enumerate() {
+            if !(supported[b.nodes[0]] || supported[b.nodes[1]]) {
+                continue;
+            }
+            let g = apply_ht(
+                &self.offset(i),
+                globalise(&self.frames[i].rotation, &local_end_forces(i)),
+            );
             for k in 0..6 {
                 internal[b.nodes[0]][k] += g[k];
                 internal[b.nodes[1]][k] += g[6 + k];
             }
-            let v3 = |o: usize| DVec3::new(fl[o], fl[o + 1], fl[o + 2]);
-            let (f0, m0) = (-v3(0), -v3(3));
-            let h = 0.5 * f.length_mm;
-            let q = local_q[i];
-            let fm = f0 - q * h;
-            let mm = m0 - DVec3::X.cross(f0 * h - q * (0.5 * h * h));
-            beam_forces.push(BeamEndForces {
-                start: SectionForces::from_vectors(f0, m0),
-                middle: SectionForces::from_vectors(fm, mm),
-                end: SectionForces::from_vectors(v3(6), v3(9)),
-            });
         }
         for l in &model.links {
             let (a, b) = (l.nodes[0], l.nodes[1]);
@@ -2097,38 +2114,94 @@ impl<'m> LinearFrame<'m> {
         &self,
         loads: &[&LoadSet],
     ) -> Result<Vec<(StaticResult, Vec<f64>)>, FrameError> {
-        let n = self.stiffness.n;
-        let mut p = Mat::<f64>::zeros(n, loads.len());
+        let statics = self.solve_each(loads)?;
+        Ok((0..loads.len())
+            .into_par_iter()
+            .map(|c| statics.result_with_cables(c))
+            .collect())
+    }
+
+    /// Every load set solved at once (one pass of the factor per eight of
+    /// them), each one's section forces and reactions made when asked
+    /// for ([`Statics::result`]): a big grid's 19 combinations hold 29 MB
+    /// of section forces each, the displacements a fifth of that.
+    pub fn solve_each<'a>(&'a self, loads: &[&'a LoadSet]) -> Result<Statics<'a, 'm>, FrameError> {
         for set in loads {
             validate_loads(self.model, set)?;
         }
-        // The load sets side by side on the two cores, as are their
-        // results below (each set's own, in its order).
-        let vectors: Vec<Vec<f64>> = loads
-            .par_iter()
-            .map(|set| self.assembly.load_vector(self.model, set).0)
-            .collect();
-        for (c, v) in vectors.iter().enumerate() {
-            for i in 0..n {
-                p[(i, c)] = v[i] + self.pull[i];
-            }
-        }
+        // The load sets side by side on the two cores, each written into
+        // its own column.
+        let mut p = Mat::<f64>::zeros(self.stiffness.n, loads.len());
+        let columns: Vec<_> = p.as_mut().col_iter_mut().collect();
+        columns
+            .into_par_iter()
+            .zip(loads.par_iter())
+            .for_each(|(mut column, set)| {
+                let (v, _) = self.assembly.load_vector(self.model, set);
+                for (i, (vi, pull)) in v.iter().zip(&self.pull).enumerate() {
+                    column[i] = vi + pull;
+                }
+            });
         let x = solve_refined_all(&self.factor, &self.stiffness, &p)?;
-        Ok(loads
-            .par_iter()
-            .enumerate()
-            .map(|(c, set)| {
-                let x: Vec<f64> = x.col(c).iter().copied().collect();
-                let would_be = self.assembly.cable_forces(self.model, &x);
-                let forces: Vec<f64> = would_be
-                    .iter()
-                    .zip(&self.taut)
-                    .map(|(&f, &t)| if t { f } else { 0.0 })
-                    .collect();
-                let result = self.assembly.results(self.model, set, &x, None, &forces);
-                (result, would_be)
-            })
-            .collect())
+        Ok(Statics {
+            frame: self,
+            loads: loads.to_vec(),
+            x,
+        })
+    }
+}
+
+/// Load sets solved together on one [`LinearFrame`]
+/// ([`LinearFrame::solve_each`]): their solutions, the rest of each
+/// result made on demand.
+pub struct Statics<'a, 'm> {
+    frame: &'a LinearFrame<'m>,
+    loads: Vec<&'a LoadSet>,
+    /// One column of unknowns per load set.
+    x: Mat<f64>,
+}
+
+impl Statics<'_, '_> {
+    /// How many load sets.
+    pub fn len(&self) -> usize {
+        self.loads.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.loads.is_empty()
+    }
+
+    /// The node displacements of load set `c` (as
+    /// [`StaticResult::displacements`]), without its section forces.
+    pub fn displacements(&self, c: usize) -> Vec<[f64; 6]> {
+        self.frame.assembly.expand(&self.solution(c))
+    }
+
+    /// The whole result of load set `c`: displacements, reactions,
+    /// section forces, cable forces.
+    pub fn result(&self, c: usize) -> StaticResult {
+        self.result_with_cables(c).0
+    }
+
+    fn solution(&self, c: usize) -> Vec<f64> {
+        self.x.col(c).iter().copied().collect()
+    }
+
+    /// [`Statics::result`], and every cable's force were it taut.
+    fn result_with_cables(&self, c: usize) -> (StaticResult, Vec<f64>) {
+        let frame = self.frame;
+        let x = self.solution(c);
+        let would_be = frame.assembly.cable_forces(frame.model, &x);
+        let forces: Vec<f64> = would_be
+            .iter()
+            .zip(&frame.taut)
+            .map(|(&f, &t)| if t { f } else { 0.0 })
+            .collect();
+        let result = frame
+            .assembly
+            .results(frame.model, self.loads[c], &x, None, &forces);
+        (result, would_be)
     }
 }
 
@@ -2191,12 +2264,15 @@ fn residual_and_backward_error(
     x: MatRef<'_, f64>,
     p: MatRef<'_, f64>,
 ) -> (Mat<f64>, f64) {
-    let (kx, scale) = k.mul_block_and_abs(x);
-    let r = p - kx;
+    // A column at a time: K·x and |K|·|x| need not be held beside r.
+    let mut r = Mat::<f64>::zeros(x.nrows(), x.ncols());
     let mut omega = 0.0f64;
     for c in 0..x.ncols() {
-        for i in 0..x.nrows() {
-            let s = scale[(i, c)] + p[(i, c)].abs();
+        let sums = k.mul_column_and_abs(x.subcols(c, 1));
+        for (i, [kx, scale]) in sums.into_iter().enumerate() {
+            let pi = p[(i, c)];
+            r[(i, c)] = pi - kx;
+            let s = scale + pi.abs();
             if s > 0.0 {
                 omega = omega.max(r[(i, c)].abs() / s);
             }
@@ -2417,7 +2493,7 @@ mod tests {
         let (model, loads) = plan_model();
         let assembly = Assembly::new(&model, &model.nodes_mm).unwrap();
         let n = assembly.dofs.free;
-        let with_offsets = |i: usize, k: Mat12| match &assembly.offsets[i] {
+        let with_offsets = |i: usize, k: Mat12| match &assembly.offset(i) {
             None => k,
             Some(h) => sandwich(h, &k),
         };
@@ -2579,7 +2655,14 @@ mod tests {
             for p in [1, 2, 3, 5, 8, 11, 19] {
                 let x = Mat::from_fn(n, p, |i, c| ((i * 7 + c * 13) % 17) as f64 - 8.0);
                 let y = a.mul_block(x.as_ref());
-                let (y2, y_abs) = a.mul_block_and_abs(x.as_ref());
+                let (y2, y_abs): (Vec<f64>, Vec<f64>) = (0..p)
+                    .flat_map(|c| a.mul_column_and_abs(x.subcols(c, 1)))
+                    .map(|[v, a]| (v, a))
+                    .unzip();
+                let (y2, y_abs) = (
+                    Mat::from_fn(n, p, |i, c| y2[c * n + i]),
+                    Mat::from_fn(n, p, |i, c| y_abs[c * n + i]),
+                );
                 for (i, row) in full.iter().enumerate() {
                     for c in 0..p {
                         let want: f64 = row.iter().map(|&(j, v)| v * x[(j, c)]).sum();
