@@ -31,12 +31,14 @@
 //! and a tangent of one model share one pattern, their sums add values,
 //! and one symbolic factorisation (faer's approximate minimum degree
 //! ordering and supernodal structure) is computed per model and kept in
-//! its [`Dofs`]. The numeric factorisation is faer's; the triangular
-//! solves are this module's, over the supernodes' dense blocks with up to
-//! eight right-hand sides side by side, so each entry of the factor is read
-//! once per eight (faer's per-supernode kernels cost more than they do on
-//! a frame's small supernodes: 0.23 s against 0.08 s for one solve of the
-//! 100 × 100 benchmark grid's 761,688 unknowns).
+//! its [`Dofs`], its supernodes put in a postorder. The numeric
+//! factorisation is faer's; the triangular solves are [`triangular`]'s,
+//! over the supernodes' dense blocks with up to eight right-hand sides
+//! side by side, so each entry of the factor is read once per eight, the
+//! factor's two halves (whole subtrees) on the two threads (faer's
+//! per-supernode kernels cost more than they do on a frame's small
+//! supernodes: 0.23 s against 0.08 s for one solve of the 100 × 100
+//! benchmark grid's 761,688 unknowns; on two threads 0.042 s).
 //!
 //! **Mechanisms.** A degree of freedom with no stiffness at all, a failed
 //! factorisation, or a Jacobi-scaled smallest eigenvalue below
@@ -47,6 +49,7 @@
 use super::model::{Beam, FrameModel, InitialForces, LoadSet, Section, DOF_PER_NODE};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
@@ -56,6 +59,9 @@ use faer::{Conj, Mat, MatMut, MatRef, Par, Side};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex, OnceLock};
+
+mod triangular;
+use triangular::{solve_scheduled, solve_serial, Schedule};
 
 /// A roller's inclined restraint: a spring of this many times the largest
 /// translational stiffness of its node, along the bearing's direction (its
@@ -801,17 +807,54 @@ impl Dofs {
                 return Ok(symbolic.clone());
             }
         }
-        let symbolic = factorize_symbolic_cholesky(
-            a.to_faer()?.symbolic(),
+        let pattern = a.to_faer()?;
+        let cholesky = factorize_symbolic_cholesky(
+            pattern.symbolic(),
             Side::Lower,
             SymmetricOrdering::Amd,
             Default::default(),
         )
-        .map(Arc::new)
-        .map_err(|e| FrameError::Invalid(format!("ordering: {e:?}")))?;
+        .map_err(ordering)?;
+        let cholesky = postordered(pattern.symbolic(), cholesky)?;
+        let symbolic = Arc::new(Structure::of(cholesky));
         *kept = Some((a.pattern.clone(), symbolic.clone()));
         Ok(symbolic)
     }
+}
+
+fn ordering(e: faer::sparse::FaerError) -> FrameError {
+    FrameError::Invalid(format!("ordering: {e:?}"))
+}
+
+/// `cholesky` (of `pattern`) with its supernodes in a postorder, so the
+/// triangular solves can deal whole subtrees to the threads
+/// ([`triangular`]): the same elimination in another order of its
+/// independent steps, so the same fill.
+fn postordered(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    cholesky: SymbolicCholesky<usize>,
+) -> Result<SymbolicCholesky<usize>, FrameError> {
+    let (SymbolicCholeskyRaw::Supernodal(supernodal), Some(perm)) =
+        (cholesky.raw(), cholesky.perm())
+    else {
+        return Ok(cholesky);
+    };
+    let Some(order) = triangular::postorder(supernodal) else {
+        return Ok(cholesky);
+    };
+    let (old, _) = perm.arrays();
+    let forward: Vec<usize> = order.iter().map(|&c| old[c]).collect();
+    let mut inverse = vec![0; forward.len()];
+    for (i, &f) in forward.iter().enumerate() {
+        inverse[f] = i;
+    }
+    factorize_symbolic_cholesky(
+        pattern,
+        Side::Lower,
+        SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, forward.len())),
+        Default::default(),
+    )
+    .map_err(ordering)
 }
 
 /// Checks indices and values of a model.
@@ -1684,14 +1727,45 @@ pub(crate) struct Factor {
 
 /// A factorisation's structure: the elimination order and the factor's
 /// pattern, shared by every matrix of the same pattern.
-pub(crate) type Symbolic = Arc<SymbolicCholesky<usize>>;
+pub(crate) type Symbolic = Arc<Structure>;
+
+/// faer's symbolic factorisation and the two threads' shares of its
+/// triangular solves.
+#[derive(Debug)]
+pub(crate) struct Structure {
+    cholesky: SymbolicCholesky<usize>,
+    /// `None`: the factor is not supernodal, too small to share, or its
+    /// tree does not split.
+    schedule: Option<Schedule>,
+}
+
+impl Structure {
+    fn of(cholesky: SymbolicCholesky<usize>) -> Structure {
+        let schedule = match cholesky.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) if cholesky.nrows() >= PARALLEL_ROWS => {
+                Schedule::of(s)
+            }
+            _ => None,
+        };
+        Structure { cholesky, schedule }
+    }
+}
+
+impl std::ops::Deref for Structure {
+    type Target = SymbolicCholesky<usize>;
+    fn deref(&self) -> &SymbolicCholesky<usize> {
+        &self.cholesky
+    }
+}
 
 impl Factor {
-    /// x ← A⁻¹·x for every column of x; two or more columns are shared
-    /// between two threads.
+    /// x ← A⁻¹·x for every column of x, on two threads: each solves its
+    /// share of the factor's subtrees for every column
+    /// ([`triangular`]), or where the factor has no such shares each
+    /// solves half of the columns.
     pub(crate) fn solve_in_place(&self, x: MatMut<'_, f64>) {
         let p = x.ncols();
-        if p >= 2 && x.nrows() >= PARALLEL_ROWS {
+        if self.symbolic.schedule.is_none() && p >= 2 && x.nrows() >= PARALLEL_ROWS {
             let (left, right) = x.split_at_col_mut(p / 2);
             rayon::join(|| self.solve_columns(left), || self.solve_columns(right));
         } else {
@@ -1699,7 +1773,7 @@ impl Factor {
         }
     }
 
-    /// [`Factor::solve_in_place`] on this thread.
+    /// [`Factor::solve_in_place`] for the columns of x together.
     fn solve_columns(&self, mut x: MatMut<'_, f64>) {
         let p = x.ncols();
         if p == 0 {
@@ -1731,106 +1805,56 @@ impl Factor {
                 _ => 1,
             };
             let columns = first..first + width;
+            let block = Block {
+                symbolic: supernodal,
+                schedule: self.symbolic.schedule.as_ref(),
+                values: &self.values,
+                forward,
+                inverse,
+            };
             match width {
-                8 => solve_block::<8>(supernodal, &self.values, &mut x, columns, forward, inverse),
-                4 => solve_block::<4>(supernodal, &self.values, &mut x, columns, forward, inverse),
-                2 => solve_block::<2>(supernodal, &self.values, &mut x, columns, forward, inverse),
-                _ => solve_block::<1>(supernodal, &self.values, &mut x, columns, forward, inverse),
+                8 => block.solve::<8>(&mut x, columns),
+                4 => block.solve::<4>(&mut x, columns),
+                2 => block.solve::<2>(&mut x, columns),
+                _ => block.solve::<1>(&mut x, columns),
             }
             first += width;
         }
     }
 }
 
-/// Solves for the columns `columns` (P of them) of x in place.
-fn solve_block<const P: usize>(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
-    x: &mut MatMut<'_, f64>,
-    columns: std::ops::Range<usize>,
-    forward: Option<&[usize]>,
-    inverse: Option<&[usize]>,
-) {
-    let n = x.nrows();
-    let mut y = vec![[0.0; P]; n];
-    for (c, column) in columns.clone().enumerate() {
-        let from = x.as_ref().col(column);
-        for (i, row) in y.iter_mut().enumerate() {
-            row[c] = from[forward.map_or(i, |f| f[i])];
-        }
-    }
-    supernodal_solve::<P>(symbolic, values, &mut y);
-    for (c, column) in columns.enumerate() {
-        let mut to = x.as_mut().col_mut(column);
-        for i in 0..n {
-            to[i] = y[inverse.map_or(i, |v| v[i])][c];
-        }
-    }
+/// A factor's triangular solves for a block of right-hand sides.
+struct Block<'a> {
+    symbolic: &'a SymbolicSupernodalCholesky<usize>,
+    schedule: Option<&'a Schedule>,
+    values: &'a [f64],
+    /// The factor's order: row i of the permuted system is row
+    /// `forward[i]` of x, and row i of x is row `inverse[i]` of it.
+    forward: Option<&'a [usize]>,
+    inverse: Option<&'a [usize]>,
 }
 
-/// L·Lᵀ·y = b in place (P right-hand sides per row) on a supernodal
-/// factor: forward by columns of L, then backward by dot products with
-/// them; every supernode is a dense block of its columns' rows (the
-/// diagonal block, then the rows below), column-major.
-fn supernodal_solve<const P: usize>(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
-    y: &mut [[f64; P]],
-) {
-    let supernodes = symbolic.n_supernodes();
-    let begin = symbolic.supernode_begin();
-    let end = symbolic.supernode_end();
-    let value_start = symbolic.col_ptr_for_val();
-    let row_start = symbolic.col_ptr_for_row_idx();
-    let rows = symbolic.row_idx();
-    for s in 0..supernodes {
-        let (c0, width) = (begin[s], end[s] - begin[s]);
-        let below = &rows[row_start[s]..row_start[s + 1]];
-        let height = width + below.len();
-        let block = &values[value_start[s]..value_start[s + 1]];
-        for k in 0..width {
-            let column = &block[k * height..(k + 1) * height];
-            let d = 1.0 / column[k];
-            let mut xk = y[c0 + k];
-            xk.iter_mut().for_each(|v| *v *= d);
-            y[c0 + k] = xk;
-            for (i, &l) in column[k + 1..width].iter().enumerate() {
-                let row = &mut y[c0 + k + 1 + i];
-                for c in 0..P {
-                    row[c] -= l * xk[c];
-                }
-            }
-            for (&r, &l) in below.iter().zip(&column[width..]) {
-                let row = &mut y[r];
-                for c in 0..P {
-                    row[c] -= l * xk[c];
-                }
+impl Block<'_> {
+    /// Solves for the columns `columns` (P of them) of x in place,
+    /// permuted into the factor's order with a row's values side by side.
+    fn solve<const P: usize>(&self, x: &mut MatMut<'_, f64>, columns: std::ops::Range<usize>) {
+        let n = x.nrows();
+        let mut y = vec![[0.0; P]; n];
+        for (c, column) in columns.clone().enumerate() {
+            let from = x.as_ref().col(column);
+            for (i, row) in y.iter_mut().enumerate() {
+                row[c] = from[self.forward.map_or(i, |f| f[i])];
             }
         }
-    }
-    for s in (0..supernodes).rev() {
-        let (c0, width) = (begin[s], end[s] - begin[s]);
-        let below = &rows[row_start[s]..row_start[s + 1]];
-        let height = width + below.len();
-        let block = &values[value_start[s]..value_start[s + 1]];
-        for k in (0..width).rev() {
-            let column = &block[k * height..(k + 1) * height];
-            let mut acc = y[c0 + k];
-            for (i, &l) in column[k + 1..width].iter().enumerate() {
-                let row = &y[c0 + k + 1 + i];
-                for c in 0..P {
-                    acc[c] -= l * row[c];
-                }
+        match self.schedule {
+            Some(schedule) => solve_scheduled::<P>(self.symbolic, self.values, schedule, &mut y),
+            None => solve_serial::<P>(self.symbolic, self.values, &mut y),
+        }
+        for (c, column) in columns.enumerate() {
+            let mut to = x.as_mut().col_mut(column);
+            for i in 0..n {
+                to[i] = y[self.inverse.map_or(i, |v| v[i])][c];
             }
-            for (&r, &l) in below.iter().zip(&column[width..]) {
-                let row = &y[r];
-                for c in 0..P {
-                    acc[c] -= l * row[c];
-                }
-            }
-            let d = 1.0 / column[k];
-            acc.iter_mut().for_each(|v| *v *= d);
-            y[c0 + k] = acc;
         }
     }
 }
@@ -2735,6 +2759,116 @@ mod tests {
         let shifted = add(&k, &k, 0.5);
         let again = factorise_definite(&shifted, &dofs).unwrap().unwrap();
         assert!(Arc::ptr_eq(&again.symbolic, &factor.symbolic));
+    }
+
+    /// The supernodes are put in a postorder (each subtree a range) at no
+    /// cost in fill, the schedule deals the subtrees to two threads in
+    /// near-equal shares, and the shared solve is the one-thread solve to
+    /// round-off, bit for bit the same on one thread as on two.
+    #[test]
+    fn triangular_solves_share_the_factors_subtrees() {
+        let k = grid_matrix(40, 6);
+        let dofs = all_free(k.n);
+        let factor = factorise_definite(&k, &dofs).unwrap().unwrap();
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = factor.symbolic.raw() else {
+            panic!("the test is of the supernodal solve");
+        };
+        assert_eq!(triangular::postorder(supernodal), None, "postordered");
+        // A grid of 24 × 25 nodes cut by its middle column of nodes: the
+        // two halves' nodes interleaved row by row, then the cut. The
+        // halves are two subtrees of the elimination tree, their
+        // supernodes interleaved, not a postorder; made one, with the
+        // same fill.
+        let (m, per) = (24, 6);
+        let grid = grid_matrix(m, per);
+        let mut order: Vec<usize> = Vec::new();
+        let (left, right): (Vec<usize>, Vec<usize>) = (0..m * m)
+            .filter(|q| q % m != m / 2)
+            .partition(|q| q % m < m / 2);
+        for pair in left.iter().zip(&right) {
+            order.extend([*pair.0, *pair.1]);
+        }
+        order.extend(left.iter().skip(right.len()));
+        order.extend(right.iter().skip(left.len()));
+        order.extend((0..m).map(|r| r * m + m / 2));
+        let forward: Vec<usize> = order
+            .iter()
+            .flat_map(|q| (0..per).map(move |a| q * per + a))
+            .collect();
+        let mut inverse = vec![0; forward.len()];
+        for (i, &f) in forward.iter().enumerate() {
+            inverse[f] = i;
+        }
+        let given = factorize_symbolic_cholesky(
+            grid.to_faer().unwrap().symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, grid.n)),
+            Default::default(),
+        )
+        .unwrap();
+        let supernodes = |c: &SymbolicCholesky<usize>| match c.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => triangular::postorder(s),
+            _ => panic!("a supernodal factor"),
+        };
+        assert!(
+            supernodes(&given).is_some(),
+            "the given order is not a postorder"
+        );
+        let made = postordered(grid.to_faer().unwrap().symbolic(), given).unwrap();
+        assert_eq!(supernodes(&made), None, "postordered");
+        // The factor's entries in either order, one by one.
+        let entries = |perm: PermRef<'_, usize>| {
+            factorize_symbolic_cholesky(
+                grid.to_faer().unwrap().symbolic(),
+                Side::Lower,
+                SymmetricOrdering::Custom(perm),
+                faer::sparse::linalg::cholesky::CholeskySymbolicParams {
+                    supernodal_flop_ratio_threshold:
+                        faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL,
+                    ..Default::default()
+                },
+            )
+            .unwrap()
+            .len_val()
+        };
+        assert_eq!(
+            entries(made.perm().unwrap()),
+            entries(PermRef::new_checked(&forward, &inverse, grid.n))
+        );
+
+        let schedule = Schedule::of(supernodal).expect("a schedule");
+        let shares = schedule.shares(supernodal);
+        assert!(
+            shares.iter().all(|&s| s > 0.35) && (shares[0] - shares[1]).abs() < 0.05,
+            "shares {shares:?}"
+        );
+        let b: Vec<[f64; 2]> = (0..k.n)
+            .map(|i| [((i * 7) % 17) as f64 - 8.0, ((i * 5) % 13) as f64 - 6.0])
+            .collect();
+        let mut serial = b.clone();
+        triangular::solve_serial::<2>(supernodal, &factor.values, &mut serial);
+        let mut shared = b.clone();
+        triangular::solve_scheduled::<2>(supernodal, &factor.values, &schedule, &mut shared);
+        let scale = serial.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (i, (a, s)) in serial.iter().zip(&shared).enumerate() {
+            for c in 0..2 {
+                assert!(
+                    (a[c] - s[c]).abs() <= 1e-12 * scale,
+                    "row {i}, side {c}: {} against {}",
+                    s[c],
+                    a[c]
+                );
+            }
+        }
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let mut alone = b.clone();
+        one.install(|| {
+            triangular::solve_scheduled::<2>(supernodal, &factor.values, &schedule, &mut alone)
+        });
+        assert!(alone == shared, "the same bits on one thread");
     }
 
     /// Every one of `n` unknowns free, no symbolic factorisation kept yet.
