@@ -1257,6 +1257,31 @@ mod tests {
     use crate::network::{RawCurve, RawNetwork, Unit};
     use std::path::Path;
 
+    /// The binary search finds the station a scan of the chain finds: the
+    /// nearest, the first of equally near ones (repeated stations, ties
+    /// halfway, before the first and past the last).
+    #[test]
+    fn nearest_station_is_the_scans() {
+        let scan = |stations: &[f64], s: f64| {
+            stations
+                .iter()
+                .enumerate()
+                .min_by(|x, y| (x.1 - s).abs().total_cmp(&(y.1 - s).abs()))
+                .map_or(0, |x| x.0)
+        };
+        let stations = [0.0, 10.0, 10.0, 20.0, 25.0, 25.0, 25.0, 40.0, 100.0];
+        for tenth in -50..1100 {
+            let s = f64::from(tenth) / 10.0;
+            assert_eq!(
+                nearest_station(&stations, s),
+                scan(&stations, s),
+                "station {s}"
+            );
+        }
+        assert_eq!(nearest_station(&[], 3.0), 0);
+        assert_eq!(nearest_station(&[7.0], 3.0), 0);
+    }
+
     fn root() -> &'static Path {
         Path::new(env!("CARGO_MANIFEST_DIR"))
     }
