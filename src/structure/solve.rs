@@ -31,10 +31,11 @@
 //! and a tangent of one model share one pattern, their sums add values,
 //! and one symbolic factorisation (faer's approximate minimum degree
 //! ordering and supernodal structure) is computed per model and kept in
-//! its [`Dofs`], its supernodes put in a postorder. The numeric
-//! factorisation is faer's; the triangular solves are [`triangular`]'s,
-//! over the supernodes' dense blocks with up to eight right-hand sides
-//! side by side, so each entry of the factor is read once per eight, the
+//! its [`Dofs`] (from [`PARALLEL_ROWS`] unknowns on, its supernodes put
+//! in a postorder). The numeric factorisation is faer's; the triangular
+//! solves are [`triangular`]'s, over the supernodes' dense blocks with up
+//! to eight right-hand sides side by side, so each entry of the factor is
+//! read once per eight, and from [`PARALLEL_ROWS`] unknowns on the
 //! factor's two halves (whole subtrees) on the two threads (faer's
 //! per-supernode kernels cost more than they do on a frame's small
 //! supernodes: 0.23 s against 0.08 s for one solve of the 100 × 100
@@ -815,7 +816,13 @@ impl Dofs {
             Default::default(),
         )
         .map_err(ordering)?;
-        let cholesky = postordered(pattern.symbolic(), cholesky)?;
+        // Only a factor large enough to share between the threads
+        // ([`Structure::of`]) is worth a second symbolic factorisation.
+        let cholesky = if a.n >= PARALLEL_ROWS {
+            postordered(pattern.symbolic(), cholesky)?
+        } else {
+            cholesky
+        };
         let symbolic = Arc::new(Structure::of(cholesky));
         *kept = Some((a.pattern.clone(), symbolic.clone()));
         Ok(symbolic)
@@ -1759,10 +1766,11 @@ impl std::ops::Deref for Structure {
 }
 
 impl Factor {
-    /// x ← A⁻¹·x for every column of x, on two threads: each solves its
-    /// share of the factor's subtrees for every column
-    /// ([`triangular`]), or where the factor has no such shares each
-    /// solves half of the columns.
+    /// x ← A⁻¹·x for every column of x. A factor of [`PARALLEL_ROWS`]
+    /// unknowns or more is shared between two threads: each solves its
+    /// share of the factor's subtrees for every column ([`triangular`]),
+    /// or where the factor has no such shares each solves half of the
+    /// columns (with two or more). A smaller one is solved on this thread.
     pub(crate) fn solve_in_place(&self, x: MatMut<'_, f64>) {
         let p = x.ncols();
         if self.symbolic.schedule.is_none() && p >= 2 && x.nrows() >= PARALLEL_ROWS {

@@ -7,8 +7,10 @@
 //! read once per block: a solve is bound by reading the factor from memory.
 //!
 //! **Two threads, two halves of the factor.** The supernodes are numbered
-//! in a postorder of their elimination tree (faer's), so a subtree is a
-//! range of supernodes and of columns, and its columns' rows below reach
+//! in a postorder of their elimination tree ([`postorder`]: faer leaves
+//! them in the minimum degree's order, and the stiffness's symbolic
+//! factorisation is redone in this one), so a subtree is a range of
+//! supernodes and of columns, and its columns' rows below reach
 //! only its own columns and its ancestors'. A [`Schedule`] cuts the tree
 //! into subtrees ("pieces") dealt to two threads with near-equal shares of
 //! the factor's entries, and the supernodes above them (the "top"):
@@ -51,23 +53,127 @@ const BALANCE: f64 = 1.02;
 /// benchmark grid's factor took 4, leaving 5.6 % of its entries on top).
 const SPLITS: usize = 256;
 
-/// The columns of supernode `s`, the rows below them and their block of
-/// values.
-fn supernode<'a>(
-    symbolic: &'a SymbolicSupernodalCholesky<usize>,
-    values: &'a [f64],
-    s: usize,
-) -> (usize, usize, &'a [usize], &'a [f64]) {
-    let begin = symbolic.supernode_begin()[s];
-    let width = symbolic.supernode_end()[s] - begin;
-    let row_start = symbolic.col_ptr_for_row_idx();
-    let value_start = symbolic.col_ptr_for_val();
-    (
-        begin,
-        width,
-        &symbolic.row_idx()[row_start[s]..row_start[s + 1]],
-        &values[value_start[s]..value_start[s + 1]],
-    )
+/// One supernode of a factor: its columns, the rows below them and its
+/// block of values (column-major, each column its diagonal block's rows
+/// and then those below).
+struct Supernode<'a> {
+    first_column: usize,
+    width: usize,
+    below: &'a [usize],
+    block: &'a [f64],
+}
+
+impl<'a> Supernode<'a> {
+    fn of(
+        symbolic: &'a SymbolicSupernodalCholesky<usize>,
+        values: &'a [f64],
+        s: usize,
+    ) -> Supernode<'a> {
+        let first_column = symbolic.supernode_begin()[s];
+        let row_start = symbolic.col_ptr_for_row_idx();
+        let value_start = symbolic.col_ptr_for_val();
+        Supernode {
+            first_column,
+            width: symbolic.supernode_end()[s] - first_column,
+            below: &symbolic.row_idx()[row_start[s]..row_start[s + 1]],
+            block: &values[value_start[s]..value_start[s + 1]],
+        }
+    }
+
+    /// How many of the rows below lie in `own` (rows `offset`.. of y,
+    /// `own_len` of them; the rest lie beyond it).
+    fn inside(&self, offset: usize, own_len: usize) -> usize {
+        self.below.partition_point(|&r| r < offset + own_len)
+    }
+
+    /// Column k's values in its diagonal block, and the rows below with
+    /// their values, split after the first `inside`.
+    #[allow(clippy::type_complexity)]
+    fn column(
+        &self,
+        k: usize,
+        inside: usize,
+    ) -> (
+        &'a [f64],
+        (&'a [usize], &'a [f64]),
+        (&'a [usize], &'a [f64]),
+    ) {
+        let height = self.width + self.below.len();
+        let column = &self.block[k * height..(k + 1) * height];
+        let (near, far) = self.below.split_at(inside);
+        let (l_near, l_far) = column[self.width..].split_at(inside);
+        (&column[..self.width], (near, l_near), (far, l_far))
+    }
+
+    /// Forward elimination of its columns on `own`, the rows from
+    /// `offset` on; an update of a row beyond `own` goes to
+    /// `outside(row, l, x)` (to be subtracted: l·x).
+    fn forward<const P: usize>(
+        &self,
+        own: &mut [[f64; P]],
+        offset: usize,
+        outside: &mut impl FnMut(usize, f64, &[f64; P]),
+    ) {
+        let (c0, inside) = (self.first_column - offset, self.inside(offset, own.len()));
+        for k in 0..self.width {
+            let (diagonal, (near, l_near), (far, l_far)) = self.column(k, inside);
+            let d = 1.0 / diagonal[k];
+            let mut xk = own[c0 + k];
+            xk.iter_mut().for_each(|v| *v *= d);
+            own[c0 + k] = xk;
+            for (i, &l) in diagonal[k + 1..].iter().enumerate() {
+                let row = &mut own[c0 + k + 1 + i];
+                for c in 0..P {
+                    row[c] -= l * xk[c];
+                }
+            }
+            for (&r, &l) in near.iter().zip(l_near) {
+                let row = &mut own[r - offset];
+                for c in 0..P {
+                    row[c] -= l * xk[c];
+                }
+            }
+            for (&r, &l) in far.iter().zip(l_far) {
+                outside(r, l, &xk);
+            }
+        }
+    }
+
+    /// Backward substitution of its columns on `own` (rows from `offset`
+    /// on), the values of rows beyond `own` read by `outside(row)`.
+    fn backward<const P: usize>(
+        &self,
+        own: &mut [[f64; P]],
+        offset: usize,
+        outside: &impl Fn(usize) -> [f64; P],
+    ) {
+        let (c0, inside) = (self.first_column - offset, self.inside(offset, own.len()));
+        for k in (0..self.width).rev() {
+            let (diagonal, (near, l_near), (far, l_far)) = self.column(k, inside);
+            let mut acc = own[c0 + k];
+            for (i, &l) in diagonal[k + 1..].iter().enumerate() {
+                let row = &own[c0 + k + 1 + i];
+                for c in 0..P {
+                    acc[c] -= l * row[c];
+                }
+            }
+            for (&r, &l) in near.iter().zip(l_near) {
+                let row = &own[r - offset];
+                for c in 0..P {
+                    acc[c] -= l * row[c];
+                }
+            }
+            for (&r, &l) in far.iter().zip(l_far) {
+                let row = outside(r);
+                for c in 0..P {
+                    acc[c] -= l * row[c];
+                }
+            }
+            let d = 1.0 / diagonal[k];
+            acc.iter_mut().for_each(|v| *v *= d);
+            own[c0 + k] = acc;
+        }
+    }
 }
 
 impl Schedule {
@@ -252,12 +358,10 @@ pub(crate) fn solve_serial<const P: usize>(
     y: &mut [[f64; P]],
 ) {
     for s in 0..symbolic.n_supernodes() {
-        let (c0, width, below, block) = supernode(symbolic, values, s);
-        forward_supernode(c0, width, below, block, y, 0, &mut |_, _, _| {});
+        Supernode::of(symbolic, values, s).forward(y, 0, &mut |_, _, _| {});
     }
     for s in (0..symbolic.n_supernodes()).rev() {
-        let (c0, width, below, block) = supernode(symbolic, values, s);
-        backward_supernode(c0, width, below, block, y, 0, &|_| unreachable!());
+        Supernode::of(symbolic, values, s).backward(y, 0, &|_| unreachable!());
     }
 }
 
@@ -308,8 +412,7 @@ pub(crate) fn solve_scheduled<const P: usize>(
         let mut sum = vec![[0.0; P]; schedule.top_columns.len()];
         for (range, offset, own) in pieces {
             for s in range {
-                let (c0, width, below, block) = supernode(symbolic, values, s);
-                forward_supernode(c0, width, below, block, own, offset, &mut |row, l, x| {
+                Supernode::of(symbolic, values, s).forward(own, offset, &mut |row, l, x| {
                     let place = &mut sum[schedule.top_place[row] as usize];
                     for c in 0..P {
                         place[c] += l * x[c];
@@ -328,110 +431,23 @@ pub(crate) fn solve_scheduled<const P: usize>(
         }
     }
     for &s in &schedule.top {
-        let (c0, width, below, block) = supernode(symbolic, values, s);
-        forward_supernode(c0, width, below, block, y, 0, &mut |_, _, _| {});
+        Supernode::of(symbolic, values, s).forward(y, 0, &mut |_, _, _| {});
     }
 
     // Backward: the top, then the pieces, reading the top from a copy.
     for &s in schedule.top.iter().rev() {
-        let (c0, width, below, block) = supernode(symbolic, values, s);
-        backward_supernode(c0, width, below, block, y, 0, &|_| unreachable!());
+        Supernode::of(symbolic, values, s).backward(y, 0, &|_| unreachable!());
     }
     let top_values: Vec<[f64; P]> = schedule.top_columns.iter().map(|&c| y[c]).collect();
     let [a, b] = pieces_of(symbolic, schedule, y);
     let backward = |pieces: Vec<Piece<'_, P>>| {
         for (range, offset, own) in pieces {
             for s in range.rev() {
-                let (c0, width, below, block) = supernode(symbolic, values, s);
-                backward_supernode(c0, width, below, block, own, offset, &|row| {
+                Supernode::of(symbolic, values, s).backward(own, offset, &|row| {
                     top_values[schedule.top_place[row] as usize]
                 });
             }
         }
     };
     rayon::join(|| backward(a), || backward(b));
-}
-
-/// Forward elimination of one supernode's columns (c0.., `width` of them)
-/// on `own`, the rows from `offset` on; an update of a row beyond `own`
-/// goes to `outside(row, l, x)` (to be subtracted: l·x).
-fn forward_supernode<const P: usize>(
-    c0: usize,
-    width: usize,
-    below: &[usize],
-    block: &[f64],
-    own: &mut [[f64; P]],
-    offset: usize,
-    outside: &mut impl FnMut(usize, f64, &[f64; P]),
-) {
-    let height = width + below.len();
-    let inside = below.partition_point(|&r| r < offset + own.len());
-    let c0 = c0 - offset;
-    for k in 0..width {
-        let column = &block[k * height..(k + 1) * height];
-        let d = 1.0 / column[k];
-        let mut xk = own[c0 + k];
-        xk.iter_mut().for_each(|v| *v *= d);
-        own[c0 + k] = xk;
-        for (i, &l) in column[k + 1..width].iter().enumerate() {
-            let row = &mut own[c0 + k + 1 + i];
-            for c in 0..P {
-                row[c] -= l * xk[c];
-            }
-        }
-        let (near, far) = below.split_at(inside);
-        let (l_near, l_far) = column[width..].split_at(inside);
-        for (&r, &l) in near.iter().zip(l_near) {
-            let row = &mut own[r - offset];
-            for c in 0..P {
-                row[c] -= l * xk[c];
-            }
-        }
-        for (&r, &l) in far.iter().zip(l_far) {
-            outside(r, l, &xk);
-        }
-    }
-}
-
-/// Backward substitution of one supernode's columns on `own` (rows from
-/// `offset` on), the values of rows beyond `own` read by `outside(row)`.
-fn backward_supernode<const P: usize>(
-    c0: usize,
-    width: usize,
-    below: &[usize],
-    block: &[f64],
-    own: &mut [[f64; P]],
-    offset: usize,
-    outside: &impl Fn(usize) -> [f64; P],
-) {
-    let height = width + below.len();
-    let inside = below.partition_point(|&r| r < offset + own.len());
-    let c0 = c0 - offset;
-    for k in (0..width).rev() {
-        let column = &block[k * height..(k + 1) * height];
-        let mut acc = own[c0 + k];
-        for (i, &l) in column[k + 1..width].iter().enumerate() {
-            let row = &own[c0 + k + 1 + i];
-            for c in 0..P {
-                acc[c] -= l * row[c];
-            }
-        }
-        let (near, far) = below.split_at(inside);
-        let (l_near, l_far) = column[width..].split_at(inside);
-        for (&r, &l) in near.iter().zip(l_near) {
-            let row = &own[r - offset];
-            for c in 0..P {
-                acc[c] -= l * row[c];
-            }
-        }
-        for (&r, &l) in far.iter().zip(l_far) {
-            let row = outside(r);
-            for c in 0..P {
-                acc[c] -= l * row[c];
-            }
-        }
-        let d = 1.0 / column[k];
-        acc.iter_mut().for_each(|v| *v *= d);
-        own[c0 + k] = acc;
-    }
 }
