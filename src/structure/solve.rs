@@ -29,10 +29,11 @@
 //! included, at places found once per model ([`ScatterPlan`]: no
 //! triplets to sort), so the stiffness, the geometric stiffness, a shifted pencil
 //! and a tangent of one model share one pattern, their sums add values,
-//! and one symbolic factorisation (faer's approximate minimum degree
-//! ordering and supernodal structure) is computed per model and kept in
-//! its [`Dofs`] (from [`PARALLEL_ROWS`] unknowns on, its supernodes put
-//! in a postorder). The numeric factorisation is faer's; the triangular
+//! and one symbolic factorisation is computed per model and kept in its
+//! [`Dofs`]: faer's approximate minimum degree ordering of the model's
+//! nodes, each node's unknowns together, in a postorder of the nodes'
+//! elimination tree ([`ordering`]), and faer's supernodal structure on
+//! it. The numeric factorisation is faer's; the triangular
 //! solves are [`triangular`]'s, over the supernodes' dense blocks with up
 //! to eight right-hand sides side by side, so each entry of the factor is
 //! read once per eight, and from [`PARALLEL_ROWS`] unknowns on the
@@ -61,6 +62,7 @@ use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex, OnceLock};
 
+mod ordering;
 mod triangular;
 use triangular::{solve_scheduled, solve_serial, Schedule};
 
@@ -800,7 +802,9 @@ impl Dofs {
     }
 
     /// The symbolic factorisation of `a`: the one kept when `a` has its
-    /// pattern, else a new one (approximate minimum degree), kept.
+    /// pattern, else a new one (approximate minimum degree on the nodes,
+    /// [`ordering`]; on the unknowns where `a` is not of these nodes),
+    /// kept.
     fn symbolic_of(&self, a: &SymSparse) -> Result<Symbolic, FrameError> {
         let mut kept = self.symbolic.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((pattern, symbolic)) = &*kept {
@@ -809,15 +813,31 @@ impl Dofs {
             }
         }
         let pattern = a.to_faer()?;
-        let cholesky = factorize_symbolic_cholesky(
-            pattern.symbolic(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(ordering)?;
-        // Only a factor large enough to share between the threads
-        // ([`Structure::of`]) is worth a second symbolic factorisation.
+        let cholesky = match ordering::by_nodes(&a.pattern, a.n, self) {
+            Some(forward) => {
+                let mut inverse = vec![0; forward.len()];
+                for (i, &f) in forward.iter().enumerate() {
+                    inverse[f] = i;
+                }
+                factorize_symbolic_cholesky(
+                    pattern.symbolic(),
+                    Side::Lower,
+                    SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, a.n)),
+                    Default::default(),
+                )
+            }
+            None => factorize_symbolic_cholesky(
+                pattern.symbolic(),
+                Side::Lower,
+                SymmetricOrdering::Amd,
+                Default::default(),
+            ),
+        }
+        .map_err(ordering_failed)?;
+        // Ordered on the nodes, the supernodes are in a postorder already;
+        // where the unknowns had to be ordered themselves, only a factor
+        // large enough to share between the threads ([`Structure::of`])
+        // is worth a second symbolic factorisation.
         let cholesky = if a.n >= PARALLEL_ROWS {
             postordered(pattern.symbolic(), cholesky)?
         } else {
@@ -829,7 +849,7 @@ impl Dofs {
     }
 }
 
-fn ordering(e: faer::sparse::FaerError) -> FrameError {
+fn ordering_failed(e: faer::sparse::FaerError) -> FrameError {
     FrameError::Invalid(format!("ordering: {e:?}"))
 }
 
@@ -861,7 +881,7 @@ fn postordered(
         SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, forward.len())),
         Default::default(),
     )
-    .map_err(ordering)
+    .map_err(ordering_failed)
 }
 
 /// Checks indices and values of a model.
@@ -992,15 +1012,27 @@ pub struct Assembly {
 /// Where every element's entries go in its model's pattern (the lower
 /// triangles of all beams' and links' blocks): a matrix of the model is
 /// assembled by adding each element's entries at their places, with no
-/// triplets to sort. At 100 × 100 curves the sorted triplets of one
-/// matrix were 12 million, 490 MB allocated for a 240-MB result.
+/// triplets to sort.
+///
+/// The pattern couples whole nodes (every element adds its whole block,
+/// and a node's unknowns are numbered together), so it is made from the
+/// node graph: column j of node y holds y's own unknowns from j on, then
+/// the unknowns of each neighbour x of y numbered after y, in order. An
+/// entry's place is then arithmetic: in column j, row i of y itself at
+/// `start[j] + (i − j)`, and row i of neighbour x at
+/// `start[j] + (end(y) − j) + offset(y, x) + (i − first(x))`, with
+/// offset(y, x) the unknowns of y's neighbours before x. An element keeps
+/// only the number of its node pair in the graph. At 400 × 400 curves the
+/// places of every entry (78 per element) had taken 800 MB, and sorting
+/// them 3.2 GB more.
 #[derive(Debug)]
 struct ScatterPlan {
     pattern: Arc<Pattern>,
-    /// Element e's places (beams, then links) are
-    /// `places[first[e]..first[e + 1]]`, in [`Assembly::scatter`]'s order.
-    first: Vec<usize>,
-    places: Vec<u32>,
+    /// Per element (beams, then links), the number of its node pair among
+    /// the graph's edges ([`NONE`]: no pair, one end has no unknowns).
+    edge: Vec<usize>,
+    /// Per edge (y, x), the unknowns of y's neighbours before x.
+    offset: Vec<u32>,
 }
 
 /// Beams whose matrices are computed side by side (in parallel) before
@@ -1010,68 +1042,121 @@ const SCATTER_CHUNK: usize = 4096;
 impl ScatterPlan {
     /// The plan of `assembly`'s elements.
     fn of(assembly: &Assembly, model: &FrameModel) -> ScatterPlan {
-        let n = assembly.dofs.free;
-        let mut cells: Vec<(u32, u32)> = Vec::with_capacity(model.beams.len() * 78);
-        let mut first = Vec::with_capacity(model.beams.len() + model.links.len() + 1);
-        first.push(0);
-        let elements =
-            (model.beams.iter().map(|b| b.nodes)).chain(model.links.iter().map(|l| l.nodes));
-        for nodes in elements {
-            let d = assembly.node_dofs(nodes);
-            for_each_lower(&d, |row, column, _, _| {
-                cells.push((row as u32, column as u32))
-            });
-            first.push(cells.len());
-        }
-        assert!(
-            cells.len() < u32::MAX as usize && n < u32::MAX as usize,
-            "a frame model of {} element entries over {n} unknowns",
-            cells.len()
-        );
-        // By column in one counting pass, then each column by row.
-        let mut start = vec![0usize; n + 1];
-        for &(_, j) in &cells {
-            start[j as usize + 1] += 1;
-        }
-        for j in 0..n {
-            start[j + 1] += start[j];
-        }
-        let mut slot = start.clone();
-        let mut by_column = vec![(0u32, 0u32); cells.len()];
-        for (t, &(i, j)) in cells.iter().enumerate() {
-            by_column[slot[j as usize]] = (i, t as u32);
-            slot[j as usize] += 1;
-        }
-        drop(cells);
-        let mut places = vec![0u32; by_column.len()];
-        let mut column_start = Vec::with_capacity(n + 1);
-        column_start.push(0);
-        let mut rows: Vec<usize> = Vec::with_capacity(by_column.len() / 2);
-        for j in 0..n {
-            let column = &mut by_column[start[j]..start[j + 1]];
-            column.sort_unstable();
-            let begin = rows.len();
-            for &(i, t) in column.iter() {
-                if rows.len() == begin || rows[rows.len() - 1] != i as usize {
-                    rows.push(i as usize);
-                }
-                places[t as usize] = (rows.len() - 1) as u32;
+        let index = &assembly.dofs.index;
+        let nodes = index.len() / DOF_PER_NODE;
+        // Each node's unknowns, first..end (first = NONE: none).
+        let mut first = vec![NONE; nodes];
+        let mut end = vec![0; nodes];
+        for (p, six) in index.chunks(DOF_PER_NODE).enumerate() {
+            for &u in six.iter().filter(|&&u| u != NONE) {
+                first[p] = first[p].min(u);
+                end[p] = end[p].max(u + 1);
             }
-            column_start.push(rows.len());
         }
+        // The elements' node pairs (y, x), y's unknowns first, counted by y.
+        let elements: Vec<[usize; 2]> = (model.beams.iter().map(|b| b.nodes))
+            .chain(model.links.iter().map(|l| l.nodes))
+            .collect();
+        let pair = |[p, q]: [usize; 2]| -> Option<(usize, usize)> {
+            (p != q && first[p] != NONE && first[q] != NONE).then(|| {
+                if first[p] < first[q] {
+                    (p, q)
+                } else {
+                    (q, p)
+                }
+            })
+        };
+        let mut by_node = vec![0usize; nodes + 1];
+        for &e in &elements {
+            if let Some((y, _)) = pair(e) {
+                by_node[y + 1] += 1;
+            }
+        }
+        for p in 0..nodes {
+            by_node[p + 1] += by_node[p];
+        }
+        let mut fill = by_node.clone();
+        let mut ends = vec![(0usize, 0usize, 0usize); by_node[nodes]];
+        for (e, &nodes_of) in elements.iter().enumerate() {
+            if let Some((y, x)) = pair(nodes_of) {
+                ends[fill[y]] = (first[x], x, e);
+                fill[y] += 1;
+            }
+        }
+        // Each node's neighbours in the order of their unknowns, each
+        // once (the graph's edges: their runs of unknowns), with the
+        // unknowns before each.
+        let mut edge = vec![NONE; elements.len()];
+        let mut offset: Vec<u32> = Vec::with_capacity(ends.len());
+        let mut runs: Vec<(usize, usize)> = Vec::with_capacity(ends.len());
+        let mut runs_of = vec![0usize; nodes + 1];
+        let mut entries = 0;
+        for y in 0..nodes {
+            let list = &mut ends[by_node[y]..by_node[y + 1]];
+            list.sort_unstable();
+            let mut before = 0;
+            for k in 0..list.len() {
+                let (x_first, x, e) = list[k];
+                if k == 0 || list[k - 1].0 != x_first {
+                    offset.push(before);
+                    runs.push((x_first, end[x]));
+                    before += (end[x] - x_first) as u32;
+                }
+                edge[e] = offset.len() - 1;
+            }
+            runs_of[y + 1] = runs.len();
+            if first[y] != NONE {
+                let own = end[y] - first[y];
+                entries += own * (own + 1) / 2 + own * before as usize;
+            }
+        }
+        drop(ends);
+        // The columns, node by node: the node's own unknowns from the
+        // column's on, then its neighbours' runs.
+        let n = assembly.dofs.free;
+        let mut start = Vec::with_capacity(n + 1);
+        start.push(0);
+        let mut rows: Vec<usize> = Vec::with_capacity(entries);
+        for y in (0..nodes).filter(|&y| first[y] != NONE) {
+            debug_assert_eq!(first[y], start.len() - 1, "unknowns numbered node by node");
+            for j in first[y]..end[y] {
+                rows.extend(j..end[y]);
+                for &(from, to) in &runs[runs_of[y]..runs_of[y + 1]] {
+                    rows.extend(from..to);
+                }
+                start.push(rows.len());
+            }
+        }
+        assert_eq!(start.len(), n + 1, "every unknown a node's");
         ScatterPlan {
-            pattern: Arc::new(Pattern {
-                start: column_start,
-                rows,
-            }),
-            first,
-            places,
+            pattern: Arc::new(Pattern { start, rows }),
+            edge,
+            offset,
         }
     }
 
-    /// Element `e`'s places.
-    fn places_of(&self, e: usize) -> &[u32] {
-        &self.places[self.first[e]..self.first[e + 1]]
+    /// Adds element `e`'s block `k` over its unknowns `d` (its first node's
+    /// six, then its second's; `NONE` where fixed) to `values`.
+    fn add(&self, values: &mut [f64], e: usize, d: &[usize; 12], k: &Mat12) {
+        let start = &self.pattern.start;
+        // Each half's (first, end) unknowns.
+        let span = |half: &[usize]| -> (usize, usize) {
+            half.iter()
+                .filter(|&&u| u != NONE)
+                .fold((NONE, 0), |(f, t), &u| (f.min(u), t.max(u + 1)))
+        };
+        let halves = [span(&d[..6]), span(&d[6..])];
+        let across = self.edge[e];
+        for_each_lower(d, |i, j, a, b| {
+            let (row_half, column_half) = (halves[a / 6], halves[b / 6]);
+            let place = if i < column_half.1 {
+                // Row i is of column j's own node.
+                start[j] + (i - j)
+            } else {
+                start[j] + (column_half.1 - j) + self.offset[across] as usize + (i - row_half.0)
+            };
+            values[place] += k[a][b];
+        });
     }
 
     /// Values of zero over the pattern.
@@ -1095,16 +1180,6 @@ fn for_each_lower(d: &[usize; 12], mut f: impl FnMut(usize, usize, usize, usize)
             f(d[a], d[b], a, b);
         }
     }
-}
-
-/// Adds an element's block `k` over dofs `d` to `values` at `places`.
-fn add_at(values: &mut [f64], places: &[u32], d: &[usize; 12], k: &Mat12) {
-    let mut next = places.iter();
-    for_each_lower(d, |_, _, a, b| {
-        if let Some(&p) = next.next() {
-            values[p as usize] += k[a][b];
-        }
-    });
 }
 
 impl Assembly {
@@ -1196,7 +1271,7 @@ impl Assembly {
             for (i, k) in (start..end).zip(&blocks) {
                 if let Some(k) = k {
                     let d = self.element_dofs(&model.beams[i]);
-                    add_at(values, plan.places_of(i), &d, k);
+                    plan.add(values, i, &d, k);
                 }
             }
             start = end;
@@ -1257,8 +1332,12 @@ impl Assembly {
                     }
                 }
             }
-            let places = plan.places_of(model.beams.len() + index);
-            add_at(&mut values, places, &self.node_dofs(l.nodes), &k);
+            plan.add(
+                &mut values,
+                model.beams.len() + index,
+                &self.node_dofs(l.nodes),
+                &k,
+            );
         }
         let mut sym = self.over_plan(&plan, values);
         let inclined: Vec<_> = model
@@ -1390,7 +1469,7 @@ impl Assembly {
                 None => sym,
                 Some(h) => sandwich(h, &sym),
             };
-            add_at(values, plan.places_of(p.beam), &self.element_dofs(b), &k);
+            plan.add(values, p.beam, &self.element_dofs(b), &k);
         }
     }
 
@@ -2481,6 +2560,9 @@ mod tests {
                 beam(2, 3, none),
                 beam(3, 0, none),
                 beam(4, 5, none),
+                // A second element between nodes 1 and 2, listed the
+                // other way round.
+                beam(2, 1, none),
             ],
             links: vec![Link {
                 nodes: [0, 4],
@@ -2499,6 +2581,12 @@ mod tests {
                     node: 2,
                     fixed: [false; 6],
                     along: Some(DVec3::new(1.0, 1.0, 0.0)),
+                },
+                // Three of node 3's six held.
+                Support {
+                    node: 3,
+                    fixed: [true, false, true, false, false, true],
+                    along: None,
                 },
             ],
         };
@@ -2545,9 +2633,10 @@ mod tests {
 
     /// Matrices added at the plan's places equal the full blocks summed
     /// entry by entry: the stiffness (beams with and without offsets, a
-    /// link, an inclined support's penalty) and the geometric stiffness
-    /// (one beam without axial force, pressures); both on one pattern, the
-    /// sorted triplets' of the same blocks.
+    /// link, an inclined support's penalty, a node held in every
+    /// direction and one in three, two beams between the same nodes) and
+    /// the geometric stiffness (one beam without axial force, pressures);
+    /// both on one pattern, the sorted triplets' of the same blocks.
     #[test]
     fn matrices_added_at_their_places_equal_the_summed_blocks() {
         let (model, loads) = plan_model();
@@ -2611,7 +2700,7 @@ mod tests {
             assert!((g - w).abs() <= 1e-9 * w.abs().max(1.0));
         }
         // The geometric stiffness: beam 3 carries no force.
-        let axial = [-1000.0, 500.0, -250.0, 0.0, 2000.0];
+        let axial = [-1000.0, 500.0, -250.0, 0.0, 2000.0, 700.0];
         let mut want = vec![vec![0.0; n]; n];
         for (i, b) in model.beams.iter().enumerate() {
             let f = &assembly.frames[i];
@@ -2905,6 +2994,41 @@ mod tests {
             triangular::solve_scheduled::<2>(supernodal, &factor.values, &schedule, &mut alone)
         });
         assert!(alone == shared, "the same bits on one thread");
+    }
+
+    /// The frame's unknowns ordered on its nodes: the factor's
+    /// supernodes come out in a postorder (no second symbolic
+    /// factorisation), with about the fill of the minimum degree ordering
+    /// of the unknowns themselves.
+    #[test]
+    fn ordered_on_the_nodes_the_factor_is_postordered_with_the_fill_of_the_unknowns() {
+        let k = grid_matrix(40, 6);
+        let dofs = all_free(k.n);
+        let by_nodes = dofs.symbolic_of(&k).unwrap();
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = by_nodes.raw() else {
+            panic!("a supernodal factor");
+        };
+        assert_eq!(triangular::postorder(supernodal), None, "postordered");
+        let of_unknowns = factorize_symbolic_cholesky(
+            k.to_faer().unwrap().symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .unwrap();
+        let (ours, theirs) = (by_nodes.len_val(), of_unknowns.len_val());
+        assert!(
+            (ours as f64) < 1.05 * theirs as f64,
+            "{ours} entries against {theirs}"
+        );
+        // And it solves: K·x = b to round-off.
+        let factor = factorise_definite(&k, &dofs).unwrap().unwrap();
+        let b = Mat::<f64>::from_fn(k.n, 1, |i, _| ((i * 7) % 17) as f64 - 8.0);
+        let mut x = b.clone();
+        factor.solve_in_place(x.as_mut());
+        let r = k.mul_block(x.as_ref()) - &b;
+        let scale = b.norm_max();
+        assert!(r.norm_max() <= 1e-10 * scale, "residual {}", r.norm_max());
     }
 
     /// Every one of `n` unknowns free, no symbolic factorisation kept yet.
