@@ -814,26 +814,15 @@ impl Dofs {
         }
         let pattern = a.to_faer()?;
         let cholesky = match ordering::by_nodes(&a.pattern, a.n, self) {
-            Some(forward) => {
-                let mut inverse = vec![0; forward.len()];
-                for (i, &f) in forward.iter().enumerate() {
-                    inverse[f] = i;
-                }
-                factorize_symbolic_cholesky(
-                    pattern.symbolic(),
-                    Side::Lower,
-                    SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, a.n)),
-                    Default::default(),
-                )
-            }
+            Some(forward) => symbolic_in_order(pattern.symbolic(), &forward)?,
             None => factorize_symbolic_cholesky(
                 pattern.symbolic(),
                 Side::Lower,
                 SymmetricOrdering::Amd,
                 Default::default(),
-            ),
-        }
-        .map_err(ordering_failed)?;
+            )
+            .map_err(ordering_failed)?,
+        };
         // Ordered on the nodes, the supernodes are in a postorder already;
         // where the unknowns had to be ordered themselves, only a factor
         // large enough to share between the threads ([`Structure::of`])
@@ -871,6 +860,15 @@ fn postordered(
     };
     let (old, _) = perm.arrays();
     let forward: Vec<usize> = order.iter().map(|&c| old[c]).collect();
+    symbolic_in_order(pattern, &forward)
+}
+
+/// The symbolic factorisation of `pattern` with its unknowns eliminated
+/// in the order `forward` (`forward[k]` the k-th).
+fn symbolic_in_order(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    forward: &[usize],
+) -> Result<SymbolicCholesky<usize>, FrameError> {
     let mut inverse = vec![0; forward.len()];
     for (i, &f) in forward.iter().enumerate() {
         inverse[f] = i;
@@ -878,7 +876,7 @@ fn postordered(
     factorize_symbolic_cholesky(
         pattern,
         Side::Lower,
-        SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, forward.len())),
+        SymmetricOrdering::Custom(PermRef::new_checked(forward, &inverse, forward.len())),
         Default::default(),
     )
     .map_err(ordering_failed)
