@@ -496,6 +496,38 @@ pub(crate) struct Pattern {
     pub start: Vec<usize>,
     /// Their rows, ascending within a column, each at least the column.
     pub rows: Vec<usize>,
+    /// The unknowns are numbered in the fill-reducing order of the graph
+    /// this pattern is of (the scatter plan's, of [`Dofs`] numbered in
+    /// order), so it is factorised as it stands.
+    pub in_order: bool,
+}
+
+impl Pattern {
+    /// The upper triangle of the same matrix by columns (this triangle's
+    /// rows), rows ascending.
+    fn transposed(&self) -> Pattern {
+        let n = self.start.len() - 1;
+        let mut start = vec![0usize; n + 1];
+        for &i in &self.rows {
+            start[i + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut next = start.clone();
+        let mut rows = vec![0usize; self.rows.len()];
+        for j in 0..n {
+            for &i in &self.rows[self.start[j]..self.start[j + 1]] {
+                rows[next[i]] = j;
+                next[i] += 1;
+            }
+        }
+        Pattern {
+            start,
+            rows,
+            in_order: self.in_order,
+        }
+    }
 }
 
 /// A symmetric sparse matrix: its lower triangle in compressed columns.
@@ -553,7 +585,11 @@ impl SymSparse {
         }
         SymSparse {
             n,
-            pattern: Arc::new(Pattern { start, rows }),
+            pattern: Arc::new(Pattern {
+                start,
+                rows,
+                in_order: false,
+            }),
             values,
             scaling: None,
         }
@@ -762,6 +798,9 @@ pub struct Dofs {
     pub index: Vec<usize>,
     /// Number of unknowns.
     pub free: usize,
+    /// The unknowns are numbered node by node in a fill-reducing order of
+    /// the nodes the model's elements join ([`ordering::number_in_order`]).
+    in_order: bool,
     /// The last symbolic factorisation and the pattern it is of: every
     /// matrix of one model has the same pattern, so the ordering and the
     /// factor's structure are computed once (shared by clones).
@@ -794,11 +833,16 @@ impl Dofs {
                 }
             })
             .collect();
-        Dofs {
+        let mut dofs = Dofs {
             index,
             free,
+            in_order: false,
             symbolic: Arc::default(),
-        }
+        };
+        let pairs =
+            (model.beams.iter().map(|b| b.nodes)).chain(model.links.iter().map(|l| l.nodes));
+        ordering::number_in_order(&mut dofs, pairs);
+        dofs
     }
 
     /// The symbolic factorisation of `a`: the one kept when `a` has its
@@ -813,20 +857,36 @@ impl Dofs {
             }
         }
         let pattern = a.to_faer()?;
-        let cholesky = match ordering::by_nodes(&a.pattern, a.n, self) {
-            Some(forward) => symbolic_in_order(pattern.symbolic(), &forward)?,
-            None => factorize_symbolic_cholesky(
-                pattern.symbolic(),
-                Side::Lower,
-                SymmetricOrdering::Amd,
+        let cholesky = if a.pattern.in_order {
+            // Numbered in order already: factorised as it stands, with no
+            // permuted copy of the matrix (faer makes one, of every
+            // entry, where it is given an order). faer analyses the upper
+            // triangle when it is given no order, whatever side it is told.
+            let upper = a.pattern.transposed();
+            factorize_symbolic_cholesky(
+                SymbolicSparseColMatRef::new_checked(a.n, a.n, &upper.start, None, &upper.rows),
+                Side::Upper,
+                SymmetricOrdering::Identity,
                 Default::default(),
             )
-            .map_err(ordering_failed)?,
+            .map_err(ordering_failed)?
+        } else {
+            match ordering::by_nodes(&a.pattern, a.n, self) {
+                Some(forward) => symbolic_in_order(pattern.symbolic(), &forward)?,
+                None => factorize_symbolic_cholesky(
+                    pattern.symbolic(),
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    Default::default(),
+                )
+                .map_err(ordering_failed)?,
+            }
         };
-        // Ordered on the nodes, the supernodes are in a postorder already;
-        // where the unknowns had to be ordered themselves, only a factor
-        // large enough to share between the threads ([`Structure::of`])
-        // is worth a second symbolic factorisation.
+        // Ordered on the nodes, the supernodes are in a postorder already
+        // (checked by [`postordered`]); where the unknowns had to be
+        // ordered themselves, only a factor large enough to share between
+        // the threads ([`Structure::of`]) is worth a second symbolic
+        // factorisation.
         let cholesky = if a.n >= PARALLEL_ROWS {
             postordered(pattern.symbolic(), cholesky)?
         } else {
@@ -850,16 +910,19 @@ fn postordered(
     pattern: SymbolicSparseColMatRef<'_, usize>,
     cholesky: SymbolicCholesky<usize>,
 ) -> Result<SymbolicCholesky<usize>, FrameError> {
-    let (SymbolicCholeskyRaw::Supernodal(supernodal), Some(perm)) =
-        (cholesky.raw(), cholesky.perm())
-    else {
+    let SymbolicCholeskyRaw::Supernodal(supernodal) = cholesky.raw() else {
         return Ok(cholesky);
     };
     let Some(order) = triangular::postorder(supernodal) else {
         return Ok(cholesky);
     };
-    let (old, _) = perm.arrays();
-    let forward: Vec<usize> = order.iter().map(|&c| old[c]).collect();
+    let forward: Vec<usize> = match cholesky.perm() {
+        Some(perm) => {
+            let (old, _) = perm.arrays();
+            order.iter().map(|&c| old[c]).collect()
+        }
+        None => order,
+    };
     symbolic_in_order(pattern, &forward)
 }
 
@@ -1115,7 +1178,9 @@ impl ScatterPlan {
         let mut start = Vec::with_capacity(n + 1);
         start.push(0);
         let mut rows: Vec<usize> = Vec::with_capacity(entries);
-        for y in (0..nodes).filter(|&y| first[y] != NONE) {
+        let mut numbered: Vec<usize> = (0..nodes).filter(|&y| first[y] != NONE).collect();
+        numbered.sort_unstable_by_key(|&y| first[y]);
+        for y in numbered {
             debug_assert_eq!(first[y], start.len() - 1, "unknowns numbered node by node");
             for j in first[y]..end[y] {
                 rows.extend(j..end[y]);
@@ -1127,7 +1192,11 @@ impl ScatterPlan {
         }
         assert_eq!(start.len(), n + 1, "every unknown a node's");
         ScatterPlan {
-            pattern: Arc::new(Pattern { start, rows }),
+            pattern: Arc::new(Pattern {
+                start,
+                rows,
+                in_order: assembly.dofs.in_order,
+            }),
             edge,
             offset,
         }
@@ -2746,7 +2815,12 @@ mod tests {
             assembly.scatter(&mut t, &assembly.element_dofs(b), &[[1.0; 12]; 12]);
         }
         assembly.scatter(&mut t, &assembly.node_dofs(l.nodes), &[[1.0; 12]; 12]);
-        assert_eq!(*SymSparse::from_triplets(n, t).pattern, *k.pattern);
+        let triplets = SymSparse::from_triplets(n, t);
+        assert_eq!(
+            (&triplets.pattern.start, &triplets.pattern.rows),
+            (&k.pattern.start, &k.pattern.rows)
+        );
+        assert!(k.pattern.in_order, "numbered in the nodes' order");
     }
 
     #[test]
@@ -3029,11 +3103,107 @@ mod tests {
         assert!(r.norm_max() <= 1e-10 * scale, "residual {}", r.norm_max());
     }
 
+    /// A model's unknowns are numbered in its nodes' fill-reducing order
+    /// from the start, so its stiffness is factorised as it stands: no
+    /// order handed to faer (which would first make a permuted copy of
+    /// every entry), the fill of ordering the same matrix numbered node by
+    /// node in the model's own order, the supernodes postordered, and it
+    /// solves.
+    #[test]
+    fn a_models_stiffness_is_assembled_in_its_elimination_order() {
+        // A 30 × 30 grillage of beams, held at its four corners.
+        use super::super::model::Support;
+        let m = 30;
+        let beam = |a: usize, b: usize| Beam {
+            nodes: [a, b],
+            section: 0,
+            z_axis: DVec3::Z,
+            initial: InitialForces::default(),
+            offsets_mm: [DVec3::ZERO; 2],
+        };
+        let mut beams = Vec::new();
+        for y in 0..m {
+            for x in 0..m {
+                if x + 1 < m {
+                    beams.push(beam(y * m + x, y * m + x + 1));
+                }
+                if y + 1 < m {
+                    beams.push(beam(y * m + x, (y + 1) * m + x));
+                }
+            }
+        }
+        let model = FrameModel {
+            nodes_mm: (0..m * m)
+                .map(|c| DVec3::new((c % m) as f64 * 500.0, (c / m) as f64 * 500.0, 0.0))
+                .collect(),
+            sections: vec![Section::steel_strip()],
+            beams,
+            supports: [0, m - 1, m * (m - 1), m * m - 1]
+                .iter()
+                .map(|&node| Support {
+                    node,
+                    fixed: [true; 6],
+                    along: None,
+                })
+                .collect(),
+            ..Default::default()
+        };
+        let assembly = Assembly::new(&model, &model.nodes_mm).unwrap();
+        let k = assembly.stiffness(&model);
+        assert!(k.pattern.in_order);
+        let symbolic = assembly.dofs.symbolic_of(&k).unwrap();
+        assert!(symbolic.perm().is_none(), "factorised as it stands");
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
+            panic!("a supernodal factor");
+        };
+        assert_eq!(triangular::postorder(supernodal), None, "postordered");
+        // The same matrix with its unknowns numbered node by node in the
+        // model's order, ordered on its own node graph.
+        let mut natural = vec![NONE; k.n];
+        let mut index = vec![NONE; assembly.dofs.index.len()];
+        let mut free = 0;
+        for (g, &u) in assembly.dofs.index.iter().enumerate() {
+            if u != NONE {
+                (natural[u], index[g]) = (free, free);
+                free += 1;
+            }
+        }
+        let t = k
+            .entries()
+            .map(|(i, j, v)| {
+                let (a, b) = (natural[i], natural[j]);
+                (a.max(b), a.min(b), v)
+            })
+            .collect();
+        let renumbered = SymSparse::from_triplets(k.n, t);
+        let node_by_node = Dofs {
+            index,
+            free,
+            in_order: false,
+            symbolic: Arc::default(),
+        };
+        let ordered = node_by_node.symbolic_of(&renumbered).unwrap();
+        assert!(ordered.perm().is_some());
+        assert_eq!(symbolic.len_val(), ordered.len_val(), "the same fill");
+        // It solves.
+        let factor = factorise(&k, &assembly.dofs).unwrap();
+        let b = Mat::<f64>::from_fn(k.n, 1, |i, _| ((i * 7) % 17) as f64 - 8.0);
+        let mut x = b.clone();
+        factor.solve_in_place(x.as_mut());
+        let r = k.mul_block(x.as_ref()) - &b;
+        assert!(
+            r.norm_max() <= 1e-9 * b.norm_max(),
+            "residual {}",
+            r.norm_max()
+        );
+    }
+
     /// Every one of `n` unknowns free, no symbolic factorisation kept yet.
     fn all_free(n: usize) -> Dofs {
         Dofs {
             index: (0..n).collect(),
             free: n,
+            in_order: false,
             symbolic: Arc::default(),
         }
     }
