@@ -77,8 +77,8 @@ pub(crate) fn number_in_order(
     let mut renumbered = vec![0; dofs.free];
     let mut next = 0;
     for &c in &order {
-        for u in nodes.first[c] as usize..nodes.first[c + 1] as usize {
-            renumbered[u] = next;
+        for new in &mut renumbered[nodes.first[c] as usize..nodes.first[c + 1] as usize] {
+            *new = next;
             next += 1;
         }
     }
