@@ -152,13 +152,13 @@ fn measure(path: &Path) {
     let mut governing = 0;
     let mut largest = 0.0;
     let sets: Vec<&lamella::structure::model::LoadSet> = combos.iter().map(|c| &c.loads).collect();
-    // As the stage: every combination solved at once, then each one's
-    // section forces and reactions made in turn (the governing ULS
-    // combination's kept for α_cr).
+    // As the stage: the combinations solved eight at a time as their
+    // results are asked for in turn, each one's section forces and
+    // reactions made then (the governing ULS combination's kept for α_cr).
     let statics = linear.solve_each(&sets).expect("static");
     let mut kept = None;
     for (i, c) in combos.iter().enumerate() {
-        let r = statics.result(i);
+        let r = statics.result(i).expect("static");
         let moved = r
             .displacements
             .iter()

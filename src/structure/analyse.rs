@@ -188,8 +188,9 @@ pub fn analyse_as(
     } else {
         None
     };
-    // The unbraced statics all at once (one pass of the factor for many),
-    // each combination's section forces made as it is judged.
+    // The unbraced statics eight at a time (one pass of the factor for
+    // the eight), as the combinations are judged in turn; each one's
+    // section forces made then.
     let sets: Vec<&LoadSet> = combinations.iter().map(|c| &c.loads).collect();
     let statics = match &unbraced {
         Some(linear) => Some(linear.solve_each(&sets)?),
@@ -199,7 +200,7 @@ pub fn analyse_as(
     for (index, combination) in combinations.iter().enumerate() {
         let braced;
         let (linear, first) = match (&unbraced, &statics) {
-            (Some(linear), Some(statics)) => (linear, statics.result(index)),
+            (Some(linear), Some(statics)) => (linear, statics.result(index)?),
             _ => {
                 let state;
                 (braced, state) = settle(model, &combination.loads)?;

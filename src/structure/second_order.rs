@@ -121,7 +121,7 @@ fn iterate(
         }
     }
     let loads = &scaled;
-    let (p_loads, _) = assembly.load_vector(model, loads);
+    let p_loads = assembly.load_vector(model, loads);
     // Every cable starts taut; each step takes the set the last left.
     let mut taut = vec![true; model.cables.len()];
     let mut cable_n = vec![0.0; model.cables.len()];

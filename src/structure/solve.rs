@@ -1656,13 +1656,24 @@ impl Assembly {
         d
     }
 
-    /// The load vector over the unknowns, and every element's local
-    /// equivalent nodal loads.
-    pub(crate) fn load_vector(
-        &self,
-        model: &FrameModel,
-        loads: &LoadSet,
-    ) -> (Vec<f64>, Vec<[f64; 12]>) {
+    /// Every element's uniform load in its own axes, N/mm: its loads
+    /// turned into its frame, its pressures along its local z.
+    fn local_uniform_loads(&self, model: &FrameModel, loads: &LoadSet) -> Vec<DVec3> {
+        let mut q = vec![DVec3::ZERO; model.beams.len()];
+        for l in &loads.beams {
+            q[l.beam] += self.frames[l.beam].rotation * l.force_n_per_mm;
+        }
+        for l in &loads.pressures {
+            q[l.beam].z += l.n_per_mm;
+        }
+        q
+    }
+
+    /// The load vector over the unknowns: the node loads, and each
+    /// element's consistent nodal loads of its uniform load (linear in the
+    /// load, so made once of the element's loads summed, with no
+    /// 12-entry array per element held: 245 MB a load set at 400 × 400).
+    pub(crate) fn load_vector(&self, model: &FrameModel, loads: &LoadSet) -> Vec<f64> {
         let mut p = vec![0.0; self.dofs.free];
         let mut add = |node: usize, k: usize, v: f64| {
             let d = self.dofs.index[node * 6 + k];
@@ -1676,36 +1687,22 @@ impl Assembly {
                 add(l.node, 3 + k, l.moment_nmm[k]);
             }
         }
-        let mut equivalent = vec![[0.0; 12]; model.beams.len()];
-        for l in &loads.beams {
-            let f = &self.frames[l.beam];
-            let q = f.rotation * l.force_n_per_mm;
-            let pl = uniform_nodal_loads(q, f.length_mm);
-            for k in 0..12 {
-                equivalent[l.beam][k] += pl[k];
-            }
-        }
-        for l in &loads.pressures {
-            let f = &self.frames[l.beam];
-            let pl = uniform_nodal_loads(DVec3::new(0.0, 0.0, l.n_per_mm), f.length_mm);
-            for k in 0..12 {
-                equivalent[l.beam][k] += pl[k];
-            }
-        }
+        let local_q = self.local_uniform_loads(model, loads);
         for (i, b) in model.beams.iter().enumerate() {
-            if equivalent[i].iter().all(|&v| v == 0.0) {
+            if local_q[i] == DVec3::ZERO {
                 continue;
             }
+            let f = &self.frames[i];
             let g = apply_ht(
                 &self.offset(i),
-                globalise(&self.frames[i].rotation, &equivalent[i]),
+                globalise(&f.rotation, &uniform_nodal_loads(local_q[i], f.length_mm)),
             );
             for k in 0..6 {
                 add(b.nodes[0], k, g[k]);
                 add(b.nodes[1], k, g[6 + k]);
             }
         }
-        (p, equivalent)
+        p
     }
 
     /// Displacements of every node from the unknowns.
@@ -1738,14 +1735,7 @@ impl Assembly {
         cable_forces_n: &[f64],
     ) -> StaticResult {
         let displacements = self.expand(x);
-        let (_, equivalent) = self.load_vector(model, loads);
-        let mut local_q = vec![DVec3::ZERO; model.beams.len()];
-        for l in &loads.beams {
-            local_q[l.beam] += self.frames[l.beam].rotation * l.force_n_per_mm;
-        }
-        for l in &loads.pressures {
-            local_q[l.beam].z += l.n_per_mm;
-        }
+        let local_q = self.local_uniform_loads(model, loads);
         // Each element's end forces, local (N, N·mm), on either core.
         let local_end_forces = |i: usize| -> [f64; 12] {
             let b = &model.beams[i];
@@ -1764,9 +1754,10 @@ impl Assembly {
                     }
                 }
             }
+            let equivalent = uniform_nodal_loads(local_q[i], f.length_mm);
             let mut fl = [0.0; 12];
             for a in 0..12 {
-                fl[a] = (0..12).map(|c| k[a][c] * ul[c]).sum::<f64>() - equivalent[i][a];
+                fl[a] = (0..12).map(|c| k[a][c] * ul[c]).sum::<f64>() - equivalent[a];
             }
             fl
         };
@@ -2287,26 +2278,36 @@ impl<'m> LinearFrame<'m> {
             .ok_or_else(|| FrameError::Invalid("a static solution is missing".into()))
     }
 
-    /// [`LinearFrame::solve_with_cables`] for every load set at once.
+    /// [`LinearFrame::solve_with_cables`] for every load set, a block of
+    /// them at a time.
     fn solve_all_with_cables(
         &self,
         loads: &[&LoadSet],
     ) -> Result<Vec<(StaticResult, Vec<f64>)>, FrameError> {
         let statics = self.solve_each(loads)?;
-        Ok((0..loads.len())
-            .into_par_iter()
+        (0..loads.len())
             .map(|c| statics.result_with_cables(c))
-            .collect())
+            .collect()
     }
 
-    /// Every load set solved at once (one pass of the factor per eight of
-    /// them), each one's section forces and reactions made when asked
-    /// for ([`Statics::result`]): a big grid's 19 combinations hold 29 MB
-    /// of section forces each, the displacements a fifth of that.
+    /// Every load set solved [`STATICS_BLOCK`] at a time (one pass of the
+    /// factor per block), when a result of the block is first asked for
+    /// ([`Statics::result`]); each one's section forces and reactions made
+    /// then. Only one block's solutions are held: at 400 × 400 curves a
+    /// load set's take 98 MB, its section forces 29 MB.
     pub fn solve_each<'a>(&'a self, loads: &[&'a LoadSet]) -> Result<Statics<'a, 'm>, FrameError> {
         for set in loads {
             validate_loads(self.model, set)?;
         }
+        Ok(Statics {
+            frame: self,
+            loads: loads.to_vec(),
+            solved: Mutex::new(None),
+        })
+    }
+
+    /// The solutions of `loads` side by side, refined.
+    fn solve_block(&self, loads: &[&LoadSet]) -> Result<Mat<f64>, FrameError> {
         // The load sets side by side on the two cores, each written into
         // its own column.
         let mut p = Mat::<f64>::zeros(self.stiffness.n, loads.len());
@@ -2315,37 +2316,38 @@ impl<'m> LinearFrame<'m> {
             .into_par_iter()
             .zip(loads.par_iter())
             .for_each(|(mut column, set)| {
-                let (v, _) = self.assembly.load_vector(self.model, set);
+                let v = self.assembly.load_vector(self.model, set);
                 for (i, (vi, pull)) in v.iter().zip(&self.pull).enumerate() {
                     column[i] = vi + pull;
                 }
             });
         // Solved in place; each right-hand side remade for its backward
-        // error rather than kept beside the solutions (1.9 GB at 400 × 400).
+        // error rather than kept beside the solutions.
         let mut x = p;
         solve_refined_in_place(&self.factor, &self.stiffness, &mut x, |c| {
-            let (v, _) = self.assembly.load_vector(self.model, loads[c]);
+            let v = self.assembly.load_vector(self.model, loads[c]);
             v.iter()
                 .zip(&self.pull)
                 .map(|(vi, pull)| vi + pull)
                 .collect()
         })?;
-        Ok(Statics {
-            frame: self,
-            loads: loads.to_vec(),
-            x,
-        })
+        Ok(x)
     }
 }
 
-/// Load sets solved together on one [`LinearFrame`]
-/// ([`LinearFrame::solve_each`]): their solutions, the rest of each
-/// result made on demand.
+/// Load sets solved on one factorisation at a time
+/// ([`LinearFrame::solve_each`]): eight share a pass of the factor.
+pub const STATICS_BLOCK: usize = 8;
+
+/// Load sets solved on one [`LinearFrame`] ([`LinearFrame::solve_each`]),
+/// [`STATICS_BLOCK`] at a time as their results are asked for (in order,
+/// each block is solved once).
 pub struct Statics<'a, 'm> {
     frame: &'a LinearFrame<'m>,
     loads: Vec<&'a LoadSet>,
-    /// One column of unknowns per load set.
-    x: Mat<f64>,
+    /// The block last solved: its first load set, and one column of
+    /// unknowns per load set of it.
+    solved: Mutex<Option<(usize, Mat<f64>)>>,
 }
 
 impl Statics<'_, '_> {
@@ -2359,26 +2361,37 @@ impl Statics<'_, '_> {
         self.loads.is_empty()
     }
 
-    /// The node displacements of load set `c` (as
-    /// [`StaticResult::displacements`]), without its section forces.
-    pub fn displacements(&self, c: usize) -> Vec<[f64; 6]> {
-        self.frame.assembly.expand(&self.solution(c))
-    }
-
     /// The whole result of load set `c`: displacements, reactions,
-    /// section forces, cable forces.
-    pub fn result(&self, c: usize) -> StaticResult {
-        self.result_with_cables(c).0
+    /// section forces, cable forces. Its block is solved first, unless it
+    /// is the one last solved.
+    pub fn result(&self, c: usize) -> Result<StaticResult, FrameError> {
+        Ok(self.result_with_cables(c)?.0)
     }
 
-    fn solution(&self, c: usize) -> Vec<f64> {
-        self.x.col(c).iter().copied().collect()
+    /// The unknowns of load set `c`.
+    fn solution(&self, c: usize) -> Result<Vec<f64>, FrameError> {
+        if c >= self.loads.len() {
+            return Err(FrameError::Invalid(format!(
+                "load set {c} of {} asked for",
+                self.loads.len()
+            )));
+        }
+        let first = c - c % STATICS_BLOCK;
+        let mut solved = self.solved.lock().unwrap_or_else(|e| e.into_inner());
+        if !matches!(&*solved, Some((f, _)) if *f == first) {
+            // The last block's solutions go before the next's are made.
+            *solved = None;
+            let end = (first + STATICS_BLOCK).min(self.loads.len());
+            *solved = Some((first, self.frame.solve_block(&self.loads[first..end])?));
+        }
+        let (_, x) = solved.as_ref().expect("solved above");
+        Ok(x.col(c - first).iter().copied().collect())
     }
 
     /// [`Statics::result`], and every cable's force were it taut.
-    fn result_with_cables(&self, c: usize) -> (StaticResult, Vec<f64>) {
+    fn result_with_cables(&self, c: usize) -> Result<(StaticResult, Vec<f64>), FrameError> {
         let frame = self.frame;
-        let x = self.solution(c);
+        let x = self.solution(c)?;
         let would_be = frame.assembly.cable_forces(frame.model, &x);
         let forces: Vec<f64> = would_be
             .iter()
@@ -2388,7 +2401,7 @@ impl Statics<'_, '_> {
         let result = frame
             .assembly
             .results(frame.model, self.loads[c], &x, None, &forces);
-        (result, would_be)
+        Ok((result, would_be))
     }
 }
 
@@ -3196,6 +3209,71 @@ mod tests {
             "residual {}",
             r.norm_max()
         );
+    }
+
+    /// Load sets solved a block at a time, asked for in any order, give
+    /// each one's own solution: here eleven multiples of one load set (two
+    /// blocks), whose results are those multiples of its result.
+    #[test]
+    fn statics_solved_block_by_block_are_each_load_sets_own() {
+        let (model, mut loads) = plan_model();
+        loads.nodes.push(super::super::model::NodeLoad {
+            node: 1,
+            force_n: DVec3::new(10.0, -20.0, 30.0),
+            moment_nmm: DVec3::new(0.0, 500.0, 0.0),
+        });
+        let linear = LinearFrame::new(&model).unwrap();
+        let one = linear.solve(&loads).unwrap();
+        let factors: Vec<f64> = (0..11).map(|c| (c as f64 - 4.5) * 0.75).collect();
+        let sets: Vec<LoadSet> = factors
+            .iter()
+            .map(|&f| LoadSet {
+                name: format!("{f}"),
+                nodes: (loads.nodes.iter())
+                    .map(|l| super::super::model::NodeLoad {
+                        force_n: l.force_n * f,
+                        moment_nmm: l.moment_nmm * f,
+                        ..*l
+                    })
+                    .collect(),
+                pressures: (loads.pressures.iter())
+                    .map(|l| super::super::model::PressureLoad {
+                        n_per_mm: l.n_per_mm * f,
+                        ..*l
+                    })
+                    .collect(),
+                ..Default::default()
+            })
+            .collect();
+        let refs: Vec<&LoadSet> = sets.iter().collect();
+        assert!(refs.len() > STATICS_BLOCK);
+        let statics = linear.solve_each(&refs).unwrap();
+        let scale = one
+            .displacements
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(scale > 0.0);
+        for c in [10, 0, 9, 1, 8, 7, 10, 3] {
+            let r = statics.result(c).unwrap();
+            for (got, want) in r.displacements.iter().zip(&one.displacements) {
+                for k in 0..6 {
+                    assert!(
+                        (got[k] - factors[c] * want[k]).abs()
+                            <= 1e-12 * scale * factors[c].abs().max(1.0),
+                        "set {c}: {} against {}",
+                        got[k],
+                        factors[c] * want[k]
+                    );
+                }
+            }
+            let (got, want) = (
+                r.reactions[0].force_n,
+                one.reactions[0].force_n * factors[c],
+            );
+            assert!((got - want).length() <= 1e-9 * want.length().max(1.0));
+        }
+        assert!(matches!(statics.result(11), Err(FrameError::Invalid(_))));
     }
 
     /// Every one of `n` unknowns free, no symbolic factorisation kept yet.
