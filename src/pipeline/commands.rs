@@ -107,7 +107,7 @@ pub fn structure_files(session: &Session, dir_shown: &Path) -> Result<[Vec<u8>; 
     let sets: Vec<_> = report
         .cases
         .iter()
-        .map(|(set, _)| set.clone())
+        .map(|(set, _)| structure::model::LoadSet::clone(set))
         .chain(report.combinations.iter().map(|c| c.loads.clone()))
         .collect();
     let script = structure::opensees::script(model, &sets)

@@ -347,14 +347,12 @@ fn judge(
 
 /// The resultant of a load set, N.
 pub fn load_sum(model: &FrameModel, loads: &LoadSet) -> DVec3 {
-    let nodes: DVec3 = loads.nodes.iter().map(|l| l.force_n).sum();
-    let beams: DVec3 = loads
-        .beams
-        .iter()
-        .map(|l| {
-            let b = &model.beams[l.beam];
-            l.force_n_per_mm * b.length_mm(&model.nodes_mm)
-        })
-        .sum();
-    nodes + beams
+    let mut sum = DVec3::ZERO;
+    loads.for_each_node_load(|l, factor| sum += l.force_n * factor);
+    let mut beams = DVec3::ZERO;
+    loads.for_each_beam_load(|l, factor| {
+        let b = &model.beams[l.beam];
+        beams += l.force_n_per_mm * factor * b.length_mm(&model.nodes_mm);
+    });
+    sum + beams
 }

@@ -28,6 +28,7 @@ use crate::structure::model::{
 };
 use glam::DVec3;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// kN/m² → N/mm².
 const N_PER_MM2_PER_KN_PER_M2: f64 = 1e-3;
@@ -223,6 +224,7 @@ impl Sums {
                 })
                 .collect(),
             pressures: Vec::new(),
+            parts: Vec::new(),
         }
     }
 }
@@ -269,12 +271,12 @@ pub fn load_cases(
     spec: &LoadSpec,
     model: &FrameModel,
     targets: &LoadTargets,
-) -> Result<Vec<LoadSet>> {
+) -> Result<Vec<Arc<LoadSet>>> {
     check_targets(spec, model, targets)?;
     spec.cases
         .iter()
         .enumerate()
-        .map(|(i, case)| load_case(spec, i, case, model, targets))
+        .map(|(i, case)| load_case(spec, i, case, model, targets).map(Arc::new))
         .collect()
 }
 
@@ -361,36 +363,43 @@ fn load_case(
 }
 
 /// The factored sum of `cases` (indices as in [`LoadSpec::cases`], so
-/// `cases` is [`load_cases`]' result): loads at one node or element added
-/// up, sorted by index.
-pub fn combine(cases: &[LoadSet], spec: &CombinationSpec) -> Combination {
-    let mut sums = Sums::default();
-    for &(i, factor) in &spec.factors {
-        let Some(set) = cases.get(i) else { continue };
-        for l in &set.nodes {
-            let e = slot(&mut sums.nodes, l.node);
-            e.0 += l.force_n * factor;
-            e.1 += l.moment_nmm * factor;
-        }
-        for l in &set.beams {
-            sums.beam(l.beam, l.force_n_per_mm * factor);
-        }
-    }
-    let mut loads = sums.into_set(&spec.name);
-    for &(i, factor) in &spec.factors {
-        if let Some(set) = cases.get(i) {
-            loads
-                .pressures
-                .extend(set.pressures.iter().map(|p| PressureLoad {
-                    n_per_mm: p.n_per_mm * factor,
-                    ..*p
-                }));
-        }
-    }
+/// `cases` is [`load_cases`]' result): the cases shared as its parts with
+/// their factors ([`LoadSet::parts`]), none of their loads copied.
+pub fn combine(cases: &[Arc<LoadSet>], spec: &CombinationSpec) -> Combination {
+    let parts = spec
+        .factors
+        .iter()
+        .filter_map(|&(i, factor)| Some((cases.get(i)?.clone(), factor)))
+        .collect();
     Combination {
-        loads,
+        loads: LoadSet {
+            name: spec.name.clone(),
+            parts,
+            ..Default::default()
+        },
         limit_state: spec.limit_state,
     }
+}
+
+/// The loads of `set` and its parts as one set of its own, factored:
+/// loads at one node or element added up, sorted by index, the pressures
+/// listed (as a script for another program wants a combination).
+pub fn flattened(set: &LoadSet) -> LoadSet {
+    let mut sums = Sums::default();
+    set.for_each_node_load(|l, factor| {
+        let e = slot(&mut sums.nodes, l.node);
+        e.0 += l.force_n * factor;
+        e.1 += l.moment_nmm * factor;
+    });
+    set.for_each_beam_load(|l, factor| sums.beam(l.beam, l.force_n_per_mm * factor));
+    let mut flat = sums.into_set(&set.name);
+    set.for_each_pressure(|p, factor| {
+        flat.pressures.push(PressureLoad {
+            n_per_mm: p.n_per_mm * factor,
+            ..*p
+        })
+    });
+    flat
 }
 
 /// The supports of `spec` on the model: every entry's selection of joints

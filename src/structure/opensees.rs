@@ -51,10 +51,12 @@
 //! [`Cable`]: super::model::Cable
 //! [`element_frame`]: super::solve::element_frame
 
+use super::loads::flattened;
 use super::model::{FrameModel, LoadSet};
 use super::solve::{validate_loads, Assembly, ElementFrame, FrameError, PENALTY};
 use glam::DVec3;
 use serde_json::{json, Value};
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -77,7 +79,19 @@ struct Prepared {
     rollers: Vec<RollerSpring>,
 }
 
-fn prepare(model: &FrameModel, load_sets: &[LoadSet]) -> Result<Prepared, FrameError> {
+/// Each load set with its parts' loads as its own (a combination's, the
+/// factored sum of its cases), as the files list them.
+fn flat(load_sets: &[LoadSet]) -> Vec<Cow<'_, LoadSet>> {
+    load_sets
+        .iter()
+        .map(|l| match l.parts.is_empty() {
+            true => Cow::Borrowed(l),
+            false => Cow::Owned(flattened(l)),
+        })
+        .collect()
+}
+
+fn prepare(model: &FrameModel, load_sets: &[Cow<'_, LoadSet>]) -> Result<Prepared, FrameError> {
     let assembly = Assembly::new(model, &model.nodes_mm)?;
     for l in load_sets {
         validate_loads(model, l)?;
@@ -130,6 +144,7 @@ fn v3(v: DVec3) -> Value {
 /// deterministic), with each element's local axes and each inclined
 /// roller's spring as exported.
 pub fn model_json(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, FrameError> {
+    let load_sets = &flat(load_sets);
     let p = prepare(model, load_sets)?;
     let sections: Vec<Value> = model
         .sections
@@ -246,6 +261,7 @@ fn py_str(s: &str) -> String {
 /// per node], "reactions": [{"node", "force_n", "moment_nmm"} per
 /// supported node, ascending]}]}` (node indices from 0, as lamella's).
 pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, FrameError> {
+    let load_sets = &flat(load_sets);
     let p = prepare(model, load_sets)?;
     let n_nodes = model.nodes_mm.len();
     let mut s = String::new();

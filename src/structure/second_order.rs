@@ -111,7 +111,7 @@ fn iterate(
     let k = assembly.stiffness(model);
     let initial: Vec<f64> = model.beams.iter().map(|b| b.initial.axial_n).collect();
     // The imperfect elements carry the same total load as the perfect ones.
-    let mut scaled = loads.clone();
+    let mut scaled = super::loads::flattened(loads);
     for l in scaled.beams.iter_mut() {
         let beam = &model.beams[l.beam];
         let perfect = beam.length_mm(&model.nodes_mm);

@@ -1029,20 +1029,25 @@ pub(crate) fn validate_loads(model: &FrameModel, loads: &LoadSet) -> Result<(), 
             loads.name
         )))
     };
-    if loads.nodes.iter().any(|l| l.node >= model.nodes_mm.len()) {
+    let (mut node_outside, mut beam_outside, mut finite) = (false, false, true);
+    loads.for_each_node_load(|l, k| {
+        node_outside |= l.node >= model.nodes_mm.len();
+        finite &= (l.force_n * k).is_finite() && (l.moment_nmm * k).is_finite();
+    });
+    loads.for_each_beam_load(|l, k| {
+        beam_outside |= l.beam >= model.beams.len();
+        finite &= (l.force_n_per_mm * k).is_finite();
+    });
+    loads.for_each_pressure(|l, k| {
+        beam_outside |= l.beam >= model.beams.len();
+        finite &= (l.n_per_mm * k).is_finite();
+    });
+    if node_outside {
         return bad("a node load names a node that does not exist");
     }
-    if loads.beams.iter().any(|l| l.beam >= model.beams.len())
-        || loads.pressures.iter().any(|l| l.beam >= model.beams.len())
-    {
+    if beam_outside {
         return bad("an element load names an element that does not exist");
     }
-    let finite = loads
-        .nodes
-        .iter()
-        .all(|l| l.force_n.is_finite() && l.moment_nmm.is_finite())
-        && loads.beams.iter().all(|l| l.force_n_per_mm.is_finite())
-        && loads.pressures.iter().all(|l| l.n_per_mm.is_finite());
     if !finite {
         return bad("a load is not finite");
     }
@@ -1510,11 +1515,11 @@ impl Assembly {
         plan: &ScatterPlan,
         values: &mut [f64],
     ) {
-        for p in &loads.pressures {
+        loads.for_each_pressure(|p, factor| {
             let b = &model.beams[p.beam];
             let r = &self.frames[p.beam].rotation;
             let (ex, ez) = (r.row(0), r.row(2));
-            let h = 0.5 * p.n_per_mm;
+            let h = 0.5 * (p.n_per_mm * factor);
             let mut k = [[0.0; 12]; 12];
             for a in 0..3 {
                 for c in 0..3 {
@@ -1537,7 +1542,7 @@ impl Assembly {
                 Some(h) => sandwich(h, &sym),
             };
             plan.add(values, p.beam, &self.element_dofs(b), &k);
-        }
+        });
     }
 
     /// The taut cables' stiffness k·e·eᵀ between their ends, as a matrix
@@ -1660,12 +1665,10 @@ impl Assembly {
     /// turned into its frame, its pressures along its local z.
     fn local_uniform_loads(&self, model: &FrameModel, loads: &LoadSet) -> Vec<DVec3> {
         let mut q = vec![DVec3::ZERO; model.beams.len()];
-        for l in &loads.beams {
-            q[l.beam] += self.frames[l.beam].rotation * l.force_n_per_mm;
-        }
-        for l in &loads.pressures {
-            q[l.beam].z += l.n_per_mm;
-        }
+        loads.for_each_beam_load(|l, factor| {
+            q[l.beam] += self.frames[l.beam].rotation * (l.force_n_per_mm * factor);
+        });
+        loads.for_each_pressure(|l, factor| q[l.beam].z += l.n_per_mm * factor);
         q
     }
 
@@ -1681,12 +1684,13 @@ impl Assembly {
                 p[d] += v;
             }
         };
-        for l in &loads.nodes {
+        loads.for_each_node_load(|l, factor| {
+            let (f, m) = (l.force_n * factor, l.moment_nmm * factor);
             for k in 0..3 {
-                add(l.node, k, l.force_n[k]);
-                add(l.node, 3 + k, l.moment_nmm[k]);
+                add(l.node, k, f[k]);
+                add(l.node, 3 + k, m[k]);
             }
-        }
+        });
         let local_q = self.local_uniform_loads(model, loads);
         for (i, b) in model.beams.iter().enumerate() {
             if local_q[i] == DVec3::ZERO {
@@ -1834,12 +1838,13 @@ impl Assembly {
             }
         }
         let mut applied = vec![[0.0; 6]; nn];
-        for l in &loads.nodes {
+        loads.for_each_node_load(|l, factor| {
+            let (f, m) = (l.force_n * factor, l.moment_nmm * factor);
             for k in 0..3 {
-                applied[l.node][k] += l.force_n[k];
-                applied[l.node][3 + k] += l.moment_nmm[k];
+                applied[l.node][k] += f[k];
+                applied[l.node][3 + k] += m[k];
             }
-        }
+        });
         let mut reactions: Vec<Reaction> = Vec::with_capacity(model.supports.len());
         for s in &model.supports {
             if reactions.iter().any(|r| r.node == s.node) {
@@ -3274,6 +3279,93 @@ mod tests {
             assert!((got - want).length() <= 1e-9 * want.length().max(1.0));
         }
         assert!(matches!(statics.result(11), Err(FrameError::Invalid(_))));
+    }
+
+    /// A load set of shared parts (a combination of its cases) loads the
+    /// frame as the same loads listed as one set: displacements,
+    /// reactions, section forces, and the pressures' load stiffness.
+    #[test]
+    fn a_set_of_shared_parts_loads_as_its_loads_listed() {
+        use super::super::model::{ElementLoad, NodeLoad};
+        let (model, pressures) = plan_model();
+        let weights = LoadSet {
+            name: "G".into(),
+            nodes: vec![NodeLoad {
+                node: 1,
+                force_n: DVec3::new(0.0, 0.0, -40.0),
+                moment_nmm: DVec3::new(300.0, 0.0, 0.0),
+            }],
+            beams: (0..model.beams.len())
+                .map(|beam| ElementLoad {
+                    beam,
+                    force_n_per_mm: DVec3::new(0.01, 0.0, -0.05 * (beam + 1) as f64),
+                })
+                .collect(),
+            ..Default::default()
+        };
+        let (g, w) = (Arc::new(weights), Arc::new(pressures));
+        // 1.35·G + 0.9·(W, within a part of its own at 1.5 · 0.6).
+        let inner = LoadSet {
+            name: "0.6 W".into(),
+            parts: vec![(w.clone(), 0.6)],
+            ..Default::default()
+        };
+        let combined = LoadSet {
+            name: "ULS".into(),
+            parts: vec![(g.clone(), 1.35), (Arc::new(inner), 1.5)],
+            ..Default::default()
+        };
+        let listed = LoadSet {
+            name: "ULS listed".into(),
+            nodes: (g.nodes.iter())
+                .map(|l| NodeLoad {
+                    force_n: l.force_n * 1.35,
+                    moment_nmm: l.moment_nmm * 1.35,
+                    ..*l
+                })
+                .collect(),
+            beams: (g.beams.iter())
+                .map(|l| ElementLoad {
+                    force_n_per_mm: l.force_n_per_mm * 1.35,
+                    ..*l
+                })
+                .collect(),
+            pressures: (w.pressures.iter())
+                .map(|l| super::super::model::PressureLoad {
+                    n_per_mm: l.n_per_mm * 0.9,
+                    ..*l
+                })
+                .collect(),
+            ..Default::default()
+        };
+        let linear = LinearFrame::new(&model).unwrap();
+        let (a, b) = (
+            linear.solve(&combined).unwrap(),
+            linear.solve(&listed).unwrap(),
+        );
+        let scale = b.displacements.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(scale > 0.0);
+        for (x, y) in a.displacements.iter().flatten().zip(b.displacements.iter().flatten()) {
+            assert!((x - y).abs() <= 1e-12 * scale, "{x} against {y}");
+        }
+        for (x, y) in a.reactions.iter().zip(&b.reactions) {
+            assert!((x.force_n - y.force_n).length() <= 1e-9 * y.force_n.length().max(1.0));
+        }
+        for (x, y) in a.beam_forces.iter().zip(&b.beam_forces) {
+            let (p, q) = (x.middle.moment_y_nmm, y.middle.moment_y_nmm);
+            assert!((p - q).abs() <= 1e-9 * q.abs().max(1.0), "{p} against {q}");
+        }
+        // The pressures' load stiffness counts the part's.
+        let assembly = &linear.assembly;
+        let axial = vec![0.0; model.beams.len()];
+        let (ka, kb) = (
+            assembly.geometric(&model, &axial, Some(&combined)),
+            assembly.geometric(&model, &axial, Some(&listed)),
+        );
+        assert!(ka.values.iter().any(|v| *v != 0.0));
+        for (x, y) in ka.values.iter().zip(&kb.values) {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1e-9), "{x} against {y}");
+        }
     }
 
     /// Every one of `n` unknowns free, no symbolic factorisation kept yet.

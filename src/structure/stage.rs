@@ -30,6 +30,7 @@ use crate::fabricate::Kit;
 use crate::loads::{Action, BracingSpec, LoadSpec};
 use crate::network::Network;
 use crate::profile::{Bracing, Grain, Profile};
+use std::sync::Arc;
 
 /// Buckling modes computed per ULS combination.
 pub const MODES: usize = 6;
@@ -49,7 +50,7 @@ pub struct FrameReport {
     pub options: FrameOptions,
     /// The characteristic load cases, in the loads file's order, with
     /// their actions.
-    pub cases: Vec<(LoadSet, Action)>,
+    pub cases: Vec<(Arc<LoadSet>, Action)>,
     /// The combinations, as analysed.
     pub combinations: Vec<Combination>,
     /// How the elements were judged.

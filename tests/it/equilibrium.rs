@@ -26,7 +26,7 @@ use rayon::prelude::*;
 pub fn loaded_frame(
     sample: &str,
     profile: &str,
-) -> Option<(BuiltFrame, Vec<LoadSet>, Vec<Combination>)> {
+) -> Option<(BuiltFrame, Vec<std::sync::Arc<LoadSet>>, Vec<Combination>)> {
     loaded_frame_with(sample, profile, &FrameOptions::default())
 }
 
@@ -35,7 +35,7 @@ pub fn loaded_frame_with(
     sample: &str,
     profile: &str,
     options: &FrameOptions,
-) -> Option<(BuiltFrame, Vec<LoadSet>, Vec<Combination>)> {
+) -> Option<(BuiltFrame, Vec<std::sync::Arc<LoadSet>>, Vec<Combination>)> {
     let net = read_network(&root().join(sample), ReadOptions::default()).expect("network");
     let an = analyze(&net, AnalysisOptions::for_network(&net)).expect("analysis");
     let p = profile_file::load(&root().join(profile)).expect("profile");

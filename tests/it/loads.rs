@@ -9,8 +9,8 @@ use glam::DVec3;
 use lamella::formats::read::loads_file;
 use lamella::loads::{Action, Deflection, LoadSpec};
 use lamella::structure::loads::{
-    combinations, combine, deflection_limit_mm, deflection_span_mm, load_cases, supports,
-    CombinationSpec,
+    combinations, combine, deflection_limit_mm, deflection_span_mm, flattened, load_cases,
+    supports, CombinationSpec,
 };
 use lamella::structure::model::{
     Beam, FrameModel, InitialForces, LimitState, LoadSet, LoadTargets, Section, Support,
@@ -265,14 +265,14 @@ fn a_combination_is_the_factored_sum_of_its_cases() {
     assert_eq!(c.loads.name, "ULS S + 0.6W+");
     assert_eq!(c.limit_state, LimitState::Ultimate);
     close(
-        total_n(&c.loads, &model),
+        total_n(&flattened(&c.loads), &model),
         DVec3::new(0.0, 0.0, -7290.75),
         "ULS S + 0.6W+",
     );
     // 1.0 × 1445 down, 1.5 × 1680 up: 1075 N of uplift.
     let c = combine(&sets, pick("ULS W- (G inf)"));
     close(
-        total_n(&c.loads, &model),
+        total_n(&flattened(&c.loads), &model),
         DVec3::new(0.0, 0.0, 1075.0),
         "ULS W- (G inf)",
     );
@@ -280,7 +280,7 @@ fn a_combination_is_the_factored_sum_of_its_cases() {
     let c = combine(&sets, pick("SLS W+ + 0.5S"));
     assert_eq!(c.limit_state, LimitState::Serviceability);
     close(
-        total_n(&c.loads, &model),
+        total_n(&flattened(&c.loads), &model),
         DVec3::new(0.0, 0.0, -4205.0),
         "SLS W+ + 0.5S",
     );

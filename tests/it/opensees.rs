@@ -677,6 +677,7 @@ fn opensees_agrees_on_the_shipped_enneper_and_a_two_level_grid() {
             "{sample}: the erection leaves an axial force"
         );
         assert!(model.links.len() + model.beams.len() > 1000, "{sample}");
+        let cases: Vec<LoadSet> = cases.iter().map(|set| LoadSet::clone(set)).collect();
         let worst = compare(&format!("{sample}-{profile}"), model, &cases);
         assert!(worst <= 0.01);
     }
@@ -772,7 +773,11 @@ fn opensees_agrees_on_the_braced_enneper() {
     let (report, _) = crate::bracing::braced_pavilion();
     let model = &report.built.model;
     assert!(!model.cables.is_empty());
-    let cases: Vec<LoadSet> = report.cases.iter().map(|(set, _)| set.clone()).collect();
+    let cases: Vec<LoadSet> = report
+        .cases
+        .iter()
+        .map(|(set, _)| LoadSet::clone(set))
+        .collect();
     let worst = compare("enneper-braced", model, &cases);
     assert!(worst <= 0.01);
 }
