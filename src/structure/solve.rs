@@ -30,10 +30,12 @@
 //! triplets to sort), so the stiffness, the geometric stiffness, a shifted pencil
 //! and a tangent of one model share one pattern, their sums add values,
 //! and one symbolic factorisation is computed per model and kept in its
-//! [`Dofs`]: faer's approximate minimum degree ordering of the model's
-//! nodes, each node's unknowns together, in a postorder of the nodes'
-//! elimination tree ([`ordering`]), and faer's supernodal structure on
-//! it. The numeric factorisation is faer's; the triangular
+//! [`Dofs`]. The unknowns are numbered from the start in the order they
+//! are eliminated in: faer's approximate minimum degree ordering of the
+//! model's nodes, each node's unknowns together, in a postorder of the
+//! nodes' elimination tree ([`ordering`]), so faer's supernodal structure
+//! is computed and the matrix factorised as it stands, with no permuted
+//! copy. The numeric factorisation is faer's; the triangular
 //! solves are [`triangular`]'s, over the supernodes' dense blocks with up
 //! to eight right-hand sides side by side, so each entry of the factor is
 //! read once per eight, and from [`PARALLEL_ROWS`] unknowns on the
@@ -3343,9 +3345,18 @@ mod tests {
             linear.solve(&combined).unwrap(),
             linear.solve(&listed).unwrap(),
         );
-        let scale = b.displacements.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale = b
+            .displacements
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
         assert!(scale > 0.0);
-        for (x, y) in a.displacements.iter().flatten().zip(b.displacements.iter().flatten()) {
+        for (x, y) in a
+            .displacements
+            .iter()
+            .flatten()
+            .zip(b.displacements.iter().flatten())
+        {
             assert!((x - y).abs() <= 1e-12 * scale, "{x} against {y}");
         }
         for (x, y) in a.reactions.iter().zip(&b.reactions) {
@@ -3364,7 +3375,10 @@ mod tests {
         );
         assert!(ka.values.iter().any(|v| *v != 0.0));
         for (x, y) in ka.values.iter().zip(&kb.values) {
-            assert!((x - y).abs() <= 1e-12 * y.abs().max(1e-9), "{x} against {y}");
+            assert!(
+                (x - y).abs() <= 1e-12 * y.abs().max(1e-9),
+                "{x} against {y}"
+            );
         }
     }
 
