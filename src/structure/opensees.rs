@@ -79,16 +79,24 @@ struct Prepared {
     rollers: Vec<RollerSpring>,
 }
 
-/// Each load set with its parts' loads as its own (a combination's, the
-/// factored sum of its cases), as the files list them.
-fn flat(load_sets: &[LoadSet]) -> Vec<Cow<'_, LoadSet>> {
-    load_sets
+/// Each load set of `model` with its parts' loads as its own (a
+/// combination's, the factored sum of its cases), as the files list them;
+/// checked first (a part naming an element that does not exist is an
+/// error, not a sum grown to its index).
+fn flat<'a>(
+    model: &FrameModel,
+    load_sets: &'a [LoadSet],
+) -> Result<Vec<Cow<'a, LoadSet>>, FrameError> {
+    for l in load_sets {
+        validate_loads(model, l)?;
+    }
+    Ok(load_sets
         .iter()
         .map(|l| match l.parts.is_empty() {
             true => Cow::Borrowed(l),
             false => Cow::Owned(flattened(l)),
         })
-        .collect()
+        .collect())
 }
 
 fn prepare(model: &FrameModel, load_sets: &[Cow<'_, LoadSet>]) -> Result<Prepared, FrameError> {
@@ -144,7 +152,7 @@ fn v3(v: DVec3) -> Value {
 /// deterministic), with each element's local axes and each inclined
 /// roller's spring as exported.
 pub fn model_json(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, FrameError> {
-    let load_sets = &flat(load_sets);
+    let load_sets = &flat(model, load_sets)?;
     let p = prepare(model, load_sets)?;
     let sections: Vec<Value> = model
         .sections
@@ -261,7 +269,7 @@ fn py_str(s: &str) -> String {
 /// per node], "reactions": [{"node", "force_n", "moment_nmm"} per
 /// supported node, ascending]}]}` (node indices from 0, as lamella's).
 pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, FrameError> {
-    let load_sets = &flat(load_sets);
+    let load_sets = &flat(model, load_sets)?;
     let p = prepare(model, load_sets)?;
     let n_nodes = model.nodes_mm.len();
     let mut s = String::new();

@@ -2265,8 +2265,8 @@ impl<'m> LinearFrame<'m> {
         self.solve_with_cables(loads).map(|(result, _)| result)
     }
 
-    /// [`LinearFrame::solve`] for every load set at once (one pass of the
-    /// factor per eight of them).
+    /// [`LinearFrame::solve`] for every load set, eight at a time (one
+    /// pass of the factor per eight).
     pub fn solve_all(&self, loads: &[&LoadSet]) -> Result<Vec<StaticResult>, FrameError> {
         Ok(self
             .solve_all_with_cables(loads)?
@@ -2349,8 +2349,10 @@ impl<'m> LinearFrame<'m> {
 pub const STATICS_BLOCK: usize = 8;
 
 /// Load sets solved on one [`LinearFrame`] ([`LinearFrame::solve_each`]),
-/// [`STATICS_BLOCK`] at a time as their results are asked for (in order,
-/// each block is solved once).
+/// [`STATICS_BLOCK`] at a time as their results are asked for. Ask for
+/// them in order and from one thread: then each block is solved once (a
+/// block is solved under a lock, so a result asked for from within that
+/// solve's own threads would wait on itself).
 pub struct Statics<'a, 'm> {
     frame: &'a LinearFrame<'m>,
     loads: Vec<&'a LoadSet>,

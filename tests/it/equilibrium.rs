@@ -89,21 +89,16 @@ fn every_shipped_network_is_in_equilibrium_under_every_combination() {
                 let res = linear.solve(&c.loads).expect("solve");
                 let loads = load_sum(model, &c.loads);
                 let reactions: DVec3 = res.reactions.iter().map(|x| x.force_n).sum();
-                let scale = loads.length()
-                    + c.loads
-                        .nodes
-                        .iter()
-                        .map(|l| l.force_n.length())
-                        .sum::<f64>()
-                    + c.loads
-                        .beams
-                        .iter()
-                        .map(|l| {
-                            let b = &model.beams[l.beam];
-                            l.force_n_per_mm.length()
-                                * model.nodes_mm[b.nodes[0]].distance(model.nodes_mm[b.nodes[1]])
-                        })
-                        .sum::<f64>();
+                // The loads' sizes, each times its factor in the
+                // combination (its cases are its parts).
+                let mut scale = loads.length();
+                c.loads
+                    .for_each_node_load(|l, factor| scale += (l.force_n * factor).length());
+                c.loads.for_each_beam_load(|l, factor| {
+                    let b = &model.beams[l.beam];
+                    scale += (l.force_n_per_mm * factor).length()
+                        * model.nodes_mm[b.nodes[0]].distance(model.nodes_mm[b.nodes[1]]);
+                });
                 assert!(scale > 0.0, "{name}/{}: no load", c.loads.name);
                 let rel = (loads + reactions).length() / scale;
                 worst = worst.max(rel);

@@ -507,8 +507,49 @@ fn the_export_is_deterministic_and_names_every_element() {
         }],
         ..Default::default()
     };
-    let err = script(&m, &[bad]).unwrap_err().to_string();
+    let err = script(&m, std::slice::from_ref(&bad))
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("load set bad"), "{err}");
+    // So is a combination whose case does (its parts are checked before
+    // they are summed for the files).
+    let combination = |name: &str, part: LoadSet, factor: f64| LoadSet {
+        name: name.into(),
+        parts: vec![(std::sync::Arc::new(part), factor)],
+        ..Default::default()
+    };
+    let far = LoadSet {
+        beams: vec![ElementLoad {
+            beam: usize::MAX,
+            force_n_per_mm: DVec3::Z,
+        }],
+        ..bad
+    };
+    let err = model_json(&m, &[combination("worse", far, 1.5)])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("load set worse"), "{err}");
+    // A combination is written as its factored loads.
+    let case = node_load(
+        "P",
+        3,
+        DVec3::new(1.0, -2.0, 3.0),
+        DVec3::new(0.0, 0.5, 0.0),
+    );
+    let listed = node_load(
+        "C",
+        3,
+        DVec3::new(1.5, -3.0, 4.5),
+        DVec3::new(0.0, 0.75, 0.0),
+    );
+    assert_eq!(
+        script(&m, &[combination("C", case.clone(), 1.5)]).unwrap(),
+        script(&m, &[listed.clone()]).unwrap()
+    );
+    assert_eq!(
+        model_json(&m, &[combination("C", case, 1.5)]).unwrap(),
+        model_json(&m, &[listed]).unwrap()
+    );
 }
 
 #[test]
