@@ -544,7 +544,7 @@ fn the_export_is_deterministic_and_names_every_element() {
     );
     assert_eq!(
         script(&m, &[combination("C", case.clone(), 1.5)]).unwrap(),
-        script(&m, &[listed.clone()]).unwrap()
+        script(&m, std::slice::from_ref(&listed)).unwrap()
     );
     assert_eq!(
         model_json(&m, &[combination("C", case, 1.5)]).unwrap(),
