@@ -99,11 +99,9 @@ fn flat<'a>(
         .collect())
 }
 
-fn prepare(model: &FrameModel, load_sets: &[Cow<'_, LoadSet>]) -> Result<Prepared, FrameError> {
+/// The supports and inclined rollers of `model`, as exported.
+fn prepare(model: &FrameModel) -> Result<Prepared, FrameError> {
     let assembly = Assembly::new(model, &model.nodes_mm)?;
-    for l in load_sets {
-        validate_loads(model, l)?;
-    }
     let mut fixed: BTreeMap<usize, [bool; 6]> = BTreeMap::new();
     for s in &model.supports {
         let f = fixed.entry(s.node).or_insert([false; 6]);
@@ -141,7 +139,7 @@ fn prepare(model: &FrameModel, load_sets: &[Cow<'_, LoadSet>]) -> Result<Prepare
 
 /// The springs that stand for `model`'s inclined rollers in the export.
 pub fn roller_springs(model: &FrameModel) -> Result<Vec<RollerSpring>, FrameError> {
-    Ok(prepare(model, &[])?.rollers)
+    Ok(prepare(model)?.rollers)
 }
 
 fn v3(v: DVec3) -> Value {
@@ -153,7 +151,7 @@ fn v3(v: DVec3) -> Value {
 /// roller's spring as exported.
 pub fn model_json(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, FrameError> {
     let load_sets = &flat(model, load_sets)?;
-    let p = prepare(model, load_sets)?;
+    let p = prepare(model)?;
     let sections: Vec<Value> = model
         .sections
         .iter()
@@ -270,7 +268,7 @@ fn py_str(s: &str) -> String {
 /// supported node, ascending]}]}` (node indices from 0, as lamella's).
 pub fn script(model: &FrameModel, load_sets: &[LoadSet]) -> Result<String, FrameError> {
     let load_sets = &flat(model, load_sets)?;
-    let p = prepare(model, load_sets)?;
+    let p = prepare(model)?;
     let n_nodes = model.nodes_mm.len();
     let mut s = String::new();
     let w = &mut s;

@@ -3222,6 +3222,12 @@ mod tests {
         );
     }
 
+    /// The largest of a result's nodal displacements and rotations, in
+    /// absolute value (mm or rad).
+    fn largest_displacement(r: &StaticResult) -> f64 {
+        (r.displacements.iter().flatten()).fold(0.0f64, |m, v| m.max(v.abs()))
+    }
+
     /// Load sets solved a block at a time, asked for in any order, give
     /// each one's own solution: here eleven multiples of one load set (two
     /// blocks), whose results are those multiples of its result.
@@ -3259,11 +3265,7 @@ mod tests {
         let refs: Vec<&LoadSet> = sets.iter().collect();
         assert!(refs.len() > STATICS_BLOCK);
         let statics = linear.solve_each(&refs).unwrap();
-        let scale = one
-            .displacements
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale = largest_displacement(&one);
         assert!(scale > 0.0);
         for c in [10, 0, 9, 1, 8, 7, 10, 3] {
             let r = statics.result(c).unwrap();
@@ -3349,11 +3351,7 @@ mod tests {
             linear.solve(&combined).unwrap(),
             linear.solve(&listed).unwrap(),
         );
-        let scale = b
-            .displacements
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale = largest_displacement(&b);
         assert!(scale > 0.0);
         for (x, y) in a
             .displacements
