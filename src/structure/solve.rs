@@ -65,7 +65,9 @@ use rayon::prelude::*;
 use std::sync::{Arc, Mutex, OnceLock};
 
 mod ordering;
+mod supernodal;
 mod triangular;
+use supernodal::{Lower, Updates};
 use triangular::{solve_scheduled, solve_serial, Schedule};
 
 /// A roller's inclined restraint: a spring of this many times the largest
@@ -1888,6 +1890,10 @@ pub(crate) struct Structure {
     /// `None`: the factor is not supernodal, too small to share, or its
     /// tree does not split.
     schedule: Option<Schedule>,
+    /// Which supernodes update which, for this module's numeric
+    /// factorisation ([`supernodal`]); `None` where faer's makes the
+    /// factor (not supernodal, or with a permutation of its own).
+    updates: Option<Updates>,
 }
 
 impl Structure {
@@ -1898,7 +1904,15 @@ impl Structure {
             }
             _ => None,
         };
-        Structure { cholesky, schedule }
+        let updates = match cholesky.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) if cholesky.perm().is_none() => Updates::of(s),
+            _ => None,
+        };
+        Structure {
+            cholesky,
+            schedule,
+            updates,
+        }
     }
 }
 
@@ -2016,6 +2030,20 @@ impl Block<'_> {
 /// The numeric factor of `a` on `symbolic`; `None` when a pivot is not
 /// positive.
 fn numeric(symbolic: &Symbolic, a: &SymSparse) -> Result<Option<Factor>, FrameError> {
+    if let (SymbolicCholeskyRaw::Supernodal(supernodal), Some(updates)) =
+        (symbolic.raw(), &symbolic.updates)
+    {
+        let lower = Lower {
+            start: &a.pattern.start,
+            rows: &a.pattern.rows,
+            values: &a.values,
+        };
+        let values = supernodal::factorise(supernodal, updates, symbolic.schedule.as_ref(), lower);
+        return Ok(values.map(|values| Factor {
+            symbolic: symbolic.clone(),
+            values,
+        }));
+    }
     let mut values = vec![0.0; symbolic.len_val()];
     let mut memory =
         MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
@@ -3220,6 +3248,149 @@ mod tests {
             "residual {}",
             r.norm_max()
         );
+    }
+
+    /// This module's numeric factorisation ([`supernodal`]) against
+    /// faer's on a 40 × 40 grillage, whose separators are wide enough for
+    /// both of its kernels and for updates made as dense products (here
+    /// in slices of 64 entries, so every product is sliced): the same
+    /// factor to round-off, the same bits on one thread or two, and no
+    /// factor of a matrix that is not positive definite.
+    #[test]
+    fn the_supernodal_factor_is_faers_on_one_thread_or_two() {
+        let m = 40;
+        let beam = |a: usize, b: usize| Beam {
+            nodes: [a, b],
+            section: 0,
+            z_axis: DVec3::Z,
+            initial: InitialForces::default(),
+            offsets_mm: [DVec3::ZERO; 2],
+        };
+        let mut beams = Vec::new();
+        for y in 0..m {
+            for x in 0..m {
+                if x + 1 < m {
+                    beams.push(beam(y * m + x, y * m + x + 1));
+                }
+                if y + 1 < m {
+                    beams.push(beam(y * m + x, (y + 1) * m + x));
+                }
+            }
+        }
+        let model = FrameModel {
+            nodes_mm: (0..m * m)
+                .map(|c| DVec3::new((c % m) as f64 * 500.0, (c / m) as f64 * 500.0, 0.0))
+                .collect(),
+            sections: vec![Section::steel_strip()],
+            beams,
+            supports: [0, m - 1, m * (m - 1), m * m - 1]
+                .iter()
+                .map(|&node| super::super::model::Support {
+                    node,
+                    fixed: [true; 6],
+                    along: None,
+                })
+                .collect(),
+            ..Default::default()
+        };
+        let assembly = Assembly::new(&model, &model.nodes_mm).unwrap();
+        let k = assembly.stiffness(&model);
+        let symbolic = assembly.dofs.symbolic_of(&k).unwrap();
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
+            panic!("a supernodal factor");
+        };
+        let widest = (0..supernodal.n_supernodes())
+            .map(|s| supernodal.supernode_end()[s] - supernodal.supernode_begin()[s])
+            .max()
+            .unwrap();
+        assert!(widest > 32, "a supernode {widest} wide for faer's kernels");
+        let mut faers = vec![0.0; symbolic.len_val()];
+        let mut memory = MemBuffer::new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        );
+        symbolic
+            .factorize_numeric_llt(
+                &mut faers,
+                k.to_faer().unwrap(),
+                Side::Lower,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut memory),
+                Default::default(),
+            )
+            .unwrap();
+        let updates = supernodal::Updates::of(supernodal).unwrap();
+        let lower = |k: &SymSparse| {
+            (
+                k.pattern.start.clone(),
+                k.pattern.rows.clone(),
+                k.values.clone(),
+            )
+        };
+        let (start, rows, values) = lower(&k);
+        let a = Lower {
+            start: &start,
+            rows: &rows,
+            values: &values,
+        };
+        let schedule = Schedule::of(supernodal).expect("the tree splits");
+        for slice in [1 << 20, 64] {
+            let one = supernodal::factorise_in_slices(supernodal, &updates, None, a, slice)
+                .expect("positive definite");
+            let two =
+                supernodal::factorise_in_slices(supernodal, &updates, Some(&schedule), a, slice)
+                    .expect("positive definite");
+            assert!(one == two, "the same bits on one thread or two");
+            // L is the diagonal blocks' lower triangles and the rows
+            // below (faer leaves values of its own above the diagonal,
+            // which no solve reads).
+            let mut lower_entries = Vec::new();
+            for sn in 0..supernodal.n_supernodes() {
+                let width = supernodal.supernode_end()[sn] - supernodal.supernode_begin()[sn];
+                let first = supernodal.col_ptr_for_val()[sn];
+                let height = (supernodal.col_ptr_for_val()[sn + 1] - first) / width;
+                for c in 0..width {
+                    lower_entries.extend((c..height).map(|r| first + c * height + r));
+                }
+            }
+            let largest = lower_entries
+                .iter()
+                .fold(0.0f64, |m, &i| m.max(faers[i].abs()));
+            let off = lower_entries
+                .iter()
+                .fold(0.0f64, |m, &i| m.max((one[i] - faers[i]).abs()));
+            // The factors differ by the rounding of sums taken in another
+            // order, which the matrix's condition (slender beams at stiff
+            // joints, about 1e10) magnifies in its smallest entries.
+            assert!(
+                off <= 1e-10 * largest,
+                "slices of {slice}: {off} off faer's, largest {largest}"
+            );
+            // And it solves as faer's does.
+            let factor = Factor {
+                symbolic: symbolic.clone(),
+                values: one,
+            };
+            let b = Mat::<f64>::from_fn(k.n, 1, |i, _| ((i * 7) % 17) as f64 - 8.0);
+            let mut x = b.clone();
+            factor.solve_in_place(x.as_mut());
+            let r = k.mul_block(x.as_ref()) - &b;
+            assert!(
+                r.norm_max() <= 1e-9 * b.norm_max(),
+                "residual {}",
+                r.norm_max()
+            );
+        }
+        // A negative pivot in the middle: no factor.
+        let mut negative = values.clone();
+        let middle = k.n / 2;
+        negative[start[middle]] = -negative[start[middle]];
+        let a = Lower {
+            start: &start,
+            rows: &rows,
+            values: &negative,
+        };
+        assert!(supernodal::factorise(supernodal, &updates, Some(&schedule), a).is_none());
     }
 
     /// The largest of a result's nodal displacements and rotations, in

@@ -257,6 +257,16 @@ impl Schedule {
         })
     }
 
+    /// Per thread, its pieces: ranges of supernodes, each a whole subtree.
+    pub(crate) fn pieces(&self) -> &[Vec<Range<usize>>; 2] {
+        &self.pieces
+    }
+
+    /// The supernodes above the pieces, ascending.
+    pub(crate) fn top(&self) -> &[usize] {
+        &self.top
+    }
+
     /// Each thread's share of the pieces' entries, as a fraction of the
     /// factor's.
     #[cfg(test)]
