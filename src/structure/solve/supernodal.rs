@@ -242,6 +242,9 @@ impl Worker {
         }
         let (done, rest) = values.split_at_mut(value_start[s] - base);
         let block = &mut rest[..height * width];
+        // Written before it is read: a page of a fresh allocation read
+        // first is mapped twice (the shared zero page, then its own).
+        block.fill(0.0);
         // A's columns.
         let a = job.a;
         for c in first..last {
