@@ -35,7 +35,11 @@
 //! model's nodes, each node's unknowns together, in a postorder of the
 //! nodes' elimination tree ([`ordering`]), so faer's supernodal structure
 //! is computed and the matrix factorised as it stands, with no permuted
-//! copy. The numeric factorisation is faer's; the triangular
+//! copy. The numeric factorisation is [`supernodal`]'s, left-looking on
+//! faer's supernodal structure with the factor's subtrees on the two
+//! threads (faer's own, on one thread and with a workspace as large as the
+//! largest separator's update, still makes the factors of matrices ordered
+//! by faer or too small to be supernodal); the triangular
 //! solves are [`triangular`]'s, over the supernodes' dense blocks with up
 //! to eight right-hand sides side by side, so each entry of the factor is
 //! read once per eight, and from [`PARALLEL_ROWS`] unknowns on the
