@@ -22,10 +22,10 @@
 //!   entries, and small updates (a frame's supernodes are mostly one or a
 //!   few nodes wide) are subtracted in place with no product formed at all.
 
+use super::layout::Layout;
 use super::triangular::Schedule;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
-use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::{Accum, MatMut, MatRef, Par};
 
 /// The most entries of an update made at once as a dense product before
@@ -50,7 +50,7 @@ pub(crate) struct Updates {
 
 impl Updates {
     /// The updates of `symbolic`'s supernodes; `None` past 2³² supernodes.
-    pub(crate) fn of(symbolic: &SymbolicSupernodalCholesky<usize>) -> Option<Updates> {
+    pub(crate) fn of(symbolic: &Layout) -> Option<Updates> {
         let count = symbolic.n_supernodes();
         u32::try_from(count).ok()?;
         let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
@@ -112,7 +112,7 @@ pub(crate) struct Lower<'a> {
 /// L's values (faer's layout for `symbolic`), or `None` when a pivot is
 /// not positive (A is not positive definite in floating point).
 pub(crate) fn factorise(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
+    symbolic: &Layout,
     updates: &Updates,
     schedule: Option<&Schedule>,
     a: Lower<'_>,
@@ -123,7 +123,7 @@ pub(crate) fn factorise(
 /// [`factorise`], an update's dense product made in slices of at most
 /// `temp_entries` entries.
 pub(crate) fn factorise_in_slices(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
+    symbolic: &Layout,
     updates: &Updates,
     schedule: Option<&Schedule>,
     a: Lower<'_>,
@@ -189,7 +189,7 @@ pub(crate) fn factorise_in_slices(
 
 /// What every supernode reads.
 struct Job<'a> {
-    symbolic: &'a SymbolicSupernodalCholesky<usize>,
+    symbolic: &'a Layout,
     updates: &'a Updates,
     a: Lower<'a>,
     temp_entries: usize,

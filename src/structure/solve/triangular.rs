@@ -25,7 +25,7 @@
 //! in the schedule's order, which depends on the factor's structure only:
 //! the same bits for any number of threads.
 
-use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+use super::layout::Layout;
 use std::ops::Range;
 
 /// A factor's supernodes dealt to two threads.
@@ -64,11 +64,7 @@ struct Supernode<'a> {
 }
 
 impl<'a> Supernode<'a> {
-    fn of(
-        symbolic: &'a SymbolicSupernodalCholesky<usize>,
-        values: &'a [f64],
-        s: usize,
-    ) -> Supernode<'a> {
+    fn of(symbolic: &'a Layout, values: &'a [f64], s: usize) -> Supernode<'a> {
         let first_column = symbolic.supernode_begin()[s];
         let row_start = symbolic.col_ptr_for_row_idx();
         let value_start = symbolic.col_ptr_for_val();
@@ -180,7 +176,7 @@ impl Schedule {
     /// The schedule of `symbolic`'s supernodes; `None` when they are not
     /// in a postorder (every subtree a range) or the tree does not split
     /// into two shares.
-    pub(crate) fn of(symbolic: &SymbolicSupernodalCholesky<usize>) -> Option<Schedule> {
+    pub(crate) fn of(symbolic: &Layout) -> Option<Schedule> {
         let count = symbolic.n_supernodes();
         let begin = symbolic.supernode_begin();
         let end = symbolic.supernode_end();
@@ -270,7 +266,7 @@ impl Schedule {
     /// Each thread's share of the pieces' entries, as a fraction of the
     /// factor's.
     #[cfg(test)]
-    pub(crate) fn shares(&self, symbolic: &SymbolicSupernodalCholesky<usize>) -> [f64; 2] {
+    pub(crate) fn shares(&self, symbolic: &Layout) -> [f64; 2] {
         let value_start = symbolic.col_ptr_for_val();
         let all = *value_start.last().unwrap_or(&0) as f64;
         self.pieces.clone().map(|share| {
@@ -285,7 +281,7 @@ impl Schedule {
 
 /// Supernode s's parent in the elimination tree (the owner of its first
 /// row below; `usize::MAX` for a root), given each column's supernode.
-fn parents(symbolic: &SymbolicSupernodalCholesky<usize>) -> Vec<usize> {
+fn parents(symbolic: &Layout) -> Vec<usize> {
     let count = symbolic.n_supernodes();
     let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
     let row_start = symbolic.col_ptr_for_row_idx();
@@ -311,7 +307,7 @@ fn parents(symbolic: &SymbolicSupernodalCholesky<usize>) -> Vec<usize> {
 /// already. The same elimination in another order of independent steps:
 /// the factor's entries are the same, rearranged (faer leaves the
 /// supernodes in the order of the minimum degree ordering).
-pub(crate) fn postorder(symbolic: &SymbolicSupernodalCholesky<usize>) -> Option<Vec<usize>> {
+pub(crate) fn postorder(symbolic: &Layout) -> Option<Vec<usize>> {
     let count = symbolic.n_supernodes();
     let parent = parents(symbolic);
     let mut children = vec![Vec::new(); count];
@@ -362,11 +358,7 @@ fn deal(pieces: &[usize], work: &[usize]) -> ([Vec<usize>; 2], f64) {
 }
 
 /// L·Lᵀ·y = b in place (P right-hand sides per row), on one thread.
-pub(crate) fn solve_serial<const P: usize>(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
-    y: &mut [[f64; P]],
-) {
+pub(crate) fn solve_serial<const P: usize>(symbolic: &Layout, values: &[f64], y: &mut [[f64; P]]) {
     for s in 0..symbolic.n_supernodes() {
         Supernode::of(symbolic, values, s).forward(y, 0, &mut |_, _, _| {});
     }
@@ -380,7 +372,7 @@ type Piece<'y, const P: usize> = (Range<usize>, usize, &'y mut [[f64; P]]);
 
 /// y's rows cut into the pieces of `schedule`, dealt to the two threads.
 fn pieces_of<'y, const P: usize>(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
+    symbolic: &Layout,
     schedule: &Schedule,
     y: &'y mut [[f64; P]],
 ) -> [Vec<Piece<'y, P>>; 2] {
@@ -410,7 +402,7 @@ fn pieces_of<'y, const P: usize>(
 /// L·Lᵀ·y = b in place (P right-hand sides per row), the pieces of
 /// `schedule` on two threads.
 pub(crate) fn solve_scheduled<const P: usize>(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
+    symbolic: &Layout,
     values: &[f64],
     schedule: &Schedule,
     y: &mut [[f64; P]],
