@@ -36,11 +36,12 @@
 //! nodes' elimination tree ([`ordering`]), so the matrix is factorised as
 //! it stands, with no permuted copy, and the factor's supernodal structure
 //! is faer's symbolic factorisation of the nodes' graph, each node widened
-//! to its unknowns ([`layout`]). The numeric factorisation is [`supernodal`]'s, left-looking on
-//! faer's supernodal structure with the factor's subtrees on the two
+//! to its unknowns ([`layout`]). The numeric factorisation is
+//! [`supernodal`]'s, left-looking, with the factor's subtrees on the two
 //! threads (faer's own, on one thread and with a workspace as large as the
-//! largest separator's update, still makes the factors of matrices ordered
-//! by faer or too small to be supernodal); the triangular
+//! largest separator's update, still makes the factors of matrices whose
+//! unknowns faer orders itself, such as a stiffness summed with the
+//! cables' matrices); the triangular
 //! solves are [`triangular`]'s, over the supernodes' dense blocks with up
 //! to eight right-hand sides side by side, so each entry of the factor is
 //! read once per eight, and from [`PARALLEL_ROWS`] unknowns on the
