@@ -661,15 +661,19 @@ impl SymSparse {
     /// of eight (each row's 16 sums, 97 MB per thread, reached in the
     /// pattern's scattered order), 0.56 s one by one, and at 40 × 40
     /// 0.126 s against 0.073 s.
-    fn mul_column_and_abs(&self, x: MatRef<'_, f64>) -> Vec<[f64; 2]> {
+    ///
+    /// x is read where it lies and the second thread's sums are added into
+    /// the first's: at 400 × 400 curves a copy of x beside |x| and a third
+    /// array for the total were 394 MB more per column.
+    fn mul_column_and_abs(&self, x: &[f64]) -> Vec<[f64; 2]> {
         let n = self.n;
-        let rows: Vec<[f64; 2]> = (0..n).map(|i| [x[(i, 0)], x[(i, 0)].abs()]).collect();
         let part = |columns: std::ops::Range<usize>| -> Vec<[f64; 2]> {
             let pattern = &*self.pattern;
             let mut out = vec![[0.0; 2]; n];
             for j in columns {
                 let (mut begin, end) = (pattern.start[j], pattern.start[j + 1]);
-                let [xj, aj] = rows[j];
+                let xj = x[j];
+                let aj = xj.abs();
                 let (mut sum, mut sum_abs) = (0.0, 0.0);
                 // The diagonal, a column's first entry, once.
                 if begin < end && pattern.rows[begin] == j {
@@ -682,12 +686,12 @@ impl SymSparse {
                     .iter()
                     .zip(&self.values[begin..end])
                 {
-                    let [xi, ai] = rows[i];
+                    let xi = x[i];
                     let a = v.abs();
                     out[i][0] += v * xj;
                     out[i][1] += a * aj;
                     sum += v * xi;
-                    sum_abs += a * ai;
+                    sum_abs += a * xi.abs();
                 }
                 out[j][0] += sum;
                 out[j][1] += sum_abs;
@@ -695,11 +699,12 @@ impl SymSparse {
             out
         };
         if n >= PARALLEL_ROWS {
-            let (a, b) = rayon::join(|| part(0..n / 2), || part(n / 2..n));
-            a.into_iter()
-                .zip(b)
-                .map(|(a, b)| [a[0] + b[0], a[1] + b[1]])
-                .collect()
+            let (mut a, b) = rayon::join(|| part(0..n / 2), || part(n / 2..n));
+            for (a, b) in a.iter_mut().zip(&b) {
+                a[0] += b[0];
+                a[1] += b[1];
+            }
+            a
         } else {
             part(0..n)
         }
@@ -2082,6 +2087,21 @@ impl Structure {
 }
 
 impl Factor {
+    /// Solves in place for right-hand sides held row by row (row i's
+    /// values side by side), as the triangular solves work on them, where
+    /// the factor is supernodal and in the unknowns' own order; false, the
+    /// rows untouched, where it is not.
+    pub(crate) fn solve_rows<const P: usize>(&self, y: &mut [[f64; P]]) -> bool {
+        let (Some(layout), None) = (&self.symbolic.layout, self.symbolic.perm()) else {
+            return false;
+        };
+        match &self.symbolic.schedule {
+            Some(schedule) => solve_scheduled::<P>(layout, &self.values, schedule, y),
+            None => solve_serial::<P>(layout, &self.values, y),
+        }
+        true
+    }
+
     /// x ← A⁻¹·x for every column of x. A factor of [`PARALLEL_ROWS`]
     /// unknowns or more is shared between two threads: each solves its
     /// share of the factor's subtrees for every column ([`triangular`]),
@@ -2506,32 +2526,51 @@ impl<'m> LinearFrame<'m> {
         })
     }
 
-    /// The solutions of `loads` side by side, refined.
-    fn solve_block(&self, loads: &[&LoadSet]) -> Result<Mat<f64>, FrameError> {
-        // The load sets side by side on the two cores, each written into
-        // its own column.
-        let mut p = Mat::<f64>::zeros(self.stiffness.n, loads.len());
-        let columns: Vec<_> = p.as_mut().col_iter_mut().collect();
-        columns
-            .into_par_iter()
-            .zip(loads.par_iter())
-            .for_each(|(mut column, set)| {
-                let v = self.assembly.load_vector(self.model, set);
-                for (i, (vi, pull)) in v.iter().zip(&self.pull).enumerate() {
-                    column[i] = vi + pull;
-                }
-            });
-        // Solved in place; each right-hand side remade for its backward
-        // error rather than kept beside the solutions.
-        let mut x = p;
-        solve_refined_in_place(&self.factor, &self.stiffness, &mut x, |c| {
-            let v = self.assembly.load_vector(self.model, loads[c]);
+    /// The solutions of `loads` (at most [`STATICS_BLOCK`]) side by side,
+    /// refined: row i holds unknown i of each, the places past the load
+    /// sets zero. Solved where they lie, in the rows the triangular solves
+    /// work on ([`Factor::solve_rows`]); a block copied into columns for
+    /// the solve and back took 786 MB more at 400 × 400 curves.
+    fn solve_block(&self, loads: &[&LoadSet]) -> Result<Vec<[f64; STATICS_BLOCK]>, FrameError> {
+        let n = self.stiffness.n;
+        let rhs = |set: &LoadSet| -> Vec<f64> {
+            let v = self.assembly.load_vector(self.model, set);
             v.iter()
                 .zip(&self.pull)
                 .map(|(vi, pull)| vi + pull)
                 .collect()
-        })?;
-        Ok(x)
+        };
+        // The load sets two at a time on the two cores, each written into
+        // its place in the rows.
+        let mut rows = vec![[0.0; STATICS_BLOCK]; n];
+        for (pair, sets) in loads.chunks(2).enumerate() {
+            let made: Vec<Vec<f64>> = sets.par_iter().map(|set| rhs(set)).collect();
+            for (k, v) in made.iter().enumerate() {
+                for (row, &vi) in rows.iter_mut().zip(v) {
+                    row[2 * pair + k] = vi;
+                }
+            }
+        }
+        if !self.factor.solve_rows(&mut rows) {
+            let mut x = Mat::from_fn(n, STATICS_BLOCK, |i, c| rows[i][c]);
+            self.factor.solve_in_place(x.as_mut());
+            for (i, row) in rows.iter_mut().enumerate() {
+                for (c, v) in row.iter_mut().enumerate() {
+                    *v = x[(i, c)];
+                }
+            }
+        }
+        // Each solution refined where it is not backward stable, its
+        // right-hand side remade for its backward error rather than kept
+        // beside the solutions.
+        for (c, set) in loads.iter().enumerate() {
+            let mut x = Mat::from_fn(n, 1, |i, _| rows[i][c]);
+            solve_refined_after(&self.factor, &self.stiffness, &mut x, |_| rhs(set))?;
+            for (row, &v) in rows.iter_mut().zip(x.col(0).iter()) {
+                row[c] = v;
+            }
+        }
+        Ok(rows)
     }
 }
 
@@ -2549,7 +2588,7 @@ pub struct Statics<'a, 'm> {
     loads: Vec<&'a LoadSet>,
     /// The block last solved: its first load set, and one column of
     /// unknowns per load set of it.
-    solved: Mutex<Option<(usize, Mat<f64>)>>,
+    solved: Mutex<Option<(usize, Vec<[f64; STATICS_BLOCK]>)>>,
 }
 
 impl Statics<'_, '_> {
@@ -2587,7 +2626,7 @@ impl Statics<'_, '_> {
             *solved = Some((first, self.frame.solve_block(&self.loads[first..end])?));
         }
         let (_, x) = solved.as_ref().expect("solved above");
-        Ok(x.col(c - first).iter().copied().collect())
+        Ok(x.iter().map(|row| row[c - first]).collect())
     }
 
     /// [`Statics::result`], and every cable's force were it taut.
@@ -2646,14 +2685,24 @@ pub(crate) fn solve_refined_in_place(
     rhs: impl Fn(usize) -> Vec<f64>,
 ) -> Result<(), FrameError> {
     factor.solve_in_place(x.as_mut());
+    solve_refined_after(factor, k, x, rhs)
+}
+
+/// [`solve_refined_in_place`] once `x` holds the plain solutions.
+fn solve_refined_after(
+    factor: &Factor,
+    k: &SymSparse,
+    x: &mut Mat<f64>,
+    rhs: impl Fn(usize) -> Vec<f64>,
+) -> Result<(), FrameError> {
     for c in 0..x.ncols() {
         let p = rhs(c);
-        let p = MatRef::from_column_major_slice(&p, p.len(), 1);
         for _ in 0..REFINEMENTS {
-            let (mut r, omega) = residual_and_backward_error(k, x.as_ref().subcols(c, 1), p);
-            if omega <= BACKWARD_STABLE {
+            let column = x.as_ref().col(c);
+            let (_, residual) = backward_error(k, column_slice(column), &p);
+            let Some(mut r) = residual else {
                 break;
-            }
+            };
             factor.solve_in_place(r.as_mut());
             let mut column = x.as_mut().subcols_mut(c, 1);
             column += r;
@@ -2667,6 +2716,14 @@ pub(crate) fn solve_refined_in_place(
     Ok(())
 }
 
+/// A column of a matrix as a slice (a [`Mat`]'s columns are contiguous).
+fn column_slice(column: faer::ColRef<'_, f64>) -> &[f64] {
+    column
+        .try_as_col_major()
+        .expect("a matrix's column is contiguous")
+        .as_slice()
+}
+
 /// Steps of iterative refinement at most ([`solve_refined_all`]).
 const REFINEMENTS: usize = 2;
 
@@ -2676,30 +2733,23 @@ const REFINEMENTS: usize = 2;
 /// left to take out.
 const BACKWARD_STABLE: f64 = 1e-13;
 
-/// The residuals r = p − K·x of the solutions x (columns) and their
-/// componentwise backward error ω = max_i |r_i| / (|K|·|x| + |p|)_i
-/// (Oettli and Prager), K read once for K·x and |K|·|x|; rows where the
-/// scale is zero have no error to show.
-fn residual_and_backward_error(
-    k: &SymSparse,
-    x: MatRef<'_, f64>,
-    p: MatRef<'_, f64>,
-) -> (Mat<f64>, f64) {
-    // A column at a time: K·x and |K|·|x| need not be held beside r.
-    let mut r = Mat::<f64>::zeros(x.nrows(), x.ncols());
+/// The componentwise backward error ω = max_i |r_i| / (|K|·|x| + |p|)_i
+/// (Oettli and Prager) of the solution x of K·x = p, with r = p − K·x,
+/// K read once for K·x and |K|·|x|; rows where the scale is zero have no
+/// error to show. The residual r itself only when ω exceeds
+/// [`BACKWARD_STABLE`] (a refinement step needs it).
+fn backward_error(k: &SymSparse, x: &[f64], p: &[f64]) -> (f64, Option<Mat<f64>>) {
+    let sums = k.mul_column_and_abs(x);
     let mut omega = 0.0f64;
-    for c in 0..x.ncols() {
-        let sums = k.mul_column_and_abs(x.subcols(c, 1));
-        for (i, [kx, scale]) in sums.into_iter().enumerate() {
-            let pi = p[(i, c)];
-            r[(i, c)] = pi - kx;
-            let s = scale + pi.abs();
-            if s > 0.0 {
-                omega = omega.max(r[(i, c)].abs() / s);
-            }
+    for (&[kx, scale], &pi) in sums.iter().zip(p) {
+        let s = scale + pi.abs();
+        if s > 0.0 {
+            omega = omega.max((pi - kx).abs() / s);
         }
     }
-    (r, omega)
+    let residual =
+        (omega > BACKWARD_STABLE).then(|| Mat::from_fn(p.len(), 1, |i, _| p[i] - sums[i][0]));
+    (omega, residual)
 }
 
 /// a + s·b, on a's pattern when it holds b's (one model's matrices).
@@ -3092,7 +3142,7 @@ mod tests {
                 let x = Mat::from_fn(n, p, |i, c| ((i * 7 + c * 13) % 17) as f64 - 8.0);
                 let y = a.mul_block(x.as_ref());
                 let (y2, y_abs): (Vec<f64>, Vec<f64>) = (0..p)
-                    .flat_map(|c| a.mul_column_and_abs(x.subcols(c, 1)))
+                    .flat_map(|c| a.mul_column_and_abs(column_slice(x.col(c))))
                     .map(|[v, a]| (v, a))
                     .unzip();
                 let (y2, y_abs) = (
@@ -3775,19 +3825,24 @@ mod tests {
         let k = grid_matrix(24, 6);
         let dofs = all_free(k.n);
         let b = Mat::<f64>::from_fn(k.n, 3, |i, j| ((i * 7 + j * 13) % 17) as f64 - 8.0);
+        let omega = |x: &Mat<f64>| {
+            (0..x.ncols())
+                .map(|c| backward_error(&k, column_slice(x.col(c)), column_slice(b.col(c))).0)
+                .fold(0.0f64, f64::max)
+        };
         let exact = factorise_definite(&k, &dofs).unwrap().unwrap();
         let mut plain = b.clone();
         exact.solve_in_place(plain.as_mut());
-        assert!(residual_and_backward_error(&k, plain.as_ref(), b.as_ref()).1 <= BACKWARD_STABLE);
+        assert!(omega(&plain) <= BACKWARD_STABLE);
         let refined = solve_refined_all(&exact, &k, &b).unwrap();
         assert_eq!(refined, plain);
         let off = add(&k, &k, 1e-3);
         let inexact = factorise_definite(&off, &dofs).unwrap().unwrap();
         let mut rough = b.clone();
         inexact.solve_in_place(rough.as_mut());
-        let before = residual_and_backward_error(&k, rough.as_ref(), b.as_ref()).1;
+        let before = omega(&rough);
         let refined = solve_refined_all(&inexact, &k, &b).unwrap();
-        let after = residual_and_backward_error(&k, refined.as_ref(), b.as_ref()).1;
+        let after = omega(&refined);
         assert!(before > 1e-4 && after < 1e-8, "ω {before:e} → {after:e}");
     }
 }
