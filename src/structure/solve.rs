@@ -39,9 +39,9 @@
 //! to its unknowns ([`layout`]). The numeric factorisation is
 //! [`supernodal`]'s, left-looking, with the factor's subtrees on the two
 //! threads (faer's own, on one thread and with a workspace as large as the
-//! largest separator's update, still makes the factors of matrices whose
-//! unknowns faer orders itself, such as a stiffness summed with the
-//! cables' matrices); the triangular
+//! largest separator's update, still makes every factor with a
+//! permutation of its own, such as a stiffness summed with the cables'
+//! matrices, ordered by [`ordering::by_nodes`]); the triangular
 //! solves are [`triangular`]'s, over the supernodes' dense blocks with up
 //! to eight right-hand sides side by side, so each entry of the factor is
 //! read once per eight, and from [`PARALLEL_ROWS`] unknowns on the
@@ -511,7 +511,10 @@ pub(crate) struct Pattern {
     pub rows: Vec<usize>,
     /// The unknowns are numbered in the fill-reducing order of the graph
     /// this pattern is of (the scatter plan's, of [`Dofs`] numbered in
-    /// order), so it is factorised as it stands.
+    /// order), so it is factorised as it stands. Such a pattern is of
+    /// nodes' blocks: every column of a node's run of unknowns holds the
+    /// node's own from it on and all of each later neighbour's, which
+    /// [`Dofs::layout_on_nodes`] reads from the run's first column.
     pub in_order: bool,
 }
 
@@ -912,11 +915,11 @@ impl Dofs {
                 .map_err(ordering_failed)?,
             }
         };
-        // Ordered on the nodes, the supernodes are in a postorder already
-        // (checked by [`postordered`]); where the unknowns had to be
-        // ordered themselves, only a factor large enough to share between
-        // the threads ([`Structure::of`]) is worth a second symbolic
-        // factorisation.
+        // Where faer made the structure (the unknowns ordered on their own,
+        // or, numbered in order, not made on the nodes above), only a
+        // factor large enough to share between the threads
+        // ([`Structure::of`]) is worth a second symbolic factorisation in
+        // a postorder ([`postordered`]).
         let cholesky = if a.n >= PARALLEL_ROWS {
             postordered(pattern.symbolic(), cholesky)?
         } else {
@@ -2017,10 +2020,11 @@ pub(crate) type Symbolic = Arc<Structure>;
 /// solves.
 #[derive(Debug)]
 pub(crate) struct Structure {
-    /// faer's symbolic factorisation, where faer made it (a matrix ordered
-    /// on its unknowns, or one numbered in order but too small to be
-    /// supernodal); `None` for a supernodal structure made on the nodes
-    /// ([`Layout::widened`]).
+    /// faer's symbolic factorisation, where faer made it (a matrix whose
+    /// unknowns faer ordered, or one numbered in order whose structure was
+    /// not made on the nodes: a node's unknowns not one run, or no
+    /// unknowns at all); `None` for a supernodal structure made on the
+    /// nodes ([`Layout::widened`]).
     cholesky: Option<SymbolicCholesky<usize>>,
     /// The supernodes, where the factor is supernodal.
     layout: Option<Layout>,
@@ -2092,7 +2096,10 @@ impl Factor {
     /// the factor is supernodal and in the unknowns' own order; false, the
     /// rows untouched, where it is not.
     pub(crate) fn solve_rows<const P: usize>(&self, y: &mut [[f64; P]]) -> bool {
-        let (Some(layout), None) = (&self.symbolic.layout, self.symbolic.perm()) else {
+        if !self.solves_rows() {
+            return false;
+        }
+        let Some(layout) = &self.symbolic.layout else {
             return false;
         };
         match &self.symbolic.schedule {
@@ -2100,6 +2107,17 @@ impl Factor {
             None => solve_serial::<P>(layout, &self.values, y),
         }
         true
+    }
+
+    /// Whether [`Factor::solve_rows`] solves: a supernodal factor in the
+    /// unknowns' own order, shared between the threads where it is large
+    /// enough to be (else [`Factor::solve_in_place`] shares the columns).
+    pub(crate) fn solves_rows(&self) -> bool {
+        let s = &self.symbolic;
+        s.layout.is_some()
+            && s.perm().is_none()
+            && (s.schedule.is_some()
+                || s.layout.as_ref().is_some_and(|l| l.nrows() < PARALLEL_ROWS))
     }
 
     /// x ← A⁻¹·x for every column of x. A factor of [`PARALLEL_ROWS`]
@@ -2526,12 +2544,14 @@ impl<'m> LinearFrame<'m> {
         })
     }
 
-    /// The solutions of `loads` (at most [`STATICS_BLOCK`]) side by side,
-    /// refined: row i holds unknown i of each, the places past the load
-    /// sets zero. Solved where they lie, in the rows the triangular solves
-    /// work on ([`Factor::solve_rows`]); a block copied into columns for
-    /// the solve and back took 786 MB more at 400 × 400 curves.
-    fn solve_block(&self, loads: &[&LoadSet]) -> Result<Vec<[f64; STATICS_BLOCK]>, FrameError> {
+    /// The solutions of `loads` (at most [`STATICS_BLOCK`]), refined.
+    /// More than half a block is solved where it lies, in the rows the
+    /// triangular solves work on ([`Factor::solve_rows`]): a block made in
+    /// columns and copied to rows and back for the solve took 786 MB more
+    /// at 400 × 400 curves. Fewer load sets (a single one from the
+    /// cables' iterations, the last of the 19 combinations) are solved in
+    /// columns, as narrow as they are.
+    fn solve_block(&self, loads: &[&LoadSet]) -> Result<Solved, FrameError> {
         let n = self.stiffness.n;
         let rhs = |set: &LoadSet| -> Vec<f64> {
             let v = self.assembly.load_vector(self.model, set);
@@ -2540,6 +2560,24 @@ impl<'m> LinearFrame<'m> {
                 .map(|(vi, pull)| vi + pull)
                 .collect()
         };
+        if 2 * loads.len() <= STATICS_BLOCK || !self.factor.solves_rows() {
+            // The load sets side by side on the two cores, each written
+            // into its own column.
+            let mut x = Mat::<f64>::zeros(n, loads.len());
+            let columns: Vec<_> = x.as_mut().col_iter_mut().collect();
+            columns
+                .into_par_iter()
+                .zip(loads.par_iter())
+                .for_each(|(mut column, set)| {
+                    for (i, v) in rhs(set).into_iter().enumerate() {
+                        column[i] = v;
+                    }
+                });
+            // Each right-hand side remade for its backward error rather
+            // than kept beside the solutions.
+            solve_refined_in_place(&self.factor, &self.stiffness, &mut x, |c| rhs(loads[c]))?;
+            return Ok(Solved::Columns(x));
+        }
         // The load sets two at a time on the two cores, each written into
         // its place in the rows.
         let mut rows = vec![[0.0; STATICS_BLOCK]; n];
@@ -2551,18 +2589,9 @@ impl<'m> LinearFrame<'m> {
                 }
             }
         }
-        if !self.factor.solve_rows(&mut rows) {
-            let mut x = Mat::from_fn(n, STATICS_BLOCK, |i, c| rows[i][c]);
-            self.factor.solve_in_place(x.as_mut());
-            for (i, row) in rows.iter_mut().enumerate() {
-                for (c, v) in row.iter_mut().enumerate() {
-                    *v = x[(i, c)];
-                }
-            }
-        }
+        self.factor.solve_rows(&mut rows);
         // Each solution refined where it is not backward stable, its
-        // right-hand side remade for its backward error rather than kept
-        // beside the solutions.
+        // right-hand side remade for its backward error.
         for (c, set) in loads.iter().enumerate() {
             let mut x = Mat::from_fn(n, 1, |i, _| rows[i][c]);
             solve_refined_after(&self.factor, &self.stiffness, &mut x, |_| rhs(set))?;
@@ -2570,7 +2599,7 @@ impl<'m> LinearFrame<'m> {
                 row[c] = v;
             }
         }
-        Ok(rows)
+        Ok(Solved::Rows(rows))
     }
 }
 
@@ -2586,9 +2615,26 @@ pub const STATICS_BLOCK: usize = 8;
 pub struct Statics<'a, 'm> {
     frame: &'a LinearFrame<'m>,
     loads: Vec<&'a LoadSet>,
-    /// The block last solved: its first load set, and one column of
-    /// unknowns per load set of it.
-    solved: Mutex<Option<(usize, Vec<[f64; STATICS_BLOCK]>)>>,
+    /// The block last solved: its first load set, and its solutions.
+    solved: Mutex<Option<(usize, Solved)>>,
+}
+
+/// A block's solutions: row by row as the triangular solves work on them
+/// (a block of more than half of [`STATICS_BLOCK`] load sets on a factor
+/// that solves rows, [`Factor::solve_rows`]), else one column per load set.
+enum Solved {
+    Rows(Vec<[f64; STATICS_BLOCK]>),
+    Columns(Mat<f64>),
+}
+
+impl Solved {
+    /// The solution of the block's load set `c`.
+    fn column(&self, c: usize) -> Vec<f64> {
+        match self {
+            Solved::Rows(rows) => rows.iter().map(|row| row[c]).collect(),
+            Solved::Columns(x) => x.col(c).iter().copied().collect(),
+        }
+    }
 }
 
 impl Statics<'_, '_> {
@@ -2626,7 +2672,7 @@ impl Statics<'_, '_> {
             *solved = Some((first, self.frame.solve_block(&self.loads[first..end])?));
         }
         let (_, x) = solved.as_ref().expect("solved above");
-        Ok(x.iter().map(|row| row[c - first]).collect())
+        Ok(x.column(c - first))
     }
 
     /// [`Statics::result`], and every cable's force were it taut.

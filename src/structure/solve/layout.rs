@@ -43,9 +43,10 @@ impl Layout {
 
     /// The structure of a factor over the nodes, each node widened to its
     /// run of unknowns: node k's unknowns are `first[k]..first[k + 1]`
-    /// (none where the two are equal). A supernode of nodes becomes one of
-    /// their unknowns (a supernode of nodes without unknowns is left out),
-    /// and each node row below becomes its unknowns' rows.
+    /// (none where the two are equal: a node of the graph without unknowns,
+    /// which the stiffness's graph does not have). A supernode of nodes
+    /// becomes one of their unknowns (a supernode of nodes without unknowns
+    /// is left out), and each node row below becomes its unknowns' rows.
     pub(crate) fn widened(nodes: &SymbolicSupernodalCholesky<usize>, first: &[usize]) -> Layout {
         let count = nodes.n_supernodes();
         let (node_begin, node_end) = (nodes.supernode_begin(), nodes.supernode_end());

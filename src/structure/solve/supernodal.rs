@@ -1,5 +1,6 @@
-//! The numeric Cholesky factorisation L·Lᵀ = A on faer's supernodal
-//! symbolic structure, the factor's subtrees shared between two threads.
+//! The numeric Cholesky factorisation L·Lᵀ = A on a supernodal structure
+//! ([`Layout`]: for a frame's stiffness made on its nodes), the factor's
+//! subtrees shared between two threads.
 //!
 //! Left-looking, as faer's own: supernode by supernode in the postorder of
 //! the elimination tree, each gathers A's columns into its dense block (the
@@ -257,6 +258,8 @@ impl Worker {
                 let place = if r < last {
                     r - first
                 } else {
+                    // Every row of A lies in the factor's structure.
+                    debug_assert!(self.local[r] != u32::MAX, "row {r} outside the structure");
                     self.local[r] as usize
                 };
                 column[place] += a.values[k];

@@ -7,9 +7,10 @@
 //! read once per block: a solve is bound by reading the factor from memory.
 //!
 //! **Two threads, two halves of the factor.** The supernodes are numbered
-//! in a postorder of their elimination tree ([`postorder`]: faer leaves
-//! them in the minimum degree's order, and the stiffness's symbolic
-//! factorisation is redone in this one), so a subtree is a range of
+//! in a postorder of their elimination tree (the stiffness's, made on its
+//! nodes numbered in such a postorder, comes out so; where faer ordered
+//! the unknowns itself, in the minimum degree's order, its symbolic
+//! factorisation is redone in one, [`postorder`]), so a subtree is a range of
 //! supernodes and of columns, and its columns' rows below reach
 //! only its own columns and its ancestors'. A [`Schedule`] cuts the tree
 //! into subtrees ("pieces") dealt to two threads with near-equal shares of
