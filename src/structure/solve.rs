@@ -2172,7 +2172,7 @@ impl Factor {
             };
             let columns = first..(first + width).min(p);
             let block = Block {
-                symbolic: supernodal,
+                layout: supernodal,
                 schedule: self.symbolic.schedule.as_ref(),
                 values: &self.values,
                 forward,
@@ -2191,7 +2191,7 @@ impl Factor {
 
 /// A factor's triangular solves for a block of right-hand sides.
 struct Block<'a> {
-    symbolic: &'a Layout,
+    layout: &'a Layout,
     schedule: Option<&'a Schedule>,
     values: &'a [f64],
     /// The factor's order: row i of the permuted system is row
@@ -2213,8 +2213,8 @@ impl Block<'_> {
             }
         }
         match self.schedule {
-            Some(schedule) => solve_scheduled::<P>(self.symbolic, self.values, schedule, &mut y),
-            None => solve_serial::<P>(self.symbolic, self.values, &mut y),
+            Some(schedule) => solve_scheduled::<P>(self.layout, self.values, schedule, &mut y),
+            None => solve_serial::<P>(self.layout, self.values, &mut y),
         }
         for (c, column) in columns.enumerate() {
             let mut to = x.as_mut().col_mut(column);

@@ -50,13 +50,13 @@ pub(crate) struct Updates {
 }
 
 impl Updates {
-    /// The updates of `symbolic`'s supernodes; `None` past 2³² supernodes.
-    pub(crate) fn of(symbolic: &Layout) -> Option<Updates> {
-        let count = symbolic.n_supernodes();
+    /// The updates of `layout`'s supernodes; `None` past 2³² supernodes.
+    pub(crate) fn of(layout: &Layout) -> Option<Updates> {
+        let count = layout.n_supernodes();
         u32::try_from(count).ok()?;
-        let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-        let row_start = symbolic.col_ptr_for_row_idx();
-        let rows = symbolic.row_idx();
+        let (begin, end) = (layout.supernode_begin(), layout.supernode_end());
+        let row_start = layout.col_ptr_for_row_idx();
+        let rows = layout.row_idx();
         let mut owner = vec![0u32; end.last().copied().unwrap_or(0)];
         for s in 0..count {
             owner[begin[s]..end[s]].fill(s as u32);
@@ -110,32 +110,32 @@ pub(crate) struct Lower<'a> {
     pub values: &'a [f64],
 }
 
-/// L's values (faer's layout for `symbolic`), or `None` when a pivot is
+/// L's values (faer's layout for `layout`), or `None` when a pivot is
 /// not positive (A is not positive definite in floating point).
 pub(crate) fn factorise(
-    symbolic: &Layout,
+    layout: &Layout,
     updates: &Updates,
     schedule: Option<&Schedule>,
     a: Lower<'_>,
 ) -> Option<Vec<f64>> {
-    factorise_in_slices(symbolic, updates, schedule, a, TEMP_ENTRIES)
+    factorise_in_slices(layout, updates, schedule, a, TEMP_ENTRIES)
 }
 
 /// [`factorise`], an update's dense product made in slices of at most
 /// `temp_entries` entries.
 pub(crate) fn factorise_in_slices(
-    symbolic: &Layout,
+    layout: &Layout,
     updates: &Updates,
     schedule: Option<&Schedule>,
     a: Lower<'_>,
     temp_entries: usize,
 ) -> Option<Vec<f64>> {
-    let value_start = symbolic.col_ptr_for_val();
+    let value_start = layout.col_ptr_for_val();
     let mut values = vec![0.0; *value_start.last().unwrap_or(&0)];
-    let count = symbolic.n_supernodes();
-    let n = symbolic.nrows();
+    let count = layout.n_supernodes();
+    let n = layout.nrows();
     let job = Job {
-        symbolic,
+        layout,
         updates,
         a,
         temp_entries,
@@ -190,7 +190,7 @@ pub(crate) fn factorise_in_slices(
 
 /// What every supernode reads.
 struct Job<'a> {
-    symbolic: &'a Layout,
+    layout: &'a Layout,
     updates: &'a Updates,
     a: Lower<'a>,
     temp_entries: usize,
@@ -229,11 +229,11 @@ impl Worker {
     /// from `base` on, holding every supernode s reads); false when a
     /// pivot is not positive.
     fn supernode(&mut self, job: &Job<'_>, values: &mut [f64], base: usize, s: usize) -> bool {
-        let symbolic = job.symbolic;
-        let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-        let row_start = symbolic.col_ptr_for_row_idx();
-        let value_start = symbolic.col_ptr_for_val();
-        let rows = symbolic.row_idx();
+        let layout = job.layout;
+        let (begin, end) = (layout.supernode_begin(), layout.supernode_end());
+        let row_start = layout.col_ptr_for_row_idx();
+        let value_start = layout.col_ptr_for_val();
+        let rows = layout.row_idx();
         let (first, last) = (begin[s], end[s]);
         let width = last - first;
         let below = &rows[row_start[s]..row_start[s + 1]];

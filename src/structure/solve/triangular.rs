@@ -65,14 +65,14 @@ struct Supernode<'a> {
 }
 
 impl<'a> Supernode<'a> {
-    fn of(symbolic: &'a Layout, values: &'a [f64], s: usize) -> Supernode<'a> {
-        let first_column = symbolic.supernode_begin()[s];
-        let row_start = symbolic.col_ptr_for_row_idx();
-        let value_start = symbolic.col_ptr_for_val();
+    fn of(layout: &'a Layout, values: &'a [f64], s: usize) -> Supernode<'a> {
+        let first_column = layout.supernode_begin()[s];
+        let row_start = layout.col_ptr_for_row_idx();
+        let value_start = layout.col_ptr_for_val();
         Supernode {
             first_column,
-            width: symbolic.supernode_end()[s] - first_column,
-            below: &symbolic.row_idx()[row_start[s]..row_start[s + 1]],
+            width: layout.supernode_end()[s] - first_column,
+            below: &layout.row_idx()[row_start[s]..row_start[s + 1]],
             block: &values[value_start[s]..value_start[s + 1]],
         }
     }
@@ -174,18 +174,18 @@ impl<'a> Supernode<'a> {
 }
 
 impl Schedule {
-    /// The schedule of `symbolic`'s supernodes; `None` when they are not
+    /// The schedule of `layout`'s supernodes; `None` when they are not
     /// in a postorder (every subtree a range) or the tree does not split
     /// into two shares.
-    pub(crate) fn of(symbolic: &Layout) -> Option<Schedule> {
-        let count = symbolic.n_supernodes();
-        let begin = symbolic.supernode_begin();
-        let end = symbolic.supernode_end();
-        let value_start = symbolic.col_ptr_for_val();
+    pub(crate) fn of(layout: &Layout) -> Option<Schedule> {
+        let count = layout.n_supernodes();
+        let begin = layout.supernode_begin();
+        let end = layout.supernode_end();
+        let value_start = layout.col_ptr_for_val();
         let columns = end.last().copied().unwrap_or(0);
         // The elimination tree: each subtree's first supernode and its
         // share of the factor's entries.
-        let parent = parents(symbolic);
+        let parent = parents(layout);
         let mut first = (0..count).collect::<Vec<_>>();
         let mut size = vec![1usize; count];
         let mut work: Vec<usize> = (0..count)
@@ -267,8 +267,8 @@ impl Schedule {
     /// Each thread's share of the pieces' entries, as a fraction of the
     /// factor's.
     #[cfg(test)]
-    pub(crate) fn shares(&self, symbolic: &Layout) -> [f64; 2] {
-        let value_start = symbolic.col_ptr_for_val();
+    pub(crate) fn shares(&self, layout: &Layout) -> [f64; 2] {
+        let value_start = layout.col_ptr_for_val();
         let all = *value_start.last().unwrap_or(&0) as f64;
         self.pieces.clone().map(|share| {
             share
@@ -282,11 +282,11 @@ impl Schedule {
 
 /// Supernode s's parent in the elimination tree (the owner of its first
 /// row below; `usize::MAX` for a root), given each column's supernode.
-fn parents(symbolic: &Layout) -> Vec<usize> {
-    let count = symbolic.n_supernodes();
-    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-    let row_start = symbolic.col_ptr_for_row_idx();
-    let rows = symbolic.row_idx();
+fn parents(layout: &Layout) -> Vec<usize> {
+    let count = layout.n_supernodes();
+    let (begin, end) = (layout.supernode_begin(), layout.supernode_end());
+    let row_start = layout.col_ptr_for_row_idx();
+    let rows = layout.row_idx();
     let mut owner = vec![0usize; end.last().copied().unwrap_or(0)];
     for s in 0..count {
         owner[begin[s]..end[s]].fill(s);
@@ -308,9 +308,9 @@ fn parents(symbolic: &Layout) -> Vec<usize> {
 /// already. The same elimination in another order of independent steps:
 /// the factor's entries are the same, rearranged (faer leaves the
 /// supernodes in the order of the minimum degree ordering).
-pub(crate) fn postorder(symbolic: &Layout) -> Option<Vec<usize>> {
-    let count = symbolic.n_supernodes();
-    let parent = parents(symbolic);
+pub(crate) fn postorder(layout: &Layout) -> Option<Vec<usize>> {
+    let count = layout.n_supernodes();
+    let parent = parents(layout);
     let mut children = vec![Vec::new(); count];
     let mut roots = Vec::new();
     for (s, &p) in parent.iter().enumerate() {
@@ -335,7 +335,7 @@ pub(crate) fn postorder(symbolic: &Layout) -> Option<Vec<usize>> {
     if order.iter().enumerate().all(|(i, &s)| i == s) {
         return None;
     }
-    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+    let (begin, end) = (layout.supernode_begin(), layout.supernode_end());
     Some(order.iter().flat_map(|&s| begin[s]..end[s]).collect())
 }
 
@@ -359,12 +359,12 @@ fn deal(pieces: &[usize], work: &[usize]) -> ([Vec<usize>; 2], f64) {
 }
 
 /// L·Lᵀ·y = b in place (P right-hand sides per row), on one thread.
-pub(crate) fn solve_serial<const P: usize>(symbolic: &Layout, values: &[f64], y: &mut [[f64; P]]) {
-    for s in 0..symbolic.n_supernodes() {
-        Supernode::of(symbolic, values, s).forward(y, 0, &mut |_, _, _| {});
+pub(crate) fn solve_serial<const P: usize>(layout: &Layout, values: &[f64], y: &mut [[f64; P]]) {
+    for s in 0..layout.n_supernodes() {
+        Supernode::of(layout, values, s).forward(y, 0, &mut |_, _, _| {});
     }
-    for s in (0..symbolic.n_supernodes()).rev() {
-        Supernode::of(symbolic, values, s).backward(y, 0, &|_| unreachable!());
+    for s in (0..layout.n_supernodes()).rev() {
+        Supernode::of(layout, values, s).backward(y, 0, &|_| unreachable!());
     }
 }
 
@@ -373,12 +373,12 @@ type Piece<'y, const P: usize> = (Range<usize>, usize, &'y mut [[f64; P]]);
 
 /// y's rows cut into the pieces of `schedule`, dealt to the two threads.
 fn pieces_of<'y, const P: usize>(
-    symbolic: &Layout,
+    layout: &Layout,
     schedule: &Schedule,
     y: &'y mut [[f64; P]],
 ) -> [Vec<Piece<'y, P>>; 2] {
-    let begin = symbolic.supernode_begin();
-    let end = symbolic.supernode_end();
+    let begin = layout.supernode_begin();
+    let end = layout.supernode_end();
     let mut spans: Vec<(usize, Range<usize>)> = schedule
         .pieces
         .iter()
@@ -403,19 +403,19 @@ fn pieces_of<'y, const P: usize>(
 /// L·Lᵀ·y = b in place (P right-hand sides per row), the pieces of
 /// `schedule` on two threads.
 pub(crate) fn solve_scheduled<const P: usize>(
-    symbolic: &Layout,
+    layout: &Layout,
     values: &[f64],
     schedule: &Schedule,
     y: &mut [[f64; P]],
 ) {
     // Forward: the pieces, their updates of the top's rows summed apart;
     // then the top.
-    let [a, b] = pieces_of(symbolic, schedule, y);
+    let [a, b] = pieces_of(layout, schedule, y);
     let forward = |pieces: Vec<Piece<'_, P>>| {
         let mut sum = vec![[0.0; P]; schedule.top_columns.len()];
         for (range, offset, own) in pieces {
             for s in range {
-                Supernode::of(symbolic, values, s).forward(own, offset, &mut |row, l, x| {
+                Supernode::of(layout, values, s).forward(own, offset, &mut |row, l, x| {
                     let place = &mut sum[schedule.top_place[row] as usize];
                     for c in 0..P {
                         place[c] += l * x[c];
@@ -434,19 +434,19 @@ pub(crate) fn solve_scheduled<const P: usize>(
         }
     }
     for &s in &schedule.top {
-        Supernode::of(symbolic, values, s).forward(y, 0, &mut |_, _, _| {});
+        Supernode::of(layout, values, s).forward(y, 0, &mut |_, _, _| {});
     }
 
     // Backward: the top, then the pieces, reading the top from a copy.
     for &s in schedule.top.iter().rev() {
-        Supernode::of(symbolic, values, s).backward(y, 0, &|_| unreachable!());
+        Supernode::of(layout, values, s).backward(y, 0, &|_| unreachable!());
     }
     let top_values: Vec<[f64; P]> = schedule.top_columns.iter().map(|&c| y[c]).collect();
-    let [a, b] = pieces_of(symbolic, schedule, y);
+    let [a, b] = pieces_of(layout, schedule, y);
     let backward = |pieces: Vec<Piece<'_, P>>| {
         for (range, offset, own) in pieces {
             for s in range.rev() {
-                Supernode::of(symbolic, values, s).backward(own, offset, &|row| {
+                Supernode::of(layout, values, s).backward(own, offset, &|row| {
                     top_values[schedule.top_place[row] as usize]
                 });
             }
