@@ -3414,18 +3414,9 @@ mod tests {
         assert!(r.norm_max() <= 1e-10 * scale, "residual {}", r.norm_max());
     }
 
-    /// A model's unknowns are numbered in its nodes' fill-reducing order
-    /// from the start, so its stiffness is factorised as it stands: no
-    /// order handed to faer (which would first make a permuted copy of
-    /// every entry), its structure made on the nodes (a node without
-    /// unknowns, one with three) holding every entry of the matrix, the
-    /// fill of ordering the same matrix numbered node by node in the
-    /// model's own order, the supernodes postordered, and it solves.
-    #[test]
-    fn a_models_stiffness_is_assembled_in_its_elimination_order() {
-        // A 30 × 30 grillage of beams, held at its four corners.
-        use super::super::model::Support;
-        let m = 30;
+    /// An m × m grillage of steel strips on a 500 mm grid in a plane,
+    /// fixed at its four corners (corner 0 first).
+    fn grillage(m: usize) -> FrameModel {
         let beam = |a: usize, b: usize| Beam {
             nodes: [a, b],
             section: 0,
@@ -3444,27 +3435,37 @@ mod tests {
                 }
             }
         }
-        let model = FrameModel {
+        FrameModel {
             nodes_mm: (0..m * m)
                 .map(|c| DVec3::new((c % m) as f64 * 500.0, (c / m) as f64 * 500.0, 0.0))
                 .collect(),
             sections: vec![Section::steel_strip()],
             beams,
-            // Three corners fixed (no unknowns), one pinned (three).
             supports: [0, m - 1, m * (m - 1), m * m - 1]
                 .iter()
-                .map(|&node| Support {
+                .map(|&node| super::super::model::Support {
                     node,
-                    fixed: if node == 0 {
-                        [true, true, true, false, false, false]
-                    } else {
-                        [true; 6]
-                    },
+                    fixed: [true; 6],
                     along: None,
                 })
                 .collect(),
             ..Default::default()
-        };
+        }
+    }
+
+    /// A model's unknowns are numbered in its nodes' fill-reducing order
+    /// from the start, so its stiffness is factorised as it stands: no
+    /// order handed to faer (which would first make a permuted copy of
+    /// every entry), its structure made on the nodes (a node without
+    /// unknowns, one with three) holding every entry of the matrix, the
+    /// fill of ordering the same matrix numbered node by node in the
+    /// model's own order, the supernodes postordered, and it solves.
+    #[test]
+    fn a_models_stiffness_is_assembled_in_its_elimination_order() {
+        // A 30 × 30 grillage: three corners fixed (no unknowns), one
+        // pinned (three).
+        let mut model = grillage(30);
+        model.supports[0].fixed = [true, true, true, false, false, false];
         let assembly = Assembly::new(&model, &model.nodes_mm).unwrap();
         let k = assembly.stiffness(&model);
         assert!(k.pattern.in_order);
@@ -3546,41 +3547,7 @@ mod tests {
     /// factor of a matrix that is not positive definite.
     #[test]
     fn the_supernodal_factor_is_faers_on_one_thread_or_two() {
-        let m = 40;
-        let beam = |a: usize, b: usize| Beam {
-            nodes: [a, b],
-            section: 0,
-            z_axis: DVec3::Z,
-            initial: InitialForces::default(),
-            offsets_mm: [DVec3::ZERO; 2],
-        };
-        let mut beams = Vec::new();
-        for y in 0..m {
-            for x in 0..m {
-                if x + 1 < m {
-                    beams.push(beam(y * m + x, y * m + x + 1));
-                }
-                if y + 1 < m {
-                    beams.push(beam(y * m + x, (y + 1) * m + x));
-                }
-            }
-        }
-        let model = FrameModel {
-            nodes_mm: (0..m * m)
-                .map(|c| DVec3::new((c % m) as f64 * 500.0, (c / m) as f64 * 500.0, 0.0))
-                .collect(),
-            sections: vec![Section::steel_strip()],
-            beams,
-            supports: [0, m - 1, m * (m - 1), m * m - 1]
-                .iter()
-                .map(|&node| super::super::model::Support {
-                    node,
-                    fixed: [true; 6],
-                    along: None,
-                })
-                .collect(),
-            ..Default::default()
-        };
+        let model = grillage(40);
         let assembly = Assembly::new(&model, &model.nodes_mm).unwrap();
         let k = assembly.stiffness(&model);
         // faer's structure of the matrix as it stands, and faer's factor.
