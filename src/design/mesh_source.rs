@@ -38,13 +38,14 @@ pub struct MeshSource {
 /// film at the triangles' scale (measured against Enneper's surface over
 /// its own boundary), so two-ring fits turn that noise into principal
 /// directions wrong by up to 3° and crossings up to 3.5° off 90° (the
-/// shipped films); 120-vertex fits average it to within 0.2°. The fits
-/// are a minimal surface's jets
-/// ([`crate::design::mesh::curvature::vertex_jets_minimal`]: 7 unknowns
-/// inside, 9 where the neighbourhood reaches the rim, against a general
-/// cubic's 10): at the rim of the film over Enneper's boundary general
-/// cubics bent the traced lines near their ends by up to 2.5e-5 /mm (a
-/// straight line read a 26 m radius, rim strips 5–11 % too much).
+/// shipped films); 120-vertex fits average it to within 0.32°. The fits
+/// are a minimal surface's quartic jets
+/// ([`crate::design::mesh::curvature::vertex_jets_minimal`]: 9 unknowns
+/// against a general quartic's 15), fitted at one vertex in six or seven
+/// and blended at every vertex: at the rim of the film over Enneper's
+/// boundary general cubics bent the traced lines near their ends by up to
+/// 2.5e-5 /mm (a straight line read a 26 m radius, rim strips 5–11 % too
+/// much).
 pub const FILM_JET_POINTS: usize = 120;
 
 /// A film's surface patches are fitted to at least this many neighbours

@@ -4,7 +4,7 @@
 //! (II(d, d) = 0). The analytic surfaces are in `design::surface`, the
 //! mesh surface in `design::mesh::surface`.
 
-use glam::{DVec2, DVec3};
+use glam::{DMat3, DVec2, DVec3};
 
 /// A point of a surface with its partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,10 +144,77 @@ pub fn curvature_of(j: &SurfaceJet) -> Curvature {
     }
 }
 
+/// The unit normal and the shape operator of a jet as a symmetric 3D
+/// tensor on its tangent plane: S = J·I⁻¹·II·I⁻¹·Jᵀ with J = [pu pv], so
+/// that tᵀ·S·t is the second fundamental form of a tangent vector t (and
+/// S·n = 0). Its eigenpairs in the tangent plane are [`curvature_of`]'s
+/// principal curvatures and directions; as a tensor it can be averaged.
+pub fn shape_tensor_of(j: &SurfaceJet) -> (DVec3, DMat3) {
+    let n = j.pu.cross(j.pv).normalize();
+    let (e, f, g) = (j.pu.dot(j.pu), j.pu.dot(j.pv), j.pv.dot(j.pv));
+    let (l, m, nn) = (j.puu.dot(n), j.puv.dot(n), j.pvv.dot(n));
+    let det = e * g - f * f;
+    // A = I⁻¹ = [g, −f; −f, e]/det; M = A·II·A.
+    let (a11, a12, a22) = (g / det, -f / det, e / det);
+    let (b11, b12, b21, b22) = (
+        a11 * l + a12 * m,
+        a11 * m + a12 * nn,
+        a12 * l + a22 * m,
+        a12 * m + a22 * nn,
+    );
+    let (m11, m12, m22) = (
+        b11 * a11 + b12 * a12,
+        b11 * a12 + b12 * a22,
+        b21 * a12 + b22 * a22,
+    );
+    let outer = |a: DVec3, b: DVec3| DMat3::from_cols(a * b.x, a * b.y, a * b.z);
+    let cross = outer(j.pu, j.pv);
+    (
+        n,
+        outer(j.pu, j.pu) * m11 + (cross + cross.transpose()) * m12 + outer(j.pv, j.pv) * m22,
+    )
+}
+
 /// Parameter-space vector (du, dv) of a 3D tangent vector at a jet.
 pub fn to_parameter(j: &SurfaceJet, d: DVec3) -> DVec2 {
     let (e, f, g) = (j.pu.dot(j.pu), j.pu.dot(j.pv), j.pv.dot(j.pv));
     let det = e * g - f * f;
     let (r1, r2) = (j.pu.dot(d), j.pv.dot(d));
     DVec2::new((g * r1 - f * r2) / det, (e * r2 - f * r1) / det)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a jet with a skew, non-unit parametrisation the tensor is
+    /// symmetric, annihilates the normal and has `curvature_of`'s
+    /// principal curvatures along its principal directions.
+    #[test]
+    fn the_shape_tensor_has_the_principal_curvatures() {
+        let j = SurfaceJet {
+            p: DVec3::ZERO,
+            pu: DVec3::new(1.0, 0.2, 0.3),
+            pv: DVec3::new(0.1, 1.4, -0.2),
+            puu: DVec3::new(0.05, 0.1, 0.7),
+            puv: DVec3::new(0.2, -0.1, 0.3),
+            pvv: DVec3::new(0.0, 0.3, -0.9),
+        };
+        let c = curvature_of(&j);
+        let (n, s) = shape_tensor_of(&j);
+        assert!((n - c.normal).length() < 1e-15);
+        assert!((s - s.transpose())
+            .to_cols_array()
+            .iter()
+            .all(|x| x.abs() < 1e-14));
+        assert!((s * n).length() < 1e-14);
+        assert!(
+            (s * c.d1 - c.d1 * c.k1).length() < 1e-14,
+            "{} {}",
+            s * c.d1,
+            c.k1
+        );
+        assert!((s * c.d2 - c.d2 * c.k2).length() < 1e-14);
+        assert!(c.k1 - c.k2 > 0.1);
+    }
 }

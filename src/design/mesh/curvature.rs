@@ -22,8 +22,8 @@
 //! columns of powers) from vertex to vertex, so no fit allocates. The degree
 //! and the neighbourhood's size are decided once per mesh, from the jets
 //! of at most [`DECISION_SAMPLE`] vertices. Where the neighbourhoods are
-//! large (fine meshes, [`SHARED_MIN_POINTS`]), jets are fitted at a
-//! covering subset of the vertices only and evaluated at the others
+//! large (fine meshes and films, [`SHARED_MIN_POINTS`]), jets are fitted at
+//! a covering subset of the vertices only and blended at every vertex
 //! ([`shared_jets`]). On the 160,801-vertex mesh of `cargo bench --bench
 //! mesh` (5 mm cells: quartics over 120 vertices) the stage took 68 s with
 //! a Householder QR per fit (dev profile, two cores loaded 2.5 times
@@ -61,13 +61,16 @@
 //! second fit is made in the basis of a minimal graph's Taylor expansion
 //! (the minimal surface equation and its derivatives at the vertex make
 //! the quadratic and cubic parts harmonic, the quartic harmonic but for a
-//! term the quadratic part fixes: [`minimal_monomials`]): a cubic of 7
-//! unknowns where the neighbourhood lies all around the vertex, a quartic
-//! of 9 where it reaches the boundary. There the neighbourhood is
-//! lopsided and a general cubic extrapolates the quartic truncation into
-//! the curvature; known structure, not more data, removes it. Where the
-//! neighbourhood lies all around the vertex, the first fit (which gives
-//! the frame) is made over its nearest three rings only ([`jet`]).
+//! term the quadratic part fixes: [`minimal_monomials`]): a quartic of 9
+//! unknowns, fitted at a covering subset of the film's vertices and
+//! blended at every vertex ([`shared_jets`]) where the neighbourhoods are
+//! large (a film's 120 vertices); over fewer, a cubic of 7 where the
+//! neighbourhood lies all around the vertex and the quartic where it
+//! reaches the boundary. There the neighbourhood is lopsided and a general
+//! cubic extrapolates the quartic truncation into the curvature; known
+//! structure, not more data, removes it. Where the neighbourhood lies all
+//! around the vertex, the first fit (which gives the frame) is made over
+//! its nearest three rings only ([`jet`]).
 //!
 //! The [`Curvature`] returned per vertex is expressed in its own principal
 //! frame: `first = [1, 0, 1]` and `second = [k1, 0, k2]` are the fundamental
@@ -79,8 +82,8 @@
 use super::topology::Topology;
 use super::TriMesh;
 use crate::geom::dot;
-use crate::geom::surface::{curvature_of, Curvature, SurfaceJet};
-use glam::DVec3;
+use crate::geom::surface::{curvature_of, shape_tensor_of, Curvature, SurfaceJet};
+use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
 /// The neighbourhood of a vertex grows ring by ring until it holds at least
@@ -202,7 +205,14 @@ fn decided_jets(mesh: &TriMesh, topo: &Topology, share: bool) -> Vec<VertexJet> 
     let normals = topo.vertex_normals();
     let noise_mm = rounding_noise_mm(mesh);
     let fit = |stride: usize, n0: usize, degree: usize| {
-        jets_over(mesh, topo, &normals, noise_mm, stride, (n0, degree, false))
+        jets_over(
+            mesh,
+            topo,
+            &normals,
+            noise_mm,
+            stride,
+            (n0, degree, Basis::General),
+        )
     };
     let mut best: Option<(f64, usize, usize, usize, Vec<VertexJet>)> = None;
     for (degree, n0) in [(3, MIN_POINTS), (4, QUARTIC_MIN_POINTS)] {
@@ -218,7 +228,7 @@ fn decided_jets(mesh: &TriMesh, topo: &Topology, share: bool) -> Vec<VertexJet> 
     if points <= n0 && stride == 1 {
         return jets;
     }
-    let how = (points.max(n0), degree, false);
+    let how = (points.max(n0), degree, Basis::General);
     if share && how.0 >= SHARED_MIN_POINTS {
         return shared_jets(mesh, topo, &normals, noise_mm, how);
     }
@@ -246,21 +256,27 @@ fn shared_rings(points: usize) -> usize {
 
 /// Jets where neighbourhoods are large ([`SHARED_MIN_POINTS`]): fitted at
 /// a covering subset of the vertices ([`cover`]: every vertex in it or
-/// within [`shared_rings`] rings of one, every boundary vertex in it), each
-/// other vertex's curvature that of the nearest fitted vertex's polynomial
-/// at the vertex's own position ([`Fit::curvature_at`]; its noise,
-/// residual and neighbourhood are the fitted vertex's). The fits of two
-/// vertices a ring or two apart share most of their points and differ by
-/// about their rounding noise; the tests measure the shared jets against
-/// the closed form and on a plane against a jet at every vertex (as
-/// accurate; the noise 6 % above, its largest over the fitted vertex's σ
-/// 4.3 against 3.1). On the 5 mm bench mesh one vertex in 8.4 is fitted.
+/// within [`shared_rings`] rings of one, every boundary vertex in it), and
+/// every vertex's curvature the blend ([`blend`]) of the fitted
+/// polynomials within reach ([`reach`]) evaluated at the vertex's own
+/// position ([`Fit::curvature_at`]), weighted (1 − r²/R²)³; its noise,
+/// residual and neighbourhood are the nearest fitted vertex's. The fits of
+/// two vertices a ring or two apart share most of their points and differ
+/// by about their noise: blended, the field varies smoothly from vertex to
+/// vertex, where taking the nearest fitted vertex's alone made it jump at
+/// the borders between their cells (a straight line on a film read 5 % of
+/// the film's largest curvature there, against 3 % blended), and the
+/// average of a few fits is less noisy than one. The tests measure it
+/// against the closed form and on a plane against a jet at every vertex:
+/// the curvature's largest error 20 % and its rms 17 % below, the noise on
+/// the plane the same (its largest over the fitted vertex's σ 4.2 against
+/// 3.1). On the 5 mm bench mesh one vertex in 8.4 is fitted.
 fn shared_jets(
     mesh: &TriMesh,
     topo: &Topology,
     normals: &[DVec3],
     noise_mm: f64,
-    how: (usize, usize, bool),
+    how: (usize, usize, Basis),
 ) -> Vec<VertexJet> {
     let rings = shared_rings(how.0);
     let member = cover(topo, rings);
@@ -279,38 +295,133 @@ fn shared_jets(
             },
         )
         .collect();
-    let mut slot = vec![u32::MAX; member.len()];
-    for (i, &v) in members.iter().enumerate() {
-        slot[v as usize] = i as u32;
-    }
     let p = &mesh.positions_mm;
-    (0..member.len() as u32)
-        .into_par_iter()
+    // Each fitted vertex's reach: the vertices closer than REACH times
+    // its farthest within `rings` rings, with their weights.
+    let reaches: Vec<Vec<(u32, f64)>> = members
+        .par_iter()
         .map_init(
             || (Vec::new(), crate::geom::mesh::VisitMarks::new(member.len())),
-            |(hood, seen), v| {
-                if member[v as usize] {
-                    return fitted[slot[v as usize] as usize].0;
-                }
-                rings_around(topo, v, rings, hood, seen);
-                let distance = |w: u32| p[w as usize].distance_squared(p[v as usize]);
-                let nearest = hood
-                    .iter()
-                    .copied()
-                    .filter(|&w| member[w as usize])
-                    .min_by(|&a, &b| distance(a).total_cmp(&distance(b)).then(a.cmp(&b)))
-                    .expect("every vertex is in the cover or near it");
-                let (jet, fit) = &fitted[slot[nearest as usize] as usize];
-                match fit {
-                    Some(fit) => VertexJet {
-                        curvature: fit.curvature_at(p[v as usize] - p[nearest as usize]),
-                        ..*jet
-                    },
-                    None => *jet,
-                }
-            },
+            |(hood, seen), &m| reach(topo, p, m, rings, hood, seen),
         )
+        .collect();
+    // The reaches by vertex: (fitted vertex's slot, weight), counting sort.
+    let mut starts = vec![0u32; member.len() + 1];
+    for &(v, _) in reaches.iter().flatten() {
+        starts[v as usize + 1] += 1;
+    }
+    for v in 0..member.len() {
+        starts[v + 1] += starts[v];
+    }
+    let mut next = starts.clone();
+    let mut by_vertex = vec![(0u32, 0.0f64); starts[member.len()] as usize];
+    for (slot, list) in reaches.iter().enumerate() {
+        for &(v, w) in list {
+            by_vertex[next[v as usize] as usize] = (slot as u32, w);
+            next[v as usize] += 1;
+        }
+    }
+    drop(reaches);
+    (0..member.len())
+        .into_par_iter()
+        .map(|v| {
+            let parts = &by_vertex[starts[v] as usize..starts[v + 1] as usize];
+            // The nearest fitted vertex (the largest weight) lends its
+            // noise, residual and neighbourhood.
+            let &(nearest, _) = parts
+                .iter()
+                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
+                .expect("every vertex is within the reach of a fitted vertex");
+            let curvature = blend(parts.iter().map(|&(slot, w)| {
+                let (jet, fit) = &fitted[slot as usize];
+                let (normal, shape) = match fit {
+                    Some(fit) => {
+                        shape_tensor_of(&fit.jet_at(p[v] - p[members[slot as usize] as usize]))
+                    }
+                    None => (jet.curvature.normal, principal_tensor(&jet.curvature)),
+                };
+                (w, normal, shape)
+            }));
+            VertexJet {
+                curvature,
+                ..fitted[nearest as usize].0
+            }
+        })
         .collect()
+}
+
+/// A fitted vertex's reach, as a multiple of the distance to its farthest
+/// vertex within the shared rings ([`reach`]): the weight of the farthest
+/// vertex it serves is (1 − 1/REACH²)³ = 0.047.
+const REACH: f64 = 1.25;
+
+/// The vertices a fitted vertex `m` serves in [`shared_jets`] and their
+/// weights (1 − r²/R²)³ (C², falling to 0 at R), R = [`REACH`] times the
+/// distance to its farthest vertex within `shared_rings` rings: whole
+/// rings are added while the last one has a vertex within R.
+fn reach(
+    topo: &Topology,
+    p: &[DVec3],
+    m: u32,
+    shared_rings: usize,
+    hood: &mut Vec<u32>,
+    seen: &mut crate::geom::mesh::VisitMarks,
+) -> Vec<(u32, f64)> {
+    let at = p[m as usize];
+    let d2 = |w: u32| p[w as usize].distance_squared(at);
+    let mut frontier = rings_around(topo, m, shared_rings, hood, seen);
+    let r2 = REACH * REACH * hood.iter().map(|&w| d2(w)).fold(0.0, f64::max);
+    if r2 <= 0.0 {
+        return vec![(m, 1.0)];
+    }
+    loop {
+        let start = hood.len();
+        if !grow(topo, hood, seen, &mut frontier) || !hood[start..].iter().any(|&w| d2(w) < r2) {
+            break;
+        }
+    }
+    hood.iter()
+        .filter_map(|&w| {
+            let t = 1.0 - d2(w) / r2;
+            (t > 0.0).then_some((w, t * t * t))
+        })
+        .collect()
+}
+
+/// A curvature's shape operator as a 3D tensor, k1·d1d1ᵀ + k2·d2d2ᵀ.
+fn principal_tensor(c: &Curvature) -> DMat3 {
+    let outer = |d: DVec3| DMat3::from_cols(d * d.x, d * d.y, d * d.z);
+    outer(c.d1) * c.k1 + outer(c.d2) * c.k2
+}
+
+/// The shape operators of `parts` (weight, unit normal and shape
+/// operator as a 3D tensor, [`shape_tensor_of`], all at the same point)
+/// averaged: Σ w·S / Σ w over the averaged normal's tangent plane, in its
+/// principal frame as [`Fit::curvature`].
+fn blend(parts: impl Iterator<Item = (f64, DVec3, DMat3)>) -> Curvature {
+    let (mut total, mut normal, mut shape) = (0.0, DVec3::ZERO, DMat3::ZERO);
+    for (w, n, s) in parts {
+        total += w;
+        normal += w * n;
+        shape += s * w;
+    }
+    let n = normal.normalize();
+    let e1 = n.any_orthonormal_vector();
+    let e2 = n.cross(e1);
+    let form = |a: DVec3, b: DVec3| a.dot(shape * b) / total;
+    let c = curvature_of(&SurfaceJet {
+        p: DVec3::ZERO,
+        pu: e1,
+        pv: e2,
+        puu: form(e1, e1) * n,
+        puv: form(e1, e2) * n,
+        pvv: form(e2, e2) * n,
+    });
+    Curvature {
+        first: [1.0, 0.0, 1.0],
+        second: [c.k1, 0.0, c.k2],
+        ..c
+    }
 }
 
 /// A covering subset of the vertices, greedily in vertex order: a vertex
@@ -332,15 +443,16 @@ fn cover(topo: &Topology, shared_rings: usize) -> Vec<bool> {
     member
 }
 
-/// The vertices within `shared_rings` rings of `v` (v first), into
-/// `hood`.
+/// The vertices within `shared_rings` rings of `v` (v first, ring by
+/// ring), into `hood`, marked in `seen`; returns where the last ring
+/// starts in `hood` (to [`grow`] it further).
 fn rings_around(
     topo: &Topology,
     v: u32,
     shared_rings: usize,
     hood: &mut Vec<u32>,
     seen: &mut crate::geom::mesh::VisitMarks,
-) {
+) -> usize {
     hood.clear();
     hood.push(v);
     seen.clear();
@@ -351,6 +463,7 @@ fn rings_around(
             break;
         }
     }
+    frontier
 }
 
 /// The most vertices whose jets decide a mesh's degree and neighbourhood
@@ -422,9 +535,10 @@ pub fn vertex_jets_over(mesh: &TriMesh, topo: &Topology, min_points: usize) -> V
 /// As [`vertex_jets_over`] for a minimal surface (a form-found film): the
 /// jets are fitted in the basis of a minimal graph's Taylor expansion
 /// ([`minimal_monomials`]: harmonic quadratic and cubic parts, a quartic
-/// part harmonic but for the term the quadratic part fixes): 7 unknowns
-/// inside the film, 9 where the neighbourhood reaches its rim, in place of
-/// a general cubic's 10. What the film is known to be is not
+/// part harmonic but for the term the quadratic part fixes): 9 unknowns
+/// where the jets are shared ([`SHARED_MIN_POINTS`] or more) or the
+/// neighbourhood reaches the film's rim, else 7, in place of a general
+/// cubic's 10 or a quartic's 15. What the film is known to be is not
 /// left to the data: at the rim, where the neighbourhood lies on one side,
 /// a general cubic extrapolates its quartic truncation into the curvature
 /// and bent the traced lines near their ends by up to 1e-5 /mm.
@@ -434,12 +548,15 @@ pub fn vertex_jets_minimal(mesh: &TriMesh, topo: &Topology, min_points: usize) -
 
 /// Jets of degree `degree` (lower only where a neighbourhood of
 /// [`MAX_RINGS`] rings cannot carry it) over at least `min_points`
-/// vertices; `minimal`: a cubic in a minimal surface's basis. At every
-/// vertex, however large the neighbourhoods: a film's jets are not shared
-/// ([`shared_jets`]), since off its vertex a harmonic cubic misses the
-/// quartic term's second derivatives (the film between rings read its
-/// lines' smallest bending radii 5–8 % low with shared jets, 1.2 % with
-/// its own), and its vertices carry the form finding's noise.
+/// vertices, at every vertex; `minimal`: in a minimal surface's basis, a
+/// cubic inside and a quartic where the neighbourhood reaches the
+/// boundary. A minimal surface's jets over [`SHARED_MIN_POINTS`] or more
+/// are shared ([`shared_jets`]) and quartic everywhere: off its vertex a
+/// harmonic cubic misses the quartic term's second derivatives (films
+/// between rings read their lines' smallest bending radii 5–8 % low with
+/// the nearest fitted vertex's cubic), where a shared quartic holds the
+/// catenoid's k1 inside the film within 0.05 % at 22.5 mm edges (0.46 %
+/// with a cubic at every vertex) and 0.8 % at 50 mm (2.3 %).
 fn jets_of(
     mesh: &TriMesh,
     topo: &Topology,
@@ -450,13 +567,22 @@ fn jets_of(
     debug_assert_eq!(mesh.positions_mm.len(), topo.vertex_count());
     let normals = topo.vertex_normals();
     let noise_mm = rounding_noise_mm(mesh);
+    if minimal && min_points >= SHARED_MIN_POINTS {
+        let how = (min_points, degree, Basis::MinimalQuartic);
+        return shared_jets(mesh, topo, &normals, noise_mm, how);
+    }
+    let inside = if minimal {
+        Basis::Minimal
+    } else {
+        Basis::General
+    };
     jets_over(
         mesh,
         topo,
         &normals,
         noise_mm,
         1,
-        (min_points, degree, minimal),
+        (min_points, degree, inside),
     )
 }
 
@@ -466,7 +592,8 @@ fn rounding_noise_mm(mesh: &TriMesh) -> f64 {
 }
 
 /// The jets of every `stride`-th vertex (0, stride, 2·stride, …), fitted
-/// as `how` = (min_points, degree, minimal) says, in parallel; each thread
+/// as `how` = (min_points, degree, basis inside the mesh) says
+/// ([`fit_vertex`]), in parallel; each thread
 /// reuses its buffers ([`Scratch`]) from vertex to vertex.
 fn jets_over(
     mesh: &TriMesh,
@@ -474,7 +601,7 @@ fn jets_over(
     normals: &[DVec3],
     noise_mm: f64,
     stride: usize,
-    how: (usize, usize, bool),
+    how: (usize, usize, Basis),
 ) -> Vec<VertexJet> {
     let count = mesh.positions_mm.len().div_ceil(stride);
     (0..count)
@@ -573,7 +700,8 @@ enum Basis {
     Minimal,
     /// A minimal surface's quartic (9): a neighbourhood that reaches the
     /// boundary, lopsided, where a cubic extrapolates the quartic
-    /// truncation into the curvature.
+    /// truncation into the curvature; and a jet evaluated off its vertex
+    /// ([`shared_jets`]), whose curvature there the quartic term reaches.
     MinimalQuartic,
 }
 
@@ -623,6 +751,21 @@ fn minimal_to_full(a: &[f64]) -> [f64; 10] {
         -3.0 * a[6],
         -3.0 * a[5],
         a[6],
+    ]
+}
+
+/// A minimal quartic jet's quartic coefficients (of x⁴, x³y, x²y², xy³,
+/// y⁴, as [`monomials`]): its harmonic part a₇(x⁴ − 6x²y² + y⁴) +
+/// a₈(4x³y − 4xy³) and the particular term P₀(x⁴ − y⁴) + P₁x³y
+/// ([`particular_term`]).
+fn minimal_quartic_to_full(a: &[f64], particular: (f64, f64)) -> [f64; 5] {
+    let (p0, p1) = particular;
+    [
+        a[7] + p0,
+        4.0 * a[8] + p1,
+        -6.0 * a[7],
+        -4.0 * a[8],
+        a[7] - p0,
     ]
 }
 
@@ -693,13 +836,16 @@ fn grow(
 
 /// The vertex's jet (its `sigma_per_mm` not yet set), the gain from the
 /// residual (mm) to the curvature's standard error (1/mm) and the fitted
-/// polynomial (None on a mesh where not even a plane fits).
+/// polynomial (None on a mesh where not even a plane fits); fitted over
+/// at least `min_points` vertices to degree `top`, in the basis `inside`
+/// where the neighbourhood lies inside the mesh and, for a minimal
+/// surface, in its quartic basis where it reaches the boundary.
 fn fit_vertex(
     mesh: &TriMesh,
     topo: &Topology,
     n0: DVec3,
     v: u32,
-    (min_points, top, minimal): (usize, usize, bool),
+    (min_points, top, inside): (usize, usize, Basis),
     scratch: &mut Scratch,
 ) -> (VertexJet, f64, Option<Fit>) {
     let p = &mesh.positions_mm;
@@ -724,18 +870,19 @@ fn fit_vertex(
     }
     let n0 = if n0 == DVec3::ZERO { DVec3::Z } else { n0 };
     loop {
-        let basis = match (minimal, hood.iter().any(|&w| topo.is_boundary(w))) {
-            (false, _) => Basis::General,
-            (true, false) => Basis::Minimal,
-            (true, true) => Basis::MinimalQuartic,
+        let lopsided = hood.iter().any(|&w| topo.is_boundary(w));
+        let basis = match (inside, lopsided) {
+            (Basis::General, _) => Basis::General,
+            (_, false) => inside,
+            (_, true) => Basis::MinimalQuartic,
         };
         rel.clear();
         rel.extend(hood.iter().map(|&w| p[w as usize] - p0));
         // A minimal jet's frame inside the mesh from the first whole rings
         // that hold [`FRAME_POINTS`] ([`jet`]).
-        let frame_points = match basis {
-            Basis::General | Basis::MinimalQuartic => rel.len(),
-            Basis::Minimal => ends[..=rings]
+        let frame_points = match (basis, lopsided) {
+            (Basis::General, _) | (_, true) => rel.len(),
+            (Basis::Minimal | Basis::MinimalQuartic, false) => ends[..=rings]
                 .iter()
                 .copied()
                 .find(|&e| e >= FRAME_POINTS)
@@ -914,22 +1061,38 @@ fn fit(
                     particular = particular_term(&coef);
                 }
             }
-            if judged {
+            let (rss, diag) = if judged {
                 let rss = residual_sum(rows, top, terms, &coef[..k], particular);
-                (coef, rss, l.inverse_diagonal())
+                (rss, l.inverse_diagonal())
             } else {
-                (coef, f64::NAN, [f64::NAN; MAX_UNKNOWNS])
+                (f64::NAN, [f64::NAN; MAX_UNKNOWNS])
+            };
+            Solved {
+                coef,
+                rss,
+                diag,
+                particular,
             }
         }
         // Nearly dependent columns ([`Cholesky`]): a QR on the rows.
         None => fit_by_qr(rows, k, minimal, passes_needed)?,
     };
-    let (coef, rss, diag) = solution;
+    let Solved {
+        coef,
+        rss,
+        diag,
+        particular,
+    } = solution;
     let (coef, diag, len) = if minimal {
-        let mut full = ([0.0; MAX_UNKNOWNS], [0.0; MAX_UNKNOWNS]);
+        let mut full = ([0.0; MAX_UNKNOWNS], [f64::NAN; MAX_UNKNOWNS]);
         full.0[..10].copy_from_slice(&minimal_to_full(&coef[..k]));
         full.1[..10].copy_from_slice(&minimal_to_full_variance(&diag[..k]));
-        (full.0, full.1, 10)
+        if cubic_only {
+            (full.0, full.1, 10)
+        } else {
+            full.0[10..].copy_from_slice(&minimal_quartic_to_full(&coef[..k], particular));
+            (full.0, full.1, MAX_UNKNOWNS)
+        }
     } else {
         (coef, diag, k)
     };
@@ -1028,14 +1191,20 @@ fn residual_sum(
     residuals.iter().map(|r| r * r).sum()
 }
 
+/// A fit's least-squares solution: its coefficients (the first k), the
+/// residual sum of squares and the diagonal of (AᵀA)⁻¹ (NaN where not
+/// asked for), and the minimal quartic's particular term subtracted from
+/// the heights (zero for the other bases).
+struct Solved {
+    coef: [f64; MAX_UNKNOWNS],
+    rss: f64,
+    diag: [f64; MAX_UNKNOWNS],
+    particular: (f64, f64),
+}
+
 /// The least squares by Householder QR on the rows ([`least_squares_qr`]),
 /// with the minimal quartic's particular term iterated as in [`fit`].
-fn fit_by_qr(
-    rows: &mut FitRows,
-    k: usize,
-    minimal: bool,
-    passes: usize,
-) -> Option<([f64; MAX_UNKNOWNS], f64, [f64; MAX_UNKNOWNS])> {
+fn fit_by_qr(rows: &mut FitRows, k: usize, minimal: bool, passes: usize) -> Option<Solved> {
     let FitRows { local, work, .. } = rows;
     let mut particular = (0.0, 0.0);
     // The unknowns' columns and the right-hand side's.
@@ -1049,7 +1218,13 @@ fn fit_by_qr(
         }));
         let solution = least_squares_qr(work, k)?;
         if pass + 1 == passes {
-            return Some(solution);
+            let (coef, rss, diag) = solution;
+            return Some(Solved {
+                coef,
+                rss,
+                diag,
+                particular,
+            });
         }
         particular = particular_term(&solution.0);
     }
@@ -1315,10 +1490,10 @@ impl Fit {
             ..c
         }
     }
-    /// The curvature of the fitted graph at the point over the tangent
-    /// plane of `offset_mm` from the vertex (a neighbour's position
-    /// relative to it), in its principal frame as [`Fit::curvature`].
-    fn curvature_at(&self, offset_mm: DVec3) -> Curvature {
+    /// The fitted graph's point and derivatives over the tangent plane of
+    /// `offset_mm` from the vertex (a neighbour's position relative to it;
+    /// the point itself is left at the offset, which no curvature reads).
+    fn jet_at(&self, offset_mm: DVec3) -> SurfaceJet {
         let s = self.scale;
         let (x, y) = (offset_mm.dot(self.e1) / s, offset_mm.dot(self.e2) / s);
         let c = |i: usize| self.c(i);
@@ -1361,18 +1536,13 @@ impl Fit {
             + 2.0 * c(12) * x2
             + 6.0 * c(13) * xy
             + 12.0 * c(14) * y2;
-        let k = curvature_of(&SurfaceJet {
+        SurfaceJet {
             p: offset_mm,
             pu: self.e1 + fx * self.n,
             pv: self.e2 + fy * self.n,
             puu: fxx / s * self.n,
             puv: fxy / s * self.n,
             pvv: fyy / s * self.n,
-        });
-        Curvature {
-            first: [1.0, 0.0, 1.0],
-            second: [k.k1, 0.0, k.k2],
-            ..k
         }
     }
     /// Standard error of the shape operator S = [2c₂₀, c₁₁; c₁₁, 2c₀₂]/scale
@@ -1911,13 +2081,15 @@ mod tests {
         assert!(worst < 2.2e-2);
     }
 
-    /// The same numbers with one thread or several.
     /// On a fine mesh (Enneper × 1000 mm, 200² jittered cells of about
     /// 15 mm, 0.001 mm), where the jets are quartics over more than
-    /// [`SHARED_MIN_POINTS`] vertices, a neighbour's jet evaluated at a
-    /// vertex is as accurate as the vertex's own: the errors against the
-    /// closed form with shared jets within 10 % of those with a jet at
-    /// every vertex, interior and boundary, curvature and normal.
+    /// [`SHARED_MIN_POINTS`] vertices, neighbours' jets blended at a
+    /// vertex are as accurate as the vertex's own: the errors against the
+    /// closed form with shared jets no larger than those with a jet at
+    /// every vertex, interior and boundary, curvature and normal. Measured
+    /// with the blend ([`shared_jets`]): the largest curvature error 19 %
+    /// (interior) and 8 % (boundary) below, the rms 17 % and 5 %, the
+    /// normal's 19 % and 5 %.
     #[test]
     fn shared_jets_are_as_accurate_as_a_jet_at_every_vertex() {
         use crate::design::surface::{Enneper, Surface};
@@ -1950,9 +2122,9 @@ mod tests {
         eprintln!("every vertex: {own:?}\nshared: {shared:?}");
         assert!(own.3 >= SHARED_MIN_POINTS, "jets over {} vertices", own.3);
         for b in 0..2 {
-            assert!(shared.0[b] <= 1.1 * own.0[b], "largest k error {b}");
-            assert!(shared.1[b] <= 1.1 * own.1[b], "largest normal error {b}");
-            assert!(shared.2[b] <= 1.1 * own.2[b], "rms k error {b}");
+            assert!(shared.0[b] <= own.0[b], "largest k error {b}");
+            assert!(shared.1[b] <= own.1[b], "largest normal error {b}");
+            assert!(shared.2[b] <= own.2[b], "rms k error {b}");
         }
     }
 
@@ -2015,7 +2187,9 @@ mod tests {
                 Cholesky::of(&sums.gram(terms), k).is_some(),
                 "{basis:?} {degree}"
             );
-            let (coef, rss, diag) = fit_by_qr(&mut rows, k, minimal, passes).expect("fits");
+            let Solved {
+                coef, rss, diag, ..
+            } = fit_by_qr(&mut rows, k, minimal, passes).expect("fits");
             let (coef, diag) = if minimal {
                 (
                     minimal_to_full(&coef[..k]).to_vec(),
@@ -2048,10 +2222,11 @@ mod tests {
 
     /// Minimal jets on films between coaxial rings (R = 1 m, 0.8 and 1.2 m
     /// apart, 22.5 and 50 mm edges): k1 against the catenoid through the
-    /// rings, inside the film and at its rims. Measured: 0.46 % and 0.34 %
-    /// at 22.5 mm, 2.3 % and 5.0 % at 50 mm (the film's own discretisation
-    /// most of it); a frame from three rings at the rim makes the latter
-    /// 5.6 % ([`jet`]).
+    /// rings, inside the film and at its rims. Measured with the shared
+    /// quartics: 0.053 % and 0.25 % at 22.5 mm, 0.78 % and 4.7 % at 50 mm
+    /// (the film's own discretisation most of it); a cubic at every vertex
+    /// gave 0.46 % and 0.34 %, 2.3 % and 5.0 %, and a frame from three rings
+    /// at the rim 5.6 % at 50 mm ([`jet`]).
     #[test]
     fn minimal_jets_on_films_between_rings_hold_the_catenoid() {
         use crate::design::minimal::{form_find, FormFindOptions};
@@ -2063,7 +2238,7 @@ mod tests {
                 })
                 .collect()
         };
-        for (h, edge, inside, rim) in [(400.0, 22.5, 0.005, 0.004), (600.0, 50.0, 0.025, 0.053)] {
+        for (h, edge, inside, rim) in [(400.0, 22.5, 0.001, 0.003), (600.0, 50.0, 0.01, 0.05)] {
             let film = form_find(
                 &[ring(-h), ring(h)],
                 &FormFindOptions::with_target_edge_mm(edge),
@@ -2102,6 +2277,8 @@ mod tests {
         }
     }
 
+    /// The same jets, general and shared minimal ones, with one thread or
+    /// several.
     #[test]
     fn deterministic_across_threads() {
         let (uv, tris) = samples::grid(12, 12, (-1.0, 1.0), (-1.0, 1.0), 0.3, 6);
@@ -2115,9 +2292,40 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .expect("pool")
-                .install(|| vertex_jets(topo.mesh(), &topo))
+                .install(|| {
+                    (
+                        vertex_jets(topo.mesh(), &topo),
+                        vertex_jets_minimal(topo.mesh(), &topo, SHARED_MIN_POINTS),
+                    )
+                })
         };
         assert_eq!(run(1), run(3));
+    }
+
+    /// Blended curvatures average the shape operators, not the principal
+    /// curvatures: a saddle and the same saddle turned a quarter cancel,
+    /// three to one leave half of it along the first one's directions.
+    #[test]
+    fn blending_averages_shape_operators() {
+        let saddle = |d1: DVec3| {
+            let n = DVec3::Z;
+            Curvature {
+                normal: n,
+                first: [1.0, 0.0, 1.0],
+                second: [2.0, 0.0, -2.0],
+                k1: 2.0,
+                k2: -2.0,
+                d1,
+                d2: n.cross(d1),
+            }
+        };
+        let part = |w: f64, c: Curvature| (w, c.normal, principal_tensor(&c));
+        let cancelled =
+            blend([part(1.0, saddle(DVec3::X)), part(1.0, saddle(DVec3::Y))].into_iter());
+        assert!(cancelled.k1.abs() < 1e-12 && cancelled.k2.abs() < 1e-12);
+        let half = blend([part(3.0, saddle(DVec3::X)), part(1.0, saddle(DVec3::Y))].into_iter());
+        assert!((half.k1 - 1.0).abs() < 1e-12 && (half.k2 + 1.0).abs() < 1e-12);
+        assert!(half.d1.x.abs() > 1.0 - 1e-12 && (half.normal - DVec3::Z).length() < 1e-12);
     }
 
     /// A tilted plane of `cells` × `cells` jittered cells over a square of
@@ -2160,8 +2368,9 @@ mod tests {
     /// is rounding noise: the shared jets' noise (rms of the largest |k|
     /// and k1 − k2) within 10 % of a jet at every vertex, and the largest
     /// |k| / σ, σ being the fitted vertex's ([`VertexJet::sigma_per_mm`]),
-    /// still well below [`SIGNIFICANT`]. Measured: rms 8.63e-7 against
-    /// 8.15e-7 /mm, largest ratio 4.3 against 3.1.
+    /// still well below [`SIGNIFICANT`]. Measured: rms 8.156e-7 against
+    /// 8.153e-7 /mm, largest ratio 4.2 against 3.1 (taking the nearest
+    /// fitted vertex's jet alone, before the blend: 8.63e-7 and 4.3).
     #[test]
     fn shared_jets_on_a_plane_are_no_noisier() {
         let (topo, _) = tilted_plane(80, 400.0);

@@ -33,6 +33,7 @@ use super::curvature::{VertexJet, SIGNIFICANT};
 use super::topology::{fmt_point, Topology};
 use crate::error::{Error, Location, Result};
 use glam::{DQuat, DVec3};
+use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 
@@ -100,21 +101,24 @@ pub fn vertex_index(topo: &Topology, jets: &[VertexJet], v: u32) -> Option<f64> 
     let n = jets[v as usize].curvature.normal;
     let e1 = n.any_orthonormal_vector();
     let e2 = n.cross(e1);
-    let angles: Vec<f64> = ring
-        .iter()
-        .map(|&w| {
-            let c = &jets[w as usize].curvature;
-            let d = DQuat::from_rotation_arc(c.normal, n) * c.d1;
-            d.dot(e2).atan2(d.dot(e1))
-        })
-        .collect();
-    let mut total = 0.0;
-    for i in 0..angles.len() {
-        let step = line_step(angles[(i + 1) % angles.len()] - angles[i]);
+    let angle = |w: u32| {
+        let c = &jets[w as usize].curvature;
+        let d = DQuat::from_rotation_arc(c.normal, n) * c.d1;
+        d.dot(e2).atan2(d.dot(e1))
+    };
+    let Some(&w0) = ring.first() else {
+        return Some(0.0);
+    };
+    // Around the ring and back to its first vertex.
+    let first = angle(w0);
+    let (mut total, mut previous) = (0.0, first);
+    for next in ring[1..].iter().map(|&w| angle(w)).chain([first]) {
+        let step = line_step(next - previous);
         if step.abs() > MAX_STEP_RAD {
             return None;
         }
         total += step;
+        previous = next;
     }
     Some((total / PI).round() / 2.0)
 }
@@ -135,6 +139,7 @@ fn line_step(d: f64) -> f64 {
 pub fn singularities(topo: &Topology, jets: &[VertexJet]) -> Vec<Singularity> {
     let nv = topo.vertex_count();
     let index: Vec<f64> = (0..nv as u32)
+        .into_par_iter()
         .map(|v| vertex_index(topo, jets, v).unwrap_or(0.0))
         .collect();
     let pos = &topo.mesh().positions_mm;

@@ -139,8 +139,11 @@ impl MeshSurface {
             .iter()
             .map(|c| outer(c.d1, c.d1) * c.k1 + outer(c.d2, c.d2) * c.k2)
             .collect();
-        let grid = UvGrid::new(&uv, &mesh.triangles);
-        let patches = fit_patches(mesh, &uv, patch_neighbours);
+        // The triangles' grid while the patches are fitted.
+        let (grid, patches) = rayon::join(
+            || UvGrid::new(&uv, &mesh.triangles),
+            || fit_patches(mesh, &uv, patch_neighbours),
+        );
         let supports = SupportGrid::new(&patches);
         MeshSurface {
             positions_mm: mesh.positions_mm.clone(),
@@ -356,6 +359,21 @@ pub const SUPPORT_EDGES: f64 = 1.5;
 /// Unknowns of a cubic patch per coordinate: 2 linear, 3 quadratic, 4 cubic.
 const PATCH_UNKNOWNS: usize = 9;
 
+/// A patch's terms (coefficient, power of Δu, power of Δv), in the order
+/// of its unknowns: Δu, Δv, ½Δu², ΔuΔv, ½Δv², ⅙Δu³, ½Δu²Δv, ½ΔuΔv²,
+/// ⅙Δv³.
+const PATCH_TERMS: [(f64, usize, usize); PATCH_UNKNOWNS] = [
+    (1.0, 1, 0),
+    (1.0, 0, 1),
+    (0.5, 2, 0),
+    (1.0, 1, 1),
+    (0.5, 0, 2),
+    (1.0 / 6.0, 3, 0),
+    (0.5, 2, 1),
+    (0.5, 1, 2),
+    (1.0 / 6.0, 0, 3),
+];
+
 /// A patch's neighbourhood grows ring by ring until it holds at least this
 /// many vertices besides its own (the 2-ring inside a mesh, 3 rings at the
 /// rim), so the cubic is fitted with some redundancy.
@@ -429,30 +447,39 @@ fn fit_patches(mesh: &TriMesh, uv: &[DVec2], min_neighbours: usize) -> Vec<Patch
                 .map(|&j| uv[j as usize].distance(q0))
                 .fold(0.0, f64::max)
                 .max(1e-9);
+            // The normal equations from the points' weighted power sums:
+            // every product of two terms is one monomial of degree ≤ 6.
+            let mut sums = [[0.0; 7]; 7];
+            let mut heights = [[DVec3::ZERO; 4]; 4];
+            let inverse = 1.0 / scale;
+            for &j in &seen[1..] {
+                let d = (uv[j as usize] - q0) * inverse;
+                let w = (1.0 - 0.5 * d.length_squared()).max(0.05);
+                let mut us = [w; 7];
+                let mut vs = [1.0; 7];
+                for k in 1..7 {
+                    us[k] = us[k - 1] * d.x;
+                    vs[k] = vs[k - 1] * d.y;
+                }
+                for (a, row) in sums.iter_mut().enumerate() {
+                    for (b, sum) in row[..7 - a].iter_mut().enumerate() {
+                        *sum += us[a] * vs[b];
+                    }
+                }
+                let rhs = mesh.positions_mm[j as usize] - x;
+                for (a, row) in heights.iter_mut().enumerate() {
+                    for (b, sum) in row[..4 - a].iter_mut().enumerate() {
+                        *sum += rhs * (us[a] * vs[b]);
+                    }
+                }
+            }
             let mut ata = [[0.0; PATCH_UNKNOWNS]; PATCH_UNKNOWNS];
             let mut atb = [DVec3::ZERO; PATCH_UNKNOWNS];
-            for &j in &seen[1..] {
-                let d = (uv[j as usize] - q0) / scale;
-                let (u, v) = (d.x, d.y);
-                let row = [
-                    u,
-                    v,
-                    0.5 * u * u,
-                    u * v,
-                    0.5 * v * v,
-                    u * u * u / 6.0,
-                    0.5 * u * u * v,
-                    0.5 * u * v * v,
-                    v * v * v / 6.0,
-                ];
-                let w = (1.0 - 0.5 * d.length_squared()).max(0.05);
-                let rhs = mesh.positions_mm[j as usize] - x;
-                for a in 0..PATCH_UNKNOWNS {
-                    for b in 0..PATCH_UNKNOWNS {
-                        ata[a][b] += w * row[a] * row[b];
-                    }
-                    atb[a] += rhs * (w * row[a]);
+            for (a, &(ca, ua, va)) in PATCH_TERMS.iter().enumerate() {
+                for (b, &(cb, ub, vb)) in PATCH_TERMS.iter().enumerate() {
+                    ata[a][b] = ca * cb * sums[ua + ub][va + vb];
                 }
+                atb[a] = heights[ua][va] * ca;
             }
             let sol = solve(ata, atb);
             let (s1, s2, s3) = (scale, scale * scale, scale * scale * scale);

@@ -26,6 +26,7 @@
 use super::TriMesh;
 use crate::error::{Error, Location, Result};
 use glam::DVec3;
+use rayon::prelude::*;
 use std::collections::VecDeque;
 use std::path::Path;
 
@@ -124,15 +125,7 @@ impl Topology {
             ))
         };
 
-        // Edges: (low vertex, high vertex, triangle), sorted.
-        let mut half: Vec<(u32, u32, u32)> = Vec::with_capacity(3 * triangles.len());
-        for (t, tri) in triangles.iter().enumerate() {
-            for i in 0..3 {
-                let (a, b) = (tri[i], tri[(i + 1) % 3]);
-                half.push((a.min(b), a.max(b), t as u32));
-            }
-        }
-        half.sort_unstable();
+        let half = sorted_edges(&triangles, nv);
         // Per triangle and corner i: the triangle across edge (tri[i], tri[i+1]).
         let mut across = vec![[u32::MAX; 3]; triangles.len()];
         let mut edge_count = 0;
@@ -164,17 +157,19 @@ impl Topology {
 
         // Triangles around each vertex (CSR), in triangle order.
         let (inc_start, inc) = incidence(&triangles, nv);
-        for v in 0..nv {
+        // The first vertex (in order) whose triangles form more than one fan.
+        let several = (0..nv).into_par_iter().find_first(|&v| {
+            count_fans(&triangles, &inc[inc_start[v]..inc_start[v + 1]], v as u32) > 1
+        });
+        if let Some(v) = several {
             let fans = count_fans(&triangles, &inc[inc_start[v]..inc_start[v + 1]], v as u32);
-            if fans > 1 {
-                return Err(Error::input(
-                    path,
-                    name_vertex(v as u32),
-                    format!(
-                        "the triangles around the vertex form {fans} separate fans (non-manifold vertex)"
-                    ),
-                ));
-            }
+            return Err(Error::input(
+                path,
+                name_vertex(v as u32),
+                format!(
+                    "the triangles around the vertex form {fans} separate fans (non-manifold vertex)"
+                ),
+            ));
         }
 
         // Connected pieces and orientation, by one breadth-first walk per piece.
@@ -386,6 +381,7 @@ impl Topology {
     pub fn vertex_normals(&self) -> Vec<DVec3> {
         let p = &self.mesh.positions_mm;
         (0..self.vertex_count() as u32)
+            .into_par_iter()
             .map(|v| {
                 let mut n = DVec3::ZERO;
                 for &t in self.triangles_around(v) {
@@ -441,6 +437,37 @@ fn traverses(tri: &[u32; 3], a: u32, b: u32) -> bool {
 }
 
 /// Triangles around each vertex in CSR form (start offsets, triangle ids).
+/// Every triangle's edges as (low vertex, high vertex, triangle), sorted:
+/// bucketed by the low vertex (a counting sort), each bucket (the edges
+/// from one vertex, a dozen) sorted on its own.
+fn sorted_edges(triangles: &[[u32; 3]], nv: usize) -> Vec<(u32, u32, u32)> {
+    let edges = || {
+        triangles.iter().enumerate().flat_map(|(t, tri)| {
+            (0..3).map(move |i| {
+                let (a, b) = (tri[i], tri[(i + 1) % 3]);
+                (a.min(b), a.max(b), t as u32)
+            })
+        })
+    };
+    let mut start = vec![0usize; nv + 1];
+    for (a, _, _) in edges() {
+        start[a as usize + 1] += 1;
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut half = vec![(0, 0, 0); start[nv]];
+    for e in edges() {
+        half[fill[e.0 as usize]] = e;
+        fill[e.0 as usize] += 1;
+    }
+    for v in 0..nv {
+        half[start[v]..start[v + 1]].sort_unstable();
+    }
+    half
+}
+
 fn incidence(triangles: &[[u32; 3]], nv: usize) -> (Vec<usize>, Vec<u32>) {
     let mut start = vec![0usize; nv + 1];
     for tri in triangles {
