@@ -7,7 +7,7 @@
 //! wrapped as a [`MeshSurface`] for the tracer.
 
 use crate::design::mesh::chart::{make_chart, ChartError, ChartKind};
-use crate::design::mesh::surface::MeshSurface;
+use crate::design::mesh::surface::{ChartPatches, MeshSurface, PATCH_MIN_NEIGHBOURS};
 use crate::design::mesh::TriMesh;
 use crate::error::{Error, Location, Result};
 use crate::spec::{SurfaceName, TraceSpec};
@@ -110,44 +110,6 @@ pub fn prepare(
     let topo = crate::design::mesh::topology::Topology::build(&mesh, &named)?;
     let mesh = topo.mesh().clone();
     let film = spec.surface == SurfaceName::Minimal;
-    let jets = if film {
-        crate::design::mesh::curvature::vertex_jets_minimal(&mesh, &topo, FILM_JET_POINTS)
-    } else {
-        crate::design::mesh::curvature::vertex_jets(&mesh, &topo)
-    };
-    let report = crate::design::mesh::singular::anticlastic_report(&topo, &jets);
-    crate::design::mesh::singular::require_anticlastic(&report, &named)?;
-    // Singular points are notes (with their index), the rest warnings.
-    let warnings: Vec<String> = report
-        .warnings()
-        .into_iter()
-        .filter(|w| !w.starts_with("flat point") && !w.starts_with("umbilic"))
-        .chain(topo.warnings())
-        .collect();
-    for s in &report.singularities {
-        let kind = match s.kind {
-            crate::design::mesh::singular::SingularKind::FlatPoint => "flat point",
-            crate::design::mesh::singular::SingularKind::Umbilic => "umbilic",
-        };
-        notes.push(format!(
-            "singular point ({kind}, index {}) at ({:.1}, {:.1}, {:.1}) mm: the net changes valence there",
-            half_integer(s.index),
-            s.position_mm.x,
-            s.position_mm.y,
-            s.position_mm.z
-        ));
-    }
-    let mut curvatures: Vec<crate::geom::surface::Curvature> =
-        jets.iter().map(|j| j.curvature).collect();
-    if film {
-        // A film is minimal by construction (its mean-curvature residual is
-        // reported above): the mean curvature an estimated tensor shows is
-        // estimation error, and dropping it makes the asymptotic directions
-        // cross at 90° wherever the film is anticlastic.
-        for c in &mut curvatures {
-            *c = traceless(*c);
-        }
-    }
     // A film's chart is per vertex of the film; cleaning keeps a film's
     // vertices (it has none unreferenced), which the count confirms.
     let chart_uv = chart_uv.filter(|uv| uv.len() == mesh.positions_mm.len());
@@ -190,6 +152,56 @@ pub fn prepare(
             (chart.uv, kind)
         }
     };
+    // The curvature tensors and the chart's patches side by side: the
+    // patches need only the chart.
+    let patch_neighbours = if film {
+        FILM_PATCH_NEIGHBOURS
+    } else {
+        PATCH_MIN_NEIGHBOURS
+    };
+    let (jets, patches) = rayon::join(
+        || {
+            if film {
+                crate::design::mesh::curvature::vertex_jets_minimal(&mesh, &topo, FILM_JET_POINTS)
+            } else {
+                crate::design::mesh::curvature::vertex_jets(&mesh, &topo)
+            }
+        },
+        || ChartPatches::fit(&mesh, &uv, patch_neighbours),
+    );
+    let report = crate::design::mesh::singular::anticlastic_report(&topo, &jets);
+    crate::design::mesh::singular::require_anticlastic(&report, &named)?;
+    // Singular points are notes (with their index), the rest warnings.
+    let warnings: Vec<String> = report
+        .warnings()
+        .into_iter()
+        .filter(|w| !w.starts_with("flat point") && !w.starts_with("umbilic"))
+        .chain(topo.warnings())
+        .collect();
+    for s in &report.singularities {
+        let kind = match s.kind {
+            crate::design::mesh::singular::SingularKind::FlatPoint => "flat point",
+            crate::design::mesh::singular::SingularKind::Umbilic => "umbilic",
+        };
+        notes.push(format!(
+            "singular point ({kind}, index {}) at ({:.1}, {:.1}, {:.1}) mm: the net changes valence there",
+            half_integer(s.index),
+            s.position_mm.x,
+            s.position_mm.y,
+            s.position_mm.z
+        ));
+    }
+    let mut curvatures: Vec<crate::geom::surface::Curvature> =
+        jets.iter().map(|j| j.curvature).collect();
+    if film {
+        // A film is minimal by construction (its mean-curvature residual is
+        // reported above): the mean curvature an estimated tensor shows is
+        // estimation error, and dropping it makes the asymptotic directions
+        // cross at 90° wherever the film is anticlastic.
+        for c in &mut curvatures {
+            *c = traceless(*c);
+        }
+    }
     notes.insert(
         0,
         format!(
@@ -202,11 +214,7 @@ pub fn prepare(
     );
     let cell_mm = median_edge_mm(&mesh);
     let precision_mm = mesh_precision_mm(&mesh);
-    let surface = if film {
-        MeshSurface::with_patch_neighbours(&mesh, uv, &curvatures, FILM_PATCH_NEIGHBOURS)
-    } else {
-        MeshSurface::new(&mesh, uv, &curvatures)
-    };
+    let surface = MeshSurface::with_patches(&mesh, uv, &curvatures, patches);
     let seed_uv = match spec.seed_mm {
         Some(p) => {
             let p = DVec3::from_array(p);

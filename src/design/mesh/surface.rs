@@ -6,6 +6,8 @@
 //! * Each vertex i carries a local patch Xᵢ(u, v), a cubic in
 //!   Δ = (u, v) − (uᵢ, vᵢ) through the vertex, fitted by weighted least
 //!   squares to the vertices of its two rings (more at the rim, until 15).
+//!   The patches need only the chart, not the curvature tensors
+//!   ([`ChartPatches`]), so they are fitted while the tensors are.
 //! * The surface is the patches blended by a partition of unity:
 //!   X = Σ wᵢ Xᵢ / Σ wᵢ with wᵢ = (1 − r²/Rᵢ²)³ for r = |Δ| < Rᵢ, Rᵢ 1.5 ×
 //!   the vertex's longest chart edge (so the patches of a triangle's corners
@@ -54,6 +56,34 @@ pub struct MeshSurface {
     patches: Vec<Patch>,
     grid: UvGrid,
     supports: SupportGrid,
+}
+
+/// The chart's per-vertex patches ([`fit_patches`]) and the grids that
+/// find a point's triangle and the patches that reach it: all of a
+/// [`MeshSurface`] but its curvature tensors.
+#[derive(Debug, Clone)]
+pub struct ChartPatches {
+    patches: Vec<Patch>,
+    grid: UvGrid,
+    supports: SupportGrid,
+}
+
+impl ChartPatches {
+    /// Fit every vertex's patch to at least `patch_neighbours` vertices
+    /// besides its own, over the chart `uv` of `mesh`.
+    pub fn fit(mesh: &TriMesh, uv: &[DVec2], patch_neighbours: usize) -> ChartPatches {
+        // The triangles' grid while the patches are fitted.
+        let (grid, patches) = rayon::join(
+            || UvGrid::new(uv, &mesh.triangles),
+            || fit_patches(mesh, uv, patch_neighbours),
+        );
+        let supports = SupportGrid::new(&patches);
+        ChartPatches {
+            patches,
+            grid,
+            supports,
+        }
+    }
 }
 
 /// A vertex's patch: the cubic X(Δ) = x + b[0] Δu + b[1] Δv
@@ -134,17 +164,31 @@ impl MeshSurface {
         curvatures: &[Curvature],
         patch_neighbours: usize,
     ) -> MeshSurface {
+        let patches = ChartPatches::fit(mesh, &uv, patch_neighbours);
+        MeshSurface::with_patches(mesh, uv, curvatures, patches)
+    }
+
+    /// A surface from a mesh, its chart, per-vertex curvatures (as for
+    /// [`MeshSurface::new`]) and the chart's patches fitted beforehand
+    /// ([`ChartPatches::fit`], which needs no curvature, so that the two
+    /// can be made side by side).
+    pub fn with_patches(
+        mesh: &TriMesh,
+        uv: Vec<DVec2>,
+        curvatures: &[Curvature],
+        patches: ChartPatches,
+    ) -> MeshSurface {
+        debug_assert_eq!(patches.patches.len(), uv.len());
         let normals: Vec<DVec3> = curvatures.iter().map(|c| c.normal).collect();
         let shape = curvatures
             .iter()
             .map(|c| outer(c.d1, c.d1) * c.k1 + outer(c.d2, c.d2) * c.k2)
             .collect();
-        // The triangles' grid while the patches are fitted.
-        let (grid, patches) = rayon::join(
-            || UvGrid::new(&uv, &mesh.triangles),
-            || fit_patches(mesh, &uv, patch_neighbours),
-        );
-        let supports = SupportGrid::new(&patches);
+        let ChartPatches {
+            patches,
+            grid,
+            supports,
+        } = patches;
         MeshSurface {
             positions_mm: mesh.positions_mm.clone(),
             uv,

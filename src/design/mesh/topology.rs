@@ -247,17 +247,16 @@ impl Topology {
         let mut boundary = vec![false; nv];
         ring_start.push(0u32);
         fan_start.push(0u32);
+        let mut steps: Vec<(u32, u32, u32)> = Vec::new();
         for v in 0..nv {
             let around = &inc[inc_start[v]..inc_start[v + 1]];
             // (a, b, t) with triangle t = (v, a, b) counter-clockwise.
-            let steps: Vec<(u32, u32, u32)> = around
-                .iter()
-                .map(|&t| {
-                    let tri = triangles[t as usize];
-                    let k = tri.iter().position(|&x| x == v as u32).unwrap_or(0);
-                    (tri[(k + 1) % 3], tri[(k + 2) % 3], t)
-                })
-                .collect();
+            steps.clear();
+            steps.extend(around.iter().map(|&t| {
+                let tri = triangles[t as usize];
+                let k = tri.iter().position(|&x| x == v as u32).unwrap_or(0);
+                (tri[(k + 1) % 3], tri[(k + 2) % 3], t)
+            }));
             // A boundary vertex's fan starts at the `a` that is no step's `b`.
             let start = steps
                 .iter()
@@ -492,8 +491,33 @@ fn incidence(triangles: &[[u32; 3]], nv: usize) -> (Vec<usize>, Vec<u32>) {
 /// How many fans the triangles `around` vertex `v` form: triangles sharing
 /// an edge (v, w) are in one fan. Orientation-free.
 fn count_fans(triangles: &[[u32; 3]], around: &[u32], v: u32) -> usize {
+    // On the stack for the usual vertex (up to 16 triangles).
+    const SMALL: usize = 16;
     let n = around.len();
-    let mut parent: Vec<usize> = (0..n).collect();
+    if n <= SMALL {
+        let (mut parent, mut spokes) = ([0usize; SMALL], [(0u32, 0usize); 2 * SMALL]);
+        fans_in(triangles, around, v, &mut parent[..n], &mut spokes[..2 * n])
+    } else {
+        fans_in(
+            triangles,
+            around,
+            v,
+            &mut vec![0; n],
+            &mut vec![(0, 0); 2 * n],
+        )
+    }
+}
+
+/// [`count_fans`] in the buffers `parent` (one per triangle) and `spokes`
+/// (two per triangle: its vertices besides `v`, which a triangle that is
+/// not degenerate has).
+fn fans_in(
+    triangles: &[[u32; 3]],
+    around: &[u32],
+    v: u32,
+    parent: &mut [usize],
+    spokes: &mut [(u32, usize)],
+) -> usize {
     fn find(parent: &mut [usize], mut i: usize) -> usize {
         while parent[i] != i {
             parent[i] = parent[parent[i]];
@@ -501,23 +525,28 @@ fn count_fans(triangles: &[[u32; 3]], around: &[u32], v: u32) -> usize {
         }
         i
     }
+    for (i, p) in parent.iter_mut().enumerate() {
+        *p = i;
+    }
     // (w, local triangle) pairs; triangles with the same w share edge (v, w).
-    let mut spokes: Vec<(u32, usize)> = Vec::with_capacity(2 * n);
+    let mut k = 0;
     for (i, &t) in around.iter().enumerate() {
         for &w in &triangles[t as usize] {
-            if w != v {
-                spokes.push((w, i));
+            if w != v && k < spokes.len() {
+                spokes[k] = (w, i);
+                k += 1;
             }
         }
     }
+    let spokes = &mut spokes[..k];
     spokes.sort_unstable();
     for pair in spokes.windows(2) {
         if pair[0].0 == pair[1].0 {
-            let (a, b) = (find(&mut parent, pair[0].1), find(&mut parent, pair[1].1));
+            let (a, b) = (find(parent, pair[0].1), find(parent, pair[1].1));
             parent[a] = b;
         }
     }
-    (0..n).filter(|&i| find(&mut parent, i) == i).count()
+    (0..parent.len()).filter(|&i| find(parent, i) == i).count()
 }
 
 /// Degenerate triangles: a repeated vertex, or (near) zero area.
