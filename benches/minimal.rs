@@ -10,7 +10,7 @@
 //! (a `surface: minimal` spec: 300 mm spacing, `fill`, 25 mm samples,
 //! 1e-4 mm tolerance): the time to estimate curvature and chart the film
 //! (the surface step: the preparation less the form finding, each the least
-//! of five runs) and the time to trace (the design less the preparation,
+//! of nine runs) and the time to trace (the design less the preparation,
 //! the least of three) are printed after the form finding's. The bench
 //! fails when a surface step takes longer than it did when the bench was
 //! first published (`CASES`).
@@ -160,10 +160,10 @@ fn trace_on(case: &str) {
     std::fs::write(&path, spec_text).expect("spec");
     let spec = lamella::formats::read::trace_spec::load(&path).expect("spec reads");
     // The surface step is the preparation less its form finding, each the
-    // least of five runs (one run of each varied by ±20 % here); the peak
+    // least of nine runs (one run of each varied by ±20 % here); the peak
     // memory is over all of them.
     let (mut t_film, mut t_prepare) = (f64::INFINITY, f64::INFINITY);
-    for _ in 0..5 {
+    for _ in 0..9 {
         let t0 = Instant::now();
         let _ = film(case);
         t_film = t_film.min(t0.elapsed().as_secs_f64());

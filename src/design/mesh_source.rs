@@ -1,10 +1,12 @@
 //! The surfaces of `surface: mesh` and `surface: minimal` specs: a triangle
 //! mesh read from a file, or the soap film form-found over boundary
-//! polylines ([`crate::design::minimal`]), checked (manifold, not degenerate,
-//! anticlastic somewhere), its curvature tensors estimated
-//! ([`crate::design::mesh::curvature`]), its singular points found
-//! ([`crate::design::mesh::singular`]), charted ([`crate::design::mesh::chart`]) and
-//! wrapped as a [`MeshSurface`] for the tracer.
+//! polylines ([`crate::design::minimal`]), checked (manifold, not degenerate),
+//! charted ([`crate::design::mesh::chart`]), its curvature tensors estimated
+//! ([`crate::design::mesh::curvature`]) while the chart's patches are
+//! fitted, checked again (anticlastic somewhere), its singular points found
+//! ([`crate::design::mesh::singular`]) and wrapped as a [`MeshSurface`] for
+//! the tracer. A mesh that can be neither charted nor traced (no
+//! anticlastic region) is refused for its chart first.
 
 use crate::design::mesh::chart::{make_chart, ChartError, ChartKind};
 use crate::design::mesh::surface::{ChartPatches, MeshSurface, PATCH_MIN_NEIGHBOURS};
@@ -167,7 +169,7 @@ pub fn prepare(
                 crate::design::mesh::curvature::vertex_jets(&mesh, &topo)
             }
         },
-        || ChartPatches::fit(&mesh, &uv, patch_neighbours),
+        || ChartPatches::fit(&mesh, uv, patch_neighbours),
     );
     let report = crate::design::mesh::singular::anticlastic_report(&topo, &jets);
     crate::design::mesh::singular::require_anticlastic(&report, &named)?;
@@ -214,7 +216,7 @@ pub fn prepare(
     );
     let cell_mm = median_edge_mm(&mesh);
     let precision_mm = mesh_precision_mm(&mesh);
-    let surface = MeshSurface::with_patches(&mesh, uv, &curvatures, patches);
+    let surface = MeshSurface::with_patches(&mesh, &curvatures, patches);
     let seed_uv = match spec.seed_mm {
         Some(p) => {
             let p = DVec3::from_array(p);

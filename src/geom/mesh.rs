@@ -66,3 +66,38 @@ mod visit_tests {
         assert!(m.insert(1) && !m.insert(1));
     }
 }
+
+/// Items grouped by a key below `buckets` (a counting sort, stable): the
+/// items of key k are `items[start[k]..start[k + 1]]`, in the order given.
+/// `keyed` is walked twice (to count, then to place).
+pub fn bucketed<T: Copy + Default>(
+    buckets: usize,
+    keyed: impl Iterator<Item = (usize, T)> + Clone,
+) -> (Vec<usize>, Vec<T>) {
+    let mut start = vec![0usize; buckets + 1];
+    for (k, _) in keyed.clone() {
+        start[k + 1] += 1;
+    }
+    for k in 0..buckets {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut items = vec![T::default(); start[buckets]];
+    for (k, item) in keyed {
+        items[fill[k]] = item;
+        fill[k] += 1;
+    }
+    (start, items)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bucketed_groups_by_key_in_order() {
+        let (start, items) = bucketed(4, [(2, 'a'), (0, 'b'), (2, 'c'), (3, 'd')].into_iter());
+        assert_eq!(start, [0, 1, 1, 3, 4]);
+        assert_eq!(items, ['b', 'a', 'c', 'd']);
+    }
+}

@@ -48,6 +48,11 @@ impl Curvature {
     pub fn gaussian(&self) -> f64 {
         self.k1 * self.k2
     }
+    /// The shape operator as a 3D tensor on the tangent plane,
+    /// k1·d1d1ᵀ + k2·d2d2ᵀ (as [`shape_tensor_of`] makes it from a jet).
+    pub fn shape_tensor(&self) -> DMat3 {
+        outer(self.d1, self.d1) * self.k1 + outer(self.d2, self.d2) * self.k2
+    }
     /// Mean curvature H = (k1 + k2)/2 (zero on a minimal surface).
     pub fn mean(&self) -> f64 {
         0.5 * (self.k1 + self.k2)
@@ -167,12 +172,16 @@ pub fn shape_tensor_of(j: &SurfaceJet) -> (DVec3, DMat3) {
         b11 * a12 + b12 * a22,
         b21 * a12 + b22 * a22,
     );
-    let outer = |a: DVec3, b: DVec3| DMat3::from_cols(a * b.x, a * b.y, a * b.z);
     let cross = outer(j.pu, j.pv);
     (
         n,
         outer(j.pu, j.pu) * m11 + (cross + cross.transpose()) * m12 + outer(j.pv, j.pv) * m22,
     )
+}
+
+/// The outer product a·bᵀ.
+pub fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
 /// Parameter-space vector (du, dv) of a 3D tangent vector at a jet.

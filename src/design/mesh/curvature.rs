@@ -169,9 +169,10 @@ pub struct VertexJet {
     pub points: usize,
     /// Rings of neighbours used.
     pub rings: usize,
-    /// Degree of the fitted polynomial: 4 ([`vertex_jets`]) or 3
-    /// ([`vertex_jets_over`]), or lower only where the whole mesh has too
-    /// few vertices (1 means no curvature: zero).
+    /// Degree of the fitted polynomial: 4 or 3 ([`vertex_jets`]), 3
+    /// ([`vertex_jets_over`]), 4 or 3 ([`vertex_jets_minimal`]: its quartic
+    /// or cubic basis), or lower only where the whole mesh has too few
+    /// vertices (1 means no curvature: zero).
     pub degree: usize,
     /// Radius of the fitted neighbourhood in the tangent plane, mm.
     pub radius_mm: f64,
@@ -235,18 +236,19 @@ fn decided_jets(mesh: &TriMesh, topo: &Topology, share: bool) -> Vec<VertexJet> 
     fit(1, how.0, degree)
 }
 
-/// The neighbourhood size (vertices) from which [`vertex_jets`] fits only
-/// a covering subset of the vertices and evaluates each other vertex's
-/// curvature on a nearby vertex's jet ([`shared_jets`]): more than four
+/// The neighbourhood size (vertices) from which [`vertex_jets`] and
+/// [`vertex_jets_minimal`] fit only a covering subset of the vertices and
+/// blend their jets at every vertex ([`shared_jets`]): more than four
 /// rings of a regular mesh (61 vertices). On a 4 m surface at 0.001 mm the
 /// jets reach it from cells of about 40 mm down (quartics over 91
 /// vertices at 10 mm, 120 at 5 mm).
 pub const SHARED_MIN_POINTS: usize = 62;
 
-/// How many rings from a fitted vertex its jet is evaluated at others
-/// ([`shared_jets`]) when it is fitted over `points` vertices: a third of
-/// the rings a regular mesh needs for them (r rings hold 3r(r + 1) + 1),
-/// so the vertices it serves lie in the inner third of its neighbourhood,
+/// How many rings apart the fitted vertices of [`shared_jets`] lie at most
+/// from every vertex when they are fitted over `points` vertices: a third
+/// of the rings a regular mesh needs for them (r rings hold 3r(r + 1) + 1),
+/// so the vertices a jet serves lie in the inner third of its
+/// neighbourhood (a quarter further for the blend's reach, [`reach`]),
 /// where a least-squares polynomial is as good as at its centre: one ring
 /// for five (91 vertices), two for six to eight (127–217).
 fn shared_rings(points: usize) -> usize {
@@ -259,18 +261,21 @@ fn shared_rings(points: usize) -> usize {
 /// within [`shared_rings`] rings of one, every boundary vertex in it), and
 /// every vertex's curvature the blend ([`blend`]) of the fitted
 /// polynomials within reach ([`reach`]) evaluated at the vertex's own
-/// position ([`Fit::curvature_at`]), weighted (1 − r²/R²)³; its noise,
-/// residual and neighbourhood are the nearest fitted vertex's. The fits of
+/// position ([`Fit::jet_at`], [`shape_tensor_of`]), weighted
+/// (1 − r²/R²)³; its noise, residual and neighbourhood are those of the
+/// fitted vertex with the largest weight. The fits of
 /// two vertices a ring or two apart share most of their points and differ
 /// by about their noise: blended, the field varies smoothly from vertex to
 /// vertex, where taking the nearest fitted vertex's alone made it jump at
-/// the borders between their cells (a straight line on a film read 5 % of
-/// the film's largest curvature there, against 3 % blended), and the
-/// average of a few fits is less noisy than one. The tests measure it
-/// against the closed form and on a plane against a jet at every vertex:
-/// the curvature's largest error 20 % and its rms 17 % below, the noise on
-/// the plane the same (its largest over the fitted vertex's σ 4.2 against
-/// 3.1). On the 5 mm bench mesh one vertex in 8.4 is fitted.
+/// the borders between their cells (a straight line on the film over
+/// Enneper's boundary read 5.1 % of the film's largest curvature there,
+/// against 3.2 % blended and 2.1 % with a minimal cubic at every vertex),
+/// and the average of a few fits is less noisy than one. The tests measure
+/// it against the closed form and on a plane against a jet at every
+/// vertex: the curvature's largest error 19 % (interior) and 8 %
+/// (boundary) below, its rms 17 % and 5 %, the noise on the plane the same
+/// (its largest over the fitted vertex's σ 4.2 against 3.1). On the 5 mm
+/// bench mesh one vertex in 8.4 is fitted.
 fn shared_jets(
     mesh: &TriMesh,
     topo: &Topology,
@@ -300,34 +305,29 @@ fn shared_jets(
     // its farthest within `rings` rings, with their weights.
     let reaches: Vec<Vec<(u32, f64)>> = members
         .par_iter()
+        .zip(&fitted)
         .map_init(
             || (Vec::new(), crate::geom::mesh::VisitMarks::new(member.len())),
-            |(hood, seen), &m| reach(topo, p, m, rings, hood, seen),
+            |(hood, seen), (&m, (jet, _))| {
+                reach(topo, p, m, (rings, jet.rings.max(rings)), hood, seen)
+            },
         )
         .collect();
-    // The reaches by vertex: (fitted vertex's slot, weight), counting sort.
-    let mut starts = vec![0u32; member.len() + 1];
-    for &(v, _) in reaches.iter().flatten() {
-        starts[v as usize + 1] += 1;
-    }
-    for v in 0..member.len() {
-        starts[v + 1] += starts[v];
-    }
-    let mut next = starts.clone();
-    let mut by_vertex = vec![(0u32, 0.0f64); starts[member.len()] as usize];
-    for (slot, list) in reaches.iter().enumerate() {
-        for &(v, w) in list {
-            by_vertex[next[v as usize] as usize] = (slot as u32, w);
-            next[v as usize] += 1;
-        }
-    }
+    // The reaches by vertex: (fitted vertex's slot, weight).
+    let (starts, by_vertex) = crate::geom::mesh::bucketed(
+        member.len(),
+        reaches.iter().enumerate().flat_map(|(slot, list)| {
+            list.iter()
+                .map(move |&(v, w)| (v as usize, (slot as u32, w)))
+        }),
+    );
     drop(reaches);
     (0..member.len())
         .into_par_iter()
         .map(|v| {
-            let parts = &by_vertex[starts[v] as usize..starts[v + 1] as usize];
-            // The nearest fitted vertex (the largest weight) lends its
-            // noise, residual and neighbourhood.
+            let parts = &by_vertex[starts[v]..starts[v + 1]];
+            // The fitted vertex with the largest weight lends its noise,
+            // residual and neighbourhood.
             let &(nearest, _) = parts
                 .iter()
                 .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
@@ -338,7 +338,7 @@ fn shared_jets(
                     Some(fit) => {
                         shape_tensor_of(&fit.jet_at(p[v] - p[members[slot as usize] as usize]))
                     }
-                    None => (jet.curvature.normal, principal_tensor(&jet.curvature)),
+                    None => (jet.curvature.normal, jet.curvature.shape_tensor()),
                 };
                 (w, normal, shape)
             }));
@@ -351,19 +351,22 @@ fn shared_jets(
 }
 
 /// A fitted vertex's reach, as a multiple of the distance to its farthest
-/// vertex within the shared rings ([`reach`]): the weight of the farthest
-/// vertex it serves is (1 − 1/REACH²)³ = 0.047.
+/// vertex within the shared rings ([`reach`]): every vertex there, those
+/// it covers ([`cover`]), weighs at least (1 − 1/REACH²)³ = 0.047.
 const REACH: f64 = 1.25;
 
 /// The vertices a fitted vertex `m` serves in [`shared_jets`] and their
 /// weights (1 − r²/R²)³ (C², falling to 0 at R), R = [`REACH`] times the
 /// distance to its farthest vertex within `shared_rings` rings: whole
-/// rings are added while the last one has a vertex within R.
+/// rings are added while the last one has a vertex within R, up to the
+/// `fitted_rings` its jet was fitted over (on a mesh of slivers R reaches
+/// across many rings, where the jet would be extrapolated beyond its
+/// data; there the weights stop short of 0 at that ring).
 fn reach(
     topo: &Topology,
     p: &[DVec3],
     m: u32,
-    shared_rings: usize,
+    (shared_rings, fitted_rings): (usize, usize),
     hood: &mut Vec<u32>,
     seen: &mut crate::geom::mesh::VisitMarks,
 ) -> Vec<(u32, f64)> {
@@ -374,7 +377,7 @@ fn reach(
     if r2 <= 0.0 {
         return vec![(m, 1.0)];
     }
-    loop {
+    for _ in shared_rings..fitted_rings {
         let start = hood.len();
         if !grow(topo, hood, seen, &mut frontier) || !hood[start..].iter().any(|&w| d2(w) < r2) {
             break;
@@ -386,12 +389,6 @@ fn reach(
             (t > 0.0).then_some((w, t * t * t))
         })
         .collect()
-}
-
-/// A curvature's shape operator as a 3D tensor, k1·d1d1ᵀ + k2·d2d2ᵀ.
-fn principal_tensor(c: &Curvature) -> DMat3 {
-    let outer = |d: DVec3| DMat3::from_cols(d * d.x, d * d.y, d * d.z);
-    outer(c.d1) * c.k1 + outer(c.d2) * c.k2
 }
 
 /// The shape operators of `parts` (weight, unit normal and shape
@@ -409,14 +406,20 @@ fn blend(parts: impl Iterator<Item = (f64, DVec3, DMat3)>) -> Curvature {
     let e1 = n.any_orthonormal_vector();
     let e2 = n.cross(e1);
     let form = |a: DVec3, b: DVec3| a.dot(shape * b) / total;
-    let c = curvature_of(&SurfaceJet {
+    in_principal_frame(curvature_of(&SurfaceJet {
         p: DVec3::ZERO,
         pu: e1,
         pv: e2,
         puu: form(e1, e1) * n,
         puv: form(e1, e2) * n,
         pvv: form(e2, e2) * n,
-    });
+    }))
+}
+
+/// A curvature with its fundamental forms in the orthonormal basis
+/// (d1, d2) of its principal directions: `first` = [1, 0, 1], `second` =
+/// [k1, 0, k2] (see the module docs).
+fn in_principal_frame(c: Curvature) -> Curvature {
     Curvature {
         first: [1.0, 0.0, 1.0],
         second: [c.k1, 0.0, c.k2],
@@ -426,8 +429,9 @@ fn blend(parts: impl Iterator<Item = (f64, DVec3, DMat3)>) -> Curvature {
 
 /// A covering subset of the vertices, greedily in vertex order: a vertex
 /// joins unless one within `shared_rings` rings already has; boundary
-/// vertices always join (their neighbourhoods are one-sided, a
-/// neighbour's jet would be extrapolated). Every vertex is in it or within
+/// vertices always join (their neighbourhoods are one-sided: a
+/// neighbour's jet would be extrapolated towards the rim, so each boundary
+/// vertex has its own, which weighs most there). Every vertex is in it or within
 /// that many rings of a vertex in it: one left out had one there when it
 /// was visited.
 fn cover(topo: &Topology, shared_rings: usize) -> Vec<bool> {
@@ -738,7 +742,8 @@ fn minimal_monomials(x: f64, y: f64, out: &mut [f64]) {
 }
 
 /// A minimal jet's coefficients as the full cubic's (the order of
-/// [`monomials`]; the quartic's are not needed).
+/// [`monomials`]; a minimal quartic's quartic ones are
+/// [`minimal_quartic_to_full`]'s).
 fn minimal_to_full(a: &[f64]) -> [f64; 10] {
     [
         a[0],
@@ -955,7 +960,12 @@ fn jet(
             residual_mm: second.residual_mm,
             points: rel.len(),
             rings,
-            degree,
+            // A minimal quartic (9 unknowns) fitted for a cubic's degree.
+            degree: if basis == Basis::MinimalQuartic && degree == 3 {
+                4
+            } else {
+                degree
+            },
             radius_mm: second.scale,
         },
         second.gain_per_mm2(),
@@ -994,7 +1004,8 @@ struct Fit {
     /// The coefficients (the first `len`), in the order of [`monomials`].
     coef: [f64; MAX_UNKNOWNS],
     /// The diagonal of (AᵀA)⁻¹: the (scaled) coefficients' variances per
-    /// unit residual variance (the first `len`).
+    /// unit residual variance (the first `len`; NaN for a minimal
+    /// quartic's quartic coefficients, which no estimate reads).
     diag: [f64; MAX_UNKNOWNS],
     len: usize,
     /// The residual, mm (infinite without degrees of freedom left).
@@ -1483,12 +1494,7 @@ impl Fit {
         }
     }
     fn curvature(&self) -> Curvature {
-        let c = curvature_of(&self.jet());
-        Curvature {
-            first: [1.0, 0.0, 1.0],
-            second: [c.k1, 0.0, c.k2],
-            ..c
-        }
+        in_principal_frame(curvature_of(&self.jet()))
     }
     /// The fitted graph's point and derivatives over the tangent plane of
     /// `offset_mm` from the vertex (a neighbour's position relative to it;
@@ -1982,9 +1988,11 @@ mod tests {
     /// [−1, 1]², 40² jittered cells (h ≈ 97 mm), exact vertices, fits over
     /// 120 vertices (a film's): the largest principal-direction error at
     /// the boundary vertices, and the curvature's there, both at least
-    /// halved, the interior no worse. Measured: boundary |Δk|/k 0.124 →
-    /// 0.031, d1 9.6° → 2.8°; interior 0.086 → 0.060, 7.1° → 1.9° (the
-    /// wide fits' bias; two-ring fits on a mesh are within 1.4°).
+    /// halved, the interior no worse. Measured, general cubics at every
+    /// vertex against the shared minimal quartics: boundary |Δk|/k 0.124 →
+    /// 0.022, d1 9.6° → 2.5°; interior 0.086 → 0.014, 7.1° → 1.4° (a
+    /// minimal cubic at every vertex gave 0.031, 2.8°, 0.060 and 1.9°;
+    /// two-ring fits on a mesh are within 1.4°).
     #[test]
     fn minimal_jets_hold_the_rim_of_a_minimal_surface() {
         use crate::design::surface::{Enneper, Surface};
@@ -2188,13 +2196,20 @@ mod tests {
                 "{basis:?} {degree}"
             );
             let Solved {
-                coef, rss, diag, ..
+                coef,
+                rss,
+                diag,
+                particular,
             } = fit_by_qr(&mut rows, k, minimal, passes).expect("fits");
             let (coef, diag) = if minimal {
-                (
-                    minimal_to_full(&coef[..k]).to_vec(),
-                    minimal_to_full_variance(&diag[..k]).to_vec(),
-                )
+                let mut full = minimal_to_full(&coef[..k]).to_vec();
+                // A minimal quartic's quartic coefficients with the
+                // particular term the QR's last pass subtracted.
+                if basis == Basis::MinimalQuartic {
+                    full.extend(minimal_quartic_to_full(&coef[..k], particular));
+                    assert!(particular != (0.0, 0.0));
+                }
+                (full, minimal_to_full_variance(&diag[..k]).to_vec())
             } else {
                 (coef[..k].to_vec(), diag[..k].to_vec())
             };
@@ -2302,6 +2317,54 @@ mod tests {
         assert_eq!(run(1), run(3));
     }
 
+    /// A fit's graph evaluated off its vertex ([`Fit::jet_at`]): the slopes
+    /// and second derivatives of a general quartic in a tilted frame,
+    /// against central differences of its heights (in mm over mm: the
+    /// coefficients are in coordinates divided by the scale).
+    #[test]
+    fn a_fit_off_its_vertex_has_its_polynomials_derivatives() {
+        let n = DVec3::new(0.2, -0.1, 1.0).normalize();
+        let e1 = n.any_orthonormal_vector();
+        let e2 = n.cross(e1);
+        let scale = 80.0;
+        let mut coef = [0.0; MAX_UNKNOWNS];
+        for (i, c) in coef.iter_mut().enumerate() {
+            *c = 0.05 * ((i * 7 + 3) % 11) as f64 - 0.25;
+        }
+        let fit = Fit {
+            e1,
+            e2,
+            n,
+            scale,
+            coef,
+            diag: [f64::NAN; MAX_UNKNOWNS],
+            len: MAX_UNKNOWNS,
+            residual_mm: f64::NAN,
+        };
+        // The height over the tangent plane, mm, at (x, y) mm.
+        let height = |x: f64, y: f64| {
+            let mut m = [0.0; MAX_UNKNOWNS];
+            monomials(x / scale, y / scale, &mut m);
+            scale * m.iter().zip(&coef).map(|(a, b)| a * b).sum::<f64>()
+        };
+        let (x, y, h) = (23.0, -31.0, 1e-2);
+        let j = fit.jet_at(e1 * x + e2 * y);
+        let fx = (height(x + h, y) - height(x - h, y)) / (2.0 * h);
+        let fy = (height(x, y + h) - height(x, y - h)) / (2.0 * h);
+        let fxx = (height(x + h, y) - 2.0 * height(x, y) + height(x - h, y)) / (h * h);
+        let fyy = (height(x, y + h) - 2.0 * height(x, y) + height(x, y - h)) / (h * h);
+        let fxy = (height(x + h, y + h) - height(x + h, y - h) - height(x - h, y + h)
+            + height(x - h, y - h))
+            / (4.0 * h * h);
+        let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() < tol;
+        assert!(close(j.pu, e1 + n * fx, 1e-9), "{} {}", j.pu, e1 + n * fx);
+        assert!(close(j.pv, e2 + n * fy, 1e-9));
+        assert!(close(j.puu, n * fxx, 1e-6), "{} {}", j.puu, n * fxx);
+        assert!(close(j.puv, n * fxy, 1e-6));
+        assert!(close(j.pvv, n * fyy, 1e-6));
+        assert!(fxx.abs() > 1e-3 && fxy.abs() > 1e-4 && fyy.abs() > 1e-3);
+    }
+
     /// Blended curvatures average the shape operators, not the principal
     /// curvatures: a saddle and the same saddle turned a quarter cancel,
     /// three to one leave half of it along the first one's directions.
@@ -2319,7 +2382,7 @@ mod tests {
                 d2: n.cross(d1),
             }
         };
-        let part = |w: f64, c: Curvature| (w, c.normal, principal_tensor(&c));
+        let part = |w: f64, c: Curvature| (w, c.normal, c.shape_tensor());
         let cancelled =
             blend([part(1.0, saddle(DVec3::X)), part(1.0, saddle(DVec3::Y))].into_iter());
         assert!(cancelled.k1.abs() < 1e-12 && cancelled.k2.abs() < 1e-12);

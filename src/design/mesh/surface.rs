@@ -58,11 +58,12 @@ pub struct MeshSurface {
     supports: SupportGrid,
 }
 
-/// The chart's per-vertex patches ([`fit_patches`]) and the grids that
-/// find a point's triangle and the patches that reach it: all of a
-/// [`MeshSurface`] but its curvature tensors.
+/// A mesh's chart with its per-vertex patches ([`fit_patches`]) and the
+/// grids that find a point's triangle and the patches that reach it: all
+/// of a [`MeshSurface`] but its curvature tensors.
 #[derive(Debug, Clone)]
 pub struct ChartPatches {
+    uv: Vec<DVec2>,
     patches: Vec<Patch>,
     grid: UvGrid,
     supports: SupportGrid,
@@ -70,15 +71,17 @@ pub struct ChartPatches {
 
 impl ChartPatches {
     /// Fit every vertex's patch to at least `patch_neighbours` vertices
-    /// besides its own, over the chart `uv` of `mesh`.
-    pub fn fit(mesh: &TriMesh, uv: &[DVec2], patch_neighbours: usize) -> ChartPatches {
+    /// besides its own, over the chart `uv` of `mesh` (every triangle
+    /// counter-clockwise in uv, as the chart module guarantees).
+    pub fn fit(mesh: &TriMesh, uv: Vec<DVec2>, patch_neighbours: usize) -> ChartPatches {
         // The triangles' grid while the patches are fitted.
         let (grid, patches) = rayon::join(
-            || UvGrid::new(uv, &mesh.triangles),
-            || fit_patches(mesh, uv, patch_neighbours),
+            || UvGrid::new(&uv, &mesh.triangles),
+            || fit_patches(mesh, &uv, patch_neighbours),
         );
         let supports = SupportGrid::new(&patches);
         ChartPatches {
+            uv,
             patches,
             grid,
             supports,
@@ -164,27 +167,26 @@ impl MeshSurface {
         curvatures: &[Curvature],
         patch_neighbours: usize,
     ) -> MeshSurface {
-        let patches = ChartPatches::fit(mesh, &uv, patch_neighbours);
-        MeshSurface::with_patches(mesh, uv, curvatures, patches)
+        MeshSurface::with_patches(
+            mesh,
+            curvatures,
+            ChartPatches::fit(mesh, uv, patch_neighbours),
+        )
     }
 
-    /// A surface from a mesh, its chart, per-vertex curvatures (as for
-    /// [`MeshSurface::new`]) and the chart's patches fitted beforehand
-    /// ([`ChartPatches::fit`], which needs no curvature, so that the two
-    /// can be made side by side).
+    /// A surface from a mesh, per-vertex curvatures (as for
+    /// [`MeshSurface::new`]) and its chart with the patches fitted over it
+    /// beforehand ([`ChartPatches::fit`], which needs no curvature, so that
+    /// the two can be made side by side).
     pub fn with_patches(
         mesh: &TriMesh,
-        uv: Vec<DVec2>,
         curvatures: &[Curvature],
         patches: ChartPatches,
     ) -> MeshSurface {
-        debug_assert_eq!(patches.patches.len(), uv.len());
         let normals: Vec<DVec3> = curvatures.iter().map(|c| c.normal).collect();
-        let shape = curvatures
-            .iter()
-            .map(|c| outer(c.d1, c.d1) * c.k1 + outer(c.d2, c.d2) * c.k2)
-            .collect();
+        let shape = curvatures.iter().map(Curvature::shape_tensor).collect();
         let ChartPatches {
+            uv,
             patches,
             grid,
             supports,
@@ -335,10 +337,6 @@ impl Surface for MeshSurface {
     fn in_domain(&self, q: DVec2) -> bool {
         self.locate(q).is_some()
     }
-}
-
-fn outer(a: DVec3, b: DVec3) -> DMat3 {
-    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
 /// The smallest rotation taking unit `from` to unit `to` (identity when

@@ -435,57 +435,32 @@ fn traverses(tri: &[u32; 3], a: u32, b: u32) -> bool {
     (0..3).any(|i| tri[i] == a && tri[(i + 1) % 3] == b)
 }
 
-/// Triangles around each vertex in CSR form (start offsets, triangle ids).
 /// Every triangle's edges as (low vertex, high vertex, triangle), sorted:
 /// bucketed by the low vertex (a counting sort), each bucket (the edges
 /// from one vertex, a dozen) sorted on its own.
 fn sorted_edges(triangles: &[[u32; 3]], nv: usize) -> Vec<(u32, u32, u32)> {
-    let edges = || {
-        triangles.iter().enumerate().flat_map(|(t, tri)| {
-            (0..3).map(move |i| {
-                let (a, b) = (tri[i], tri[(i + 1) % 3]);
-                (a.min(b), a.max(b), t as u32)
-            })
+    let edges = triangles.iter().enumerate().flat_map(|(t, tri)| {
+        (0..3).map(move |i| {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            (a.min(b) as usize, (a.min(b), a.max(b), t as u32))
         })
-    };
-    let mut start = vec![0usize; nv + 1];
-    for (a, _, _) in edges() {
-        start[a as usize + 1] += 1;
-    }
-    for v in 0..nv {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut half = vec![(0, 0, 0); start[nv]];
-    for e in edges() {
-        half[fill[e.0 as usize]] = e;
-        fill[e.0 as usize] += 1;
-    }
+    });
+    let (start, mut half) = crate::geom::mesh::bucketed(nv, edges);
     for v in 0..nv {
         half[start[v]..start[v + 1]].sort_unstable();
     }
     half
 }
 
+/// Triangles around each vertex in CSR form (start offsets, triangle ids).
 fn incidence(triangles: &[[u32; 3]], nv: usize) -> (Vec<usize>, Vec<u32>) {
-    let mut start = vec![0usize; nv + 1];
-    for tri in triangles {
-        for &k in tri {
-            start[k as usize + 1] += 1;
-        }
-    }
-    for v in 0..nv {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut inc = vec![0u32; start[nv]];
-    for (t, tri) in triangles.iter().enumerate() {
-        for &k in tri {
-            inc[fill[k as usize]] = t as u32;
-            fill[k as usize] += 1;
-        }
-    }
-    (start, inc)
+    crate::geom::mesh::bucketed(
+        nv,
+        triangles
+            .iter()
+            .enumerate()
+            .flat_map(|(t, tri)| tri.iter().map(move |&k| (k as usize, t as u32))),
+    )
 }
 
 /// How many fans the triangles `around` vertex `v` form: triangles sharing
