@@ -327,7 +327,10 @@ fn shared_jets(
         .map(|v| {
             let parts = &by_vertex[starts[v]..starts[v + 1]];
             // The fitted vertex with the largest weight lends its noise,
-            // residual and neighbourhood.
+            // residual and neighbourhood. Every vertex has one: it is
+            // within the shared rings of a fitted vertex ([`cover`]), whose
+            // reach weighs it at least 0.047 ([`REACH`]; the distances are
+            // finite, `Topology::build` bounds the coordinates).
             let &(nearest, _) = parts
                 .iter()
                 .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
@@ -1479,22 +1482,8 @@ impl Fit {
     fn normal(&self) -> DVec3 {
         (self.n - self.c(1) * self.e1 - self.c(2) * self.e2).normalize()
     }
-    /// The graph's point and derivatives at the vertex, in world axes, mm.
-    fn jet(&self) -> SurfaceJet {
-        let s = self.scale;
-        let (fx, fy) = (self.c(1), self.c(2));
-        let (fxx, fxy, fyy) = (2.0 * self.c(3) / s, self.c(4) / s, 2.0 * self.c(5) / s);
-        SurfaceJet {
-            p: self.n * self.c(0) * s,
-            pu: self.e1 + fx * self.n,
-            pv: self.e2 + fy * self.n,
-            puu: fxx * self.n,
-            puv: fxy * self.n,
-            pvv: fyy * self.n,
-        }
-    }
     fn curvature(&self) -> Curvature {
-        in_principal_frame(curvature_of(&self.jet()))
+        in_principal_frame(curvature_of(&self.jet_at(DVec3::ZERO)))
     }
     /// The fitted graph's point and derivatives over the tangent plane of
     /// `offset_mm` from the vertex (a neighbour's position relative to it;

@@ -90,6 +90,20 @@ impl Topology {
                 "a coordinate is not finite",
             ));
         }
+        if let Some((v, p)) = pos
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.abs().max_element() > MAX_COORDINATE_MM)
+        {
+            return Err(Error::input(
+                path,
+                Location::Element(format!("vertex {v}")),
+                format!(
+                    "a coordinate is {:.3e} mm, beyond ±{MAX_COORDINATE_MM:.0e} mm (a wrong unit or a stray point?)",
+                    p.abs().max_element()
+                ),
+            ));
+        }
         check_degenerate(mesh, path)?;
 
         // Drop unreferenced vertices (keeping the order of the rest).
@@ -158,11 +172,14 @@ impl Topology {
         // Triangles around each vertex (CSR), in triangle order.
         let (inc_start, inc) = incidence(&triangles, nv);
         // The first vertex (in order) whose triangles form more than one fan.
-        let several = (0..nv).into_par_iter().find_first(|&v| {
-            count_fans(&triangles, &inc[inc_start[v]..inc_start[v + 1]], v as u32) > 1
-        });
-        if let Some(v) = several {
-            let fans = count_fans(&triangles, &inc[inc_start[v]..inc_start[v + 1]], v as u32);
+        let several = (0..nv)
+            .into_par_iter()
+            .map(|v| {
+                let around = &inc[inc_start[v]..inc_start[v + 1]];
+                (v, count_fans(&triangles, around, v as u32))
+            })
+            .find_first(|&(_, fans)| fans > 1);
+        if let Some((v, fans)) = several {
             return Err(Error::input(
                 path,
                 name_vertex(v as u32),
@@ -452,6 +469,11 @@ fn sorted_edges(triangles: &[[u32; 3]], nv: usize) -> Vec<(u32, u32, u32)> {
     half
 }
 
+/// The largest |coordinate| a mesh may have, mm: a thousand kilometres.
+/// Squared distances and areas then stay far from overflow, which the
+/// curvature fits and their weights rely on.
+pub const MAX_COORDINATE_MM: f64 = 1e9;
+
 /// Triangles around each vertex in CSR form (start offsets, triangle ids).
 fn incidence(triangles: &[[u32; 3]], nv: usize) -> (Vec<usize>, Vec<u32>) {
     crate::geom::mesh::bucketed(
@@ -731,6 +753,12 @@ mod tests {
         assert_eq!(
             err(&mesh(&nan, &[[0, 1, 2]])),
             "m.obj: vertex 2: a coordinate is not finite"
+        );
+        let mut far = sq;
+        far[1][0] = 2e9;
+        assert_eq!(
+            err(&mesh(&far, &[[0, 1, 2]])),
+            "m.obj: vertex 1: a coordinate is 2.000e9 mm, beyond ±1e9 mm (a wrong unit or a stray point?)"
         );
         assert_eq!(
             err(&mesh(&sq, &[[0, 1, 2], [0, 2, 2]])),
