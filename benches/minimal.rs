@@ -8,10 +8,11 @@
 //!
 //! Then the asymptotic net is traced on each film as `lamella trace` does
 //! (a `surface: minimal` spec: 300 mm spacing, `fill`, 25 mm samples,
-//! 1e-4 mm tolerance): the time to estimate curvature and chart the film
-//! (the surface step: the preparation less the form finding, each the least
-//! of nine runs) and the time to trace (the design less the preparation,
-//! the least of five) are printed after the form finding's, with the
+//! 1e-4 mm tolerance): the time to validate, chart and estimate the
+//! curvature of the film (the surface step, `mesh_source::surface_of`, the
+//! least of nine runs, each on a film form-found before it) and the time to
+//! trace (the design less the preparation, the least of nine and five)
+//! are printed after the form finding's (the least of nine), with the
 //! whole case's (the design, which form-finds, prepares and traces). The
 //! bench fails when a surface step or a whole case takes longer than it
 //! did when the bench was first published (`CASES`).
@@ -164,22 +165,27 @@ fn trace_on(case: &str) {
     let path = dir.join(format!("{case}.trace.yaml"));
     std::fs::write(&path, spec_text).expect("spec");
     let spec = lamella::formats::read::trace_spec::load(&path).expect("spec reads");
-    // The surface step is the preparation less its form finding, each the
-    // least of nine runs (one run of each varied by ±20 % here); the peak
-    // memory is over all of them.
-    let (mut t_film, mut t_prepare) = (f64::INFINITY, f64::INFINITY);
+    // The form finding and the surface step on its film, each the least of
+    // nine runs; the peak memory is over all of them.
+    let (mut t_film, mut t_surface, mut t_prepare) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     for _ in 0..9 {
         let t0 = Instant::now();
-        let _ = film(case);
+        let found = film(case);
         t_film = t_film.min(t0.elapsed().as_secs_f64());
+        let (mesh, chart_uv) = (found.mesh, Some(found.chart_uv));
         let t1 = Instant::now();
+        let surface = lamella::design::mesh_source::surface_of(&spec, &path, mesh, chart_uv, &path)
+            .expect("surface");
+        t_surface = t_surface.min(t1.elapsed().as_secs_f64());
+        drop(surface);
+        let t2 = Instant::now();
         let prepared = lamella::design::prepare_surface(
             &spec,
             &path,
             &lamella::formats::read::mesh::read_mesh,
         )
         .expect("surface");
-        t_prepare = t_prepare.min(t1.elapsed().as_secs_f64());
+        t_prepare = t_prepare.min(t2.elapsed().as_secs_f64());
         drop(prepared);
     }
     // The trace is the design less the preparation, the least of five
@@ -199,7 +205,7 @@ fn trace_on(case: &str) {
         .iter()
         .find(|c| c.0 == case)
         .map_or((0.0, 0.0), |c| c.2);
-    let surface_s = t_prepare - t_film;
+    let surface_s = t_surface;
     // Form finding, surface and trace: the design's least time.
     let total_s = t_design;
     println!(

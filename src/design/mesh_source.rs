@@ -109,7 +109,27 @@ pub fn prepare(
             (read_mesh(&file)?, None, file)
         }
     };
-    let topo = crate::design::mesh::topology::Topology::build(&mesh, &named)?;
+    let mut source = surface_of(spec, spec_path, mesh, chart_uv, &named)?;
+    // The mesh's note first, then the film's.
+    for (i, note) in notes.into_iter().enumerate() {
+        source.notes.insert(1 + i, note);
+    }
+    Ok(source)
+}
+
+/// The surface step of [`prepare`]: the mesh (`named` in errors) validated,
+/// charted (by `chart_uv` where that is a film's plan and the film's own
+/// projection folds), its curvature estimated and the chart's patches
+/// fitted, the mesh surface made and the spec's seed put on it.
+pub fn surface_of(
+    spec: &TraceSpec,
+    spec_path: &Path,
+    mesh: TriMesh,
+    chart_uv: Option<Vec<DVec2>>,
+    named: &Path,
+) -> Result<MeshSource> {
+    let mut notes = Vec::new();
+    let topo = crate::design::mesh::topology::Topology::build(&mesh, named)?;
     let mesh = topo.mesh().clone();
     let film = spec.surface == SurfaceName::Minimal;
     // A film's chart is per vertex of the film; cleaning keeps a film's
@@ -128,7 +148,7 @@ pub fn prepare(
         (None, None) => {
             let chart = make_chart(&mesh, topo.boundary_loops()).map_err(|e| match e {
                 ChartError::Topology { loops } => Error::input(
-                    &named,
+                    named,
                     Location::File,
                     format!(
                         "the mesh folds over in every plan and has {loops} boundary loops: lamella charts such meshes only as disks (one loop) or rings (two)"
@@ -138,7 +158,7 @@ pub fn prepare(
                     let t = mesh.triangles[triangle];
                     let p = mesh.positions_mm[t[0] as usize];
                     Error::input(
-                        &named,
+                        named,
                         Location::Element(format!(
                             "triangle {triangle} at ({:.3}, {:.3}, {:.3}) mm",
                             p.x, p.y, p.z
@@ -172,7 +192,7 @@ pub fn prepare(
         || ChartPatches::fit(&mesh, uv, patch_neighbours),
     );
     let report = crate::design::mesh::singular::anticlastic_report(&topo, &jets);
-    crate::design::mesh::singular::require_anticlastic(&report, &named)?;
+    crate::design::mesh::singular::require_anticlastic(&report, named)?;
     // Singular points are notes (with their index), the rest warnings.
     let warnings: Vec<String> = report
         .warnings()
