@@ -134,7 +134,8 @@ fn measure(case: &str) {
 }
 
 /// Trace the asymptotic net on a case's film through a `surface: minimal`
-/// spec, timing the surface (form finding again, subtracted) and the trace.
+/// spec, timing the surface step (`mesh_source::surface_of` on the film
+/// just form-found) and the trace.
 fn trace_on(case: &str) {
     let (_, target_mm, _) = CASES
         .iter()

@@ -922,8 +922,9 @@ mod tests {
         assert!((j.pv - DVec3::new(0.0, 1.0, b * q.y)).length() < 1e-12);
         assert!(!s.in_domain(DVec2::new(251.0, 0.0)));
         assert!(s.in_domain(DVec2::new(250.0, 250.0)));
-        // 5 mm above the facet at (10, 20): the foot is within the facet's
-        // tilt (< 0.03) times 5 mm of (10, 20), the distance 5 mm to 0.1 %.
+        // 5 mm above the paraboloid at (10, 20), along z: the foot is
+        // within the surface's tilt there (< 0.03) times 5 mm of (10, 20),
+        // the distance 5 mm to 0.1 %.
         let above = f(10.0, 20.0) + DVec3::Z * 5.0;
         let (near, d) = s.nearest_uv(above).unwrap();
         assert!((near - DVec2::new(10.0, 20.0)).length() < 0.15, "{near}");

@@ -7,8 +7,9 @@ use crate::geom::mesh::bucketed;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, Par, Side};
 use glam::DVec3;
@@ -61,6 +62,9 @@ pub struct Dirichlet {
     /// Per triangle and corner: the slot of the entry coupling the two
     /// ends of the opposite edge, [`NONE`] if either end is fixed.
     edge_slot: Vec<[u32; 3]>,
+    /// Which of faer's factorisations: by the flops per entry of the
+    /// factor ([`SupernodalThreshold::AUTO`]) or, in tests, forced.
+    threshold: SupernodalThreshold,
     factor: Option<Factor>,
 }
 
@@ -142,6 +146,7 @@ impl Dirichlet {
             col_start,
             rows,
             edge_slot,
+            threshold: SupernodalThreshold::AUTO,
             factor: None,
         }
     }
@@ -202,9 +207,14 @@ impl Dirichlet {
                 pattern,
                 Side::Lower,
                 SymmetricOrdering::Amd,
-                Default::default(),
+                CholeskySymbolicParams {
+                    supernodal_flop_ratio_threshold: self.threshold,
+                    ..Default::default()
+                },
             )
             .map_err(|_| SolveFailure::NotPositiveDefinite)?;
+            // Sized for one thread (the supernodal factorisation's room
+            // depends on the parallelism).
             let memory = MemBuffer::new(StackReq::any_of(&[
                 symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
                 symbolic.solve_in_place_scratch::<f64>(3, Par::Seq),
@@ -530,33 +540,46 @@ mod tests {
     /// (each triangle's gradient is constant, and the weights are those of
     /// the exact energy): with the rim at an affine map's values, every
     /// inner vertex comes back at its own, whatever the triangles' shapes.
-    /// The same problem solved again (its factor reused) with another map
-    /// and a similar copy of the metric (cotangents are invariant under
-    /// rotation and scale) comes back at that map.
+    /// The metric may be any affine image of the mesh (a map affine in the
+    /// mesh is affine in its image): solved again with a stretched and
+    /// turned copy (other weights, the factor made again in the same
+    /// room) and with the mesh itself once more, each comes back at its
+    /// map, with faer's simplicial and supernodal factorisations alike.
     #[test]
     fn the_dirichlet_solve_reproduces_affine_maps_and_reuses_its_factor() {
-        let film = jittered_square(12);
+        let film = jittered_square(24);
         let maps = [
             |p: DVec3| DVec3::new(2.0 * p.x + 3.0 * p.y, p.x - p.y, 0.5 * p.x + 7.0),
             |p: DVec3| DVec3::new(-p.y, 4.0 * p.x + 1.0, 3.0 * p.x - 2.0 * p.y),
+            |p: DVec3| DVec3::new(p.x + 0.25, 0.0, -5.0 * p.y),
         ];
-        let turned = glam::DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
+        let stretched = glam::DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7)
+            * glam::DMat3::from_diagonal(DVec3::new(3.0, 1.0, 1.0))
+            * 250.0;
         let metrics = [
             film.positions.clone(),
-            film.positions.iter().map(|&p| turned * p * 250.0).collect(),
+            film.positions.iter().map(|&p| stretched * p).collect(),
+            film.positions.clone(),
         ];
-        let mut dirichlet = Dirichlet::new(&film);
-        for (map, metric) in maps.iter().zip(&metrics) {
-            let rim: Vec<DVec3> = film.positions.iter().map(|&p| map(p)).collect();
-            let x = dirichlet.solve(&film, metric, &rim).expect("solves");
-            let worst = film
-                .positions
-                .iter()
-                .zip(&x)
-                .map(|(&p, &x)| (x - map(p)).length())
-                .fold(0.0, f64::max);
-            assert!(worst < 1e-12, "an inner vertex {worst} off the affine map");
+        for threshold in [
+            SupernodalThreshold::FORCE_SIMPLICIAL,
+            SupernodalThreshold::FORCE_SUPERNODAL,
+        ] {
+            let mut dirichlet = Dirichlet::new(&film);
+            dirichlet.threshold = threshold;
+            for (map, metric) in maps.iter().zip(&metrics) {
+                let rim: Vec<DVec3> = film.positions.iter().map(|&p| map(p)).collect();
+                let x = dirichlet.solve(&film, metric, &rim).expect("solves");
+                let worst = film
+                    .positions
+                    .iter()
+                    .zip(&x)
+                    .map(|(&p, &x)| (x - map(p)).length())
+                    .fold(0.0, f64::max);
+                assert!(worst < 1e-12, "an inner vertex {worst} off the affine map");
+            }
         }
+        let mut dirichlet = Dirichlet::new(&film);
         // A degenerate triangle in the metric is named.
         let mut flat = film.positions.clone();
         let [a, b, c] = film.triangles[5].map(|v| v as usize);
