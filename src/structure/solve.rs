@@ -57,6 +57,7 @@
 //! named, never a singular-matrix panic.
 
 use super::model::{Beam, FrameModel, InitialForces, LoadSet, Section, DOF_PER_NODE};
+use crate::geom::mesh::bucketed;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
@@ -523,21 +524,14 @@ impl Pattern {
     /// rows), rows ascending.
     fn transposed(&self) -> Pattern {
         let n = self.start.len() - 1;
-        let mut start = vec![0usize; n + 1];
-        for &i in &self.rows {
-            start[i + 1] += 1;
-        }
-        for i in 0..n {
-            start[i + 1] += start[i];
-        }
-        let mut next = start.clone();
-        let mut rows = vec![0usize; self.rows.len()];
-        for j in 0..n {
-            for &i in &self.rows[self.start[j]..self.start[j + 1]] {
-                rows[next[i]] = j;
-                next[i] += 1;
-            }
-        }
+        let (start, rows) = bucketed(
+            n,
+            (0..n).flat_map(|j| {
+                self.rows[self.start[j]..self.start[j + 1]]
+                    .iter()
+                    .map(move |&i| (i, j))
+            }),
+        );
         Pattern {
             start,
             rows,
@@ -985,23 +979,7 @@ impl Dofs {
                     })
                 })
         };
-        let mut start = vec![0usize; runs + 1];
-        for k in 0..runs {
-            for r in later(k) {
-                start[r + 1] += 1;
-            }
-        }
-        for k in 0..runs {
-            start[k + 1] += start[k];
-        }
-        let mut next = start.clone();
-        let mut rows = vec![0usize; start[runs]];
-        for k in 0..runs {
-            for r in later(k) {
-                rows[next[r]] = k;
-                next[r] += 1;
-            }
-        }
+        let (start, rows) = bucketed(runs, (0..runs).flat_map(|k| later(k).map(move |r| (r, k))));
         let upper = SymbolicSparseColMatRef::new_checked(runs, runs, &start, None, &rows);
         let params = CholeskySymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,

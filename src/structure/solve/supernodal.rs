@@ -25,6 +25,7 @@
 
 use super::layout::Layout;
 use super::triangular::Schedule;
+use crate::geom::mesh::bucketed;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
 use faer::{Accum, MatMut, MatRef, Par};
@@ -76,23 +77,10 @@ impl Updates {
                     })
                 })
         };
-        let mut start = vec![0usize; count + 1];
-        for d in 0..count {
-            for s in targets(d) {
-                start[s as usize + 1] += 1;
-            }
-        }
-        for s in 0..count {
-            start[s + 1] += start[s];
-        }
-        let mut next = start.clone();
-        let mut from = vec![0u32; start[count]];
-        for d in 0..count {
-            for s in targets(d) {
-                from[next[s as usize]] = d as u32;
-                next[s as usize] += 1;
-            }
-        }
+        let (start, from) = bucketed(
+            count,
+            (0..count).flat_map(|d| targets(d).map(move |s| (s as usize, d as u32))),
+        );
         Some(Updates { start, from })
     }
 
