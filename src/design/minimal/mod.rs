@@ -56,8 +56,10 @@
 //!    discrete minimal surfaces and their conjugates*): build the
 //!    cotangent Laplacian of the current mesh M_i, solve the Dirichlet
 //!    problem L(M_i) x = 0 for the interior positions with the boundary
-//!    fixed (faer's sparse Cholesky; the symbolic factorisation is made once
-//!    per level), until the relative area change of one iteration is below
+//!    fixed (faer's sparse Cholesky; the matrix's pattern, the slots each
+//!    triangle's weights are summed into, the symbolic factorisation and
+//!    the factor's room are made once per level, [`solve::Dirichlet`]),
+//!    until the relative area change of one iteration is below
 //!    [`FormFindOptions::area_tolerance`]. The cotangents are exact, obtuse
 //!    angles included: the matrix is the stiffness matrix of
 //!    piecewise-linear maps, positive definite with the boundary fixed on
