@@ -211,7 +211,7 @@ impl MeshSurface {
     /// The chart point of the surface point nearest to `p` (mm), and its
     /// distance (mm): the nearest point of the facets (brute force over
     /// the triangles: for seeds), then from there the nearest point of the
-    /// blended surface the tracer walks ([`Self::nearest_on_surface`]).
+    /// blended surface the tracer walks (`nearest_on_surface`).
     /// The facets' nearest point alone is ill-posed at the facets' scale:
     /// seen from inside a ring, the two facets either side of a row of
     /// vertices are equally near, and which one wins moves the foot by a
