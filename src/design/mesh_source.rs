@@ -110,10 +110,8 @@ pub fn prepare(
         }
     };
     let mut source = surface_of(spec, spec_path, mesh, chart_uv, &named)?;
-    // The mesh's note first, then the film's.
-    for (i, note) in notes.into_iter().enumerate() {
-        source.notes.insert(1 + i, note);
-    }
+    // The mesh's note first (`surface_of` puts it there), then the film's.
+    source.notes.splice(1..1, notes);
     Ok(source)
 }
 

@@ -849,6 +849,7 @@ impl UvGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::design::mesh::samples;
     use crate::design::surface::{curvature_of, Surface};
 
     /// A mesh of the paraboloid z = (a x² + b y²)/2 with exact curvatures
@@ -950,25 +951,9 @@ mod tests {
     fn a_seed_inside_a_ring_lands_on_its_meridian() {
         let r = 1000.0;
         let at = |s: f64, z: f64| DVec3::new(r * (s / r).cos(), r * (s / r).sin(), z);
-        let (ns, nz, h) = (24, 12, 50.0);
-        let mut mesh = TriMesh::default();
-        let mut uv = Vec::new();
-        for j in 0..=nz {
-            for i in 0..=ns {
-                let q = DVec2::new(i as f64 * h - 600.0, j as f64 * h - 300.0);
-                mesh.positions_mm.push(at(q.x, q.y));
-                uv.push(q);
-            }
-        }
-        let id = |i: usize, j: usize| (j * (ns + 1) + i) as u32;
-        for j in 0..nz {
-            for i in 0..ns {
-                mesh.triangles
-                    .push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                mesh.triangles
-                    .push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
+        // 50 mm cells from s = −600 mm: a row of vertices at s = 0.
+        let (uv, triangles) = samples::grid(24, 12, (-600.0, 600.0), (-300.0, 300.0), 0.0, 5);
+        let mesh = samples::place(&uv, &triangles, |q| at(q.x, q.y));
         let curv: Vec<Curvature> = uv
             .iter()
             .map(|q| {

@@ -376,11 +376,9 @@ pub fn min_angle_deg(film: &Film, x: &[DVec3]) -> f64 {
     for t in &film.triangles {
         let p = t.map(|v| x[v as usize]);
         // A triangle's smallest angle faces its shortest edge.
+        let edge2 = [0, 1, 2].map(|k| p[(k + 1) % 3].distance_squared(p[(k + 2) % 3]));
         let k = (0..3)
-            .min_by(|&i, &j| {
-                let edge = |k: usize| p[(k + 1) % 3].distance_squared(p[(k + 2) % 3]);
-                edge(i).total_cmp(&edge(j))
-            })
+            .min_by(|&i, &j| edge2[i].total_cmp(&edge2[j]))
             .unwrap_or(0);
         let a = p[(k + 1) % 3] - p[k];
         let b = p[(k + 2) % 3] - p[k];
