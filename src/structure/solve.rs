@@ -420,20 +420,38 @@ fn sandwich(h: &Mat12, k: &Mat12) -> Mat12 {
     out
 }
 
-/// H·u (node displacements → element end displacements).
-fn apply_h(h: &Option<Mat12>, u: [f64; 12]) -> [f64; 12] {
-    match h {
-        None => u,
-        Some(h) => std::array::from_fn(|i| (0..12).map(|j| h[i][j] * u[j]).sum()),
+/// H·u (node displacements → element end displacements) for the rigid
+/// end offsets r of [`offset_matrix`], in closed form: each end moves
+/// with its node, u_end = u_node + θ_node × r, and turns with it.
+fn apply_h(offsets: &[DVec3; 2], mut u: [f64; 12]) -> [f64; 12] {
+    for (a, r) in offsets.iter().enumerate() {
+        if *r != DVec3::ZERO {
+            let b = 6 * a;
+            let theta = DVec3::new(u[b + 3], u[b + 4], u[b + 5]);
+            let moved = theta.cross(*r);
+            u[b] += moved.x;
+            u[b + 1] += moved.y;
+            u[b + 2] += moved.z;
+        }
     }
+    u
 }
 
-/// Hᵀ·f (element end forces → node forces).
-fn apply_ht(h: &Option<Mat12>, f: [f64; 12]) -> [f64; 12] {
-    match h {
-        None => f,
-        Some(h) => std::array::from_fn(|i| (0..12).map(|j| h[j][i] * f[j]).sum()),
+/// Hᵀ·f (element end forces → node forces), in closed form: each end's
+/// force acts on its node with its moment about the node added,
+/// m_node = m_end + r × f_end.
+fn apply_ht(offsets: &[DVec3; 2], mut f: [f64; 12]) -> [f64; 12] {
+    for (a, r) in offsets.iter().enumerate() {
+        if *r != DVec3::ZERO {
+            let b = 6 * a;
+            let force = DVec3::new(f[b], f[b + 1], f[b + 2]);
+            let moment = r.cross(force);
+            f[b + 3] += moment.x;
+            f[b + 4] += moment.y;
+            f[b + 5] += moment.z;
+        }
     }
+    f
 }
 
 /// Local ← global for an element's 12 displacements.
@@ -1737,7 +1755,7 @@ impl Assembly {
             let mut end = [0.0; 12];
             end[..3].copy_from_slice(&f.to_array());
             end[6..9].copy_from_slice(&(-f).to_array());
-            let g = apply_ht(&offset_matrix(&c.offsets_mm), end);
+            let g = apply_ht(&c.offsets_mm, end);
             for (k, &dof) in self.node_dofs(c.nodes).iter().enumerate() {
                 if dof != NONE {
                     p[dof] += g[k];
@@ -1750,6 +1768,9 @@ impl Assembly {
     /// Every cable's force were it taut, N: T₀ + k·δ, δ the lengthening of
     /// its chord under the displacements `x` (over the unknowns).
     pub(crate) fn cable_forces(&self, model: &FrameModel, x: &[f64]) -> Vec<f64> {
+        if model.cables.is_empty() {
+            return Vec::new();
+        }
         let displacements = self.expand(x);
         model
             .cables
@@ -1759,7 +1780,7 @@ impl Assembly {
                 let mut u = [0.0; 12];
                 u[..6].copy_from_slice(&displacements[c.nodes[0]]);
                 u[6..].copy_from_slice(&displacements[c.nodes[1]]);
-                let u = apply_h(&offset_matrix(&c.offsets_mm), u);
+                let u = apply_h(&c.offsets_mm, u);
                 let delta = e.dot(DVec3::new(u[6], u[7], u[8]) - DVec3::new(u[0], u[1], u[2]));
                 c.pretension_n + k * delta
             })
@@ -1814,7 +1835,7 @@ impl Assembly {
             }
             let f = &self.frames[i];
             let g = apply_ht(
-                &self.offset(i),
+                &self.offsets[i],
                 globalise(&f.rotation, &uniform_nodal_loads(local_q[i], f.length_mm)),
             );
             for k in 0..6 {
@@ -1864,7 +1885,7 @@ impl Assembly {
             let mut ug = [0.0; 12];
             ug[..6].copy_from_slice(&displacements[b.nodes[0]]);
             ug[6..].copy_from_slice(&displacements[b.nodes[1]]);
-            let ul = localise(&f.rotation, &apply_h(&self.offset(i), ug));
+            let ul = localise(&f.rotation, &apply_h(&self.offsets[i], ug));
             let mut k = local_stiffness(s, f.length_mm);
             if let Some(n) = axial_n {
                 let kg = local_geometric(s, f.length_mm, n[i]);
@@ -1912,7 +1933,7 @@ impl Assembly {
                 continue;
             }
             let g = apply_ht(
-                &self.offset(i),
+                &self.offsets[i],
                 globalise(&self.frames[i].rotation, &local_end_forces(i)),
             );
             for k in 0..6 {
@@ -2839,6 +2860,42 @@ pub fn axial_forces(result: &StaticResult) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rigid_offsets_in_closed_form_are_the_offset_matrix_products() {
+        // H·u and Hᵀ·f against the 12 × 12 matrix of u_end = u_node +
+        // θ_node × r: one end offset, both, and none.
+        let u: [f64; 12] = std::array::from_fn(|i| ((i * 7 + 3) % 11) as f64 - 4.5);
+        let f: [f64; 12] = std::array::from_fn(|i| ((i * 5 + 2) % 13) as f64 * 0.7 - 3.0);
+        for offsets in [
+            [DVec3::new(12.0, -30.0, 4.5), DVec3::ZERO],
+            [DVec3::new(-2.0, 0.5, 80.0), DVec3::new(7.0, 3.0, -1.0)],
+            [DVec3::ZERO; 2],
+        ] {
+            let by_matrix = |transposed: bool, v: &[f64; 12]| -> [f64; 12] {
+                match offset_matrix(&offsets) {
+                    None => *v,
+                    Some(h) => std::array::from_fn(|i| {
+                        (0..12)
+                            .map(|j| if transposed { h[j][i] } else { h[i][j] } * v[j])
+                            .sum()
+                    }),
+                }
+            };
+            let (hu, htf) = (apply_h(&offsets, u), apply_ht(&offsets, f));
+            let (hu_m, htf_m) = (by_matrix(false, &u), by_matrix(true, &f));
+            for i in 0..12 {
+                assert!((hu[i] - hu_m[i]).abs() < 1e-12, "H·u[{i}]");
+                assert!((htf[i] - htf_m[i]).abs() < 1e-12, "Hᵀ·f[{i}]");
+            }
+            // The same work either side of the offsets: f·(H·u) = (Hᵀ·f)·u.
+            let (a, b): (f64, f64) = (
+                (0..12).map(|i| f[i] * hu[i]).sum(),
+                (0..12).map(|i| htf[i] * u[i]).sum(),
+            );
+            assert!((a - b).abs() < 1e-9 * a.abs().max(1.0));
+        }
+    }
 
     /// A symmetric positive definite matrix on an m × m grid of nodes
     /// with `per` unknowns each, every node coupled to its four
