@@ -2590,12 +2590,19 @@ impl<'m> LinearFrame<'m> {
         }
         self.factor.solve_rows(&mut rows);
         // Each solution refined where it is not backward stable, its
-        // right-hand side remade for its backward error.
-        for (c, set) in loads.iter().enumerate() {
-            let mut x = Mat::from_fn(n, 1, |i, _| rows[i][c]);
-            solve_refined_after(&self.factor, &self.stiffness, &mut x, |_| rhs(set))?;
-            for (row, &v) in rows.iter_mut().zip(x.col(0).iter()) {
-                row[c] = v;
+        // right-hand side remade for its backward error, two at a time on
+        // the two cores (a load vector is read and written in the
+        // scattered order of the elements' unknowns: 15 ms at 100 × 100
+        // curves, 0.3 s at 400 × 400, one at a time).
+        for (pair, sets) in loads.chunks(2).enumerate() {
+            let made: Vec<Vec<f64>> = sets.par_iter().map(|set| rhs(set)).collect();
+            for (k, p) in made.iter().enumerate() {
+                let c = 2 * pair + k;
+                let mut x = Mat::from_fn(n, 1, |i, _| rows[i][c]);
+                solve_refined_after(&self.factor, &self.stiffness, &mut x, |_| p.as_slice())?;
+                for (row, &v) in rows.iter_mut().zip(x.col(0).iter()) {
+                    row[c] = v;
+                }
             }
         }
         Ok(Solved::Rows(rows))
@@ -2734,17 +2741,17 @@ pub(crate) fn solve_refined_in_place(
 }
 
 /// [`solve_refined_in_place`] once `x` holds the plain solutions.
-fn solve_refined_after(
+fn solve_refined_after<P: AsRef<[f64]>>(
     factor: &Factor,
     k: &SymSparse,
     x: &mut Mat<f64>,
-    rhs: impl Fn(usize) -> Vec<f64>,
+    rhs: impl Fn(usize) -> P,
 ) -> Result<(), FrameError> {
     for c in 0..x.ncols() {
         let p = rhs(c);
         for _ in 0..REFINEMENTS {
             let column = x.as_ref().col(c);
-            let (_, residual) = backward_error(k, column_slice(column), &p);
+            let (_, residual) = backward_error(k, column_slice(column), p.as_ref());
             let Some(mut r) = residual else {
                 break;
             };
