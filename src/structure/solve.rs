@@ -289,19 +289,47 @@ fn put2(k: &mut Mat12, d: [usize; 2], v: f64) {
 }
 
 fn bend(k: &mut Mat12, d: [usize; 4], ei: f64, l: f64, sign: f64) {
-    let c = ei / (l * l * l);
-    let s = sign * l;
-    let m = [
-        [12.0, 6.0 * s, -12.0, 6.0 * s],
-        [6.0 * s, 4.0 * l * l, -6.0 * s, 2.0 * l * l],
-        [-12.0, -6.0 * s, 12.0, -6.0 * s],
-        [6.0 * s, 2.0 * l * l, -6.0 * s, 4.0 * l * l],
-    ];
+    let m = bending_block(ei, l, sign);
     for a in 0..4 {
         for b in 0..4 {
-            k[d[a]][d[b]] += c * m[a][b];
+            k[d[a]][d[b]] += m[a][b];
         }
     }
+}
+
+/// The Euler–Bernoulli element's 4 × 4 bending block (displacement,
+/// rotation at either end) of stiffness `ei` over length `l`; `sign` −1
+/// for the x–z plane, where θy = −w'.
+fn bending_block(ei: f64, l: f64, sign: f64) -> [[f64; 4]; 4] {
+    let c = ei / (l * l * l);
+    let s = sign * l;
+    [
+        [12.0 * c, 6.0 * s * c, -12.0 * c, 6.0 * s * c],
+        [6.0 * s * c, 4.0 * l * l * c, -6.0 * s * c, 2.0 * l * l * c],
+        [-12.0 * c, -6.0 * s * c, 12.0 * c, -6.0 * s * c],
+        [6.0 * s * c, 2.0 * l * l * c, -6.0 * s * c, 4.0 * l * l * c],
+    ]
+}
+
+/// [`local_stiffness`] times the local end displacements `u`, term by
+/// term (axial, torsion, the two bending blocks) with no 12 × 12 matrix
+/// made: an element's end forces in every static result.
+fn local_stiffness_times(s: &Section, l: f64, u: &[f64; 12]) -> [f64; 12] {
+    let mut f = [0.0; 12];
+    // As the matrix's rows sum them (the same bits).
+    let (ea, gj) = (s.e_mpa * s.area_mm2 / l, s.g_mpa * s.j_mm4 / l);
+    (f[0], f[6]) = (ea * u[0] - ea * u[6], ea * u[6] - ea * u[0]);
+    (f[3], f[9]) = (gj * u[3] - gj * u[9], gj * u[9] - gj * u[3]);
+    for (d, ei, sign) in [
+        ([1, 5, 7, 11], s.e_mpa * s.i_z_mm4, 1.0),
+        ([2, 4, 8, 10], s.e_mpa * s.i_y_mm4, -1.0),
+    ] {
+        let m = bending_block(ei, l, sign);
+        for a in 0..4 {
+            f[d[a]] = (0..4).map(|b| m[a][b] * u[d[b]]).sum();
+        }
+    }
+    f
 }
 
 /// Which terms a geometric stiffness holds.
@@ -1886,19 +1914,16 @@ impl Assembly {
             ug[..6].copy_from_slice(&displacements[b.nodes[0]]);
             ug[6..].copy_from_slice(&displacements[b.nodes[1]]);
             let ul = localise(&f.rotation, &apply_h(&self.offsets[i], ug));
-            let mut k = local_stiffness(s, f.length_mm);
+            let mut fl = local_stiffness_times(s, f.length_mm, &ul);
             if let Some(n) = axial_n {
                 let kg = local_geometric(s, f.length_mm, n[i]);
                 for a in 0..12 {
-                    for c in 0..12 {
-                        k[a][c] += kg[a][c];
-                    }
+                    fl[a] += (0..12).map(|c| kg[a][c] * ul[c]).sum::<f64>();
                 }
             }
             let equivalent = uniform_nodal_loads(local_q[i], f.length_mm);
-            let mut fl = [0.0; 12];
             for a in 0..12 {
-                fl[a] = (0..12).map(|c| k[a][c] * ul[c]).sum::<f64>() - equivalent[a];
+                fl[a] -= equivalent[a];
             }
             fl
         };
@@ -2867,6 +2892,35 @@ pub fn axial_forces(result: &StaticResult) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_elements_end_forces_term_by_term_are_its_stiffness_times_its_displacements() {
+        // A doubled-strip-like section, unequal in every stiffness.
+        let section = Section {
+            e_mpa: 210_000.0,
+            g_mpa: 81_000.0,
+            area_mm2: 120.0,
+            i_y_mm4: 160_000.0,
+            i_z_mm4: 90.0,
+            j_mm4: 340.0,
+        };
+        let u: [f64; 12] = std::array::from_fn(|i| ((i * 5 + 1) % 7) as f64 * 0.013 - 0.04);
+        for l in [37.5, 412.0] {
+            let k = local_stiffness(&section, l);
+            let by_matrix: [f64; 12] =
+                std::array::from_fn(|a| (0..12).map(|c| k[a][c] * u[c]).sum());
+            let term_by_term = local_stiffness_times(&section, l, &u);
+            for a in 0..12 {
+                let scale = by_matrix.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    (term_by_term[a] - by_matrix[a]).abs() <= 1e-12 * scale,
+                    "L = {l}: force {a}: {} against {}",
+                    term_by_term[a],
+                    by_matrix[a]
+                );
+            }
+        }
+    }
 
     #[test]
     fn rigid_offsets_in_closed_form_are_the_offset_matrix_products() {
