@@ -172,6 +172,7 @@ use crate::structure::model::{
     Beam, BeamRole, FrameModel, InitialForces, Link, LoadTargets, Section,
 };
 use glam::{DMat3, DVec3};
+use rayon::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Standard gravity, m/s² (N per kg).
@@ -301,9 +302,6 @@ struct Chain {
     stations: Vec<f64>,
     /// Per chain node: its model node.
     nodes: Vec<usize>,
-    /// Per element (between chain nodes i and i + 1): the span it lies in,
-    /// as (line station of its first node, of its last node).
-    spans: Vec<(f64, f64)>,
     /// Per topology node of the strip: the chain position there.
     at_node: BTreeMap<usize, usize>,
     /// Per shear block (in order along the lamella): its chain position,
@@ -312,6 +310,215 @@ struct Chain {
     blocks: Vec<(usize, bool)>,
     /// The model beams of its elements, in order.
     beams: Vec<usize>,
+}
+
+/// Strips whose chains' geometry is made side by side on the threads
+/// before their nodes and beams are numbered ([`build_frame`]).
+const STRIPS_AT_ONCE: usize = 64;
+
+/// What a strip's chains are made from.
+struct ChainGeometryOf<'a> {
+    an: &'a Analysis,
+    profile: &'a Profile,
+    sections: &'a [Section; 2],
+    /// (E, G), MPa.
+    moduli_mpa: (f64, f64),
+    /// The lamella's height, mm.
+    height_mm: f64,
+    elements_per_span: usize,
+    /// Shear-block stations by (strip id, lamella), ascending.
+    kit_blocks: &'a BTreeMap<(String, u32), Vec<f64>>,
+}
+
+/// A chain's geometry before its nodes and beams are numbered: a
+/// [`Chain`] with its nodes' points and its elements' beams to be.
+struct ChainGeometry {
+    strip: usize,
+    number: u32,
+    offset: LamellaOffset,
+    stations: Vec<f64>,
+    at_node: BTreeMap<usize, usize>,
+    blocks: Vec<(usize, bool)>,
+    /// Per chain node: its point, mm.
+    points: Vec<DVec3>,
+    /// Per element: its beam, `None` where it is shorter than
+    /// [`MIN_SPAN_MM`] (two chain nodes at one station: no beam).
+    elements: Vec<Option<ChainElement>>,
+}
+
+/// A chain element's beam, but its nodes.
+struct ChainElement {
+    section: usize,
+    z_axis: DVec3,
+    initial: InitialForces,
+    role: Option<BeamRole>,
+}
+
+impl ChainGeometryOf<'_> {
+    /// The chains of `strip` (one per lamella, one for an edge band; none
+    /// for a strip without nodes).
+    fn of(&self, strip: &StripGeometry) -> Vec<ChainGeometry> {
+        if strip.nodes.is_empty() {
+            return Vec::new();
+        }
+        let (an, profile, secs) = (self.an, self.profile, self.sections);
+        let (e_mod, g_mod) = self.moduli_mpa;
+        let (h, e_per) = (self.height_mm, self.elements_per_span);
+        let topo = &an.topology;
+        let smooth = &an.curves[strip.curve];
+        let is_edge = strip.family == Family::Edge;
+        let offsets = if is_edge {
+            vec![LamellaOffset {
+                number: 0,
+                ..LamellaOffset::CENTRE
+            }]
+        } else {
+            profile.lamella_offsets(strip.family)
+        };
+        let lines = StripLines::new(strip, smooth, &offsets);
+        let mut chains = Vec::with_capacity(offsets.len());
+        for (li, off) in offsets.iter().enumerate() {
+            let node_st: Vec<f64> = lines.lines[li].nodes.iter().map(|n| n.station_mm).collect();
+            let blocks = if is_edge {
+                Vec::new()
+            } else {
+                self.kit_blocks
+                    .get(&(strip.id.clone(), off.number))
+                    .cloned()
+                    .unwrap_or_default()
+            };
+            // Chain stations: the nodes, the subdivisions, the blocks.
+            let mut st: Vec<(f64, usize)> = Vec::new(); // (station, span index)
+            let mut node_pos: Vec<usize> = Vec::with_capacity(node_st.len());
+            let mut spans: Vec<(f64, f64)> = Vec::new();
+            st.push((node_st[0], 0));
+            node_pos.push(0);
+            for k in 0..node_st.len() - 1 {
+                let (a, c) = (node_st[k], node_st[k + 1]);
+                if c - a < MIN_SPAN_MM {
+                    node_pos.push(st.len() - 1);
+                    continue;
+                }
+                let mut inner: Vec<f64> = (1..e_per)
+                    .map(|i| a + (c - a) * i as f64 / e_per as f64)
+                    .collect();
+                // The blocks strictly inside the span (sorted: a range).
+                let inside =
+                    blocks.partition_point(|&s| s <= a)..blocks.partition_point(|&s| s < c);
+                for &s in blocks.get(inside).unwrap_or_default() {
+                    let near = inner
+                        .iter()
+                        .chain([a, c].iter())
+                        .any(|&x| (x - s).abs() <= SNAP_MM);
+                    if !near {
+                        inner.push(s);
+                    }
+                }
+                inner.sort_by(f64::total_cmp);
+                for s in inner {
+                    st.push((s, spans.len()));
+                }
+                st.push((c, spans.len()));
+                node_pos.push(st.len() - 1);
+                spans.push((a, c));
+            }
+            let stations: Vec<f64> = st.iter().map(|x| x.0).collect();
+            // Element middles, then curve stations of everything at once.
+            let mids: Vec<f64> = stations.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+            let mut ask = stations.clone();
+            ask.extend(&mids);
+            let curve = curve_stations_of(strip, smooth, &lines, li, &ask);
+            let centre = off.dy_mm == 0.0 && off.dz_mm == 0.0;
+            let mut at_node = BTreeMap::new();
+            for (cn, &pos) in strip.nodes.iter().zip(&node_pos) {
+                at_node.entry(cn.node).or_insert(pos);
+            }
+            let snapped: BTreeMap<usize, usize> = at_node.iter().map(|(&n, &p)| (p, n)).collect();
+            let points: Vec<DVec3> = (0..stations.len())
+                .map(|i| match snapped.get(&i) {
+                    Some(&n) if centre => topo.nodes[n].position_world_mm,
+                    _ => {
+                        let f = strip.frame_at(smooth, curve[i]);
+                        f.point_world_mm + off.dy_mm * f.y + off.dz_mm * f.z
+                    }
+                })
+                .collect();
+            let block_pos: Vec<(usize, bool)> = blocks
+                .iter()
+                .map(|&s| {
+                    let i = nearest_station(&stations, s);
+                    let inside = s > stations[0] && s < stations[stations.len() - 1];
+                    (i, inside)
+                })
+                .collect();
+            // Per element: the node-to-node span it lies in (line
+            // stations of its first node and its last).
+            let spans: Vec<(f64, f64)> = st[1..]
+                .iter()
+                .map(|x| spans.get(x.1).copied().unwrap_or_default())
+                .collect();
+            // Elements.
+            let elements = (0..stations.len() - 1)
+                .map(|i| {
+                    if stations[i + 1] - stations[i] < MIN_SPAN_MM {
+                        return None;
+                    }
+                    let f = strip.frame_at(smooth, curve[stations.len() + i]);
+                    let k = stretch(off.dy_mm, off.dz_mm, f.kg_per_mm, f.kn_per_mm, f.tg_per_mm);
+                    let w = darboux_rate(f.kg_per_mm, f.kn_per_mm, f.tg_per_mm) / k;
+                    let (section, initial, role) = if is_edge {
+                        let s = &secs[SECTION_BAND];
+                        (
+                            SECTION_BAND,
+                            InitialForces {
+                                axial_n: 0.0,
+                                torque_nmm: g_mod * s.j_mm4 * w.x,
+                                moment_y_nmm: e_mod * s.i_y_mm4 * w.y,
+                                moment_z_nmm: 0.0,
+                            },
+                            None,
+                        )
+                    } else {
+                        let s = &secs[SECTION_LAMELLA];
+                        let (a, c) = spans[i];
+                        (
+                            SECTION_LAMELLA,
+                            InitialForces {
+                                axial_n: 0.0,
+                                torque_nmm: g_mod * s.j_mm4 * w.x,
+                                moment_y_nmm: e_mod * s.i_y_mm4 * w.y,
+                                moment_z_nmm: e_mod * s.i_z_mm4 * w.z,
+                            },
+                            Some(BeamRole {
+                                strip: strip.curve,
+                                lamella: off.number,
+                                station_mm: 0.5 * (stations[i] + stations[i + 1]),
+                                member_span_mm: c - a,
+                                trapeze_mpa: e_mod * w.x * w.x * h * h / 12.0,
+                            }),
+                        )
+                    };
+                    Some(ChainElement {
+                        section,
+                        z_axis: f.z,
+                        initial,
+                        role,
+                    })
+                })
+                .collect();
+            chains.push(ChainGeometry {
+                strip: strip.curve,
+                number: off.number,
+                offset: *off,
+                stations,
+                at_node,
+                blocks: block_pos,
+                points,
+                elements,
+            });
+        }
+        chains
+    }
 }
 
 /// Where the model grows.
@@ -346,6 +553,30 @@ impl Builder {
         });
         self.roles.push(role);
         self.model.beams.len() - 1
+    }
+
+    /// The chain of `geometry`: its nodes and beams numbered next.
+    fn chain(&mut self, geometry: ChainGeometry) -> Chain {
+        let nodes: Vec<usize> = geometry.points.iter().map(|&p| self.node(p)).collect();
+        let mut beams = Vec::new();
+        for (i, element) in geometry.elements.into_iter().enumerate() {
+            let Some(e) = element else { continue };
+            let (na, nb) = (nodes[i], nodes[i + 1]);
+            beams.push(self.beam([na, nb], e.section, e.z_axis, e.initial, e.role));
+            let len = self.model.nodes_mm[na].distance(self.model.nodes_mm[nb]);
+            self.shortest_mm[na] = self.shortest_mm[na].min(len);
+            self.shortest_mm[nb] = self.shortest_mm[nb].min(len);
+        }
+        Chain {
+            strip: geometry.strip,
+            number: geometry.number,
+            offset: geometry.offset,
+            stations: geometry.stations,
+            nodes,
+            at_node: geometry.at_node,
+            blocks: geometry.blocks,
+            beams,
+        }
     }
 
     /// A zero-length link, `free_about_normal` releasing the rotation about
@@ -496,163 +727,27 @@ pub fn build_frame(
         v.sort_by(f64::total_cmp);
     }
 
-    // The chains.
+    // The chains: the strips' lamella lines, stations, points and
+    // elements made [`STRIPS_AT_ONCE`] strips at a time on the threads
+    // (their geometry is most of the model's time), then numbered in the
+    // strips' order: the same model whatever the threads.
+    let chain_geometry = ChainGeometryOf {
+        an,
+        profile,
+        sections: &secs,
+        moduli_mpa: (e_mod, g_mod),
+        height_mm: h,
+        elements_per_span: e_per,
+        kit_blocks: &kit_blocks,
+    };
     let mut chains: Vec<Chain> = Vec::new();
-    for strip in &an.strips {
-        if strip.nodes.is_empty() {
-            continue;
-        }
-        let smooth = &an.curves[strip.curve];
-        let is_edge = strip.family == Family::Edge;
-        let offsets = if is_edge {
-            vec![LamellaOffset {
-                number: 0,
-                ..LamellaOffset::CENTRE
-            }]
-        } else {
-            profile.lamella_offsets(strip.family)
-        };
-        let lines = StripLines::new(strip, smooth, &offsets);
-        for (li, off) in offsets.iter().enumerate() {
-            let node_st: Vec<f64> = lines.lines[li].nodes.iter().map(|n| n.station_mm).collect();
-            let blocks = if is_edge {
-                Vec::new()
-            } else {
-                kit_blocks
-                    .get(&(strip.id.clone(), off.number))
-                    .cloned()
-                    .unwrap_or_default()
-            };
-            // Chain stations: the nodes, the subdivisions, the blocks.
-            let mut st: Vec<(f64, usize)> = Vec::new(); // (station, span index)
-            let mut node_pos: Vec<usize> = Vec::with_capacity(node_st.len());
-            let mut spans: Vec<(f64, f64)> = Vec::new();
-            st.push((node_st[0], 0));
-            node_pos.push(0);
-            for k in 0..node_st.len() - 1 {
-                let (a, c) = (node_st[k], node_st[k + 1]);
-                if c - a < MIN_SPAN_MM {
-                    node_pos.push(st.len() - 1);
-                    continue;
-                }
-                let mut inner: Vec<f64> = (1..e_per)
-                    .map(|i| a + (c - a) * i as f64 / e_per as f64)
-                    .collect();
-                // The blocks strictly inside the span (sorted: a range).
-                let inside =
-                    blocks.partition_point(|&s| s <= a)..blocks.partition_point(|&s| s < c);
-                for &s in blocks.get(inside).unwrap_or_default() {
-                    let near = inner
-                        .iter()
-                        .chain([a, c].iter())
-                        .any(|&x| (x - s).abs() <= SNAP_MM);
-                    if !near {
-                        inner.push(s);
-                    }
-                }
-                inner.sort_by(f64::total_cmp);
-                for s in inner {
-                    st.push((s, spans.len()));
-                }
-                st.push((c, spans.len()));
-                node_pos.push(st.len() - 1);
-                spans.push((a, c));
-            }
-            let stations: Vec<f64> = st.iter().map(|x| x.0).collect();
-            // Element middles, then curve stations of everything at once.
-            let mids: Vec<f64> = stations.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
-            let mut ask = stations.clone();
-            ask.extend(&mids);
-            let curve = curve_stations_of(strip, smooth, &lines, li, &ask);
-            let centre = off.dy_mm == 0.0 && off.dz_mm == 0.0;
-            let mut at_node = BTreeMap::new();
-            for (cn, &pos) in strip.nodes.iter().zip(&node_pos) {
-                at_node.entry(cn.node).or_insert(pos);
-            }
-            let snapped: BTreeMap<usize, usize> = at_node.iter().map(|(&n, &p)| (p, n)).collect();
-            let nodes: Vec<usize> = (0..stations.len())
-                .map(|i| {
-                    let p = match snapped.get(&i) {
-                        Some(&n) if centre => topo.nodes[n].position_world_mm,
-                        _ => {
-                            let f = strip.frame_at(smooth, curve[i]);
-                            f.point_world_mm + off.dy_mm * f.y + off.dz_mm * f.z
-                        }
-                    };
-                    b.node(p)
-                })
-                .collect();
-            let block_pos: Vec<(usize, bool)> = blocks
-                .iter()
-                .map(|&s| {
-                    let i = nearest_station(&stations, s);
-                    let inside = s > stations[0] && s < stations[stations.len() - 1];
-                    (i, inside)
-                })
-                .collect();
-            chains.push(Chain {
-                strip: strip.curve,
-                number: off.number,
-                offset: *off,
-                stations,
-                nodes,
-                spans: st[1..]
-                    .iter()
-                    .map(|x| spans.get(x.1).copied().unwrap_or_default())
-                    .collect(),
-                at_node,
-                blocks: block_pos,
-                beams: Vec::new(),
-            });
-            // Elements.
-            let ch = chains.last_mut().expect("just pushed");
-            let n_mid = ch.stations.len() - 1;
-            for i in 0..n_mid {
-                let (na, nb) = (ch.nodes[i], ch.nodes[i + 1]);
-                if ch.stations[i + 1] - ch.stations[i] < MIN_SPAN_MM {
-                    continue;
-                }
-                let f = strip.frame_at(smooth, curve[ch.stations.len() + i]);
-                let k = stretch(off.dy_mm, off.dz_mm, f.kg_per_mm, f.kn_per_mm, f.tg_per_mm);
-                let w = darboux_rate(f.kg_per_mm, f.kn_per_mm, f.tg_per_mm) / k;
-                let (section, initial, role) = if is_edge {
-                    let s = &secs[SECTION_BAND];
-                    (
-                        SECTION_BAND,
-                        InitialForces {
-                            axial_n: 0.0,
-                            torque_nmm: g_mod * s.j_mm4 * w.x,
-                            moment_y_nmm: e_mod * s.i_y_mm4 * w.y,
-                            moment_z_nmm: 0.0,
-                        },
-                        None,
-                    )
-                } else {
-                    let s = &secs[SECTION_LAMELLA];
-                    let (a, c) = ch.spans[i];
-                    (
-                        SECTION_LAMELLA,
-                        InitialForces {
-                            axial_n: 0.0,
-                            torque_nmm: g_mod * s.j_mm4 * w.x,
-                            moment_y_nmm: e_mod * s.i_y_mm4 * w.y,
-                            moment_z_nmm: e_mod * s.i_z_mm4 * w.z,
-                        },
-                        Some(BeamRole {
-                            strip: strip.curve,
-                            lamella: off.number,
-                            station_mm: 0.5 * (ch.stations[i] + ch.stations[i + 1]),
-                            member_span_mm: c - a,
-                            trapeze_mpa: e_mod * w.x * w.x * h * h / 12.0,
-                        }),
-                    )
-                };
-                let bi = b.beam([na, nb], section, f.z, initial, role);
-                ch.beams.push(bi);
-                let len = b.model.nodes_mm[na].distance(b.model.nodes_mm[nb]);
-                b.shortest_mm[na] = b.shortest_mm[na].min(len);
-                b.shortest_mm[nb] = b.shortest_mm[nb].min(len);
-            }
+    for group in an.strips.chunks(STRIPS_AT_ONCE) {
+        let made: Vec<Vec<ChainGeometry>> = group
+            .par_iter()
+            .map(|strip| chain_geometry.of(strip))
+            .collect();
+        for geometry in made.into_iter().flatten() {
+            chains.push(b.chain(geometry));
         }
     }
 
