@@ -707,12 +707,15 @@ impl SymSparse {
     ///
     /// x is read where it lies and the second thread's sums are added into
     /// the first's: at 400 × 400 curves a copy of x beside |x| and a third
-    /// array for the total were 394 MB more per column.
+    /// array for the total were 394 MB more per column. The second
+    /// thread's columns reach only the rows from their first on (the
+    /// lower triangle), so its array holds those rows alone (98 MB less).
     fn mul_column_and_abs(&self, x: &[f64]) -> Vec<[f64; 2]> {
         let n = self.n;
         let part = |columns: std::ops::Range<usize>| -> Vec<[f64; 2]> {
             let pattern = &*self.pattern;
-            let mut out = vec![[0.0; 2]; n];
+            let base = columns.start;
+            let mut out = vec![[0.0; 2]; n - base];
             for j in columns {
                 let (mut begin, end) = (pattern.start[j], pattern.start[j + 1]);
                 let xj = x[j];
@@ -731,19 +734,19 @@ impl SymSparse {
                 {
                     let xi = x[i];
                     let a = v.abs();
-                    out[i][0] += v * xj;
-                    out[i][1] += a * aj;
+                    out[i - base][0] += v * xj;
+                    out[i - base][1] += a * aj;
                     sum += v * xi;
                     sum_abs += a * xi.abs();
                 }
-                out[j][0] += sum;
-                out[j][1] += sum_abs;
+                out[j - base][0] += sum;
+                out[j - base][1] += sum_abs;
             }
             out
         };
         if n >= PARALLEL_ROWS {
             let (mut a, b) = rayon::join(|| part(0..n / 2), || part(n / 2..n));
-            for (a, b) in a.iter_mut().zip(&b) {
+            for (a, b) in a[n / 2..].iter_mut().zip(&b) {
                 a[0] += b[0];
                 a[1] += b[1];
             }
@@ -1210,10 +1213,6 @@ pub struct Assembly {
     /// The node positions the frames were taken at (imperfect geometry in
     /// second order).
     pub nodes_mm: Vec<DVec3>,
-    /// Per beam: its rigid end offsets (its transformation made where
-    /// used: 48 bytes a beam where the 12 × 12 matrix held 1,160, 180 MB
-    /// at 100 × 100 curves).
-    offsets: Vec<[DVec3; 2]>,
     /// Per cable: its unit axis (first end to second) and its stiffness
     /// while taut, N/mm.
     cable_axes: Vec<(DVec3, f64)>,
@@ -1424,7 +1423,6 @@ impl Assembly {
             dofs: Dofs::of(model),
             frames: Vec::new(),
             nodes_mm: Vec::new(),
-            offsets: model.beams.iter().map(|b| b.offsets_mm).collect(),
             cable_axes: Vec::new(),
             plan: OnceLock::new(),
         }
@@ -1439,7 +1437,6 @@ impl Assembly {
             dofs: self.dofs.clone(),
             frames: Vec::new(),
             nodes_mm: Vec::new(),
-            offsets: self.offsets.clone(),
             cable_axes: Vec::new(),
             plan: self.plan.clone(),
         }
@@ -1464,11 +1461,6 @@ impl Assembly {
             .collect();
         self.nodes_mm = nodes_mm.to_vec();
         Ok(self)
-    }
-
-    /// Beam i's rigid-offset transformation, if it has offsets.
-    fn offset(&self, i: usize) -> Option<Mat12> {
-        offset_matrix(&self.offsets[i])
     }
 
     /// The model's scatter plan (made once).
@@ -1496,7 +1488,7 @@ impl Assembly {
             let blocks: Vec<Option<Mat12>> = (start..end)
                 .into_par_iter()
                 .map(|i| {
-                    matrix(i).map(|k| match &self.offset(i) {
+                    matrix(i).map(|k| match &offset_matrix(&model.beams[i].offsets_mm) {
                         None => k,
                         Some(h) => sandwich(h, &k),
                     })
@@ -1699,7 +1691,7 @@ impl Assembly {
                     sym[a][c] = 0.5 * (k[a][c] + k[c][a]);
                 }
             }
-            let k = match &self.offset(p.beam) {
+            let k = match &offset_matrix(&model.beams[p.beam].offsets_mm) {
                 None => sym,
                 Some(h) => sandwich(h, &sym),
             };
@@ -1863,7 +1855,7 @@ impl Assembly {
             }
             let f = &self.frames[i];
             let g = apply_ht(
-                &self.offsets[i],
+                &b.offsets_mm,
                 globalise(&f.rotation, &uniform_nodal_loads(local_q[i], f.length_mm)),
             );
             for k in 0..6 {
@@ -1913,7 +1905,7 @@ impl Assembly {
             let mut ug = [0.0; 12];
             ug[..6].copy_from_slice(&displacements[b.nodes[0]]);
             ug[6..].copy_from_slice(&displacements[b.nodes[1]]);
-            let ul = localise(&f.rotation, &apply_h(&self.offsets[i], ug));
+            let ul = localise(&f.rotation, &apply_h(&b.offsets_mm, ug));
             let mut fl = local_stiffness_times(s, f.length_mm, &ul);
             if let Some(n) = axial_n {
                 let kg = local_geometric(s, f.length_mm, n[i]);
@@ -1958,7 +1950,7 @@ impl Assembly {
                 continue;
             }
             let g = apply_ht(
-                &self.offsets[i],
+                &b.offsets_mm,
                 globalise(&self.frames[i].rotation, &local_end_forces(i)),
             );
             for k in 0..6 {
@@ -2647,9 +2639,10 @@ impl<'m> LinearFrame<'m> {
                 .collect()
         };
         let p = sum(&parts.p);
-        let x = sum(&parts.x);
-        let mut one = Mat::from_fn(n, 1, |i, _| x[i]);
-        drop(x);
+        let mut one = Mat::<f64>::zeros(n, 1);
+        for (i, row) in parts.x.chunks_exact(parts.width).enumerate() {
+            one[(i, 0)] = weights.iter().map(|&(c, f)| f * row[c]).sum();
+        }
         solve_refined_after(&self.factor, &self.stiffness, &mut one, |_| p.as_slice())?;
         Ok(one.col(0).iter().copied().collect())
     }
@@ -2852,7 +2845,8 @@ impl Statics<'_, '_> {
                 *held = Some(self.frame.solve_parts(&superposed.parts)?);
             }
             let parts = held.as_ref().expect("solved above");
-            return self.frame.superpose(parts, &superposed.weights[c]);
+            let x = self.frame.superpose(parts, &superposed.weights[c]);
+            return x;
         }
         let first = c - c % STATICS_BLOCK;
         let mut solved = self.solved.lock().unwrap_or_else(|e| e.into_inner());
@@ -3276,7 +3270,7 @@ mod tests {
         let (model, loads) = plan_model();
         let assembly = Assembly::new(&model, &model.nodes_mm).unwrap();
         let n = assembly.dofs.free;
-        let with_offsets = |i: usize, k: Mat12| match &assembly.offset(i) {
+        let with_offsets = |i: usize, k: Mat12| match &offset_matrix(&model.beams[i].offsets_mm) {
             None => k,
             Some(h) => sandwich(h, &k),
         };
