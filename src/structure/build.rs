@@ -740,6 +740,30 @@ pub fn build_frame(
         elements_per_span: e_per,
         kit_blocks: &kit_blocks,
     };
+    // Room for every chain's nodes and beams at once: a vector grown by
+    // doubling leaves each smaller copy behind, memory the allocator keeps
+    // (the 400 × 400 benchmark grid's 2.6 million beams, 326 MB, left
+    // about as much again). Room past the count is never written, so it
+    // takes no memory: the bound counts every block as a station of its own.
+    let chain_nodes: usize = (an.strips.iter())
+        .filter(|strip| !strip.nodes.is_empty())
+        .map(|strip| {
+            let stations = (strip.nodes.len() - 1) * e_per + 1;
+            if strip.family == Family::Edge {
+                return stations;
+            }
+            (profile.lamella_offsets(strip.family).iter())
+                .map(|off| {
+                    let key = (strip.id.clone(), off.number);
+                    stations + kit_blocks.get(&key).map_or(0, Vec::len)
+                })
+                .sum()
+        })
+        .sum();
+    b.model.nodes_mm.reserve(chain_nodes);
+    b.shortest_mm.reserve(chain_nodes);
+    b.model.beams.reserve(chain_nodes);
+    b.roles.reserve(chain_nodes);
     let mut chains: Vec<Chain> = Vec::new();
     for group in an.strips.chunks(STRIPS_AT_ONCE) {
         let made: Vec<Vec<ChainGeometry>> = group
