@@ -152,7 +152,7 @@ impl Nodes {
         for c in 0..m {
             let begin = rows.len();
             for j in self.first[c] as usize..self.first[c + 1] as usize {
-                for &i in &pattern.rows[pattern.start[j]..pattern.start[j + 1]] {
+                for i in pattern.column(j) {
                     let d = self.of_unknown[i];
                     if d as usize != c && seen[d as usize] != c as u32 {
                         seen[d as usize] = c as u32;
@@ -347,11 +347,7 @@ mod tests {
             }
         }
         assert_eq!(start.len(), n + 1);
-        Pattern {
-            start,
-            rows,
-            in_order: false,
-        }
+        Pattern::listed(start, rows, false)
     }
 
     #[test]

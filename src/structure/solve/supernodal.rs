@@ -25,6 +25,7 @@
 
 use super::layout::Layout;
 use super::triangular::Schedule;
+use super::Pattern;
 use crate::geom::mesh::bucketed;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
@@ -93,8 +94,7 @@ impl Updates {
 /// factor's order.
 #[derive(Clone, Copy)]
 pub(crate) struct Lower<'a> {
-    pub start: &'a [usize],
-    pub rows: &'a [usize],
+    pub pattern: &'a Pattern,
     pub values: &'a [f64],
 }
 
@@ -236,22 +236,22 @@ impl Worker {
         block.fill(0.0);
         // A's columns.
         let a = job.a;
+        let local = &self.local;
         for c in first..last {
             let column = &mut block[(c - first) * height..(c - first + 1) * height];
-            for k in a.start[c]..a.start[c + 1] {
-                let r = a.rows[k];
+            a.pattern.for_each_in(c, |k, r| {
                 if r < c {
-                    continue;
+                    return;
                 }
                 let place = if r < last {
                     r - first
                 } else {
                     // Every row of A lies in the factor's structure.
-                    debug_assert!(self.local[r] != u32::MAX, "row {r} outside the structure");
-                    self.local[r] as usize
+                    debug_assert!(local[r] != u32::MAX, "row {r} outside the structure");
+                    local[r] as usize
                 };
                 column[place] += a.values[k];
-            }
+            });
         }
         // The updates of the supernodes below, ascending.
         for &d in job.updates.of_supernode(s) {
