@@ -188,9 +188,10 @@ pub fn analyse_as(
     } else {
         None
     };
-    // The unbraced statics eight at a time (one pass of the factor for
-    // the eight), as the combinations are judged in turn; each one's
-    // section forces made then.
+    // The unbraced statics as the combinations are judged in turn: the
+    // load cases solved together once and each combination their
+    // factored sum (`solve::Statics`); each one's section forces made
+    // then.
     let sets: Vec<&LoadSet> = combinations.iter().map(|c| &c.loads).collect();
     let statics = match &unbraced {
         Some(linear) => Some(linear.solve_each(&sets)?),
