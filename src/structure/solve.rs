@@ -2819,16 +2819,12 @@ impl<'m> LinearFrame<'m> {
     /// the sum of the parts' right-hand sides.
     fn superpose(&self, parts: &Parts, weights: &[(usize, f64)]) -> Result<Vec<f64>, FrameError> {
         let n = self.stiffness.n;
-        let sum = |values: &[f64]| -> Vec<f64> {
-            values
-                .chunks_exact(parts.width)
-                .map(|row| weights.iter().map(|&(c, f)| f * row[c]).sum())
-                .collect()
-        };
-        let p = sum(&parts.p);
+        let weighted = |row: &[f64]| -> f64 { weights.iter().map(|&(c, f)| f * row[c]).sum() };
+        let p: Vec<f64> = parts.p.chunks_exact(parts.width).map(weighted).collect();
+        // Made where the refinement reads it, with no copy beside it.
         let mut one = Mat::<f64>::zeros(n, 1);
         for (i, row) in parts.x.chunks_exact(parts.width).enumerate() {
-            one[(i, 0)] = weights.iter().map(|&(c, f)| f * row[c]).sum();
+            one[(i, 0)] = weighted(row);
         }
         solve_refined_after(&self.factor, &self.stiffness, &mut one, |_| p.as_slice())?;
         Ok(one.col(0).iter().copied().collect())
@@ -3032,8 +3028,7 @@ impl Statics<'_, '_> {
                 *held = Some(self.frame.solve_parts(&superposed.parts)?);
             }
             let parts = held.as_ref().expect("solved above");
-            let x = self.frame.superpose(parts, &superposed.weights[c]);
-            return x;
+            return self.frame.superpose(parts, &superposed.weights[c]);
         }
         let first = c - c % STATICS_BLOCK;
         let mut solved = self.solved.lock().unwrap_or_else(|e| e.into_inner());
