@@ -71,7 +71,7 @@ impl Updates {
             rows[row_start[d]..row_start[d + 1]]
                 .iter()
                 .filter_map(move |&r| {
-                    let s = owner[r];
+                    let s = owner[r as usize];
                     (s != last).then(|| {
                         last = s;
                         s
@@ -227,7 +227,7 @@ impl Worker {
         let below = &rows[row_start[s]..row_start[s + 1]];
         let height = width + below.len();
         for (i, &r) in below.iter().enumerate() {
-            self.local[r] = (width + i) as u32;
+            self.local[r as usize] = (width + i) as u32;
         }
         let (done, rest) = values.split_at_mut(value_start[s] - base);
         let block = &mut rest[..height * width];
@@ -260,12 +260,13 @@ impl Worker {
             let d_below = &rows[row_start[d]..row_start[d + 1]];
             let d_height = d_width + d_below.len();
             let l_d = &done[value_start[d] - base..value_start[d + 1] - base];
-            let p0 = d_below.partition_point(|&r| r < first);
-            let mid = d_below[p0..].partition_point(|&r| r < last);
+            let p0 = d_below.partition_point(|&r| (r as usize) < first);
+            let mid = d_below[p0..].partition_point(|&r| (r as usize) < last);
             let m = d_below.len() - p0;
             let local = &self.local;
             self.places.clear();
             self.places.extend(d_below[p0..].iter().map(|&r| {
+                let r = r as usize;
                 if r < last {
                     (r - first) as u32
                 } else {
@@ -330,7 +331,7 @@ impl Worker {
             }
         }
         for &r in below {
-            self.local[r] = u32::MAX;
+            self.local[r as usize] = u32::MAX;
         }
         if width <= OWN_KERNEL_WIDTH {
             own_kernel(block, width, height)

@@ -60,7 +60,7 @@ const SPLITS: usize = 256;
 struct Supernode<'a> {
     first_column: usize,
     width: usize,
-    below: &'a [usize],
+    below: &'a [u32],
     block: &'a [f64],
 }
 
@@ -80,7 +80,8 @@ impl<'a> Supernode<'a> {
     /// How many of the rows below lie in `own` (rows `offset`.. of y,
     /// `own_len` of them; the rest lie beyond it).
     fn inside(&self, offset: usize, own_len: usize) -> usize {
-        self.below.partition_point(|&r| r < offset + own_len)
+        self.below
+            .partition_point(|&r| (r as usize) < offset + own_len)
     }
 
     /// Column k's values in its diagonal block, and the rows below with
@@ -90,11 +91,7 @@ impl<'a> Supernode<'a> {
         &self,
         k: usize,
         inside: usize,
-    ) -> (
-        &'a [f64],
-        (&'a [usize], &'a [f64]),
-        (&'a [usize], &'a [f64]),
-    ) {
+    ) -> (&'a [f64], (&'a [u32], &'a [f64]), (&'a [u32], &'a [f64])) {
         let height = self.width + self.below.len();
         let column = &self.block[k * height..(k + 1) * height];
         let (near, far) = self.below.split_at(inside);
@@ -125,13 +122,13 @@ impl<'a> Supernode<'a> {
                 }
             }
             for (&r, &l) in near.iter().zip(l_near) {
-                let row = &mut own[r - offset];
+                let row = &mut own[r as usize - offset];
                 for c in 0..P {
                     row[c] -= l * xk[c];
                 }
             }
             for (&r, &l) in far.iter().zip(l_far) {
-                outside(r, l, &xk);
+                outside(r as usize, l, &xk);
             }
         }
     }
@@ -155,13 +152,13 @@ impl<'a> Supernode<'a> {
                 }
             }
             for (&r, &l) in near.iter().zip(l_near) {
-                let row = &own[r - offset];
+                let row = &own[r as usize - offset];
                 for c in 0..P {
                     acc[c] -= l * row[c];
                 }
             }
             for (&r, &l) in far.iter().zip(l_far) {
-                let row = outside(r);
+                let row = outside(r as usize);
                 for c in 0..P {
                     acc[c] -= l * row[c];
                 }
@@ -294,7 +291,7 @@ fn parents(layout: &Layout) -> Vec<usize> {
     (0..count)
         .map(|s| {
             if row_start[s] < row_start[s + 1] {
-                owner[rows[row_start[s]]]
+                owner[rows[row_start[s]] as usize]
             } else {
                 usize::MAX
             }
