@@ -3000,10 +3000,13 @@ pub struct Statics<'a, 'm> {
 /// with fewer parts than sets, at most [`STATICS_BLOCK`]: the statics are
 /// linear, so the parts are solved together, once (one pass of the
 /// factor), and each set's solution is its factored sum of theirs, held
-/// to the set's own backward error (its right-hand side the same sum of
-/// the parts'). At 400 × 400 benchmark curves the 19 combinations of the
-/// pavilion's four cases had taken 38 load vectors of 0.45 s each (every
-/// set's made for its solve and again for its backward error); now 4.
+/// to the set's own backward error (for its own load vector, made then).
+/// At 400 × 400 benchmark curves the 19 combinations of the pavilion's
+/// four cases had taken 38 load vectors and 3 passes of the factor (each
+/// set's load vector made for its solve and again for its backward
+/// error); now one pass, and 27 load vectors on both cores (the cases'
+/// for their solve and their refinement, each combination's for its
+/// backward error), none of them kept.
 #[derive(Debug)]
 struct Superposition<'a> {
     /// The parts: load sets, and `None` for the taut cables' pretensions
