@@ -2196,14 +2196,17 @@ impl Assembly {
             }
         }
         let at = |node: usize| (place[node] != UNSUPPORTED).then(|| place[node] as usize);
-        let mut internal = vec![[0.0; 6]; held as usize];
-        let mut add = |node: usize, offset: usize, v: &[f64]| {
+        // v added to a supported node's sums from `offset` on.
+        let add_to = |sums: &mut [[f64; 6]], node: usize, offset: usize, v: &[f64]| {
             if let Some(s) = at(node) {
-                for (sum, v) in internal[s][offset..offset + v.len()].iter_mut().zip(v) {
+                for (sum, v) in sums[s][offset..offset + v.len()].iter_mut().zip(v) {
                     *sum += v;
                 }
             }
         };
+        let mut internal = vec![[0.0; 6]; held as usize];
+        let mut add =
+            |node: usize, offset: usize, v: &[f64]| add_to(&mut internal, node, offset, v);
         for (i, b) in model.beams.iter().enumerate() {
             if at(b.nodes[0]).is_none() && at(b.nodes[1]).is_none() {
                 continue;
@@ -2246,13 +2249,8 @@ impl Assembly {
         }
         let mut applied = vec![[0.0; 6]; held as usize];
         loads.for_each_node_load(|l, factor| {
-            let (f, m) = (l.force_n * factor, l.moment_nmm * factor);
-            if let Some(s) = at(l.node) {
-                for k in 0..3 {
-                    applied[s][k] += f[k];
-                    applied[s][3 + k] += m[k];
-                }
-            }
+            add_to(&mut applied, l.node, 0, &(l.force_n * factor).to_array());
+            add_to(&mut applied, l.node, 3, &(l.moment_nmm * factor).to_array());
         });
         let mut reactions: Vec<Reaction> = Vec::with_capacity(held as usize);
         for s in &model.supports {
@@ -2723,7 +2721,7 @@ impl<'m> LinearFrame<'m> {
         // stiffness to the stiffness and scales only the load's share.
         // The statics stay linear (as a frame program computes them).
         let (mut pre_axial, mut pre_cable_n, mut pre_geometric) = (Vec::new(), Vec::new(), None);
-        if pull.iter().any(|&p| p != 0.0) {
+        if !pull.is_empty() {
             let x = solve_refined(&factor, &stiffness, &pull)?;
             let cable_n: Vec<f64> = assembly
                 .cable_forces(model, &x)
